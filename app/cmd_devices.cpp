@@ -1,0 +1,37 @@
+// isocurv devices: the OpenCL devices and which one is the default.
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <iostream>
+
+#include "app/commands.h"
+#include "core/cl_device.h"
+
+namespace isocurv::app {
+
+void register_devices(CLI::App& app) {
+  auto* cmd = app.add_subcommand("devices", "List OpenCL devices (the index is what --device takes)");
+  cmd->footer("Example: isocurv devices --json");
+  static bool json = false;
+  cmd->add_flag("--json", json, "Print a JSON array");
+  cmd->callback([] {
+    auto devices = list_devices();
+    int def = Device::default_device().info().index;
+    if (json) {
+      nlohmann::json out = nlohmann::json::array();
+      for (auto& d : devices)
+        out.push_back({{"index", d.index}, {"platform", d.platform}, {"name", d.name}, {"type", d.type},
+                       {"version", d.version}, {"global_memory", d.global_memory},
+                       {"compute_units", d.compute_units}, {"default", d.index == def}});
+      std::cout << out.dump(2) << "\n";
+      return;
+    }
+    for (auto& d : devices)
+      std::printf("%c %d  %-4s %s (%s; %s; %u compute units, %.1f GiB)\n", d.index == def ? '*' : ' ',
+                  d.index, d.type.c_str(), d.name.c_str(), d.platform.c_str(), d.version.c_str(),
+                  d.compute_units, d.global_memory / 1073741824.0);
+    std::printf("(* = default; choose another with --device N or ISOCURV_DEVICE=N)\n");
+  });
+}
+
+}  // namespace isocurv::app

@@ -1,0 +1,137 @@
+#include "core/cl_device.h"
+
+#include <cstdlib>
+#include <mutex>
+
+#include "core/error.h"
+
+namespace isocurv {
+namespace {
+
+struct Found {
+  DeviceInfo info;
+  cl::Device device;
+};
+
+std::vector<Found> enumerate() {
+  std::vector<cl::Platform> platforms;
+  cl_int err = cl::Platform::get(&platforms);
+  (void)err;
+  if (platforms.empty())
+    throw Error("no OpenCL platform found: install an OpenCL driver, e.g. apt-get install pocl-opencl-icd "
+                "(CPU) or your GPU vendor's OpenCL ICD");
+  std::vector<Found> out;
+  for (auto& p : platforms) {
+    std::vector<cl::Device> devs;
+    try {
+      p.getDevices(CL_DEVICE_TYPE_ALL, &devs);
+    } catch (const cl::Error&) {
+      continue;  // a platform with no devices
+    }
+    for (auto& d : devs) {
+      Found f;
+      f.device = d;
+      f.info.index = static_cast<int>(out.size());
+      f.info.platform = p.getInfo<CL_PLATFORM_NAME>();
+      f.info.name = d.getInfo<CL_DEVICE_NAME>();
+      auto t = d.getInfo<CL_DEVICE_TYPE>();
+      f.info.type = (t & CL_DEVICE_TYPE_GPU) ? "GPU" : (t & CL_DEVICE_TYPE_CPU) ? "CPU"
+                    : (t & CL_DEVICE_TYPE_ACCELERATOR) ? "accelerator" : "other";
+      f.info.version = d.getInfo<CL_DEVICE_VERSION>();
+      f.info.global_memory = d.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
+      f.info.compute_units = d.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
+      out.push_back(f);
+    }
+  }
+  if (out.empty())
+    throw Error("OpenCL platforms exist but offer no device: install pocl-opencl-icd for a CPU device");
+  return out;
+}
+
+}  // namespace
+
+std::vector<DeviceInfo> list_devices() {
+  std::vector<DeviceInfo> out;
+  for (auto& f : enumerate()) out.push_back(f.info);
+  return out;
+}
+
+std::shared_ptr<Device> Device::open(int index) {
+  auto all = enumerate();
+  if (index < 0) {
+    if (const char* env = std::getenv("ISOCURV_DEVICE"); env && *env) {
+      char* end = nullptr;
+      long v = std::strtol(env, &end, 10);
+      if (*end != '\0' || v < 0)
+        throw Error("ISOCURV_DEVICE='" + std::string(env) + "' is not a device number (see isocurv devices)");
+      index = static_cast<int>(v);
+    }
+  }
+  if (index < 0) {
+    for (auto& f : all)
+      if (f.info.type == "GPU") { index = f.info.index; break; }
+    if (index < 0)
+      for (auto& f : all)
+        if (f.info.type == "CPU") { index = f.info.index; break; }
+    if (index < 0) index = 0;
+  }
+  if (index >= static_cast<int>(all.size()))
+    throw Error("no OpenCL device number " + std::to_string(index) + " (there are " +
+                std::to_string(all.size()) + "; see isocurv devices)");
+  auto dev = std::make_shared<Device>();
+  dev->info_ = all[index].info;
+  dev->device_ = all[index].device;
+  try {
+    dev->context_ = cl::Context(dev->device_);
+    dev->queue_ = cl::CommandQueue(dev->context_, dev->device_);
+  } catch (const cl::Error& e) {
+    throw Error("cannot open OpenCL device '" + dev->info_.name + "': " + e.what() + " (" +
+                cl_error_name(e.err()) + ")");
+  }
+  return dev;
+}
+
+Device& Device::default_device() {
+  static std::shared_ptr<Device> dev;
+  static std::mutex m;
+  std::lock_guard<std::mutex> lock(m);
+  if (!dev) dev = open(-1);
+  return *dev;
+}
+
+cl::Program& Device::program(const std::string& name, const char* source, const std::string& options) {
+  const std::string key = name + "|" + options;
+  auto it = programs_.find(key);
+  if (it != programs_.end()) return it->second;
+  cl::Program prog(context_, std::string(source));
+  try {
+    prog.build({device_}, (options + " -cl-std=CL1.2").c_str());
+  } catch (const cl::Error&) {
+    std::string log;
+    try {
+      log = prog.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device_);
+    } catch (...) {
+    }
+    throw Error("OpenCL program '" + name + "' failed to build on " + info_.name + ":\n" + log);
+  }
+  return programs_.emplace(key, prog).first->second;
+}
+
+std::string cl_error_name(int code) {
+  switch (code) {
+    case CL_SUCCESS: return "CL_SUCCESS";
+    case CL_DEVICE_NOT_FOUND: return "CL_DEVICE_NOT_FOUND";
+    case CL_MEM_OBJECT_ALLOCATION_FAILURE: return "CL_MEM_OBJECT_ALLOCATION_FAILURE";
+    case CL_OUT_OF_RESOURCES: return "CL_OUT_OF_RESOURCES";
+    case CL_OUT_OF_HOST_MEMORY: return "CL_OUT_OF_HOST_MEMORY";
+    case CL_BUILD_PROGRAM_FAILURE: return "CL_BUILD_PROGRAM_FAILURE";
+    case CL_INVALID_VALUE: return "CL_INVALID_VALUE";
+    case CL_INVALID_BUFFER_SIZE: return "CL_INVALID_BUFFER_SIZE";
+    case CL_INVALID_KERNEL_ARGS: return "CL_INVALID_KERNEL_ARGS";
+    case CL_INVALID_WORK_GROUP_SIZE: return "CL_INVALID_WORK_GROUP_SIZE";
+    case CL_INVALID_GLOBAL_WORK_SIZE: return "CL_INVALID_GLOBAL_WORK_SIZE";
+    default: return "OpenCL error " + std::to_string(code);
+  }
+}
+
+}  // namespace isocurv

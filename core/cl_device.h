@@ -1,0 +1,62 @@
+#pragma once
+// The OpenCL device shared by every compute stage: device choice, queue, program builds.
+#define CL_HPP_TARGET_OPENCL_VERSION 120
+#define CL_HPP_MINIMUM_OPENCL_VERSION 120
+#define CL_HPP_ENABLE_EXCEPTIONS
+#include <CL/opencl.hpp>
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace isocurv {
+
+/// One OpenCL device as `isocurv devices` lists it.
+struct DeviceInfo {
+  int index = -1;          ///< position in list_devices(), what --device takes
+  std::string platform;    ///< platform name, e.g. "Portable Computing Language"
+  std::string name;        ///< device name
+  std::string type;        ///< "GPU", "CPU", "accelerator" or "other"
+  std::string version;     ///< OpenCL version string of the device
+  std::uint64_t global_memory = 0;  ///< bytes
+  std::uint32_t compute_units = 0;
+};
+
+/// Every device on every platform, in a stable order. Throws Error naming the packages to install
+/// when no OpenCL platform exists.
+std::vector<DeviceInfo> list_devices();
+
+/// An opened device with its context and in-order queue. Programs are built once and cached.
+class Device {
+ public:
+  /// Opens device `index` of list_devices(); index < 0 picks the default: the environment
+  /// variable ISOCURV_DEVICE if set, else the first GPU, else the first CPU device (PoCL).
+  static std::shared_ptr<Device> open(int index = -1);
+  /// The process-wide default device (opened once, on first use).
+  static Device& default_device();
+
+  const DeviceInfo& info() const { return info_; }
+  cl::Context& context() { return context_; }
+  cl::CommandQueue& queue() { return queue_; }
+  cl::Device& device() { return device_; }
+
+  /// Builds (once; later calls return the cached program) `source` under `name`. A failed build
+  /// throws Error carrying the compiler's log.
+  cl::Program& program(const std::string& name, const char* source, const std::string& options = "");
+
+ private:
+  DeviceInfo info_;
+  cl::Device device_;
+  cl::Context context_;
+  cl::CommandQueue queue_;
+  std::map<std::string, cl::Program> programs_;
+};
+
+/// Rounds n up to a multiple of m (for global work sizes).
+inline std::size_t round_up(std::size_t n, std::size_t m) { return (n + m - 1) / m * m; }
+
+/// Human-readable name of an OpenCL error code, e.g. "CL_OUT_OF_RESOURCES".
+std::string cl_error_name(int code);
+
+}  // namespace isocurv

@@ -1,0 +1,48 @@
+#pragma once
+// The loaded volume every later stage reads: an OpenVDB float grid plus what was learned loading it.
+#include <openvdb/openvdb.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace isocurv::volume {
+
+/// Which side of the isovalue is the object (DESIGN.md): Above for densities and CT,
+/// Below for level sets (negative inside).
+enum class Inside { Above, Below };
+
+/// Value statistics over the finite voxels of the data domain.
+struct ValueStats {
+  double min = 0, max = 0;         ///< finite value range
+  double mean = 0;
+  std::uint64_t voxels = 0;        ///< voxels counted (finite + non-finite)
+  std::uint64_t nan_count = 0;     ///< NaN voxels (replaced by an outside value on load)
+  std::uint64_t inf_count = 0;     ///< +-Inf voxels (likewise replaced)
+  std::vector<std::uint64_t> histogram;  ///< 256 equal bins over [min, max]
+  double suggested_isovalue = 0;   ///< 0 for level sets, else Otsu's threshold on the histogram
+};
+
+/// A volume as an OpenVDB FloatGrid. The grid's transform maps index space to world space
+/// (spacing, origin, and for NIfTI/MetaImage a direction matrix). Dense files become a grid
+/// whose data domain is `domain` (index space, inclusive); sparse .vdb grids have
+/// `dense = false` and their domain is the active bounding box.
+struct Volume {
+  openvdb::FloatGrid::Ptr grid;
+  std::string path;               ///< file it came from
+  std::string format;             ///< "vdb", "nrrd", "metaimage", "nifti", "vti", "vtk", "dgtal-vol", "raw", "generated"
+  std::string voxel_type;         ///< type on disk: "uint8", "int16", "uint16", "int32", "float", "double", "half"
+  std::string grid_class;         ///< "level set", "fog volume" or "unknown"
+  std::string grid_name;          ///< VDB grid name, or the array name for VTK files
+  bool dense = true;              ///< true when every voxel of `domain` was stored in the file
+  openvdb::CoordBBox domain;      ///< index-space data domain (inclusive)
+  Inside inside = Inside::Above;  ///< which side is the object
+  ValueStats stats;
+
+  /// Voxel spacing (world units per index step along each axis).
+  openvdb::Vec3d spacing() const { return grid->transform().voxelSize(); }
+  /// World position of index (0,0,0).
+  openvdb::Vec3d origin() const { return grid->transform().indexToWorld(openvdb::Vec3d(0, 0, 0)); }
+};
+
+}  // namespace isocurv::volume
