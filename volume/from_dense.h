@@ -1,0 +1,30 @@
+#pragma once
+// Building a Volume from a dense array in memory (every dense loader and the dataset generators use it).
+#include <array>
+#include <string>
+
+#include "volume/volume.h"
+
+namespace isocurv::volume {
+
+/// Describes where a dense array came from, for the Volume's bookkeeping fields.
+struct DenseSource {
+  std::string path;                  ///< file (or a descriptive name for generated data)
+  std::string format;                ///< see Volume::format
+  std::string voxel_type;            ///< type on disk
+  std::string grid_name;             ///< optional
+  Inside inside = Inside::Above;
+};
+
+/// Copies `data` (dims[0]*dims[1]*dims[2] floats, X fastest) into a FloatGrid with transform
+/// `xform` (index -> world), domain [0, dims-1]. Counts NaN/Inf voxels and replaces them, and sets
+/// the background, with the outside value (finite min for Inside::Above, finite max for Below);
+/// computes stats (range, mean, 256-bin histogram, suggested isovalue). Throws Error(path, ...)
+/// when dims are not positive or no voxel is finite.
+Volume from_dense(const float* data, const std::array<int, 3>& dims, openvdb::math::Transform::Ptr xform,
+                  const DenseSource& source);
+
+/// Recomputes v.stats from v.grid over v.domain (used after editing a grid, and for sparse grids).
+void compute_stats(Volume& v);
+
+}  // namespace isocurv::volume
