@@ -1,0 +1,46 @@
+#include "core/cl_radix_sort.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "core/cl_scan.h"
+#include "core/error.h"
+
+namespace isocurv {
+namespace kernels {
+extern const char* const radix_sort_cl;
+}
+
+void radix_sort_pairs(Device& dev, cl::Buffer& keys, cl::Buffer& values, std::uint32_t n, int key_bits) {
+  if (key_bits < 1 || key_bits > 32) throw Error("radix sort: key_bits must be 1..32");
+  if (n < 2) return;
+  cl::Program& prog = dev.program("radix_sort", kernels::radix_sort_cl);
+  const std::uint32_t p = std::clamp<std::uint32_t>(n / 4096, 1, 256);
+  const std::uint32_t chunk = (n + p - 1) / p;
+  auto& ctx = dev.context();
+  cl::Buffer hist(ctx, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * 256 * p);
+  cl::Buffer keys2(ctx, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * n);
+  cl::Buffer values2(ctx, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * n);
+  cl::Kernel kh(prog, "radix_histogram"), ks(prog, "radix_scatter");
+  cl::Buffer *src_k = &keys, *src_v = &values, *dst_k = &keys2, *dst_v = &values2;
+  const int passes = (key_bits + 7) / 8;
+  for (int pass = 0; pass < passes; ++pass) {
+    const std::uint32_t shift = 8u * pass;
+    kh.setArg(0, *src_k); kh.setArg(1, n); kh.setArg(2, chunk); kh.setArg(3, shift); kh.setArg(4, p);
+    kh.setArg(5, hist);
+    dev.queue().enqueueNDRangeKernel(kh, cl::NullRange, cl::NDRange(p));
+    exclusive_scan(dev, hist, hist, 256 * p);
+    ks.setArg(0, *src_k); ks.setArg(1, *src_v); ks.setArg(2, n); ks.setArg(3, chunk); ks.setArg(4, shift);
+    ks.setArg(5, p); ks.setArg(6, hist); ks.setArg(7, *dst_k); ks.setArg(8, *dst_v);
+    dev.queue().enqueueNDRangeKernel(ks, cl::NullRange, cl::NDRange(p));
+    std::swap(src_k, dst_k);
+    std::swap(src_v, dst_v);
+  }
+  if (src_k != &keys) {  // odd number of passes: copy the result home
+    dev.queue().enqueueCopyBuffer(*src_k, keys, 0, 0, sizeof(std::uint32_t) * n);
+    dev.queue().enqueueCopyBuffer(*src_v, values, 0, 0, sizeof(std::uint32_t) * n);
+  }
+  dev.queue().finish();
+}
+
+}  // namespace isocurv

@@ -1,0 +1,11 @@
+#pragma once
+// Stable LSD radix sort of (key, value) pairs on the device (vertex fusion, vertex adjacency).
+#include "core/cl_device.h"
+
+namespace isocurv {
+
+/// Sorts n (key, value) uint pairs by the low `key_bits` bits of key (1..32; higher bits must be
+/// zero), stably, in place in `keys` and `values`. 8 bits a pass. Blocks until done.
+void radix_sort_pairs(Device& dev, cl::Buffer& keys, cl::Buffer& values, std::uint32_t n, int key_bits);
+
+}  // namespace isocurv

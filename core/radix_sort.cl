@@ -1,0 +1,30 @@
+// Stable LSD radix sort of (key, value) uint pairs, 8 bits a pass, over P contiguous chunks:
+// per-chunk digit histograms stored digit-major (hist[d * P + c]), an exclusive scan of them, then
+// a sequential stable scatter per chunk. Deterministic: the result depends only on the input.
+
+#define RADIX 256
+
+__kernel void radix_histogram(__global const uint* keys, uint n, uint chunk, uint shift, uint p,
+                              __global uint* hist) {
+  uint c = get_global_id(0);
+  uint count[RADIX];
+  for (int d = 0; d < RADIX; ++d) count[d] = 0;
+  uint begin = c * chunk, end = min(begin + chunk, n);
+  for (uint i = begin; i < end; ++i) count[(keys[i] >> shift) & 0xFFu]++;
+  for (int d = 0; d < RADIX; ++d) hist[d * p + c] = count[d];
+}
+
+__kernel void radix_scatter(__global const uint* keys, __global const uint* values, uint n, uint chunk,
+                            uint shift, uint p, __global const uint* offsets,
+                            __global uint* keys_out, __global uint* values_out) {
+  uint c = get_global_id(0);
+  uint offset[RADIX];
+  for (int d = 0; d < RADIX; ++d) offset[d] = offsets[d * p + c];
+  uint begin = c * chunk, end = min(begin + chunk, n);
+  for (uint i = begin; i < end; ++i) {
+    uint k = keys[i];
+    uint dst = offset[(k >> shift) & 0xFFu]++;
+    keys_out[dst] = k;
+    values_out[dst] = values[i];
+  }
+}

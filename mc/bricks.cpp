@@ -1,0 +1,128 @@
+#include "mc/bricks.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace isocurv::mc {
+namespace {
+
+int floor_div8(int v) { return v >= 0 ? v / 8 : -((-v + 7) / 8); }
+
+}  // namespace
+
+BrickIndex::BrickIndex(const volume::Volume& v) {
+  // Blocks covering every cell any frame may visit (cap adds one layer) plus their apron.
+  openvdb::CoordBBox box = v.domain;
+  if (box.empty()) return;
+  box.expand(2);
+  first_ = openvdb::Coord(floor_div8(box.min().x()) * 8, floor_div8(box.min().y()) * 8,
+                          floor_div8(box.min().z()) * 8);
+  nx_ = floor_div8(box.max().x()) - first_.x() / 8 + 1;
+  ny_ = floor_div8(box.max().y()) - first_.y() / 8 + 1;
+  nz_ = floor_div8(box.max().z()) - first_.z() / 8 + 1;
+  blocks_.resize(std::size_t(nx_) * ny_ * nz_);
+  const openvdb::CoordBBox domain = v.domain;
+  const bool dense = v.dense;
+  tbb::parallel_for(tbb::blocked_range<int>(0, nz_ * ny_), [&](const tbb::blocked_range<int>& r) {
+    auto acc = v.grid->getConstAccessor();
+    for (int zy = r.begin(); zy != r.end(); ++zy) {
+      const int bz = zy / ny_, by = zy % ny_;
+      for (int bx = 0; bx < nx_; ++bx) {
+        const openvdb::Coord o = first_ + openvdb::Coord(bx * 8, by * 8, bz * 8);
+        Block b{std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest(), false, false};
+        const openvdb::CoordBBox bbox(o, o + openvdb::Coord(7));
+        b.clipped = dense && !domain.isInside(bbox);
+        auto add = [&b](float x) {
+          if (!std::isfinite(x)) { b.nonfinite = true; return; }
+          b.min = std::min(b.min, x);
+          b.max = std::max(b.max, x);
+        };
+        if (const auto* leaf = acc.probeConstLeaf(o)) {
+          const float* d = leaf->buffer().data();
+          for (int i = 0; i < 512; ++i) add(d[i]);
+        } else {
+          add(acc.getValue(o));  // a tile or background: constant over the block
+        }
+        blocks_[(std::size_t(bz) * ny_ + by) * nx_ + bx] = b;
+      }
+    }
+  });
+}
+
+const BrickIndex::Block& BrickIndex::block(int bx, int by, int bz) const {
+  return blocks_[(std::size_t(bz) * ny_ + by) * nx_ + bx];
+}
+
+std::vector<openvdb::Coord> BrickIndex::candidates(const Frame& f) const {
+  std::vector<openvdb::Coord> out;
+  if (f.cells.empty() || blocks_.empty()) return out;
+  const int bx0 = floor_div8(f.cells.min().x()) - first_.x() / 8;
+  const int by0 = floor_div8(f.cells.min().y()) - first_.y() / 8;
+  const int bz0 = floor_div8(f.cells.min().z()) - first_.z() / 8;
+  const int bx1 = floor_div8(f.cells.max().x()) - first_.x() / 8;
+  const int by1 = floor_div8(f.cells.max().y()) - first_.y() / 8;
+  const int bz1 = floor_div8(f.cells.max().z()) - first_.z() / 8;
+  const bool above = f.sign > 0;
+  const float iso = f.isovalue;
+  for (int bz = bz0; bz <= bz1; ++bz)
+    for (int by = by0; by <= by1; ++by)
+      for (int bx = bx0; bx <= bx1; ++bx) {
+        bool in = false, out_side = false;
+        // The brick's samples lie in its own block and the blocks one step up along each axis.
+        for (int dz = 0; dz < 2; ++dz)
+          for (int dy = 0; dy < 2; ++dy)
+            for (int dx = 0; dx < 2; ++dx) {
+              const int x = bx + dx, y = by + dy, z = bz + dz;
+              if (x >= nx_ || y >= ny_ || z >= nz_) { out_side = true; continue; }
+              const Block& b = block(x, y, z);
+              if (b.nonfinite || b.clipped) out_side = true;
+              if (b.min > b.max) continue;
+              if (above ? b.max > iso : b.min < iso) in = true;
+              if (above ? b.min <= iso : b.max >= iso) out_side = true;
+            }
+        if (in && out_side) out.push_back(first_ + openvdb::Coord(bx * 8, by * 8, bz * 8));
+      }
+  return out;
+}
+
+std::vector<float> gather_bricks(const volume::Volume& v, const Frame& f, std::vector<openvdb::Coord>& origins) {
+  const std::size_t n = origins.size();
+  std::vector<float> samples(n * kBrickSamples);
+  std::vector<char> keep(n, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16), [&](const tbb::blocked_range<std::size_t>& r) {
+    auto acc = v.grid->getConstAccessor();
+    for (std::size_t b = r.begin(); b != r.end(); ++b) {
+      float* out = samples.data() + b * kBrickSamples;
+      const openvdb::Coord o = origins[b];
+      bool in = false, outside = false;
+      for (int z = 0; z < kApron; ++z)
+        for (int y = 0; y < kApron; ++y)
+          for (int x = 0; x < kApron; ++x) {
+            const openvdb::Coord ijk = o + openvdb::Coord(x, y, z);
+            const float s = f.signed_value(ijk, acc.getValue(ijk));
+            *out++ = s;
+            (s > 0 ? in : outside) = true;
+          }
+      keep[b] = in && outside;
+    }
+  });
+  // Drop the bricks that do not straddle after all (order kept).
+  std::size_t w = 0;
+  for (std::size_t b = 0; b < n; ++b) {
+    if (!keep[b]) continue;
+    if (w != b) {
+      origins[w] = origins[b];
+      std::copy_n(samples.begin() + b * kBrickSamples, kBrickSamples, samples.begin() + w * kBrickSamples);
+    }
+    ++w;
+  }
+  origins.resize(w);
+  samples.resize(w * kBrickSamples);
+  return samples;
+}
+
+}  // namespace isocurv::mc

@@ -1,0 +1,41 @@
+#pragma once
+// mc::extract: a volume's isosurface as a fused, indexed triangle mesh, computed on the device.
+#include <memory>
+
+#include "core/cl_device.h"
+#include "core/mesh.h"
+#include "mc/options.h"
+#include "volume/volume.h"
+
+namespace isocurv::mc {
+
+/// Time spent in each step of one extraction, milliseconds.
+struct ExtractTimings {
+  double select = 0;    ///< choosing straddling bricks (host)
+  double gather = 0;    ///< copying their samples with aprons (host)
+  double device = 0;    ///< classify, scan, generate, sort, fuse, compact, read back
+  double total = 0;
+  std::size_t bricks = 0;  ///< bricks processed
+};
+
+/// A volume prepared for repeated extraction (the explorer's slider): the per-block value ranges
+/// are computed once; each extract() touches only bricks straddling its isovalue.
+class Mesher {
+ public:
+  Mesher(const volume::Volume& v, Device& device);
+  ~Mesher();
+  /// The isosurface at `isovalue`: world-space positions, triangles wound so normals point out of
+  /// the object, no duplicate or unreferenced vertices. An isovalue outside the value range gives
+  /// an empty mesh. Deterministic. `timings` (optional) receives the step times.
+  Mesh extract(float isovalue, const Options& options = {}, ExtractTimings* timings = nullptr);
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+/// One-shot extraction (Mesher(v, device).extract(isovalue, options)).
+Mesh extract(const volume::Volume& v, float isovalue, Device& device, const Options& options = {},
+             ExtractTimings* timings = nullptr);
+
+}  // namespace isocurv::mc

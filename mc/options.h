@@ -1,0 +1,21 @@
+#pragma once
+// Options of the marching-cubes mesher.
+
+namespace isocurv::mc {
+
+struct Options {
+  /// Width of the per-vertex edge hash used for fusion, 1..32 bits. Narrow hashes collide often
+  /// (tests use that); the output is the same for every width, only slower when narrow.
+  int hash_bits = 32;
+  /// Close surfaces cut by the bounding box of a dense volume (outside the box counts as outside
+  /// the object, as OpenVDB does). Default: leave them open there, as VTK does.
+  bool cap = false;
+  /// Fill Mesh::edge_keys (the cube edge of each vertex), for tests and fusion checks.
+  bool keep_edge_keys = false;
+};
+
+/// Vertices never sit closer than this fraction of a voxel edge to a voxel, so voxels exactly at
+/// the isovalue cannot create coincident vertices or zero-area triangles.
+constexpr float kMinEdgeFraction = 1.0f / 1024.0f;
+
+}  // namespace isocurv::mc

@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Quick-start command 1: installs what is missing, builds, and runs the main job on the bundled
+# default dataset. Extra arguments are passed to `isocurv run` (e.g. --iso 0.3).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+bash scripts/build.sh
+exec "${BUILD_DIR:-build}/app/isocurv" info "${BUILD_DIR:-build}/datasets/torus.vdb" "$@"

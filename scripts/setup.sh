@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Installs isocurv's build and run dependencies from Debian's archive when any is missing.
+# Idempotent and quiet when everything is already there. Needs root (or sudo) to install.
+set -euo pipefail
+packages=(build-essential cmake pkg-config zlib1g-dev libopenvdb-dev libboost-iostreams-dev libtbb-dev
+          pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
+          libeigen3-dev libvtk9-dev libgtest-dev libcli11-dev nlohmann-json3-dev xvfb xauth)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+echo "isocurv setup: installing ${missing[*]}" >&2
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || { echo "isocurv setup: missing packages (${missing[*]}); run as root" >&2; exit 1; }
+  SUDO=sudo
+fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

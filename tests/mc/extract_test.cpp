@@ -1,0 +1,287 @@
+// The device mesher against the reference mesher and topological invariants.
+#include <gtest/gtest.h>
+
+#include <openvdb/tools/LevelSetSphere.h>
+
+#include <cstring>
+#include <map>
+#include <random>
+
+#include "core/cl_device.h"
+#include "mc/extract.h"
+#include "mc/extract_reference.h"
+#include "mc/mesh_check.h"
+#include "tests/mc/volumes.h"
+
+using namespace isocurv;
+
+namespace {
+
+Device& dev() { return Device::default_device(); }
+
+mc::Options keys() {
+  mc::Options o;
+  o.keep_edge_keys = true;
+  return o;
+}
+
+// Same vertex and triangle counts; the same triangles once vertices are matched by edge key
+// (as cyclic triples), positions equal to 1e-6 relative.
+void expect_same_mesh(const Mesh& a, const Mesh& b) {
+  ASSERT_EQ(a.positions.size(), b.positions.size());
+  ASSERT_EQ(a.triangles.size(), b.triangles.size());
+  ASSERT_EQ(a.edge_keys.size(), a.positions.size());
+  ASSERT_EQ(b.edge_keys.size(), b.positions.size());
+  std::map<std::uint64_t, std::uint32_t> b_of_key;
+  for (std::uint32_t i = 0; i < b.edge_keys.size(); ++i) b_of_key[b.edge_keys[i]] = i;
+  std::vector<std::uint32_t> map(a.positions.size());
+  for (std::uint32_t i = 0; i < a.edge_keys.size(); ++i) {
+    auto it = b_of_key.find(a.edge_keys[i]);
+    ASSERT_NE(it, b_of_key.end()) << "vertex " << i << " has no twin";
+    map[i] = it->second;
+    for (int k = 0; k < 3; ++k) {
+      const float pa = a.positions[i][k], pb = b.positions[it->second][k];
+      ASSERT_NEAR(pa, pb, 1e-6 * std::max(1.0f, std::fabs(pb))) << "vertex " << i;
+    }
+  }
+  auto canon = [](Tri t) {  // rotate so the smallest index comes first, keeping the winding
+    while (t[0] > t[1] || t[0] > t[2]) t = {t[1], t[2], t[0]};
+    return t;
+  };
+  std::vector<Tri> ta, tb;
+  for (const Tri& t : a.triangles) ta.push_back(canon({map[t[0]], map[t[1]], map[t[2]]}));
+  for (const Tri& t : b.triangles) tb.push_back(canon(t));
+  std::sort(ta.begin(), ta.end());
+  std::sort(tb.begin(), tb.end());
+  EXPECT_TRUE(ta == tb);
+}
+
+void expect_closed(const Mesh& m, long long euler) {
+  const mc::MeshCheck c = mc::check_mesh(m);
+  EXPECT_GT(c.triangles, 0u);
+  EXPECT_EQ(c.duplicate_vertices, 0u);
+  EXPECT_EQ(c.unreferenced_vertices, 0u);
+  EXPECT_EQ(c.degenerate_triangles, 0u);
+  EXPECT_EQ(c.boundary_edges, 0u);
+  EXPECT_EQ(c.non_manifold_edges, 0u);
+  EXPECT_EQ(c.misoriented_edges, 0u);
+  EXPECT_EQ(c.euler, euler);
+}
+
+bool bit_identical(const Mesh& a, const Mesh& b) {
+  return a.positions.size() == b.positions.size() && a.triangles.size() == b.triangles.size() &&
+         std::memcmp(a.positions.data(), b.positions.data(), a.positions.size() * sizeof(Vec3f)) == 0 &&
+         std::memcmp(a.triangles.data(), b.triangles.data(), a.triangles.size() * sizeof(Tri)) == 0;
+}
+
+}  // namespace
+
+TEST(Extract, SphereMatchesReferenceAndIsClosedWithOutwardNormals) {
+  auto v = test::ball(40, 14.3, 19.7);
+  Mesh m = mc::extract(v, 0.0f, dev(), keys());
+  expect_same_mesh(m, mc::extract_reference(v, 0.0f, keys()));
+  expect_closed(m, 2);
+  // Every triangle's normal points away from the centre.
+  for (const Tri& t : m.triangles) {
+    const Vec3f &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
+    double u[3], w[3], g[3];
+    for (int k = 0; k < 3; ++k) {
+      u[k] = b[k] - a[k];
+      w[k] = c[k] - a[k];
+      g[k] = (a[k] + b[k] + c[k]) / 3.0 - 19.7;
+    }
+    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    ASSERT_GT(n[0] * g[0] + n[1] * g[1] + n[2] * g[2], 0.0);
+  }
+}
+
+TEST(Extract, LevelSetNormalsAlsoPointOutward) {
+  // Inside below: the same ball as a signed distance (negative inside) gives the same surface.
+  auto v = test::sampled([](double x, double y, double z) {
+    return float(std::sqrt((x - 15) * (x - 15) + (y - 15) * (y - 15) + (z - 15) * (z - 15)) - 9.5);
+  }, {31, 31, 31}, {1, 1, 1}, {0, 0, 0}, volume::Inside::Below);
+  Mesh m = mc::extract(v, 0.0f, dev());
+  expect_closed(m, 2);
+  const mc::MeshCheck c = mc::check_mesh(m);
+  double vol = 0;  // signed volume > 0 when normals point out
+  for (const Tri& t : m.triangles) {
+    const Vec3f &a = m.positions[t[0]], &b = m.positions[t[1]], &d = m.positions[t[2]];
+    vol += (a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) + a[2] * (b[0] * d[1] - b[1] * d[0])) / 6;
+  }
+  EXPECT_NEAR(vol, 4.0 / 3.0 * M_PI * 9.5 * 9.5 * 9.5, 0.03 * vol);
+  EXPECT_GT(c.area, 0);
+}
+
+TEST(Extract, TorusAndDoubleTorusHaveTheirEulerCharacteristic) {
+  auto torus = test::sampled([](double x, double y, double z) {
+    return test::torus_density(x - 24, y - 24, z - 12, 14, 5);
+  }, {48, 48, 24});
+  Mesh m = mc::extract(torus, 0.0f, dev(), keys());
+  expect_same_mesh(m, mc::extract_reference(torus, 0.0f, keys()));
+  expect_closed(m, 0);
+  auto two = test::sampled([](double x, double y, double z) {
+    return std::max(test::torus_density(x - 20, y - 20, z - 12, 10, 4),
+                    test::torus_density(x - 38, y - 20, z - 12, 10, 4));
+  }, {60, 40, 24});
+  expect_closed(mc::extract(two, 0.0f, dev()), -2);
+}
+
+TEST(Extract, CappedGyroidIsClosedAndMatchesReference) {
+  auto g = test::sampled([](double x, double y, double z) {
+    const double s = 2 * M_PI / 20;
+    return float(std::sin(s * x) * std::cos(s * y) + std::sin(s * y) * std::cos(s * z) + std::sin(s * z) * std::cos(s * x));
+  }, {41, 37, 45});
+  mc::Options o = keys();
+  Mesh open = mc::extract(g, 0.1f, dev(), o);
+  expect_same_mesh(open, mc::extract_reference(g, 0.1f, o));
+  EXPECT_GT(mc::check_mesh(open).boundary_edges, 0u);  // cut by the box, left open as VTK does
+  o.cap = true;
+  Mesh closed = mc::extract(g, 0.1f, dev(), o);
+  expect_same_mesh(closed, mc::extract_reference(g, 0.1f, o));
+  const mc::MeshCheck c = mc::check_mesh(closed);
+  EXPECT_TRUE(c.watertight());
+  EXPECT_TRUE(c.oriented());
+  EXPECT_EQ(c.duplicate_vertices, 0u);
+  EXPECT_EQ(c.euler % 2, 0);
+}
+
+TEST(Extract, RandomNoiseMatchesReferenceWithEveryCase) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-1, 1);
+  std::vector<float> noise(23 * 19 * 29);
+  for (auto& x : noise) x = u(rng);
+  std::size_t i = 0;
+  auto v = test::sampled([&](double, double, double) { return noise[i++]; }, {23, 19, 29});
+  mc::Options o = keys();
+  o.cap = true;
+  Mesh m = mc::extract(v, 0.0f, dev(), o);
+  expect_same_mesh(m, mc::extract_reference(v, 0.0f, o));
+  const mc::MeshCheck c = mc::check_mesh(m);
+  EXPECT_TRUE(c.watertight());
+  EXPECT_TRUE(c.oriented());
+  EXPECT_EQ(c.duplicate_vertices, 0u);
+  EXPECT_EQ(c.degenerate_triangles, 0u);
+}
+
+TEST(Extract, BrickSeamsInEveryDirectionLeaveNoCracksOrDuplicates) {
+  // A ball centred on a brick corner (16,16,16) crosses seams along x, y and z.
+  auto v = test::ball(33, 11.0, 16.0);
+  Mesh m = mc::extract(v, 0.0f, dev(), keys());
+  expect_same_mesh(m, mc::extract_reference(v, 0.0f, keys()));
+  expect_closed(m, 2);
+  // A sparse VDB level set (negative inside, narrow band, tiles inside) across many leaves.
+  volume::Volume ls;
+  ls.grid = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(10.0f, openvdb::Vec3f(0.3f, -0.2f, 0.1f), 0.5f);
+  ls.dense = false;
+  ls.inside = volume::Inside::Below;
+  ls.domain = ls.grid->evalActiveVoxelBoundingBox();
+  ls.stats.min = -1.5;
+  ls.stats.max = 1.5;
+  Mesh s = mc::extract(ls, 0.0f, dev(), keys());
+  expect_same_mesh(s, mc::extract_reference(ls, 0.0f, keys()));
+  expect_closed(s, 2);
+}
+
+TEST(Extract, NarrowHashGivesIdenticalOutput) {
+  auto torus = test::sampled([](double x, double y, double z) {
+    return test::torus_density(x - 20, y - 20, z - 10, 12, 4);
+  }, {40, 40, 20});
+  Mesh full = mc::extract(torus, 0.0f, dev());
+  for (int bits : {1, 3, 8, 13}) {
+    mc::Options o;
+    o.hash_bits = bits;
+    EXPECT_TRUE(bit_identical(full, mc::extract(torus, 0.0f, dev(), o))) << bits << " bits";
+  }
+}
+
+TEST(Extract, IntegerVolumeWithIsovalueOnVoxelValues) {
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> u(0, 4);
+  std::vector<float> vals(21 * 22 * 23);
+  for (auto& x : vals) x = float(u(rng));
+  for (float iso : {0.0f, 1.0f, 2.0f, 4.0f}) {
+    std::size_t i = 0;
+    auto v = test::sampled([&](double, double, double) { return vals[i++]; }, {21, 22, 23});
+    mc::Options o = keys();
+    o.cap = true;
+    Mesh m = mc::extract(v, iso, dev(), o);
+    expect_same_mesh(m, mc::extract_reference(v, iso, o));
+    const mc::MeshCheck c = mc::check_mesh(m);
+    EXPECT_EQ(c.duplicate_vertices, 0u) << iso;
+    EXPECT_EQ(c.degenerate_triangles, 0u) << iso;
+    EXPECT_TRUE(c.watertight()) << iso;
+    EXPECT_TRUE(c.oriented()) << iso;
+    if (iso == 4.0f) {
+      EXPECT_EQ(c.triangles, 0u);  // nothing is above the maximum
+    }
+  }
+}
+
+TEST(Extract, IsovalueOutsideTheRangeGivesAnEmptyMesh) {
+  auto v = test::ball(20, 6, 10);
+  EXPECT_EQ(mc::extract(v, 100.0f, dev()).triangles.size(), 0u);
+  EXPECT_EQ(mc::extract(v, -100.0f, dev()).triangles.size(), 0u);
+}
+
+TEST(Extract, NanVoxelsCountAsOutside) {
+  // Build grids directly (the loader would replace NaN): all NaN gives nothing ...
+  volume::Volume v;
+  v.grid = openvdb::FloatGrid::create(std::numeric_limits<float>::quiet_NaN());
+  v.domain = openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(15));
+  v.grid->denseFill(v.domain, std::numeric_limits<float>::quiet_NaN());
+  v.stats.min = 0;
+  v.stats.max = 1;
+  mc::Options cap;
+  cap.cap = true;
+  EXPECT_EQ(mc::extract(v, 0.5f, dev(), cap).triangles.size(), 0u);
+  // ... and a ball with a NaN slab through it is cut there into two closed pieces.
+  auto b = test::ball(30, 11, 14.5);
+  auto acc = b.grid->getAccessor();
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 30; ++x) acc.setValue(openvdb::Coord(x, y, 14), std::numeric_limits<float>::quiet_NaN());
+  Mesh m = mc::extract(b, 0.0f, dev(), keys());
+  expect_same_mesh(m, mc::extract_reference(b, 0.0f, keys()));
+  expect_closed(m, 4);
+}
+
+TEST(Extract, OneVoxelThickVolume) {
+  auto v = test::sampled([](double x, double y, double) { return float(6 - std::hypot(x - 8, y - 8)); }, {17, 17, 1});
+  EXPECT_EQ(mc::extract(v, 0.0f, dev()).triangles.size(), 0u);  // no cells at all
+  mc::Options o = keys();
+  o.cap = true;
+  Mesh m = mc::extract(v, 0.0f, dev(), o);
+  expect_same_mesh(m, mc::extract_reference(v, 0.0f, o));
+  expect_closed(m, 2);
+}
+
+TEST(Extract, PositionsHonourSpacingAndOrigin) {
+  auto f = [](double x, double y, double z) { return float(1 - std::sqrt(x * x + y * y + z * z)); };
+  const std::array<double, 3> sp{0.05, 0.08, 0.11}, org{-1.3, -1.25, -1.32};
+  auto v = test::sampled(f, {53, 33, 25}, sp, org);
+  Mesh m = mc::extract(v, 0.0f, dev(), keys());
+  expect_same_mesh(m, mc::extract_reference(v, 0.0f, keys()));
+  expect_closed(m, 2);
+  for (const Vec3f& p : m.positions) {
+    const double r = std::sqrt(double(p[0]) * p[0] + double(p[1]) * p[1] + double(p[2]) * p[2]);
+    ASSERT_NEAR(r, 1.0, 0.02);  // on the unit sphere up to interpolation error
+  }
+}
+
+TEST(Extract, RunsAreBitIdentical) {
+  auto g = test::sampled([](double x, double y, double z) {
+    return float(std::sin(0.3 * x) * std::cos(0.3 * y) + std::sin(0.3 * y) * std::cos(0.3 * z) + std::sin(0.3 * z) * std::cos(0.3 * x));
+  }, {64, 64, 64});
+  EXPECT_TRUE(bit_identical(mc::extract(g, 0.0f, dev()), mc::extract(g, 0.0f, dev())));
+}
+
+TEST(Extract, MesherReusesItsIndexAcrossIsovalues) {
+  auto v = test::ball(30, 12, 14.5);
+  mc::Mesher mesher(v, dev());
+  for (float iso : {-2.0f, 0.0f, 3.0f}) {
+    mc::ExtractTimings t;
+    Mesh m = mesher.extract(iso, {}, &t);
+    EXPECT_TRUE(bit_identical(m, mc::extract(v, iso, dev())));
+    EXPECT_GT(t.bricks, 0u);
+    expect_closed(m, 2);
+  }
+}
