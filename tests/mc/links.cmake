@@ -1,1 +1,1 @@
-set(_links isocurv_mc)
+set(_links isocurv_mc VTK::FiltersCore VTK::CommonDataModel VTK::FiltersGeneral)
