@@ -1,0 +1,23 @@
+#include "io/field_arrays.h"
+
+#include "core/error.h"
+
+namespace isocurv::io {
+
+void check_field_sizes(const curvature::CurvatureField& field, std::size_t vertex_count,
+                       const std::string& path) {
+  for_each_array(field, [&](const char* name, const auto& values) {
+    if (!values.empty() && values.size() != vertex_count)
+      throw Error(path, std::string("curvature array '") + name + "' has " +
+                            std::to_string(values.size()) + " values for " +
+                            std::to_string(vertex_count) + " vertices");
+  });
+}
+
+bool field_is_empty(const curvature::CurvatureField& field) {
+  bool empty = true;
+  for_each_array(field, [&](const char*, const auto& values) { empty = empty && values.empty(); });
+  return empty;
+}
+
+}  // namespace isocurv::io

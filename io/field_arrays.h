@@ -1,0 +1,51 @@
+#pragma once
+// The named per-vertex arrays of a CurvatureField, in one place, so that every file format and the
+// renderer use the same names and component counts (DESIGN.md: "Output array names").
+#include <array>
+#include <cstdint>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "curvature/curvature_field.h"
+
+namespace isocurv::io {
+
+/// Number of components of one element of a field array (float or uint8 -> 1, Vec3f -> 3, ...).
+template <class T>
+constexpr int components_of() {
+  if constexpr (std::is_arithmetic_v<T>) return 1;
+  else return static_cast<int>(std::tuple_size<T>::value);
+}
+
+/// Calls fn(name, vector) for every array of the field in the canonical order: Normals, Area, k1,
+/// k2, dir1, dir2, H, K, dcurv, ShapeIndex, Curvedness, AO, Boundary. The vector is a
+/// std::vector<float>, <Vec3f>, <std::array<float, 4>> or <std::uint8_t>; fn is usually a generic
+/// lambda. Works on const and non-const fields.
+template <class Field, class Fn>
+void for_each_array(Field& f, Fn&& fn) {
+  static_assert(std::is_same_v<std::remove_const_t<Field>, curvature::CurvatureField>);
+  fn("Normals", f.normals);
+  fn("Area", f.area);
+  fn("k1", f.k1);
+  fn("k2", f.k2);
+  fn("dir1", f.dir1);
+  fn("dir2", f.dir2);
+  fn("H", f.H);
+  fn("K", f.K);
+  fn("dcurv", f.dcurv);
+  fn("ShapeIndex", f.shape_index);
+  fn("Curvedness", f.curvedness);
+  fn("AO", f.ao);
+  fn("Boundary", f.boundary);
+}
+
+/// Checks that every array of `field` holds either `vertex_count` entries or none (absent);
+/// throws Error(path, ...) naming the first array of another length.
+void check_field_sizes(const curvature::CurvatureField& field, std::size_t vertex_count,
+                       const std::string& path);
+
+/// True when no array of the field holds any entries.
+bool field_is_empty(const curvature::CurvatureField& field);
+
+}  // namespace isocurv::io

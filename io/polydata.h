@@ -1,0 +1,27 @@
+#pragma once
+// Converting a Mesh (with its curvature arrays) to vtkPolyData and back; used by the .vtp/.stl
+// formats and by viz/.
+#include <string>
+
+#include <vtkSmartPointer.h>
+
+#include "io/mesh_file.h"
+
+class vtkPolyData;
+
+namespace isocurv::io {
+
+/// A vtkPolyData with float points, triangle polys and, when `field` is given, one point-data
+/// array per non-empty field array, named as in DESIGN.md (float, Boundary as unsigned char);
+/// "Normals" is also the active point normals. Copies the data. `field` sizes must match (see
+/// check_field_sizes; unchecked here).
+vtkSmartPointer<vtkPolyData> to_polydata(const Mesh& mesh,
+                                         const curvature::CurvatureField* field = nullptr);
+
+/// The mesh and named arrays of `poly` (the inverse of to_polydata). Polygons are fan-triangulated,
+/// triangle strips split, vertices and lines ignored; float data is copied bit-for-bit, other types
+/// converted. "Normals" falls back to the active point normals. `source` names the file in errors:
+/// an array with the wrong component count or length, or too many points, throws Error(source, ...).
+MeshFile from_polydata(vtkPolyData* poly, const std::string& source);
+
+}  // namespace isocurv::io

@@ -1,0 +1,105 @@
+// viz::run_explorer driven by a script under a private Xvfb when there is no display.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "core/error.h"
+#include "png_stats.h"
+#include "test_surfaces.h"
+#include "viz/explorer.h"
+
+namespace fs = std::filesystem;
+using namespace isocurv;
+
+namespace {
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("isocurv_explorer_test_" + std::to_string(::getpid()) + "_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+}  // namespace
+
+TEST(VizExplorer, ScriptedSliderMoveAndKeysChangeTheImage) {
+  const fs::path dir = fresh_dir("script");
+  std::vector<float> calls;
+  viz::ExplorerSetup setup;
+  setup.isovalue = 0.25f;
+  setup.min_value = 0.1f;
+  setup.max_value = 0.6f;
+  setup.view.width = 640;
+  setup.view.height = 480;
+  setup.view.title = "scripted explorer";
+  setup.screenshot_prefix = (dir / "shot").string();
+  setup.surface = [&](float iso) {  // a torus whose tube radius is the isovalue
+    calls.push_back(iso);
+    auto t = test::torus(1.f, iso, 64, 32);
+    return viz::Surface{std::move(t.mesh), std::move(t.field), 0, "synthetic torus"};
+  };
+  const std::string before = (dir / "before.png").string(), after = (dir / "after.png").string(),
+                    colour = (dir / "colour.png").string(), glyphs = (dir / "glyphs.png").string();
+  using A = viz::ExplorerAction;
+  setup.script = {A::screenshot(before), A::set_isovalue(0.5f), A::screenshot(after), A::press('c'),
+                  A::screenshot(colour), A::press('d'), A::screenshot(glyphs), A::press('s')};
+  viz::run_explorer(setup);
+
+  ASSERT_EQ(calls.size(), 2u);
+  EXPECT_FLOAT_EQ(calls[0], 0.25f);
+  EXPECT_FLOAT_EQ(calls[1], 0.5f);
+  for (const std::string& p : {before, after, colour, glyphs}) {
+    ASSERT_TRUE(fs::exists(p)) << p;
+    const auto s = test::png_stats(p);
+    EXPECT_EQ(s.width, 640);
+    EXPECT_EQ(s.height, 480);
+    EXPECT_GT(s.luminance_variance, 100.0) << p;
+  }
+  EXPECT_GT(test::pixel_difference(before, after), 5000) << "slider move did not change the surface";
+  EXPECT_GT(test::pixel_difference(after, colour), 5000) << "'c' did not recolour";
+  EXPECT_GT(test::pixel_difference(colour, glyphs), 1000) << "'d' did not draw glyphs";
+  EXPECT_GT(test::png_stats(colour).bluish, 0.005) << "K on a torus has a negative part";
+  EXPECT_TRUE(fs::exists(dir / "shot-001.png")) << "'s' saves <prefix>-001.png";
+  if (!HasFailure()) fs::remove_all(dir);
+}
+
+TEST(VizExplorer, FailedUpdateKeepsThePreviousSurface) {
+  const fs::path dir = fresh_dir("failure");
+  int calls = 0;
+  viz::ExplorerSetup setup;
+  setup.isovalue = 0.3f;
+  setup.min_value = 0.f;
+  setup.max_value = 1.f;
+  setup.view.width = 320;
+  setup.view.height = 240;
+  setup.surface = [&](float iso) -> viz::Surface {
+    ++calls;
+    if (iso > 0.5f) throw Error("synthetic", "no surface at this isovalue");
+    auto t = test::torus(1.f, iso, 32, 16);
+    return {std::move(t.mesh), std::move(t.field), 0, {}};
+  };
+  const std::string before = (dir / "before.png").string(), after = (dir / "after.png").string();
+  using A = viz::ExplorerAction;
+  setup.script = {A::screenshot(before), A::set_isovalue(0.9f), A::screenshot(after)};
+  viz::run_explorer(setup);
+  EXPECT_EQ(calls, 2);
+  ASSERT_TRUE(fs::exists(after));
+  // only the status line changes (it reports the error); the surface stays
+  const long differ = test::pixel_difference(before, after);
+  EXPECT_GT(differ, 0);
+  EXPECT_LT(differ, 320 * 240 * 3 / 4);
+  if (!HasFailure()) fs::remove_all(dir);
+}
+
+TEST(VizExplorer, BadSetupIsAnError) {
+  viz::ExplorerSetup setup;
+  EXPECT_THROW(viz::run_explorer(setup), Error);  // no callback
+  setup.surface = [](float) { return viz::Surface{}; };
+  setup.min_value = 1;
+  setup.max_value = 0;
+  EXPECT_THROW(viz::run_explorer(setup), Error);
+  setup.min_value = 0;
+  setup.max_value = 1;
+  setup.isovalue = 2;
+  EXPECT_THROW(viz::run_explorer(setup), Error);
+}

@@ -1,0 +1,308 @@
+#include "viz/explorer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+
+#include <vtkCallbackCommand.h>
+#include <vtkCommand.h>
+#include <vtkInteractorStyleTrackballCamera.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderWindowInteractor.h>
+#include <vtkRenderer.h>
+#include <vtkSliderRepresentation2D.h>
+#include <vtkSliderWidget.h>
+#include <vtkTextActor.h>
+#include <vtkTextProperty.h>
+
+#include "core/error.h"
+#include "viz/curvature_scene.h"
+#include "viz/headless_display.h"
+#include "viz/quantity.h"
+#include "viz/screenshot.h"
+
+namespace isocurv::viz {
+namespace {
+
+constexpr double kLiveUpdateMs = 150;  // slower updates wait for the slider's release
+constexpr unsigned long kScriptTickMs = 100;
+
+class Explorer;
+
+/// Trackball camera, with c/a/d/s routed to the explorer (VTK's own 's' would switch to surface
+/// representation, 'a'/'c' to actor/camera modes in other styles).
+class ExplorerStyle : public vtkInteractorStyleTrackballCamera {
+ public:
+  static ExplorerStyle* New();
+  vtkTypeMacro(ExplorerStyle, vtkInteractorStyleTrackballCamera);
+  void OnChar() override;
+  Explorer* explorer = nullptr;
+};
+vtkStandardNewMacro(ExplorerStyle);
+
+class Explorer {
+ public:
+  explicit Explorer(const ExplorerSetup& setup) : setup_(setup) {}
+
+  void run() {
+    Surface first = call(setup_.isovalue);  // throws: no window without a first surface
+    iso_ = attempted_ = setup_.isovalue;
+    scene_.set_options(setup_.view);
+    scene_.set_surface(first.mesh, first.field);
+    note_update(first);
+
+    window_->SetSize(setup_.view.width, setup_.view.height);
+    window_->SetWindowName(("isocurv explorer" + (setup_.view.title.empty() ? "" : " - " + setup_.view.title)).c_str());
+    check_opengl(window_);
+    window_->AddRenderer(scene_.renderer());
+    interactor_->SetRenderWindow(window_);
+    style_->explorer = this;
+    interactor_->SetInteractorStyle(style_);
+
+    status_->GetTextProperty()->SetFontSize(15);
+    status_->GetTextProperty()->SetColor(1, 1, 1);
+    status_->GetTextProperty()->SetVerticalJustificationToBottom();
+    status_->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
+    status_->GetPositionCoordinate()->SetValue(0.01, 0.01);  // bottom left, under the slider
+    scene_.renderer()->AddViewProp(status_);
+    make_slider();
+    scene_.frame_camera();
+    refresh_status();
+
+    interactor_->Initialize();
+    slider_->EnabledOn();
+    if (!setup_.script.empty()) {
+      timer_callback_->SetCallback(&Explorer::on_timer);
+      timer_callback_->SetClientData(this);
+      interactor_->AddObserver(vtkCommand::TimerEvent, timer_callback_);
+      interactor_->CreateRepeatingTimer(kScriptTickMs);
+    }
+    window_->Render();
+    interactor_->Start();
+    slider_->EnabledOff();
+    window_->Finalize();
+  }
+
+  /// Key handling shared by the keyboard and scripts; false when the key is not ours.
+  bool on_key(char key) {
+    RenderOptions o = scene_.options();
+    switch (key) {
+      case 'c': {
+        const auto& q = color_quantities();
+        auto it = std::find(q.begin(), q.end(), canonical_quantity(o.color));
+        // skip quantities the field does not carry
+        for (std::size_t step = 0; step < q.size(); ++step) {
+          it = (it == q.end() || it + 1 == q.end()) ? q.begin() : it + 1;
+          o.color = *it;
+          if (try_options(o)) break;
+        }
+        break;
+      }
+      case 'a': o.ao = !o.ao; try_options(o); break;
+      case 'd': o.dirs = !o.dirs; try_options(o); break;
+      case 's': screenshot(next_screenshot_name()); break;
+      default: return false;
+    }
+    refresh_status();
+    window_->Render();
+    return true;
+  }
+
+ private:
+  Surface call(float iso) {
+    const auto start = std::chrono::steady_clock::now();
+    Surface s = setup_.surface(iso);
+    if (s.update_ms <= 0)
+      s.update_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return s;
+  }
+
+  void note_update(const Surface& s) {
+    vertices_ = s.mesh.vertex_count();
+    triangles_ = s.mesh.triangle_count();
+    last_ms_ = s.update_ms;
+    detail_ = s.detail;
+    message_.clear();
+  }
+
+  bool try_options(const RenderOptions& o) {
+    try {
+      scene_.set_options(o);
+      return true;
+    } catch (const Error& e) {
+      message_ = e.what();
+      return false;
+    }
+  }
+
+  /// Re-extracts at `iso`; on failure keeps the previous surface and reports on the status line.
+  void update(float iso) {
+    if (iso == attempted_) return;  // the slider's release after a live update, or no move
+    attempted_ = iso;
+    try {
+      Surface s = call(iso);
+      scene_.set_surface(s.mesh, s.field);
+      iso_ = iso;
+      note_update(s);
+    } catch (const Error& e) {
+      message_ = "isovalue " + format(iso) + ": " + e.what();
+    }
+    refresh_status();
+    window_->Render();
+  }
+
+  static std::string format(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.5g", v);
+    return text;
+  }
+
+  static std::string format_ms(double ms) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f ms", ms);
+    return text;
+  }
+
+  void refresh_status() {
+    const RenderOptions& o = scene_.options();
+    std::string line = "isovalue " + format(iso_) + "   " + std::to_string(vertices_) + " vertices, " +
+                       std::to_string(triangles_) + " triangles   update " + format_ms(last_ms_);
+    if (!detail_.empty()) line += "   (" + detail_ + ")";
+    line += "\n[c] colour: " + canonical_quantity(o.color) + "   [a] AO: " + (o.ao ? "on" : "off") +
+            "   [d] directions: " + (o.dirs ? "on" : "off") + "   [s] screenshot";
+    if (!message_.empty()) line += "\n" + message_;
+    status_->SetInput(line.c_str());
+  }
+
+  void make_slider() {
+    vtkNew<vtkSliderRepresentation2D> rep;
+    rep->SetMinimumValue(setup_.min_value);
+    rep->SetMaximumValue(setup_.max_value);
+    rep->SetValue(setup_.isovalue);
+    rep->SetTitleText("isovalue");
+    rep->SetLabelFormat("%.4g");
+    rep->GetPoint1Coordinate()->SetCoordinateSystemToNormalizedDisplay();
+    rep->GetPoint1Coordinate()->SetValue(0.15, 0.13);
+    rep->GetPoint2Coordinate()->SetCoordinateSystemToNormalizedDisplay();
+    rep->GetPoint2Coordinate()->SetValue(0.75, 0.13);
+    rep->SetSliderLength(0.02);
+    rep->SetSliderWidth(0.03);
+    rep->SetTubeWidth(0.008);
+    rep->SetEndCapLength(0.01);
+    rep->SetEndCapWidth(0.03);
+    rep->SetTitleHeight(0.025);
+    rep->SetLabelHeight(0.022);
+    slider_->SetInteractor(interactor_);
+    slider_->SetRepresentation(rep);
+    slider_->SetAnimationModeToJump();
+    slider_callback_->SetCallback(&Explorer::on_slider);
+    slider_callback_->SetClientData(this);
+    slider_->AddObserver(vtkCommand::InteractionEvent, slider_callback_);
+    slider_->AddObserver(vtkCommand::EndInteractionEvent, slider_callback_);
+  }
+
+  float slider_value() const {
+    return static_cast<float>(static_cast<vtkSliderRepresentation2D*>(slider_->GetRepresentation())->GetValue());
+  }
+
+  static void on_slider(vtkObject*, unsigned long event, void* self, void*) {
+    auto* e = static_cast<Explorer*>(self);
+    if (event == vtkCommand::InteractionEvent && e->last_ms_ > kLiveUpdateMs) return;  // wait for release
+    e->update(e->slider_value());
+  }
+
+  static void on_timer(vtkObject*, unsigned long, void* self, void*) { static_cast<Explorer*>(self)->step(); }
+
+  void step() {
+    if (next_action_ >= setup_.script.size()) {
+      interactor_->TerminateApp();
+      return;
+    }
+    const ExplorerAction& a = setup_.script[next_action_++];
+    switch (a.kind) {
+      case ExplorerAction::Kind::SetIsovalue:
+        // as a user would: move the slider, then release it
+        static_cast<vtkSliderRepresentation2D*>(slider_->GetRepresentation())->SetValue(a.isovalue);
+        slider_->InvokeEvent(vtkCommand::InteractionEvent);
+        slider_->InvokeEvent(vtkCommand::EndInteractionEvent);
+        break;
+      case ExplorerAction::Kind::Key:
+        interactor_->SetKeyEventInformation(0, 0, a.key, 1, std::string(1, a.key).c_str());
+        interactor_->CharEvent();
+        break;
+      case ExplorerAction::Kind::Screenshot:
+        screenshot(a.path);
+        break;
+    }
+  }
+
+  std::string next_screenshot_name() {
+    for (;;) {
+      char suffix[24];
+      std::snprintf(suffix, sizeof suffix, "-%03d.png", ++screenshots_);
+      const std::string name = setup_.screenshot_prefix + suffix;
+      if (!std::filesystem::exists(name)) return name;
+    }
+  }
+
+  void screenshot(const std::string& path) {
+    try {
+      save_png(window_, path);
+      message_ = "saved " + path;
+      std::cout << "saved screenshot: " << path << std::endl;
+    } catch (const Error& e) {
+      message_ = e.what();
+      std::cerr << e.what() << std::endl;
+    }
+  }
+
+  const ExplorerSetup& setup_;
+  CurvatureScene scene_;
+  vtkNew<vtkRenderWindow> window_;
+  vtkNew<vtkRenderWindowInteractor> interactor_;
+  vtkNew<ExplorerStyle> style_;
+  vtkNew<vtkSliderWidget> slider_;
+  vtkNew<vtkTextActor> status_;
+  vtkNew<vtkCallbackCommand> slider_callback_;
+  vtkNew<vtkCallbackCommand> timer_callback_;
+  float iso_ = 0;        // isovalue of the surface shown
+  float attempted_ = 0;  // last isovalue the callback was asked for
+  std::size_t vertices_ = 0, triangles_ = 0;
+  double last_ms_ = 0;
+  std::string detail_, message_;
+  std::size_t next_action_ = 0;
+  int screenshots_ = 0;
+};
+
+void ExplorerStyle::OnChar() {
+  const char key = this->Interactor ? this->Interactor->GetKeyCode() : 0;
+  if (explorer && explorer->on_key(key)) return;
+  vtkInteractorStyleTrackballCamera::OnChar();  // r, q/e, w, f, ...
+}
+
+}  // namespace
+
+void run_explorer(const ExplorerSetup& setup) {
+  if (!setup.surface) throw Error("explorer: no surface callback given");
+  if (!(setup.min_value < setup.max_value))
+    throw Error("explorer: empty isovalue range [" + std::to_string(setup.min_value) + ", " +
+                std::to_string(setup.max_value) + "]");
+  if (setup.isovalue < setup.min_value || setup.isovalue > setup.max_value)
+    throw Error("explorer: isovalue " + std::to_string(setup.isovalue) + " outside the value range [" +
+                std::to_string(setup.min_value) + ", " + std::to_string(setup.max_value) + "]");
+  if (setup.view.width < 64 || setup.view.height < 64) throw Error("explorer: window too small");
+  canonical_quantity(setup.view.color);
+  const char* display = std::getenv("DISPLAY");
+  if (setup.script.empty() && !(display && *display))
+    throw Error("no X display (DISPLAY is unset): the interactive explorer needs one; render PNGs headless instead");
+  ensure_display();
+  Explorer explorer(setup);
+  explorer.run();
+}
+
+}  // namespace isocurv::viz

@@ -1,0 +1,57 @@
+#pragma once
+// The interactive isosurface explorer: a VTK window with the surface coloured by curvature and an
+// isovalue slider. It never extracts anything itself: the caller supplies a callback that turns
+// an isovalue into a surface (the app composes mc::extract and curvature::estimate).
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/mesh.h"
+#include "curvature/curvature_field.h"
+#include "viz/render_options.h"
+
+namespace isocurv::viz {
+
+/// What the callback returns for one isovalue.
+struct Surface {
+  Mesh mesh;
+  curvature::CurvatureField field;
+  double update_ms = 0;  ///< time the callback spent (shown on screen; measured here when 0)
+  std::string detail;    ///< optional extra text for the status line (e.g. "extract 12 ms, 340 bricks")
+};
+
+/// One step of a scripted run (for tests and demos), executed on a timer inside the event loop.
+struct ExplorerAction {
+  enum class Kind { SetIsovalue, Key, Screenshot };
+  Kind kind = Kind::Key;
+  float isovalue = 0;  ///< SetIsovalue: moves the slider there, as a user would
+  char key = 0;        ///< Key: a key press ('c', 'a', 'd', 's', 'r', ...)
+  std::string path;    ///< Screenshot: PNG path
+
+  static ExplorerAction set_isovalue(float iso) { return {Kind::SetIsovalue, iso, 0, {}}; }
+  static ExplorerAction press(char key) { return {Kind::Key, 0, key, {}}; }
+  static ExplorerAction screenshot(std::string path) { return {Kind::Screenshot, 0, 0, std::move(path)}; }
+};
+
+/// Everything the explorer needs.
+struct ExplorerSetup {
+  float isovalue = 0;                       ///< initial isovalue
+  float min_value = 0, max_value = 1;       ///< slider range (the volume's value range)
+  std::function<Surface(float iso)> surface;  ///< re-extracts and re-estimates; may throw Error
+  RenderOptions view;                       ///< initial colour, AO, glyphs, window size, title
+  std::string screenshot_prefix = "isocurv-screenshot";  ///< 's' writes <prefix>-NNN.png
+  /// When non-empty: run these actions (one per timer tick, ~100 ms apart) and close the window.
+  std::vector<ExplorerAction> script;
+};
+
+/// Opens the explorer and returns when its window is closed (or 'q'/'e' pressed, or the script is
+/// done). Keys: c cycles the colour quantity (H, K, k1, k2, ShapeIndex, Curvedness, AO), a toggles
+/// AO shading, d toggles direction glyphs, s saves a screenshot (name printed on stdout), r
+/// re-frames the camera; the mouse rotates, pans and zooms. Dragging the slider re-runs the callback
+/// live while updates take under 150 ms, otherwise on release. A failed update (Error from the
+/// callback) is shown on the status line and the previous surface stays. Interactive use needs an X
+/// display; a scripted run starts a private Xvfb when there is none (ensure_display). Throws Error
+/// for a bad setup or when the initial surface cannot be made.
+void run_explorer(const ExplorerSetup& setup);
+
+}  // namespace isocurv::viz
