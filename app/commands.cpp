@@ -4,6 +4,12 @@ namespace isocurv::app {
 
 void register_commands(CLI::App& app) {
   register_info(app);
+  register_extract(app);
+  register_curvature(app);
+  register_run(app);
+  register_render(app);
+  register_view(app);
+  register_check(app);
   register_devices(app);
 }
 

@@ -7,5 +7,11 @@ namespace isocurv::app {
 void register_commands(CLI::App& app);  ///< all subcommands below
 void register_info(CLI::App& app);      ///< isocurv info VOLUME
 void register_devices(CLI::App& app);   ///< isocurv devices
+void register_extract(CLI::App& app);   ///< isocurv extract VOLUME -o MESH
+void register_check(CLI::App& app);     ///< isocurv check MESH_OR_VOLUME
+void register_curvature(CLI::App& app); ///< isocurv curvature VOLUME_OR_MESH -o MESH
+void register_render(CLI::App& app);    ///< isocurv render VOLUME_OR_MESH -o PNG
+void register_run(CLI::App& app);       ///< isocurv run VOLUME -o DIR
+void register_view(CLI::App& app);      ///< isocurv view VOLUME
 
 }  // namespace isocurv::app

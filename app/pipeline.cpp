@@ -1,0 +1,181 @@
+#include "app/pipeline.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <memory>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/progress.h"
+#include "curvature/estimate.h"
+#include "io/mesh_file.h"
+#include "mc/extract.h"
+#include "mc/mesh_check.h"
+#include "volume/gradient_normals.h"
+#include "volume/load.h"
+
+namespace isocurv::app {
+
+void add_common_options(CLI::App& cmd, CommonOptions& o, bool with_iso) {
+  if (with_iso)
+    cmd.add_option("--iso", o.iso, "Isovalue (default: the volume's suggested isovalue, see isocurv info)");
+  cmd.add_option("--device", o.device, "OpenCL device number from isocurv devices (default: a GPU, else PoCL's CPU device)");
+  cmd.add_flag("--cap", o.cap, "Close surfaces cut by the volume's bounding box (default: leave them open)");
+  cmd.add_flag("--json", o.json, "Print a JSON summary with timings_ms per stage on stdout");
+  cmd.add_flag("--quiet", o.quiet, "No progress bars or messages on stderr");
+  add_volume_options(cmd, o.volume);
+  cmd.parse_complete_callback([&o] { set_progress_enabled(!o.quiet); });
+}
+
+void add_curvature_options(CLI::App& cmd, CommonOptions& o) {
+  cmd.add_option("--normals", o.normals,
+                 "Vertex normals: mesh (from the faces, as Rusinkiewicz) or volume (from the volume's gradient; "
+                 "more accurate on marching-cubes meshes)")
+      ->check(CLI::IsMember({"mesh", "volume"}))->capture_default_str();
+  cmd.add_option("--ao-scale", o.ao_scale,
+                 "Ambient-occlusion radius in world units (default: 4 x the mean edge length)")
+      ->check(CLI::NonNegativeNumber);
+}
+
+void StageTimer::start(const std::string& stage) {
+  stop();
+  current_ = stage;
+  t0_ = std::chrono::steady_clock::now();
+}
+
+void StageTimer::stop() {
+  if (current_.empty()) return;
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0_).count();
+  timings_[current_] = timings_.value(current_, 0.0) + std::round(ms * 1000) / 1000;
+  current_.clear();
+}
+
+bool is_mesh_path(const std::string& path) {
+  std::string lower = path;
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  for (const char* ext : {".vtp", ".ply", ".obj", ".stl"})
+    if (lower.size() > 4 && lower.compare(lower.size() - 4, 4, ext) == 0) return true;
+  return false;
+}
+
+Device& device_for(const CommonOptions& o) {
+  static std::map<int, std::shared_ptr<Device>> opened;
+  if (o.device < 0) return Device::default_device();
+  auto& d = opened[o.device];
+  if (!d) d = Device::open(o.device);
+  return *d;
+}
+
+volume::Volume load_volume(const std::string& path, const CommonOptions& o, StageTimer& timer, float* iso) {
+  timer.start("load");
+  volume::Volume v = volume::load(path, to_load_options(o.volume));
+  timer.stop();
+  const float value = o.iso ? *o.iso : static_cast<float>(v.stats.suggested_isovalue);
+  if (!std::isfinite(value))
+    throw Error(path, "isovalue must be a finite number");
+  if (o.iso && (value < v.stats.min || value > v.stats.max))
+    throw Error(path, "isovalue " + std::to_string(value) + " is outside the value range [" +
+                          std::to_string(v.stats.min) + ", " + std::to_string(v.stats.max) + "]");
+  if (iso) *iso = value;
+  return v;
+}
+
+Surface load_surface(const std::string& path, const CommonOptions& o, StageTimer& timer) {
+  Surface s;
+  if (is_mesh_path(path)) {
+    timer.start("load");
+    io::MeshFile f = io::read_mesh(path);
+    timer.stop();
+    s.mesh = std::move(f.mesh);
+    s.field = std::move(f.field);
+    return s;
+  }
+  s.volume = load_volume(path, o, timer, &s.isovalue);
+  Device& dev = device_for(o);
+  timer.start("extract");
+  mc::Options mo;
+  mo.cap = o.cap;
+  s.mesh = mc::extract(*s.volume, s.isovalue, dev, mo);
+  timer.stop();
+  return s;
+}
+
+curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Volume* volume,
+                                             const CommonOptions& o, StageTimer& timer) {
+  curvature::Options co;
+  std::vector<Vec3f> normals;
+  if (o.normals == "volume") {
+    if (!volume) throw Error("--normals volume needs a volume input, not a mesh file");
+    timer.start("normals");
+    normals = volume::gradient_normals(*volume, mesh.positions);
+    timer.stop();
+    co.vertex_normals = &normals;
+  }
+  if (o.ao_scale > 0) {
+    co.ao_scale = o.ao_scale;
+  } else if (!mesh.triangles.empty()) {  // 4 mean edge lengths: occlusion over a few triangles
+    double sum = 0;
+    for (const Tri& t : mesh.triangles)
+      for (int k = 0; k < 3; ++k) {
+        const Vec3f &a = mesh.positions[t[k]], &b = mesh.positions[t[(k + 1) % 3]];
+        sum += std::sqrt(double(a[0] - b[0]) * (a[0] - b[0]) + double(a[1] - b[1]) * (a[1] - b[1]) +
+                         double(a[2] - b[2]) * (a[2] - b[2]));
+      }
+    co.ao_scale = static_cast<float>(4 * sum / (3.0 * mesh.triangles.size()));
+  }
+  Device& dev = device_for(o);
+  timer.start("curvature");
+  curvature::CurvatureField field = curvature::estimate(mesh, dev, co);
+  timer.stop();
+  return field;
+}
+
+namespace {
+
+nlohmann::json distribution(const std::vector<float>& values) {
+  std::vector<float> v;
+  v.reserve(values.size());
+  for (float x : values)
+    if (std::isfinite(x)) v.push_back(x);
+  if (v.empty()) return nullptr;
+  std::sort(v.begin(), v.end());
+  double sum = 0;
+  for (float x : v) sum += x;
+  auto pct = [&v](double p) { return double(v[std::min(v.size() - 1, std::size_t(p / 100.0 * (v.size() - 1) + 0.5))]); };
+  return {{"min", v.front()}, {"max", v.back()}, {"mean", sum / v.size()},
+          {"p1", pct(1)}, {"p5", pct(5)}, {"p25", pct(25)}, {"p50", pct(50)}, {"p75", pct(75)},
+          {"p95", pct(95)}, {"p99", pct(99)}};
+}
+
+}  // namespace
+
+nlohmann::json surface_report(const Surface& s) {
+  const mc::MeshCheck c = mc::check_mesh(s.mesh);
+  nlohmann::json r = {{"vertices", c.vertices}, {"triangles", c.triangles}, {"area", c.area},
+                      {"euler_characteristic", c.euler}, {"components", c.components},
+                      {"boundary_edges", c.boundary_edges}, {"watertight", c.watertight()}};
+  if (c.genus() >= 0) r["genus"] = c.genus();
+  if (s.volume) r["isovalue"] = s.isovalue;
+  if (s.field && s.field->size() == s.mesh.positions.size()) {
+    nlohmann::json cs;
+    cs["H"] = distribution(s.field->H);
+    cs["K"] = distribution(s.field->K);
+    cs["k1"] = distribution(s.field->k1);
+    cs["k2"] = distribution(s.field->k2);
+    r["curvature"] = cs;
+  }
+  return r;
+}
+
+void write_text_file(const std::string& path, const std::string& text) {
+  write_atomically(path, [&](const std::string& tmp) {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+    out.close();
+    if (!out) throw Error(path, "cannot write");
+  });
+}
+
+}  // namespace isocurv::app

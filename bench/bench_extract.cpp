@@ -1,0 +1,115 @@
+// Extraction benchmark: isocurv's device marching cubes (PoCL here) beside vtkFlyingEdges3D and
+// openvdb::tools::volumeToMesh on the same volumes in the same run. Not a test: prints a table.
+//
+//   bench_extract [--quick] [--runs N] [--datasets DIR]
+#include <openvdb/tools/VolumeToMesh.h>
+#include <tbb/global_control.h>
+#include <vtkFlyingEdges3D.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkSMPTools.h>
+
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+
+#include "bench/bench_util.h"
+#include "core/cl_device.h"
+#include "core/error.h"
+#include "datasets/field.h"
+#include "datasets/sample.h"
+#include "mc/extract.h"
+#include "volume/load.h"
+
+using namespace isocurv;
+
+namespace {
+
+struct Case {
+  std::string name;
+  volume::Volume volume;
+  float iso;
+};
+
+void run_case(const Case& c, int runs) {
+  Device& dev = Device::default_device();
+  const volume::Volume& v = c.volume;
+  std::size_t ours_tris = 0;
+  auto ours = [&] { ours_tris = mc::extract(v, c.iso, dev).triangles.size(); };
+  auto image = bench::to_image(v);
+  std::size_t fe_tris = 0;
+  auto fe = [&] {
+    vtkNew<vtkFlyingEdges3D> f;
+    f->SetInputData(image);
+    f->SetValue(0, c.iso);
+    f->ComputeNormalsOff();
+    f->ComputeScalarsOff();
+    f->Update();
+    fe_tris = f->GetOutput()->GetNumberOfPolys();
+  };
+  std::size_t vdb_tris = 0;
+  auto vdb = [&] {
+    std::vector<openvdb::Vec3s> pts;
+    std::vector<openvdb::Vec3I> tris;
+    std::vector<openvdb::Vec4I> quads;
+    openvdb::tools::volumeToMesh(*v.grid, pts, tris, quads, double(c.iso));
+    vdb_tris = tris.size() + 2 * quads.size();
+  };
+  const double t_ours = bench::median_ms(ours, runs);
+  const double t_fe = bench::median_ms(fe, runs);
+  const double t_vdb = bench::median_ms(vdb, std::max(1, runs / 2));
+  const double m_ours = bench::peak_extra_mib(ours), m_fe = bench::peak_extra_mib(fe), m_vdb = bench::peak_extra_mib(vdb);
+  std::printf("%-26s %10zu %9.1f %8.1f %7.2f %9.1f %7.2f %8.1f %8.1f %8.1f %8.1f\n", c.name.c_str(), ours_tris, t_ours,
+              t_fe, t_fe / t_ours, t_vdb, t_vdb / t_ours, ours_tris / t_ours / 1000.0, m_ours, m_fe, m_vdb);
+  (void)fe_tris;
+  (void)vdb_tris;
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool quick = false;
+  int runs = 5;
+  std::string data = ISOCURV_SHARED_DATASETS;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--quick")) quick = true;
+    else if (!std::strcmp(argv[i], "--runs") && i + 1 < argc) runs = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--datasets") && i + 1 < argc) data = argv[++i];
+    else { std::fprintf(stderr, "usage: bench_extract [--quick] [--runs N] [--datasets DIR]\n"); return 2; }
+  }
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 2);
+  vtkSMPTools::Initialize(2);
+  openvdb::initialize();
+  std::printf("device: %s; VTK SMP backend: %s, 2 threads; medians of %d runs\n",
+              Device::default_device().info().name.c_str(), vtkSMPTools::GetBackend(), runs);
+  std::printf("%-26s %10s %9s %8s %7s %9s %7s %8s %8s %8s %8s\n", "volume", "triangles", "ours ms", "FE ms", "FE/ours",
+              "VDB ms", "VDB/our", "ktri/ms", "MiB ours", "MiB FE", "MiB VDB");
+  std::vector<int> sizes = quick ? std::vector<int>{128} : std::vector<int>{256, 512};
+  for (int n : sizes)
+    for (const char* name : {"sphere", "torus", "gyroid"}) {
+      auto field = datasets::make_field(name);
+      Case c{std::string(name) + " " + std::to_string(n) + "^3", datasets::sample(*field, n), float(field->isovalue())};
+      run_case(c, runs);
+    }
+  struct Real { const char* name; const char* file; float iso; };
+  const Real reals[] = {{"lobster", "lobster/lobster_301x324x56_uint8.raw", 40},
+                        {"LIDC2 CT", "lidc2_ct/LIDC2_256x256x133_uint8.raw.gz", 60},
+                        {"frogtissue", "frogtissue/frogtissue.mhd", 0.5f},
+                        {"octaflower 512 (aa)", "aa_octaflower/octa-flower17k-512-aa-l0_1.vol", 127.5f}};
+  for (const Real& r : reals) {
+    const std::string path = data + "/" + r.file;
+    if (!std::filesystem::exists(path)) continue;
+    if (quick && std::strcmp(r.name, "lobster") != 0) continue;
+    try {
+      volume::LoadOptions lo;
+      if (std::strstr(r.file, "LIDC2")) { lo.raw.spacing = {1.40625, 1.40625, 2.5}; }
+      if (std::strstr(r.file, "lobster")) { lo.raw.spacing = {1, 1, 1.4}; }
+      Case c{r.name, volume::load(path, lo), r.iso};
+      run_case(c, runs);
+    } catch (const Error& e) {
+      std::printf("%-26s skipped: %s\n", r.name, e.what());
+    }
+  }
+  return 0;
+}

@@ -1,0 +1,91 @@
+#pragma once
+// Shared by the benchmarks: median wall time, peak extra memory of one run, dense VTK images.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <vtkFloatArray.h>
+#include <vtkImageData.h>
+#include <vtkPointData.h>
+#include <vtkSmartPointer.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "volume/volume.h"
+
+namespace isocurv::bench {
+
+/// Median wall time in ms of `runs` calls of f (after one untimed warm-up call).
+inline double median_ms(const std::function<void()>& f, int runs) {
+  f();
+  std::vector<double> t;
+  for (int i = 0; i < runs; ++i) {
+    auto t0 = std::chrono::steady_clock::now();
+    f();
+    t.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  }
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+
+inline long status_kb(const char* key) {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind(key, 0) == 0) return std::stol(line.substr(std::string(key).size()));
+  return -1;
+}
+
+/// Peak memory (MiB) that one call of f adds on top of what the process already holds: run in a
+/// forked child whose high-water mark is reset first (Linux /proc/self/clear_refs).
+inline double peak_extra_mib(const std::function<void()>& f) {
+  int fd[2];
+  if (pipe(fd) != 0) return -1;
+  pid_t pid = fork();
+  if (pid == 0) {
+    close(fd[0]);
+    { std::ofstream("/proc/self/clear_refs") << "5"; }
+    long before = status_kb("VmRSS:");
+    f();
+    long peak = status_kb("VmHWM:");
+    double mib = (peak - before) / 1024.0;
+    if (write(fd[1], &mib, sizeof mib) != sizeof mib) _exit(1);
+    _exit(0);
+  }
+  close(fd[1]);
+  double mib = -1;
+  if (read(fd[0], &mib, sizeof mib) != sizeof mib) mib = -1;
+  close(fd[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return mib;
+}
+
+/// The volume's dense domain as a vtkImageData (float scalars, spacing and origin of the
+/// transform's diagonal), what VTK's filters take.
+inline vtkSmartPointer<vtkImageData> to_image(const volume::Volume& v) {
+  const openvdb::CoordBBox box = v.domain;
+  const openvdb::Coord d = box.dim();
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(d.x(), d.y(), d.z());
+  const openvdb::Vec3d sp = v.spacing();
+  const openvdb::Vec3d org = v.grid->transform().indexToWorld(box.min());
+  image->SetSpacing(sp.x(), sp.y(), sp.z());
+  image->SetOrigin(org.x(), org.y(), org.z());
+  auto values = vtkSmartPointer<vtkFloatArray>::New();
+  values->SetNumberOfTuples(vtkIdType(d.x()) * d.y() * d.z());
+  float* out = values->GetPointer(0);
+  auto acc = v.grid->getConstAccessor();
+  for (int z = 0; z < d.z(); ++z)
+    for (int y = 0; y < d.y(); ++y)
+      for (int x = 0; x < d.x(); ++x) *out++ = acc.getValue(box.min() + openvdb::Coord(x, y, z));
+  image->GetPointData()->SetScalars(values);
+  return image;
+}
+
+}  // namespace isocurv::bench
