@@ -1,0 +1,212 @@
+// isocurv run, render, check and view end to end (headless: DISPLAY unset, the CLI starts Xvfb).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "cli.h"
+#include "io/mesh_file.h"
+#include "mesh_compare.h"
+
+using namespace isocurv;
+using namespace isocurv::test;
+using nlohmann::json;
+
+TEST(CliRun, WritesMeshPictureAndStats) {
+  TempDir dir("run");
+  const std::string out = dir / "out";
+  const auto r = run_isocurv({"run", dataset("torus"), "-o", out, "--size", "320x240", "--json"});
+  ASSERT_TRUE(r.ok()) << r.describe();
+  const std::string mesh = out + "/torus.vtp", png = out + "/torus.png", stats = out + "/stats.json";
+  ASSERT_TRUE(fs::exists(mesh)) << r.describe();
+  ASSERT_TRUE(fs::exists(png)) << r.describe();
+  ASSERT_TRUE(fs::exists(stats)) << r.describe();
+  const auto size = png_size(png);
+  EXPECT_EQ(size[0], 320u);
+  EXPECT_EQ(size[1], 240u);
+
+  const json s = parse_json(read_file(stats), "stats.json");
+  ASSERT_TRUE(s.is_object());
+  EXPECT_EQ(parse_json(r.out, "run --json"), s) << "--json prints what stats.json holds";
+  ASSERT_TRUE(s["timings_ms"].is_object()) << s.dump(2);
+  for (const char* stage : {"load", "extract", "curvature", "write", "render"}) {
+    ASSERT_TRUE(s["timings_ms"].contains(stage)) << stage << "\n" << s.dump(2);
+    EXPECT_GE(s["timings_ms"][stage].get<double>(), 0.0);
+  }
+  EXPECT_GT(s["timings_ms"]["render"].get<double>(), 0.0);
+  EXPECT_GT(s["vertices"].get<int>(), 1000);
+  EXPECT_GT(s["triangles"].get<int>(), 2000);
+  EXPECT_EQ(s["euler_characteristic"].get<int>(), 0) << "torus";
+  EXPECT_EQ(s["genus"].get<int>(), 1);
+  EXPECT_TRUE(s["watertight"].get<bool>());
+  EXPECT_EQ(s["components"].get<int>(), 1);
+  EXPECT_FALSE(s.value("device", "").empty());
+  EXPECT_EQ(s.value("mesh", ""), mesh);
+  EXPECT_EQ(s.value("png", ""), png);
+  for (const char* q : {"H", "K"}) {
+    const json& d = s["curvature"][q];
+    double last = -1e30;
+    for (const char* p : {"min", "p1", "p5", "p25", "p50", "p75", "p95", "p99", "max"}) {
+      ASSERT_TRUE(d[p].is_number()) << q << "." << p << "\n" << s.dump(2);
+      EXPECT_GE(d[p].get<double>(), last) << q << "." << p << " percentiles must be ordered";
+      last = d[p].get<double>();
+    }
+  }
+  EXPECT_LT(s["curvature"]["K"]["p1"].get<double>(), 0.0) << "the hole of the torus is saddle-shaped";
+  EXPECT_GT(s["curvature"]["K"]["p99"].get<double>(), 0.0);
+
+  const io::MeshFile m = io::read_mesh(mesh);
+  EXPECT_EQ(m.mesh.positions.size(), s["vertices"].get<std::size_t>());
+  ASSERT_TRUE(m.field);
+  expect_complete_field(*m.field, m.mesh.positions.size(), mesh);
+  // Nothing else is left in the folder (no temporary files).
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(out)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"stats.json", "torus.png", "torus.vtp"}));
+}
+
+TEST(CliRun, PlyFormatVolumeNormalsAndNestedFolder) {
+  TempDir dir("run_ply");
+  const std::string out = dir / "a/b";
+  const auto r = run_isocurv({"run", dataset("sphere"), "-o", out, "--format", "ply", "--normals", "volume",
+                              "--size", "200x100", "--quiet"});
+  ASSERT_TRUE(r.ok()) << r.describe();
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  ASSERT_TRUE(fs::exists(out + "/sphere.ply"));
+  EXPECT_FALSE(fs::exists(out + "/sphere.vtp"));
+  const json s = parse_json(read_file(out + "/stats.json"), "stats.json");
+  EXPECT_EQ(s.value("normals", ""), "volume");
+  EXPECT_TRUE(s["timings_ms"].contains("normals"));
+  EXPECT_EQ(s["euler_characteristic"].get<int>(), 2);
+  EXPECT_EQ(s["genus"].get<int>(), 0);
+  EXPECT_NEAR(s["curvature"]["H"]["p50"].get<double>(), 1.25, 0.05);
+  const auto size = png_size(out + "/sphere.png");
+  EXPECT_EQ(size[0], 200u);
+  EXPECT_EQ(size[1], 100u);
+}
+
+TEST(CliRender, ColourAoDirsAndSize) {
+  TempDir dir("render");
+  const std::string png = dir / "t.png";
+  const auto r = run_isocurv({"render", dataset("torus"), "--color", "K", "--ao", "--dirs", "--size", "320x240", "-o",
+                              png, "--json"});
+  ASSERT_TRUE(r.ok()) << r.describe();
+  const json j = parse_json(r.out, "render --json");
+  ASSERT_TRUE(j["timings_ms"].contains("render")) << j.dump(2);
+  ASSERT_TRUE(fs::exists(png));
+  const auto size = png_size(png);
+  EXPECT_EQ(size[0], 320u);
+  EXPECT_EQ(size[1], 240u);
+  EXPECT_GT(fs::file_size(png), 5000u) << "a picture, not a blank";
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"t.png"});
+}
+
+TEST(CliRender, MeshInputWithAndWithoutCurvature) {
+  TempDir dir("render_mesh");
+  ASSERT_TRUE(run_isocurv({"extract", dataset("ellipsoid"), "-o", dir / "e.obj", "--quiet"}).ok());
+  ASSERT_TRUE(run_isocurv({"curvature", dataset("ellipsoid"), "-o", dir / "e.vtp", "--quiet"}).ok());
+  const auto plain = run_isocurv({"render", dir / "e.obj", "-o", dir / "plain.png", "--size", "160x120", "--json"});
+  ASSERT_TRUE(plain.ok()) << plain.describe();
+  EXPECT_TRUE(parse_json(plain.out, "render --json")["timings_ms"].contains("curvature"))
+      << "a mesh without arrays gets curvature estimated";
+  const auto carried = run_isocurv({"render", dir / "e.vtp", "-o", dir / "carried.png", "--size", "160x120", "--json"});
+  ASSERT_TRUE(carried.ok()) << carried.describe();
+  EXPECT_FALSE(parse_json(carried.out, "render --json")["timings_ms"].contains("curvature"))
+      << "a mesh carrying curvature is rendered as it is";
+  EXPECT_EQ(png_size(dir / "plain.png")[0], 160u);
+  EXPECT_EQ(png_size(dir / "carried.png")[1], 120u);
+}
+
+TEST(CliRender, DefaultSize) {
+  TempDir dir("render_default");
+  const auto r = run_isocurv({"render", dataset("sphere"), "-o", dir / "s.png", "--quiet"});
+  ASSERT_TRUE(r.ok()) << r.describe();
+  const auto size = png_size(dir / "s.png");
+  EXPECT_EQ(size[0], 1024u);
+  EXPECT_EQ(size[1], 768u);
+}
+
+TEST(CliCheck, OurOutputIsFusedAndWatertight) {
+  TempDir dir("check_ours");
+  ASSERT_TRUE(run_isocurv({"extract", dataset("buckyball"), "-o", dir / "b.ply", "--quiet"}).ok());
+  const auto r = run_isocurv({"check", dir / "b.ply", "--json"});
+  ASSERT_TRUE(r.ok()) << r.describe();
+  const json j = parse_json(r.out, "check --json");
+  EXPECT_EQ(j["duplicate_vertices"].get<int>(), 0);
+  EXPECT_EQ(j["unreferenced_vertices"].get<int>(), 0);
+  EXPECT_EQ(j["degenerate_triangles"].get<int>(), 0);
+  EXPECT_EQ(j["boundary_edges"].get<int>(), 0);
+  EXPECT_EQ(j["non_manifold_edges"].get<int>(), 0);
+  EXPECT_TRUE(j["consistently_oriented"].get<bool>());
+  EXPECT_TRUE(j["watertight"].get<bool>());
+  EXPECT_TRUE(j["timings_ms"].contains("check"));
+  EXPECT_EQ(j["euler_characteristic"].get<int>(), 2 * (j["components"].get<int>() - j["genus"].get<int>()));
+
+  // Straight from the volume, text report: the torus.
+  const auto t = run_isocurv({"check", dataset("torus")});
+  ASSERT_TRUE(t.ok()) << t.describe();
+  EXPECT_NE(t.out.find("duplicate vertices    0"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("Euler characteristic  0"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("genus                 1"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("fused and manifold, watertight"), std::string::npos) << t.out;
+}
+
+TEST(CliCheck, HandWrittenObjWithDuplicateAndBoundary) {
+  TempDir dir("check_obj");
+  // A unit square as two triangles whose shared corner (0,0,0) is stored twice: the diagonal is
+  // then two distinct edges, so all six edges are boundary edges.
+  write_file(dir / "square.obj",
+             "# duplicate vertex 5 = vertex 1\n"
+             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 0\n"
+             "f 1 2 3\nf 5 3 4\n");
+  const auto r = run_isocurv({"check", dir / "square.obj", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << "check ran, whatever it found\n" << r.describe();
+  const json j = parse_json(r.out, "check --json");
+  EXPECT_EQ(j["vertices"].get<int>(), 5);
+  EXPECT_EQ(j["triangles"].get<int>(), 2);
+  EXPECT_EQ(j["duplicate_vertices"].get<int>(), 1);
+  EXPECT_EQ(j["boundary_edges"].get<int>(), 6);
+  EXPECT_EQ(j["edges"].get<int>(), 6);
+  EXPECT_FALSE(j["watertight"].get<bool>());
+  EXPECT_TRUE(j["genus"].is_null());
+  EXPECT_NEAR(j["area"].get<double>(), 1.0, 1e-12);
+
+  const auto text = run_isocurv({"check", dir / "square.obj"});
+  ASSERT_EQ(text.exit_code, 0) << text.describe();
+  EXPECT_NE(text.out.find("duplicate vertices    1"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("boundary 6"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("PROBLEMS FOUND, open"), std::string::npos) << text.out;
+}
+
+TEST(CliCheck, HandWrittenTetrahedronWithAFlippedFace) {
+  TempDir dir("check_tet");
+  const std::string verts = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n";
+  write_file(dir / "good.obj", verts + "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+  write_file(dir / "flipped.obj", verts + "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 4 3\n");
+  const auto good = run_isocurv({"check", dir / "good.obj", "--json"});
+  ASSERT_TRUE(good.ok()) << good.describe();
+  const json g = parse_json(good.out, "check --json");
+  EXPECT_TRUE(g["watertight"].get<bool>());
+  EXPECT_TRUE(g["consistently_oriented"].get<bool>());
+  EXPECT_EQ(g["euler_characteristic"].get<int>(), 2);
+  EXPECT_EQ(g["genus"].get<int>(), 0);
+  const auto bad = run_isocurv({"check", dir / "flipped.obj"});
+  ASSERT_TRUE(bad.ok()) << bad.describe();
+  EXPECT_NE(bad.out.find("INCONSISTENT (3 edges"), std::string::npos) << bad.out;
+  EXPECT_NE(bad.out.find("PROBLEMS FOUND, watertight"), std::string::npos) << bad.out;
+  EXPECT_NE(bad.out.find("genus                 n/a"), std::string::npos) << bad.out;
+}
+
+TEST(CliView, FailsCleanlyBeforeOpeningAWindow) {
+  // isocurv view is interactive and has no scripted mode (app/cmd_view.cpp); the explorer itself
+  // is driven by a script in tests/viz/test_explorer.cpp. Here: its input errors come before any
+  // window, as one line, without hanging.
+  TempDir dir("view");
+  const auto missing = run_isocurv({"view", dir / "missing.vdb"}, 30);
+  expect_clean_failure(missing, "missing.vdb");
+  const auto iso = run_isocurv({"view", dataset("sphere"), "--iso", "42"}, 30);
+  expect_clean_failure(iso, "outside the value range");
+  const auto opt = run_isocurv({"view", dataset("sphere"), "--color", "X"}, 30);
+  EXPECT_NE(opt.exit_code, 0) << opt.describe();
+  EXPECT_FALSE(opt.timed_out);
+}

@@ -1,0 +1,24 @@
+#pragma once
+// Kernel-versus-reference comparison of two curvature fields of the same mesh.
+#include <string>
+
+#include "curvature/curvature_field.h"
+
+namespace isocurv::test {
+
+struct FieldDifference {
+  double k1 = 0, k2 = 0, H = 0, K = 0;  ///< relative RMS differences (see relative_rms)
+  double normal_angle = 0;               ///< largest angle between the normals, radians
+  double dir_angle = 0;  ///< largest angle between dir1 lines where k1 - k2 is not tiny, radians
+  std::size_t dir_count = 0;             ///< vertices where dir_angle was measured
+  double dcurv = 0;      ///< relative RMS difference of dcurv (signs aligned with the directions)
+  double area = 0;       ///< relative RMS difference of the areas
+  bool same_boundary = true;
+  std::string str() const;
+};
+
+/// Differences of `x` from `ref`. Directions count where k1 - k2 exceeds `gap` (in 1/length).
+FieldDifference compare(const curvature::CurvatureField& x, const curvature::CurvatureField& ref,
+                        double gap);
+
+}  // namespace isocurv::test

@@ -1,0 +1,1 @@
+set(_links isocurv_curvature)

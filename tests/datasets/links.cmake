@@ -1,0 +1,1 @@
+set(_links isocurv_datasets isocurv_datasets_files)

@@ -1,0 +1,82 @@
+#include "volume/dense_image.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "volume/from_dense.h"
+
+namespace isocurv::volume {
+
+std::uint64_t checked_voxel_count(const std::string& path, const std::array<long long, 3>& dims) {
+  const std::string text = std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" + std::to_string(dims[2]);
+  for (long long d : dims)
+    if (d <= 0 || d > 0x7fffffffLL) throw Error(path, "invalid dimensions " + text);
+  const long double count = (long double)dims[0] * dims[1] * dims[2];
+  if (count > (long double)(1ULL << 40)) throw Error(path, "dimensions " + text + " are implausibly large");
+  return std::uint64_t(dims[0]) * std::uint64_t(dims[1]) * std::uint64_t(dims[2]);
+}
+
+void decode_into(DenseImage& image, const std::uint8_t* bytes, std::uint64_t count, VoxelType type, bool big_endian) {
+  image.values = LargeBuffer<float>(count);
+  decode_voxels(bytes, count, type, big_endian, image.values.data());
+  image.voxel_type = voxel_type_name(type);
+}
+
+openvdb::math::Transform::Ptr make_transform(const std::array<double, 3>& spacing,
+                                             const std::array<double, 3>& origin,
+                                             const std::array<std::array<double, 3>, 3>& axes) {
+  bool identity = true;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) identity &= axes[i][j] == (i == j ? 1.0 : 0.0);
+  if (identity) {
+    auto map = std::make_shared<openvdb::math::ScaleTranslateMap>(
+        openvdb::Vec3d(spacing[0], spacing[1], spacing[2]), openvdb::Vec3d(origin[0], origin[1], origin[2]));
+    return std::make_shared<openvdb::math::Transform>(map);
+  }
+  // OpenVDB matrices act on row vectors: world = index * M, so row i is index axis i in world space.
+  openvdb::Mat4d m = openvdb::Mat4d::identity();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) m(i, j) = spacing[std::size_t(i)] * axes[std::size_t(i)][std::size_t(j)];
+  for (int j = 0; j < 3; ++j) m(3, j) = origin[std::size_t(j)];
+  return openvdb::math::Transform::createLinearTransform(m);
+}
+
+Volume finish_dense(DenseImage&& image, const std::string& path, const std::string& format,
+                    const LoadOptions& options) {
+  for (int i = 0; i < 3; ++i) {
+    const double s = image.spacing[std::size_t(i)];
+    if (!std::isfinite(s) || s <= 0) throw Error(path, "invalid voxel spacing " + std::to_string(s));
+    if (!std::isfinite(image.origin[std::size_t(i)])) throw Error(path, "invalid origin");
+  }
+  auto& a = image.axes;
+  const double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+                     a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                     a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  if (!std::isfinite(det) || std::fabs(det) < 1e-6) throw Error(path, "degenerate direction matrix");
+  if (det < 0) {
+    // Reverse X: voxel x becomes nx-1-x; the first voxel now sits where the last one was.
+    const int nx = image.dims[0];
+    const std::size_t rows = std::size_t(image.dims[1]) * std::size_t(image.dims[2]);
+    float* v = image.values.data();
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t row = r.begin(); row != r.end(); ++row) std::reverse(v + row * nx, v + (row + 1) * nx);
+    });
+    for (int j = 0; j < 3; ++j) {
+      image.origin[std::size_t(j)] += double(nx - 1) * image.spacing[0] * a[0][std::size_t(j)];
+      a[0][std::size_t(j)] = -a[0][std::size_t(j)];
+    }
+  }
+  DenseSource source;
+  source.path = path;
+  source.format = format;
+  source.voxel_type = image.voxel_type;
+  source.grid_name = image.array_name;
+  source.inside = options.inside.value_or(Inside::Above);
+  return from_dense(image.values.data(), image.dims, make_transform(image.spacing, image.origin, image.axes), source);
+}
+
+}  // namespace isocurv::volume

@@ -1,0 +1,46 @@
+#pragma once
+// The common last step of every dense loader: decoded voxels plus geometry -> Volume.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "volume/large_buffer.h"
+#include "volume/load.h"
+#include "volume/voxel_type.h"
+
+namespace isocurv::volume {
+
+/// A decoded dense image: voxels X fastest, and index -> world geometry
+/// world = origin + sum_i index_i * spacing_i * axes[i].
+struct DenseImage {
+  std::array<int, 3> dims{0, 0, 0};
+  LargeBuffer<float> values;  ///< X fastest
+  std::array<double, 3> spacing{1, 1, 1};
+  std::array<double, 3> origin{0, 0, 0};
+  std::array<std::array<double, 3>, 3> axes{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};  ///< unit axis directions
+  std::string voxel_type;
+  std::string array_name;
+};
+
+/// Checks a header's dimensions (positive, at most 2^31-1 per axis and 2^40 voxels in all) and
+/// returns the voxel count; throws Error(path, ...) otherwise.
+std::uint64_t checked_voxel_count(const std::string& path, const std::array<long long, 3>& dims);
+
+/// Decodes `count` voxels from raw bytes into image.values (sets image.voxel_type).
+void decode_into(DenseImage& image, const std::uint8_t* bytes, std::uint64_t count, VoxelType type, bool big_endian);
+
+/// Builds the Volume: the index -> world transform (axes are used as given when they form a
+/// right-handed frame; a left-handed frame is made right-handed by reversing the voxel order along
+/// X and moving the origin to the old last slice, which describes the same world-space image), the
+/// inside side (options.inside, else Above), and from_dense.
+Volume finish_dense(DenseImage&& image, const std::string& path, const std::string& format,
+                    const LoadOptions& options);
+
+/// The index -> world transform for spacing, origin and unit axis directions (a scale-translate
+/// map when the axes are the identity, else an affine map).
+openvdb::math::Transform::Ptr make_transform(const std::array<double, 3>& spacing,
+                                             const std::array<double, 3>& origin,
+                                             const std::array<std::array<double, 3>, 3>& axes);
+
+}  // namespace isocurv::volume

@@ -1,0 +1,56 @@
+#pragma once
+// Reading voxel payloads from disk: whole files, byte ranges, zlib and gzip streams. Every
+// function throws isocurv::Error(path, problem) on a missing, unreadable or truncated input, and
+// never allocates more than the data can justify (a compressed stream is inflated into a buffer
+// that grows with the data actually produced, capped at the expected size).
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "volume/large_buffer.h"
+
+namespace isocurv::volume {
+
+/// Size of a regular file in bytes; throws when it does not exist or is not a regular file.
+std::uint64_t file_size(const std::string& path);
+
+/// `length` bytes of `path` starting at `offset`; throws when the file is shorter.
+Bytes read_bytes(const std::string& path, std::uint64_t offset, std::uint64_t length);
+
+/// The whole file.
+Bytes read_file(const std::string& path);
+
+/// Inflates the zlib (RFC 1950) or gzip (RFC 1952) stream in `data` (format auto-detected), which
+/// must hold exactly `expected` bytes: fewer is "truncated", more is a size mismatch.
+/// `what` names the payload in messages (e.g. "voxel data").
+Bytes inflate_exact(const std::string& path, const std::uint8_t* data, std::size_t size,
+                                        std::uint64_t expected, const std::string& what);
+
+/// Reads a gzip-compressed file incrementally (gzread), so headers can be parsed before the
+/// payload size is known.
+class GzipReader {
+ public:
+  explicit GzipReader(const std::string& path);
+  ~GzipReader();
+  GzipReader(const GzipReader&) = delete;
+  GzipReader& operator=(const GzipReader&) = delete;
+
+  /// Reads up to `n` bytes (fewer only at the end of the stream); throws on a corrupt stream.
+  std::size_t read(void* out, std::size_t n);
+  /// Reads exactly `n` bytes into `out`, throwing "truncated <what>" at a premature end.
+  void read_exact(void* out, std::size_t n, const std::string& what);
+  /// Skips `n` bytes (throws at a premature end).
+  void skip(std::size_t n, const std::string& what);
+  /// True when the whole stream has been consumed.
+  bool at_end();
+
+ private:
+  std::string path_;
+  void* file_ = nullptr;  // gzFile
+};
+
+/// Inflates a whole gzip file that must hold exactly `expected` bytes.
+Bytes read_gzip_exact(const std::string& path, std::uint64_t expected, const std::string& what);
+
+}  // namespace isocurv::volume

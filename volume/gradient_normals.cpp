@@ -1,0 +1,80 @@
+#include "volume/gradient_normals.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace isocurv::volume {
+namespace {
+
+/// Index-space gradient sampling with optional clamping to a dense volume's domain.
+struct GradientSampler {
+  openvdb::FloatGrid::ConstAccessor acc;
+  bool clamp;
+  openvdb::Coord lo, hi;
+
+  int cx(int v, int a) const { return clamp ? std::min(std::max(v, lo[a]), hi[a]) : v; }
+  float value(int x, int y, int z) { return acc.getValue(openvdb::Coord(x, y, z)); }
+
+  /// Central (or, at the domain border, one-sided) difference at voxel (x, y, z).
+  openvdb::Vec3d at(int x, int y, int z) {
+    openvdb::Vec3d g;
+    const int c[3] = {x, y, z};
+    for (int a = 0; a < 3; ++a) {
+      int p[3] = {c[0], c[1], c[2]}, m[3] = {c[0], c[1], c[2]};
+      p[a] = cx(c[a] + 1, a);
+      m[a] = cx(c[a] - 1, a);
+      const int span = p[a] - m[a];
+      g[a] = span == 0 ? 0.0 : (double(value(p[0], p[1], p[2])) - double(value(m[0], m[1], m[2]))) / span;
+    }
+    return g;
+  }
+
+  /// Trilinear interpolation of the voxel gradients around index-space point q.
+  openvdb::Vec3d interpolate(const openvdb::Vec3d& q) {
+    openvdb::Vec3d qc = q;
+    if (clamp)
+      for (int a = 0; a < 3; ++a) qc[a] = std::min(std::max(qc[a], double(lo[a])), double(hi[a]));
+    const int x0 = int(std::floor(qc[0])), y0 = int(std::floor(qc[1])), z0 = int(std::floor(qc[2]));
+    const double fx = qc[0] - x0, fy = qc[1] - y0, fz = qc[2] - z0;
+    openvdb::Vec3d g(0.0);
+    for (int k = 0; k < 2; ++k)
+      for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) {
+          const double w = (i ? fx : 1 - fx) * (j ? fy : 1 - fy) * (k ? fz : 1 - fz);
+          if (w == 0) continue;
+          g += w * at(cx(x0 + i, 0), cx(y0 + j, 1), cx(z0 + k, 2));
+        }
+    return g;
+  }
+};
+
+}  // namespace
+
+std::vector<Vec3f> gradient_normals(const Volume& volume, const std::vector<Vec3f>& world_positions) {
+  std::vector<Vec3f> normals(world_positions.size(), Vec3f{0, 0, 0});
+  if (!volume.grid || world_positions.empty()) return normals;
+  const openvdb::FloatGrid& grid = *volume.grid;
+  const openvdb::math::Transform& xform = grid.transform();
+  const openvdb::math::MapBase::ConstPtr map = xform.baseMap();
+  const double sign = volume.inside == Inside::Above ? -1.0 : 1.0;
+  const bool clamp = volume.dense && !volume.domain.empty();
+
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, world_positions.size(), 512),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      GradientSampler s{grid.getConstAccessor(), clamp, volume.domain.min(), volume.domain.max()};
+                      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                        const Vec3f& p = world_positions[i];
+                        const openvdb::Vec3d q = xform.worldToIndex(openvdb::Vec3d(p[0], p[1], p[2]));
+                        const openvdb::Vec3d g = map->applyIJT(s.interpolate(q), q);
+                        const double len = g.length();
+                        if (!(len > 0) || !std::isfinite(len)) continue;
+                        normals[i] = {float(sign * g.x() / len), float(sign * g.y() / len), float(sign * g.z() / len)};
+                      }
+                    });
+  return normals;
+}
+
+}  // namespace isocurv::volume

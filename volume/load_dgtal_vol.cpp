@@ -1,0 +1,71 @@
+// DGtal VOL files: ASCII `Key: value` lines, a line holding only ".", then X*Y*Z uint8 voxels,
+// x fastest: raw for Version 2, a zlib stream for Version 3.
+#include <cstring>
+#include <map>
+
+#include "core/error.h"
+#include "volume/dense_image.h"
+#include "volume/file_bytes.h"
+#include "volume/header_text.h"
+#include "volume/loaders.h"
+
+namespace isocurv::volume {
+
+Volume load_dgtal_vol(const std::string& path, const LoadOptions& options) {
+  const std::uint64_t size = file_size(path);
+  const Bytes file = read_bytes(path, 0, size);
+
+  // Header: lines up to the "." terminator (at most 64 KiB of text).
+  std::map<std::string, std::string> keys;
+  std::size_t pos = 0;
+  bool terminated = false;
+  while (pos < file.size() && pos < (1u << 16)) {
+    const auto* nl = static_cast<const std::uint8_t*>(std::memchr(file.data() + pos, '\n', file.size() - pos));
+    const std::size_t end = nl ? std::size_t(nl - file.data()) : file.size();
+    const std::string line = trim(std::string(file.begin() + long(pos), file.begin() + long(end)));
+    pos = end + 1;
+    if (line == ".") {
+      terminated = true;
+      break;
+    }
+    if (line.empty()) continue;
+    const std::size_t colon = line.find(':');
+    if (colon == std::string::npos) throw Error(path, "bad VOL header line '" + line.substr(0, 60) + "'");
+    keys[trim(line.substr(0, colon))] = trim(line.substr(colon + 1));
+  }
+  if (!terminated) throw Error(path, "not a VOL file: no header terminator line '.'");
+  for (const char* k : {"X", "Y", "Z"})
+    if (!keys.count(k)) throw Error(path, std::string("VOL header has no '") + k + "' size");
+  const std::array<long long, 3> dims{parse_integers_exact(path, keys["X"], 1, "X size")[0],
+                                      parse_integers_exact(path, keys["Y"], 1, "Y size")[0],
+                                      parse_integers_exact(path, keys["Z"], 1, "Z size")[0]};
+  const std::uint64_t count = checked_voxel_count(path, dims);
+  const int version = keys.count("Version") ? int(parse_integers_exact(path, keys["Version"], 1, "Version")[0]) : 2;
+  if (version != 2 && version != 3) throw Error(path, "unsupported VOL version " + std::to_string(version));
+  if (keys.count("Voxel-Endian") && keys["Voxel-Endian"] != "0")
+    throw Error(path, "unsupported VOL Voxel-Endian '" + keys["Voxel-Endian"] + "' (only 8-bit voxels are read)");
+
+  Bytes voxels;
+  const std::uint8_t* payload = file.data() + pos;
+  const std::size_t payload_size = file.size() - pos;
+  if (version == 3) {
+    voxels = inflate_exact(path, payload, payload_size, count, "voxel data");
+    payload = voxels.data();
+  } else if (payload_size != count) {
+    throw Error(path, "voxel data has " + std::to_string(payload_size) + " bytes, the header's " + keys["X"] + "x" +
+                          keys["Y"] + "x" + keys["Z"] + " needs " + std::to_string(count) +
+                          (payload_size < count ? " (truncated)" : ""));
+  }
+
+  DenseImage image;
+  image.dims = {int(dims[0]), int(dims[1]), int(dims[2])};
+  if (keys.count("Voxel-Size")) {
+    const double s = parse_numbers_exact(path, keys["Voxel-Size"], 1, "Voxel-Size")[0];
+    if (s > 0) image.spacing = {s, s, s};
+  }
+  decode_into(image, payload, count, VoxelType::UInt8, false);
+  voxels = {};
+  return finish_dense(std::move(image), path, "dgtal-vol", options);
+}
+
+}  // namespace isocurv::volume

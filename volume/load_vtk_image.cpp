@@ -1,0 +1,159 @@
+// Image files read through VTK: XML image data (.vti), legacy STRUCTURED_POINTS (.vtk) and
+// VolVis SLC (.slc). VTK's error messages are caught by an observer and become the Error text.
+#include <vtkCallbackCommand.h>
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkMatrix3x3.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkSLCReader.h>
+#include <vtkSmartPointer.h>
+#include <vtkStructuredPoints.h>
+#include <vtkStructuredPointsReader.h>
+#include <vtkXMLImageDataReader.h>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "core/error.h"
+#include "volume/dense_image.h"
+#include "volume/file_bytes.h"
+#include "volume/header_text.h"
+#include "volume/loaders.h"
+
+namespace isocurv::volume {
+namespace {
+
+/// Collects the first error a VTK object reports instead of printing it.
+struct ErrorCatcher {
+  std::string message;
+  vtkNew<vtkCallbackCommand> command;
+  ErrorCatcher() {
+    command->SetClientData(this);
+    command->SetCallback([](vtkObject*, unsigned long event, void* client, void* call) {
+      auto* self = static_cast<ErrorCatcher*>(client);
+      if (event == vtkCommand::ErrorEvent && self->message.empty() && call) {
+        std::string text = static_cast<const char*>(call);
+        // VTK prefixes "ERROR: In <file>, line <n>\n<class> (<ptr>): "; keep the last line.
+        const std::size_t nl = text.find_last_of('\n', text.size() > 1 ? text.size() - 2 : 0);
+        if (nl != std::string::npos) text = text.substr(nl + 1);
+        const std::size_t colon = text.find("): ");
+        if (colon != std::string::npos) text = text.substr(colon + 3);
+        self->message = trim(text);
+        if (self->message.empty()) self->message = "VTK reader error";
+      }
+    });
+  }
+  void watch(vtkObject* o) {
+    o->AddObserver(vtkCommand::ErrorEvent, command);
+    o->AddObserver(vtkCommand::WarningEvent, command);
+  }
+};
+
+std::string vtk_type_name(int t) {
+  switch (t) {
+    case VTK_UNSIGNED_CHAR: return "uint8";
+    case VTK_CHAR:
+    case VTK_SIGNED_CHAR: return "int8";
+    case VTK_SHORT: return "int16";
+    case VTK_UNSIGNED_SHORT: return "uint16";
+    case VTK_INT: return "int32";
+    case VTK_UNSIGNED_INT: return "uint32";
+    case VTK_LONG:
+    case VTK_LONG_LONG: return "int64";
+    case VTK_UNSIGNED_LONG:
+    case VTK_UNSIGNED_LONG_LONG: return "uint64";
+    case VTK_FLOAT: return "float";
+    case VTK_DOUBLE: return "double";
+    default: return "unknown";
+  }
+}
+
+template <class T>
+void to_float(const T* src, std::size_t n, float* dst) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1 << 16), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) dst[i] = float(src[i]);
+  });
+}
+
+}  // namespace
+
+Volume load_vtk_image(const std::string& path, const LoadOptions& options) {
+  file_size(path);
+  const std::string name = to_lower(path);
+  const bool xml = name.size() >= 4 && name.compare(name.size() - 4, 4, ".vti") == 0;
+  const bool slc = name.size() >= 4 && name.compare(name.size() - 4, 4, ".slc") == 0;
+  const std::string format = xml ? "vti" : slc ? "slc" : "vtk";
+  ErrorCatcher errors;
+  vtkSmartPointer<vtkImageData> image;
+
+  if (xml) {
+    vtkNew<vtkXMLImageDataReader> reader;
+    errors.watch(reader);
+    if (!reader->CanReadFile(path.c_str())) throw Error(path, "not a VTK XML image data file");
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    image = reader->GetOutput();
+  } else if (slc) {
+    vtkNew<vtkSLCReader> reader;
+    errors.watch(reader);
+    if (!reader->CanReadFile(path.c_str())) throw Error(path, "not an SLC file");
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    image = reader->GetOutput();
+  } else {
+    vtkNew<vtkStructuredPointsReader> reader;
+    errors.watch(reader);
+    reader->SetFileName(path.c_str());
+    if (!reader->IsFileStructuredPoints())
+      throw Error(path, errors.message.empty() ? "not a legacy VTK STRUCTURED_POINTS file" : errors.message);
+    reader->Update();
+    image = reader->GetOutput();
+  }
+  if (!errors.message.empty()) throw Error(path, errors.message);
+  if (!image) throw Error(path, "VTK reader produced no image");
+
+  vtkDataArray* array = image->GetPointData()->GetScalars();
+  if (!array && image->GetPointData()->GetNumberOfArrays() > 0) array = image->GetPointData()->GetArray(0);
+  if (!array) throw Error(path, "image has no point data array");
+  if (array->GetNumberOfComponents() != 1)
+    throw Error(path, "array '" + std::string(array->GetName() ? array->GetName() : "") + "' has " +
+                          std::to_string(array->GetNumberOfComponents()) + " components; a scalar array is needed");
+
+  int ext[6];
+  image->GetExtent(ext);
+  const std::array<long long, 3> dims{ext[1] - ext[0] + 1LL, ext[3] - ext[2] + 1LL, ext[5] - ext[4] + 1LL};
+  const std::uint64_t count = checked_voxel_count(path, dims);
+  if (std::uint64_t(array->GetNumberOfTuples()) != count)
+    throw Error(path, "array has " + std::to_string(array->GetNumberOfTuples()) + " values, the image's " +
+                          std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" + std::to_string(dims[2]) +
+                          " extent needs " + std::to_string(count) + " (truncated data?)");
+
+  DenseImage out;
+  out.dims = {int(dims[0]), int(dims[1]), int(dims[2])};
+  out.voxel_type = vtk_type_name(array->GetDataType());
+  out.array_name = array->GetName() ? array->GetName() : "";
+  out.values = LargeBuffer<float>(count);
+  switch (array->GetDataType()) {
+    vtkTemplateMacro(to_float(static_cast<const VTK_TT*>(array->GetVoidPointer(0)), count, out.values.data()));
+    default: throw Error(path, "unsupported array type " + std::string(array->GetDataTypeAsString()));
+  }
+
+  double spacing[3], origin[3];
+  image->GetSpacing(spacing);
+  image->GetOrigin(origin);
+  vtkMatrix3x3* dir = image->GetDirectionMatrix();
+  for (std::size_t i = 0; i < 3; ++i) {
+    out.spacing[i] = std::fabs(spacing[i]);
+    for (std::size_t j = 0; j < 3; ++j)
+      out.axes[i][j] = dir->GetElement(int(j), int(i)) * (spacing[i] < 0 ? -1.0 : 1.0);
+  }
+  // The first voxel is at extent minimum, not necessarily index 0.
+  for (std::size_t j = 0; j < 3; ++j) {
+    out.origin[j] = origin[j];
+    for (std::size_t i = 0; i < 3; ++i) out.origin[j] += double(ext[2 * i]) * out.spacing[i] * out.axes[i][j];
+  }
+  return finish_dense(std::move(out), path, format, options);
+}
+
+}  // namespace isocurv::volume

@@ -1,0 +1,18 @@
+#pragma once
+// One loader per file format; volume::load (load.cpp) picks one by extension. Each takes the
+// path and the load options and returns a finished Volume, or throws Error(path, problem).
+#include <string>
+
+#include "volume/load.h"
+
+namespace isocurv::volume {
+
+Volume load_vdb(const std::string& path, const LoadOptions& options);         ///< .vdb (OpenVDB)
+Volume load_nrrd(const std::string& path, const LoadOptions& options);        ///< .nrrd, .nhdr
+Volume load_metaimage(const std::string& path, const LoadOptions& options);   ///< .mhd, .mha
+Volume load_nifti(const std::string& path, const LoadOptions& options);       ///< .nii, .nii.gz
+Volume load_vtk_image(const std::string& path, const LoadOptions& options);   ///< .vti, .vtk, .slc (VTK readers)
+Volume load_dgtal_vol(const std::string& path, const LoadOptions& options);   ///< .vol (DGtal VOL)
+Volume load_raw(const std::string& path, const LoadOptions& options);         ///< .raw, .raw.gz, .bin-gz
+
+}  // namespace isocurv::volume

@@ -1,0 +1,106 @@
+// summary_json / summary_text: what `isocurv info` prints about a loaded volume.
+#include "volume/summary.h"
+
+#include <cstdio>
+#include <sstream>
+
+namespace isocurv::volume {
+namespace {
+
+/// Value below which `fraction` of the histogram's voxels lie (linear within a bin).
+double percentile(const ValueStats& s, double fraction) {
+  std::uint64_t total = 0;
+  for (auto c : s.histogram) total += c;
+  if (total == 0 || s.histogram.empty() || !(s.max > s.min)) return s.min;
+  const double target = fraction * double(total);
+  const double width = (s.max - s.min) / double(s.histogram.size());
+  double cumulative = 0;
+  for (std::size_t i = 0; i < s.histogram.size(); ++i) {
+    const double c = double(s.histogram[i]);
+    if (c > 0 && cumulative + c >= target) return s.min + width * (double(i) + (target - cumulative) / c);
+    cumulative += c;
+  }
+  return s.max;
+}
+
+std::string fmt(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+std::string vec3(const openvdb::Vec3d& v) { return fmt(v.x()) + " " + fmt(v.y()) + " " + fmt(v.z()); }
+
+}  // namespace
+
+nlohmann::json summary_json(const Volume& v) {
+  nlohmann::json j;
+  const ValueStats& s = v.stats;
+  j["path"] = v.path;
+  j["format"] = v.format;
+  j["grid_name"] = v.grid_name;
+  j["grid_class"] = v.grid_class;
+  j["voxel_type"] = v.voxel_type;
+  j["dense"] = v.dense;
+  const openvdb::Coord dim = v.domain.dim();
+  j["dims"] = {dim.x(), dim.y(), dim.z()};
+  j["domain"] = {{"min", {v.domain.min().x(), v.domain.min().y(), v.domain.min().z()}},
+                 {"max", {v.domain.max().x(), v.domain.max().y(), v.domain.max().z()}}};
+  if (v.grid) {
+    const openvdb::Vec3d sp = v.spacing(), o = v.origin();
+    j["spacing"] = {sp.x(), sp.y(), sp.z()};
+    j["origin"] = {o.x(), o.y(), o.z()};
+    j["active_voxels"] = v.grid->activeVoxelCount();
+    j["background"] = v.grid->background();
+  }
+  j["inside"] = v.inside == Inside::Above ? "above" : "below";
+  j["voxels"] = s.voxels;
+  j["min"] = s.min;
+  j["max"] = s.max;
+  j["mean"] = s.mean;
+  j["nan_count"] = s.nan_count;
+  j["inf_count"] = s.inf_count;
+  j["percentiles"] = {{"p1", percentile(s, 0.01)}, {"p50", percentile(s, 0.5)}, {"p99", percentile(s, 0.99)}};
+  // 16 coarse bins, each the sum of 16 of the 256 fine ones.
+  std::vector<std::uint64_t> coarse(16, 0);
+  for (std::size_t i = 0; i < s.histogram.size(); ++i) coarse[i * 16 / s.histogram.size()] += s.histogram[i];
+  j["histogram16"] = coarse;
+  j["suggested_isovalue"] = s.suggested_isovalue;
+  return j;
+}
+
+std::string summary_text(const Volume& v) {
+  const ValueStats& s = v.stats;
+  std::ostringstream out;
+  auto line = [&out](const std::string& key, const std::string& value) {
+    out << key << std::string(key.size() < 18 ? 18 - key.size() : 1, ' ') << value << "\n";
+  };
+  const openvdb::Coord dim = v.domain.dim();
+  line("path", v.path);
+  line("format", v.format + (v.dense ? " (dense)" : " (sparse)"));
+  if (!v.grid_name.empty()) line("grid", v.grid_name);
+  line("grid class", v.grid_class);
+  line("voxel type", v.voxel_type);
+  line("dimensions", std::to_string(dim.x()) + " x " + std::to_string(dim.y()) + " x " + std::to_string(dim.z()) +
+                         (v.dense ? "" : "  (active bbox " + std::to_string(v.domain.min().x()) + "," +
+                                             std::to_string(v.domain.min().y()) + "," +
+                                             std::to_string(v.domain.min().z()) + " .. " +
+                                             std::to_string(v.domain.max().x()) + "," +
+                                             std::to_string(v.domain.max().y()) + "," +
+                                             std::to_string(v.domain.max().z()) + ")"));
+  if (v.grid) {
+    line("spacing", vec3(v.spacing()));
+    line("origin", vec3(v.origin()));
+    if (!v.dense) line("active voxels", std::to_string(v.grid->activeVoxelCount()));
+  }
+  line("inside", v.inside == Inside::Above ? "above the isovalue" : "below the isovalue");
+  line("value range", fmt(s.min) + " .. " + fmt(s.max) + "  (mean " + fmt(s.mean) + ")");
+  line("percentiles", "1%: " + fmt(percentile(s, 0.01)) + "  50%: " + fmt(percentile(s, 0.5)) +
+                          "  99%: " + fmt(percentile(s, 0.99)));
+  line("non-finite", std::to_string(s.nan_count) + " NaN, " + std::to_string(s.inf_count) + " Inf" +
+                         (s.nan_count + s.inf_count ? " (replaced by the outside value)" : ""));
+  line("suggested iso", fmt(s.suggested_isovalue) + (v.grid_class == "level set" ? " (level set zero)" : " (Otsu)"));
+  return out.str();
+}
+
+}  // namespace isocurv::volume
