@@ -18,7 +18,7 @@
 //                   box [-14.5,14.5]^2 x [-18,18].
 //   buckyball       sum of Gaussians exp(-d^2 / (2 sigma^2)) on the 60 C60 sites, bond 1.42 A,
 //                   sigma 0.5 A, iso 0.5, inside Above, lengths in angstrom, box [-4.6,4.6]^3. Each
-//                   Gaussian is cut off beyond 6.5 sigma (its value there is below 1e-9).
+//                   Gaussian is cut off beyond 7 sigma (its value there is below 3e-11).
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -61,6 +61,22 @@ Eigen::Matrix2d radial_hessian(const Radial& f, double x, double y) {
   }
   return h;
 }
+
+// Per-thread cache of per-x factors for rows x0 + i dx, i < n. sample() evaluates every row of a
+// grid at the same x positions, so values_along_x overrides compute these once per thread and grid.
+struct RowCache {
+  const void* owner = nullptr;
+  double x0 = 0, dx = 0;
+  int n = -1;
+  std::vector<double> v;
+  // True when the cache must be refilled (then resized to count * n entries).
+  bool stale(const void* o, double x0_, double dx_, int n_, std::size_t count) {
+    if (owner == o && x0 == x0_ && dx == dx_ && n == n_) return false;
+    owner = o, x0 = x0_, dx = dx_, n = n_;
+    v.resize(count * static_cast<std::size_t>(n_));
+    return true;
+  }
+};
 
 // ---------------------------------------------------------------------------------------------
 
@@ -136,8 +152,22 @@ class Gyroid final : public Field {
       : Field({"gyroid", "sin(wx)cos(wy) + sin(wy)cos(wz) + sin(wz)cos(wx), w = 2 pi (period 1), cut by [-1,1]^3",
                0.0, Inside::Above, cube(1.0), false, std::nullopt}) {}
   double value(const Vector3d& p) const override {
-    const Vector3d s = (w * p).array().sin(), c = (w * p).array().cos();
-    return s.x() * c.y() + s.y() * c.z() + s.z() * c.x();
+    const double sx = std::sin(w * p.x()), cx = std::cos(w * p.x());
+    return combine(sx, cx, std::sin(w * p.y()), std::cos(w * p.y()), std::sin(w * p.z()), std::cos(w * p.z()));
+  }
+  void values_along_x(double x0, double dx, double y, double z, int n, double* out) const override {
+    thread_local RowCache sc;  // sin, cos of w x per voxel
+    if (sc.stale(this, x0, dx, n, 2))
+      for (int i = 0; i < n; ++i) {
+        const double x = x0 + i * dx;
+        sc.v[2 * i] = std::sin(w * x);
+        sc.v[2 * i + 1] = std::cos(w * x);
+      }
+    const double sy = std::sin(w * y), cy = std::cos(w * y), sz = std::sin(w * z), cz = std::cos(w * z);
+    for (int i = 0; i < n; ++i) out[i] = combine(sc.v[2 * i], sc.v[2 * i + 1], sy, cy, sz, cz);
+  }
+  static double combine(double sx, double cx, double sy, double cy, double sz, double cz) {
+    return sx * cy + sy * cz + sz * cx;
   }
   Vector3d gradient(const Vector3d& p) const override {
     const Vector3d s = (w * p).array().sin(), c = (w * p).array().cos();
@@ -162,7 +192,16 @@ class SchwarzP final : public Field {
   SchwarzP()
       : Field({"schwarz_p", "cos(wx) + cos(wy) + cos(wz), w = 2 pi (period 1), cut by [-1,1]^3", 0.0, Inside::Above,
                cube(1.0), false, std::nullopt}) {}
-  double value(const Vector3d& p) const override { return (w * p).array().cos().sum(); }
+  double value(const Vector3d& p) const override {
+    return std::cos(w * p.x()) + (std::cos(w * p.y()) + std::cos(w * p.z()));
+  }
+  void values_along_x(double x0, double dx, double y, double z, int n, double* out) const override {
+    thread_local RowCache c;  // cos of w x per voxel
+    if (c.stale(this, x0, dx, n, 1))
+      for (int i = 0; i < n; ++i) c.v[i] = std::cos(w * (x0 + i * dx));
+    const double cyz = std::cos(w * y) + std::cos(w * z);
+    for (int i = 0; i < n; ++i) out[i] = c.v[i] + cyz;
+  }
   Vector3d gradient(const Vector3d& p) const override { return -w * Vector3d((w * p).array().sin()); }
   Matrix3d hessian(const Vector3d& p) const override {
     return Matrix3d((-w * w * Vector3d((w * p).array().cos())).asDiagonal());
@@ -173,13 +212,13 @@ class SchwarzP final : public Field {
 class Heightfield : public Field {
  public:
   struct Derivs {
-    double f;
     Eigen::Vector2d grad;
     Eigen::Matrix2d hess;
   };
   using Field::Field;
-  virtual Derivs eval(double x, double y) const = 0;
-  double value(const Vector3d& p) const override { return eval(p.x(), p.y()).f - p.z(); }
+  virtual double height(double x, double y) const = 0;
+  virtual Derivs eval(double x, double y) const = 0;  // derivatives of the height
+  double value(const Vector3d& p) const override { return height(p.x(), p.y()) - p.z(); }
   Vector3d gradient(const Vector3d& p) const override {
     const Derivs d = eval(p.x(), p.y());
     return Vector3d(d.grad.x(), d.grad.y(), -1.0);
@@ -197,6 +236,7 @@ class F1 final : public Heightfield {
       : Heightfield({"f1", "z = 10 sin(r)/r, r = sqrt(x^2+y^2), as 10 sin(r)/r - z (Prantl et al. 4.1), solid below",
                      0.0, Inside::Above, make_box(Vector3d(-10, -10, -3.5), Vector3d(10, 10, 11.5)), false,
                      std::nullopt}) {}
+  double height(double x, double y) const override { return 10.0 * sinc(std::sqrt(x * x + y * y)); }
   Derivs eval(double x, double y) const override {
     const double r = std::hypot(x, y);
     // s = sin(r)/r; s'/r; s'' = -s - 2 s'/r (from (r s)'' = -r s).
@@ -204,7 +244,7 @@ class F1 final : public Heightfield {
     const double ds_over_r = r < 1e-2 ? -1.0 / 3.0 + r * r / 30.0 - r * r * r * r / 840.0
                                       : (r * std::cos(r) - std::sin(r)) / (r * r * r);
     const Radial g{10.0 * s, 10.0 * ds_over_r, 10.0 * (-s - 2.0 * ds_over_r)};
-    return {g.g, radial_gradient(g, x, y), radial_hessian(g, x, y)};
+    return {radial_gradient(g, x, y), radial_hessian(g, x, y)};
   }
 };
 
@@ -213,10 +253,10 @@ class F2 final : public Heightfield {
   F2()
       : Heightfield({"f2", "z = sin(x)cos(y) + 0.1(x^2 - y^2), as f2 - z (Prantl et al. 4.1), solid below", 0.0,
                      Inside::Above, make_box(Vector3d(-10, -10, -12), Vector3d(10, 10, 12)), false, std::nullopt}) {}
+  double height(double x, double y) const override { return std::sin(x) * std::cos(y) + 0.1 * (x * x - y * y); }
   Derivs eval(double x, double y) const override {
     const double sx = std::sin(x), cx = std::cos(x), sy = std::sin(y), cy = std::cos(y);
     Derivs d;
-    d.f = sx * cy + 0.1 * (x * x - y * y);
     d.grad = Eigen::Vector2d(cx * cy + 0.2 * x, -sx * sy - 0.2 * y);
     d.hess << -sx * cy + 0.2, -cx * sy, -cx * sy, -sx * cy - 0.2;
     return d;
@@ -299,20 +339,23 @@ class Hydrogen final : public Field {
 
 class Buckyball final : public Field {
  public:
-  static constexpr double bond = 1.42, sigma = 0.5, cutoff = 6.5 * sigma;
+  static constexpr double bond = 1.42, sigma = 0.5, cutoff = 7 * sigma;
   Buckyball()
       : Field({"buckyball",
-               "sum over the 60 C60 sites of exp(-d^2/(2 s^2)), bond 1.42 A, s = 0.5 A, cut off at 6.5 s; "
+               "sum over the 60 C60 sites of exp(-d^2/(2 s^2)), bond 1.42 A, s = 0.5 A, cut off at 7 s; "
                "iso 0.5: a cage of tubes along the 90 bonds (genus 31)",
                0.5, Inside::Above, cube(4.6), true, -60}),
         sites_(c60_sites(bond)) {}
+  // exp(-t / (2 sigma^2)) for a squared distance t. A site's weight is g(dx^2) * g(dy^2 + dz^2), the
+  // Gaussian factored so that rows of voxels can reuse the x factor (values_along_x).
+  static double gauss(double t) { return std::exp(-t / (2 * sigma * sigma)); }
   // Calls f(d, weight) for every site within the cutoff, in site order, d = p - site.
   template <class F>
   void for_near_sites(const Vector3d& p, F&& f) const {
     for (const Vector3d& s : sites_) {
       const Vector3d d = p - s;
-      const double d2 = d.x() * d.x() + d.y() * d.y() + d.z() * d.z();
-      if (d2 < cutoff * cutoff) f(d, std::exp(-d2 / (2 * sigma * sigma)));
+      const double perp2 = d.y() * d.y() + d.z() * d.z();
+      if (d.x() * d.x() + perp2 < cutoff * cutoff) f(d, gauss(d.x() * d.x()) * gauss(perp2));
     }
   }
   double value(const Vector3d& p) const override {
@@ -320,20 +363,41 @@ class Buckyball final : public Field {
     for_near_sites(p, [&](const Vector3d&, double w) { v += w; });
     return v;
   }
-  // The same sums, visiting for each site only the voxels of the row within its cutoff.
+  // The same sums, bit for bit, visiting for each site only the voxels of the row within its cutoff.
+  // The x factors depend on the row's x positions only: a per-thread table serves every row of a grid.
   void values_along_x(double x0, double dx, double y, double z, int n, double* out) const override {
+    struct Table {
+      const Buckyball* owner = nullptr;
+      double x0 = 0, dx = 0;
+      int n = -1;
+      std::vector<double> g;  // g[site * n + i] = gauss(((x0 + i dx) - site.x)^2)
+    };
+    thread_local Table table;
+    if (table.owner != this || table.x0 != x0 || table.dx != dx || table.n != n) {
+      table.owner = this;
+      table.x0 = x0;
+      table.dx = dx;
+      table.n = n;
+      table.g.resize(sites_.size() * n);
+      for (std::size_t k = 0; k < sites_.size(); ++k)
+        for (int i = 0; i < n; ++i) {
+          const double ddx = (x0 + i * dx) - sites_[k].x();
+          table.g[k * n + i] = gauss(ddx * ddx);
+        }
+    }
     std::fill(out, out + n, 0.0);
-    for (const Vector3d& s : sites_) {
+    for (std::size_t k = 0; k < sites_.size(); ++k) {
+      const Vector3d& s = sites_[k];
       const double dy = y - s.y(), dz = z - s.z(), perp2 = dy * dy + dz * dz;
       if (perp2 >= cutoff * cutoff) continue;
+      const double g_perp = gauss(perp2);
       const double half = std::sqrt(cutoff * cutoff - perp2);
-      // Candidate voxels (one extra on each side), then the exact test of value().
+      // Candidate voxels (one extra on each side), then the exact test of for_near_sites.
       const int lo = std::max(0, static_cast<int>(std::floor((s.x() - half - x0) / dx)) - 1);
       const int hi = std::min(n - 1, static_cast<int>(std::ceil((s.x() + half - x0) / dx)) + 1);
       for (int i = lo; i <= hi; ++i) {
         const double ddx = (x0 + i * dx) - s.x();
-        const double d2 = ddx * ddx + dy * dy + dz * dz;
-        if (d2 < cutoff * cutoff) out[i] += std::exp(-d2 / (2 * sigma * sigma));
+        if (ddx * ddx + perp2 < cutoff * cutoff) out[i] += table.g[k * n + i] * g_perp;
       }
     }
   }

@@ -96,14 +96,25 @@ std::vector<float> gather_bricks(const volume::Volume& v, const Frame& f, std::v
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16), [&](const tbb::blocked_range<std::size_t>& r) {
     auto acc = v.grid->getConstAccessor();
     for (std::size_t b = r.begin(); b != r.end(); ++b) {
-      float* out = samples.data() + b * kBrickSamples;
       const openvdb::Coord o = origins[b];
+      // The brick's samples come from its own 8^3 block and the seven blocks above it: a leaf's
+      // buffer (VDB leaf offset = 64 x + 8 y + z) or a constant tile value.
+      const float* data[8];
+      float tile[8];
+      for (int k = 0; k < 8; ++k) {
+        const openvdb::Coord bo = o + openvdb::Coord((k & 1) * 8, ((k >> 1) & 1) * 8, (k >> 2) * 8);
+        const auto* leaf = acc.probeConstLeaf(bo);
+        data[k] = leaf ? leaf->buffer().data() : nullptr;
+        tile[k] = leaf ? 0.0f : acc.getValue(bo);
+      }
+      float* out = samples.data() + b * kBrickSamples;
       bool in = false, outside = false;
       for (int z = 0; z < kApron; ++z)
         for (int y = 0; y < kApron; ++y)
           for (int x = 0; x < kApron; ++x) {
-            const openvdb::Coord ijk = o + openvdb::Coord(x, y, z);
-            const float s = f.signed_value(ijk, acc.getValue(ijk));
+            const int k = (x >> 3) | ((y >> 3) << 1) | ((z >> 3) << 2);
+            const float value = data[k] ? data[k][((x & 7) << 6) | ((y & 7) << 3) | (z & 7)] : tile[k];
+            const float s = f.signed_value(o + openvdb::Coord(x, y, z), value);
             *out++ = s;
             (s > 0 ? in : outside) = true;
           }

@@ -1,0 +1,91 @@
+// Curvature benchmark: isocurv's OpenCL estimator (PoCL here) beside vtkCurvatures (mean and
+// Gaussian) and the single-threaded double reference, on marching-cubes meshes of the datasets.
+// Not a test: prints a table.
+//
+//   bench_curvature [--quick] [--runs N]
+#include <tbb/global_control.h>
+#include <vtkCurvatures.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+
+#include "bench/bench_util.h"
+#include "core/cl_device.h"
+#include "core/error.h"
+#include "curvature/estimate.h"
+#include "curvature/reference.h"
+#include "datasets/field.h"
+#include "datasets/sample.h"
+#include "io/polydata.h"
+#include "mc/extract.h"
+#include "volume/load.h"
+
+using namespace isocurv;
+
+namespace {
+
+void run_case(const std::string& name, const Mesh& mesh, int runs, bool with_reference) {
+  Device& dev = Device::default_device();
+  curvature::Timings steps;
+  auto ours = [&] { curvature::estimate(mesh, dev, {}, nullptr); };
+  const double t_ours = bench::median_ms(ours, runs);
+  curvature::estimate(mesh, dev, {}, &steps);  // step times (queue drained between steps)
+  auto poly = io::to_polydata(mesh, nullptr);
+  auto vtk = [&](int type) {
+    vtkNew<vtkCurvatures> c;
+    c->SetInputData(poly);
+    c->SetCurvatureType(type);
+    c->Update();
+  };
+  const double t_mean = bench::median_ms([&] { vtk(VTK_CURVATURE_MEAN); }, runs);
+  const double t_gauss = bench::median_ms([&] { vtk(VTK_CURVATURE_GAUSS); }, runs);
+  double t_ref = -1;
+  if (with_reference) {
+    tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    auto t0 = std::chrono::steady_clock::now();
+    curvature::estimate_reference(mesh);
+    t_ref = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  }
+  const double mem = bench::peak_extra_mib(ours);
+  std::printf("%-22s %9zu %8.1f %8.1f %8.1f %7.2f %9.0f %7.1f %7.0f | %6.1f %6.1f %6.1f %6.1f %6.1f\n", name.c_str(),
+              mesh.positions.size(), t_ours, t_mean, t_gauss, (t_mean + t_gauss) / t_ours, t_ref,
+              t_ref > 0 ? t_ref / t_ours : 0.0, mem * 1048576.0 / mesh.positions.size(),
+              steps.adjacency + steps.upload, steps.normals_areas, steps.tensor, steps.directions, steps.derivative);
+  std::fflush(stdout);
+}
+
+Mesh mesh_of(const volume::Volume& v, float iso) { return mc::extract(v, iso, Device::default_device()); }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool quick = false;
+  int runs = 5;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--quick")) quick = true;
+    else if (!std::strcmp(argv[i], "--runs") && i + 1 < argc) runs = std::atoi(argv[++i]);
+    else { std::fprintf(stderr, "usage: bench_curvature [--quick] [--runs N]\n"); return 2; }
+  }
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 2);
+  openvdb::initialize();
+  std::printf("device: %s; vtkCurvatures is serial; the reference runs on one thread; medians of %d runs\n",
+              Device::default_device().info().name.c_str(), runs);
+  std::printf("%-22s %9s %8s %8s %8s %7s %9s %7s %7s | %6s %6s %6s %6s %6s\n", "mesh", "vertices", "ours ms",
+              "VTK H", "VTK K", "VTK/us", "ref ms", "ref/us", "B/vert", "setup", "n+area", "tensor", "dirs", "deriv");
+  auto sphere = datasets::make_field("sphere");
+  run_case("sphere 256^3", mesh_of(datasets::sample(*sphere, 256), float(sphere->isovalue())), runs, true);
+  if (quick) return 0;
+  auto gyroid = datasets::make_field("gyroid");
+  run_case("gyroid 256^3", mesh_of(datasets::sample(*gyroid, 256), float(gyroid->isovalue())), runs, true);
+  const std::string flower = std::string(ISOCURV_SHARED_DATASETS) + "/aa_octaflower/octa-flower17k-512-aa-l0_1.vol";
+  if (std::filesystem::exists(flower)) {
+    run_case("octaflower 512 (aa)", mesh_of(volume::load(flower), 127.5f), std::max(1, runs / 2), true);
+  } else {
+    run_case("gyroid 512^3", mesh_of(datasets::sample(*gyroid, 512), float(gyroid->isovalue())), std::max(1, runs / 2), true);
+  }
+  std::printf("Griffin et al. (GPU, 2012): 2.7M vertices in 26.7 ms\n");
+  return 0;
+}
