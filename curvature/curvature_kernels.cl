@@ -223,10 +223,9 @@ __kernel void vertex_principal(__global const float* sums, __global const float*
 // tensors along the edges, rotated into each corner's principal frame, times the corner weight of
 // step 2a (still in corner.w; all three are 0 when step 2a rejected the triangle).
 __kernel void corner_dcurv(__global const float* positions, __global const uint* triangles,
-                           __global const float* normals, __global const float* k1,
-                           __global const float* k2, __global const float* dir1,
-                           __global const float* dir2, const uint face_count,
-                           __global float* corner) {
+                           __global const float* k1, __global const float* k2,
+                           __global const float* dir1, __global const float* dir2,
+                           const uint face_count, __global float* corner) {
   const uint f = min((uint)get_global_id(0), face_count - 1);
   const uint i0 = triangles[3 * f], i1 = triangles[3 * f + 1], i2 = triangles[3 * f + 2];
   const float w0 = corner[12 * f + 3], w1 = corner[12 * f + 7], w2 = corner[12 * f + 11];
@@ -234,14 +233,18 @@ __kernel void corner_dcurv(__global const float* positions, __global const uint*
   const vec3 e0 = sub3(p2, p1), e1 = sub3(p0, p2), e2 = sub3(p1, p0);
   vec3 t, b, m;
   face_frame(e0, e1, &t, &b, &m);
-  // x_j: vertex j's principal frame in the face frame; fk_j: its tensor in the face frame.
-  const frame2 x0 = vertex_to_face(load3(dir1, i0), load3(dir2, i0), load3(normals, i0), t, b, m);
-  const frame2 x1 = vertex_to_face(load3(dir1, i1), load3(dir2, i1), load3(normals, i1), t, b, m);
-  const frame2 x2 = vertex_to_face(load3(dir1, i2), load3(dir2, i2), load3(normals, i2), t, b, m);
-  const tensor2 k0 = {k1[i0], 0.0f, k2[i0]}, k1_ = {k1[i1], 0.0f, k2[i1]};
-  const tensor2 k2_ = {k1[i2], 0.0f, k2[i2]};
-  const tensor2 fk0 = change_tensor(k0, transpose2(x0)), fk1 = change_tensor(k1_, transpose2(x1));
-  const tensor2 fk2 = change_tensor(k2_, transpose2(x2));
+  // x_j: vertex j's principal frame in the face frame; fk_j: its tensor in the face frame. The
+  // normal is dir1 x dir2, as in the reference.
+  const vec3 a0 = load3(dir1, i0), b0 = load3(dir2, i0), a1 = load3(dir1, i1);
+  const vec3 b1 = load3(dir2, i1), a2 = load3(dir1, i2), b2 = load3(dir2, i2);
+  const frame2 x0 = vertex_to_face(a0, b0, cross3(a0, b0), t, b, m);
+  const frame2 x1 = vertex_to_face(a1, b1, cross3(a1, b1), t, b, m);
+  const frame2 x2 = vertex_to_face(a2, b2, cross3(a2, b2), t, b, m);
+  const tensor2 kv0 = {k1[i0], 0.0f, k2[i0]}, kv1 = {k1[i1], 0.0f, k2[i1]};
+  const tensor2 kv2 = {k1[i2], 0.0f, k2[i2]};
+  const tensor2 fk0 = change_tensor(kv0, transpose2(x0));
+  const tensor2 fk1 = change_tensor(kv1, transpose2(x1));
+  const tensor2 fk2 = change_tensor(kv2, transpose2(x2));
   // dII(u, v) = (a u + b v, b u + c v, c u + d v) for C = (a, b, c, d); the kuv row counts
   // twice (it stands for both off-diagonal entries).
   const float u0 = dot3(e0, t), v0 = dot3(e0, b), u1 = dot3(e1, t), v1 = dot3(e1, b);

@@ -6,6 +6,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "curvature/derived.h"
@@ -109,7 +110,9 @@ void set_args(cl::Kernel& k, Args&&... args) {
 constexpr std::size_t kGroup = 64;
 
 void launch(cl::CommandQueue& q, cl::Kernel& k, std::size_t items) {
-  if (items > 0) q.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(round_up(items, kGroup)), cl::NDRange(kGroup));
+  if (items > 0)
+    q.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(round_up(items, kGroup)),
+                           cl::NDRange(kGroup));
 }
 
 template <class T>
@@ -150,7 +153,8 @@ void run(const Mesh& mesh, Device& device, const Options& options, CurvatureFiel
   build_vertex_corners(mesh, s.adjacency);
   s.large.clear();
   for (std::size_t v = 0; v < nv; ++v)
-    if (s.adjacency.offsets[v + 1] - s.adjacency.offsets[v] > kMaxFan) s.large.push_back(cl_uint(v));
+    if (s.adjacency.offsets[v + 1] - s.adjacency.offsets[v] > kMaxFan)
+      s.large.push_back(std::uint32_t(v));
   t.adjacency = lap(clock);
 
   upload(q, ctx, s.positions, mesh.positions);
@@ -201,8 +205,8 @@ void run(const Mesh& mesh, Device& device, const Options& options, CurvatureFiel
   launch(q, s.vertex_principal, nv);
   step(t.directions);
 
-  set_args(s.corner_dcurv, s.positions.buffer, s.triangles.buffer, s.normals.buffer,
-           s.k1.buffer, s.k2.buffer, s.dir1.buffer, s.dir2.buffer, fcount, s.corner.buffer);
+  set_args(s.corner_dcurv, s.positions.buffer, s.triangles.buffer, s.k1.buffer, s.k2.buffer,
+           s.dir1.buffer, s.dir2.buffer, fcount, s.corner.buffer);
   launch(q, s.corner_dcurv, nf);
   set_args(s.vertex_dcurv, s.offsets.buffer, s.corners.buffer, s.corner.buffer, s.sums.buffer,
            vcount, s.dcurv.buffer);

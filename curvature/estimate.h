@@ -12,7 +12,8 @@ namespace isocurv::curvature {
 struct Timings {
   double adjacency = 0;      ///< host: input checks and the vertex -> corner adjacency
   double upload = 0;         ///< host -> device copies (positions, triangles, adjacency, normals)
-  double normals_areas = 0;  ///< vertex normals and mixed areas (one pair of passes, as Griffin)
+  double normals_areas = 0;  ///< vertex normals, mixed areas (one pair of passes, as Griffin) and
+                             ///< the boundary flags
   double tensor = 0;         ///< per-face second fundamental form, rotated and weighted
   double directions = 0;     ///< per-vertex averaging and diagonalisation, H, K, shape, AO
   double derivative = 0;     ///< per-face curvature derivative and its per-vertex average
@@ -30,8 +31,8 @@ CurvatureField estimate(const Mesh& mesh, Device& device, const Options& options
                         Timings* timings = nullptr);
 
 /// The same, into `out`, whose arrays keep their storage when large enough: repeated calls (the
-/// explorer's slider) then touch no fresh memory, which is most of the cost of a call on a CPU
-/// device when the arrays are newly allocated.
+/// explorer's slider) then touch no fresh memory. On a CPU device, first-touching newly allocated
+/// arrays (~85 bytes per vertex) is a large share of a call's time.
 void estimate(const Mesh& mesh, Device& device, const Options& options, CurvatureField& out,
               Timings* timings = nullptr);
 

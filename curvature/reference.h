@@ -19,9 +19,10 @@ namespace isocurv::curvature {
 ///     (dir1, dir2, normal) right-handed.
 ///  6. Derivative: per triangle, the curvature-derivative tensor by least squares on the tensor
 ///     differences along the edges, rotated into each vertex's principal frame, averaged as in 4.
-/// Triangles with a repeated index or (nearly) collinear corners contribute nothing; a vertex with
-/// no usable triangle gets zero normal and curvature. Never returns NaN or Inf. Throws
-/// isocurv::Error for invalid input (see check_input).
+/// Boundary is 1 on vertices of an edge used by one triangle only. Triangles with a repeated
+/// index or (nearly) collinear corners (tolerances.h) contribute nothing; a vertex with no usable
+/// triangle gets a zero normal (unless one is given), zero curvature and zero area. Never returns
+/// NaN or Inf. Throws isocurv::Error for invalid input (see check_input).
 CurvatureField estimate_reference(const Mesh& mesh, const Options& options = {});
 
 }  // namespace isocurv::curvature

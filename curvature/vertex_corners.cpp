@@ -21,7 +21,8 @@ void build_vertex_corners(const Mesh& mesh, VertexCorners& out) {
   for (std::size_t f = 0; f < nf; ++f) {
     const Tri& t = mesh.triangles[f];
     if (repeated(t)) continue;
-    for (std::uint32_t j = 0; j < 3; ++j) out.corners[out.offsets[t[j]]++] = std::uint32_t(3 * f + j);
+    for (std::uint32_t j = 0; j < 3; ++j)
+      out.corners[out.offsets[t[j]]++] = std::uint32_t(3 * f + j);
   }
   // Shift back: each row's start is the previous row's advanced cursor.
   for (std::size_t v = nv; v > 0; --v) out.offsets[v] = out.offsets[v - 1];

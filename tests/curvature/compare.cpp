@@ -47,14 +47,22 @@ FieldDifference compare(const curvature::CurvatureField& x, const curvature::Cur
       const double s1 = dot(x.dir1[i], ref.dir1[i]) < 0 ? -1 : 1;
       const double s2 = dot(x.dir2[i], ref.dir2[i]) < 0 ? -1 : 1;
       const double sign[4] = {s1, s2, s1, s2};
-      for (int q = 0; q < 4; ++q) dc.push_back(sign[q] * x.dcurv[i][q]), dc_ref.push_back(ref.dcurv[i][q]);
+      for (int q = 0; q < 4; ++q)
+        dc.push_back(sign[q] * x.dcurv[i][q]), dc_ref.push_back(ref.dcurv[i][q]);
     }
     d.same_boundary = d.same_boundary && x.boundary[i] == ref.boundary[i];
   }
-  d.k1 = relative_rms(a[0], b[0]);
-  d.k2 = relative_rms(a[1], b[1]);
-  d.H = relative_rms(a[2], b[2]);
-  d.K = relative_rms(a[3], b[3]);
+  double c2 = 0, c4 = 0;  // mean curvedness^2 and ^4
+  for (float c : ref.curvedness) c2 += double(c) * c / n, c4 += double(c) * c * c * c / n;
+  auto scaled_rms = [&](const std::vector<double>& x, const std::vector<double>& r, double scale2) {
+    double sum = 0;
+    for (std::size_t i = 0; i < n; ++i) sum += (x[i] - r[i]) * (x[i] - r[i]) / n;
+    return scale2 > 0 ? std::sqrt(sum / scale2) : std::sqrt(sum);
+  };
+  d.k1 = scaled_rms(a[0], b[0], c2);
+  d.k2 = scaled_rms(a[1], b[1], c2);
+  d.H = scaled_rms(a[2], b[2], c2);
+  d.K = scaled_rms(a[3], b[3], c4);
   d.area = relative_rms(a[4], b[4]);
   d.dcurv = relative_rms(dc, dc_ref);
   return d;

@@ -7,7 +7,10 @@
 namespace isocurv::test {
 
 struct FieldDifference {
-  double k1 = 0, k2 = 0, H = 0, K = 0;  ///< relative RMS differences (see relative_rms)
+  /// RMS differences of k1, k2, H over the RMS of the reference curvedness, of K over the RMS of
+  /// its square: relative to the curvature scale, so quantities near zero (H on a minimal
+  /// surface) are not divided by their own small size.
+  double k1 = 0, k2 = 0, H = 0, K = 0;
   double normal_angle = 0;               ///< largest angle between the normals, radians
   double dir_angle = 0;  ///< largest angle between dir1 lines where k1 - k2 is not tiny, radians
   std::size_t dir_count = 0;             ///< vertices where dir_angle was measured

@@ -72,8 +72,8 @@ TEST(Degenerate, ZeroAreaTrianglesAndIsolatedVertices) {
   m.positions.push_back({3, 0, 0});  // n: coincident pair
   m.positions.push_back({3, 0, 0});  // n + 1
   m.positions.push_back({3, 1, 0});  // n + 2
-  m.positions.push_back({4, 0, 0});  // n + 3: collinear with n, n + 2 ... not: see below
-  m.positions.push_back({5, 0, 0});  // n + 4: collinear with n, n + 3
+  m.positions.push_back({4, 0, 0});  // n + 3
+  m.positions.push_back({5, 0, 0});  // n + 4: collinear with n and n + 3
   m.positions.push_back({9, 9, 9});  // n + 5: isolated
   m.triangles.push_back({0, 0, 1});          // repeated index on sphere vertices: ignored
   m.triangles.push_back({n, n + 1, n + 2});  // two coincident corners
@@ -139,7 +139,8 @@ TEST(Degenerate, OpenPatchBoundaryFlags) {
 TEST(Degenerate, GivenNormalsZeroOrNaNFallBackToMeshNormals) {
   const Mesh m = icosphere(2);
   std::vector<Vec3f> given(m.vertex_count());
-  for (std::size_t i = 0; i < given.size(); ++i) given[i] = {2 * m.positions[i][0], 2 * m.positions[i][1], 2 * m.positions[i][2]};
+  for (std::size_t i = 0; i < given.size(); ++i)
+    for (int q = 0; q < 3; ++q) given[i][q] = 2 * m.positions[i][q];
   given[3] = {0, 0, 0};
   given[4] = {std::numeric_limits<float>::quiet_NaN(), 0, 0};
   curvature::Options o;

@@ -28,7 +28,8 @@ Mesh icosphere(int level, float radius) {
     };
     std::vector<Tri> g;
     for (const Tri& q : f) {
-      const std::uint32_t ab = midpoint(q[0], q[1]), bc = midpoint(q[1], q[2]), ca = midpoint(q[2], q[0]);
+      const std::uint32_t ab = midpoint(q[0], q[1]), bc = midpoint(q[1], q[2]);
+      const std::uint32_t ca = midpoint(q[2], q[0]);
       g.push_back({q[0], ab, ca});
       g.push_back({q[1], bc, ab});
       g.push_back({q[2], ca, bc});
@@ -37,7 +38,8 @@ Mesh icosphere(int level, float radius) {
     f.swap(g);
   }
   Mesh m;
-  for (const auto& q : p) m.positions.push_back({float(radius * q.x()), float(radius * q.y()), float(radius * q.z())});
+  for (const auto& q : p)
+    m.positions.push_back({float(radius * q.x()), float(radius * q.y()), float(radius * q.z())});
   m.triangles = f;
   return m;
 }
@@ -69,8 +71,9 @@ Torus torus(double R, double r, int nu, int nv, double jitter) {
       const double u = 2 * M_PI * (i + jitter * random()) / nu;
       const double v = 2 * M_PI * (j + jitter * random()) / nv;
       t.us.push_back(u), t.vs.push_back(v);
-      t.mesh.positions.push_back({float((R + r * std::cos(v)) * std::cos(u)),
-                                  float((R + r * std::cos(v)) * std::sin(u)), float(r * std::sin(v))});
+      const double rho = R + r * std::cos(v);
+      t.mesh.positions.push_back(
+          {float(rho * std::cos(u)), float(rho * std::sin(u)), float(r * std::sin(v))});
     }
   auto id = [&](int i, int j) { return std::uint32_t((j % nv) * nu + (i % nu)); };
   for (int j = 0; j < nv; ++j)
@@ -110,7 +113,8 @@ double relative_rms(const std::vector<double>& x, const std::vector<double>& ref
 namespace {
 template <class T>
 bool same(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 template <class T>
 bool finite(const std::vector<T>& v) {
@@ -122,7 +126,8 @@ bool finite(const std::vector<T>& v) {
 }  // namespace
 
 bool bit_identical(const curvature::CurvatureField& a, const curvature::CurvatureField& b) {
-  return same(a.normals, b.normals) && same(a.area, b.area) && same(a.k1, b.k1) && same(a.k2, b.k2) &&
+  return same(a.normals, b.normals) && same(a.area, b.area) && same(a.k1, b.k1) &&
+         same(a.k2, b.k2) &&
          same(a.dir1, b.dir1) && same(a.dir2, b.dir2) && same(a.H, b.H) && same(a.K, b.K) &&
          same(a.dcurv, b.dcurv) && same(a.shape_index, b.shape_index) &&
          same(a.curvedness, b.curvedness) && same(a.ao, b.ao) && same(a.boundary, b.boundary);
