@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "volume/from_dense.h"
+#include "volume/from_dense_u8.h"
 
 namespace isocurv::volume {
 
@@ -20,10 +21,24 @@ std::uint64_t checked_voxel_count(const std::string& path, const std::array<long
   return std::uint64_t(dims[0]) * std::uint64_t(dims[1]) * std::uint64_t(dims[2]);
 }
 
-void decode_into(DenseImage& image, const std::uint8_t* bytes, std::uint64_t count, VoxelType type, bool big_endian) {
-  image.values = LargeBuffer<float>(count);
-  decode_voxels(bytes, count, type, big_endian, image.values.data());
+void decode_into(DenseImage& image, Bytes&& bytes, std::uint64_t offset, std::uint64_t count, VoxelType type,
+                 bool big_endian) {
   image.voxel_type = voxel_type_name(type);
+  if (type == VoxelType::UInt8 && offset == 0 && bytes.size() == count) {
+    image.u8 = std::move(bytes);
+    image.values = {};
+    return;
+  }
+  image.values = LargeBuffer<float>(count);
+  decode_voxels(bytes.data() + offset, count, type, big_endian, image.values.data());
+  bytes = {};
+}
+
+void ensure_float(DenseImage& image) {
+  if (image.u8.empty()) return;
+  image.values = LargeBuffer<float>(image.u8.size());
+  decode_voxels(image.u8.data(), image.u8.size(), VoxelType::UInt8, false, image.values.data());
+  image.u8 = {};
 }
 
 openvdb::math::Transform::Ptr make_transform(const std::array<double, 3>& spacing,
@@ -61,10 +76,15 @@ Volume finish_dense(DenseImage&& image, const std::string& path, const std::stri
     // Reverse X: voxel x becomes nx-1-x; the first voxel now sits where the last one was.
     const int nx = image.dims[0];
     const std::size_t rows = std::size_t(image.dims[1]) * std::size_t(image.dims[2]);
-    float* v = image.values.data();
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows, 256), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t row = r.begin(); row != r.end(); ++row) std::reverse(v + row * nx, v + (row + 1) * nx);
-    });
+    auto reverse_rows = [&](auto* v) {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t row = r.begin(); row != r.end(); ++row) std::reverse(v + row * nx, v + (row + 1) * nx);
+      });
+    };
+    if (!image.u8.empty())
+      reverse_rows(image.u8.data());
+    else
+      reverse_rows(image.values.data());
     for (int j = 0; j < 3; ++j) {
       image.origin[std::size_t(j)] += double(nx - 1) * image.spacing[0] * a[0][std::size_t(j)];
       a[0][std::size_t(j)] = -a[0][std::size_t(j)];
@@ -76,7 +96,9 @@ Volume finish_dense(DenseImage&& image, const std::string& path, const std::stri
   source.voxel_type = image.voxel_type;
   source.grid_name = image.array_name;
   source.inside = options.inside.value_or(Inside::Above);
-  return from_dense(image.values.data(), image.dims, make_transform(image.spacing, image.origin, image.axes), source);
+  auto xform = make_transform(image.spacing, image.origin, image.axes);
+  if (!image.u8.empty()) return from_dense_u8(image.u8.data(), image.dims, xform, source);
+  return from_dense(image.values.data(), image.dims, xform, source);
 }
 
 }  // namespace isocurv::volume

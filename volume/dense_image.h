@@ -15,7 +15,8 @@ namespace isocurv::volume {
 /// world = origin + sum_i index_i * spacing_i * axes[i].
 struct DenseImage {
   std::array<int, 3> dims{0, 0, 0};
-  LargeBuffer<float> values;  ///< X fastest
+  LargeBuffer<float> values;       ///< X fastest (empty when u8 holds the voxels)
+  LargeBuffer<std::uint8_t> u8;    ///< uint8 voxels kept as they are, X fastest (else empty)
   std::array<double, 3> spacing{1, 1, 1};
   std::array<double, 3> origin{0, 0, 0};
   std::array<std::array<double, 3>, 3> axes{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};  ///< unit axis directions
@@ -27,8 +28,14 @@ struct DenseImage {
 /// returns the voxel count; throws Error(path, ...) otherwise.
 std::uint64_t checked_voxel_count(const std::string& path, const std::array<long long, 3>& dims);
 
-/// Decodes `count` voxels from raw bytes into image.values (sets image.voxel_type).
-void decode_into(DenseImage& image, const std::uint8_t* bytes, std::uint64_t count, VoxelType type, bool big_endian);
+/// Takes `count` voxels of `type` starting at byte `offset` of `bytes` (sets image.voxel_type):
+/// uint8 voxels filling the whole buffer are adopted as image.u8 without a copy, anything else
+/// is decoded into image.values.
+void decode_into(DenseImage& image, Bytes&& bytes, std::uint64_t offset, std::uint64_t count, VoxelType type,
+                 bool big_endian);
+
+/// Converts image.u8 (if used) to image.values, for loaders that rescale voxels.
+void ensure_float(DenseImage& image);
 
 /// Builds the Volume: the index -> world transform (axes are used as given when they form a
 /// right-handed frame; a left-handed frame is made right-handed by reversing the voxel order along

@@ -36,8 +36,6 @@ Bytes read_bytes(const std::string& path, std::uint64_t offset, std::uint64_t le
   return bytes;
 }
 
-Bytes read_file(const std::string& path) { return read_bytes(path, 0, file_size(path)); }
-
 Bytes inflate_exact(const std::string& path, const std::uint8_t* data, std::size_t size,
                                         std::uint64_t expected, const std::string& what) {
   // Deflate cannot expand more than ~1032:1; a header asking for more than that is wrong, and

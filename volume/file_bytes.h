@@ -18,9 +18,6 @@ std::uint64_t file_size(const std::string& path);
 /// `length` bytes of `path` starting at `offset`; throws when the file is shorter.
 Bytes read_bytes(const std::string& path, std::uint64_t offset, std::uint64_t length);
 
-/// The whole file.
-Bytes read_file(const std::string& path);
-
 /// Inflates the zlib (RFC 1950) or gzip (RFC 1952) stream in `data` (format auto-detected), which
 /// must hold exactly `expected` bytes: fewer is "truncated", more is a size mismatch.
 /// `what` names the payload in messages (e.g. "voxel data").

@@ -7,6 +7,7 @@
 // (it reads the array in its own X-fastest order) and gives the same tree: blocks equal to the
 // background everywhere are left out, every voxel different from the background is active.
 #include "volume/from_dense.h"
+#include "volume/from_dense_u8.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
@@ -33,9 +34,10 @@ struct Scan {
 };
 
 /// Careful per-voxel scan of a chunk that holds non-finite values.
-void scan_slow(const float* data, std::size_t b, std::size_t e, Scan& s) {
+template <class T>
+void scan_slow(const T* data, std::size_t b, std::size_t e, Scan& s) {
   for (std::size_t i = b; i != e; ++i) {
-    const float v = data[i];
+    const float v = float(data[i]);
     if (std::isfinite(v)) {
       s.min = std::min(s.min, v);
       s.max = std::max(s.max, v);
@@ -47,7 +49,8 @@ void scan_slow(const float* data, std::size_t b, std::size_t e, Scan& s) {
   }
 }
 
-Scan scan(const float* data, std::size_t n) {
+template <class T>
+Scan scan(const T* data, std::size_t n) {
   return tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, n, 1 << 16), Scan{},
       [data](const tbb::blocked_range<std::size_t>& r, Scan s) {
@@ -55,7 +58,7 @@ Scan scan(const float* data, std::size_t n) {
         float lo = s.min, hi = s.max;
         std::uint32_t bad = 0;
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
-          const float v = data[i];
+          const float v = float(data[i]);
           lo = v < lo ? v : lo;
           hi = v > hi ? v : hi;
           bad += !(std::fabs(v) <= std::numeric_limits<float>::max());
@@ -79,8 +82,9 @@ Scan scan(const float* data, std::size_t n) {
 
 /// Pass 2 body: builds the leaves of a range of blocks (block index = bx + nbx*(by + nby*bz)),
 /// histogram and sum of the (cleaned) values. Deterministic reduction keeps the sum reproducible.
+template <class T>
 struct BuildBody {
-  const float* data;
+  const T* data;
   std::array<int, 3> dims;
   std::array<int, 3> nblocks;
   float outside;  ///< background, and the replacement for non-finite voxels
@@ -92,7 +96,7 @@ struct BuildBody {
   BuildBody(const BuildBody& o, tbb::split)
       : data(o.data), dims(o.dims), nblocks(o.nblocks), outside(o.outside), lo(o.lo), scale(o.scale),
         leaves(o.leaves) {}
-  BuildBody(const float* d, std::array<int, 3> dm, std::array<int, 3> nb, float out, double l, double s,
+  BuildBody(const T* d, std::array<int, 3> dm, std::array<int, 3> nb, float out, double l, double s,
             std::vector<std::unique_ptr<Leaf>>* lv)
       : data(d), dims(dm), nblocks(nb), outside(out), lo(l), scale(s), leaves(lv) {}
 
@@ -109,10 +113,10 @@ struct BuildBody {
       std::fill(block, block + Leaf::SIZE, outside);
       for (int z = 0; z < nz; ++z)
         for (int y = 0; y < ny; ++y) {
-          const float* row = data + (std::size_t(z0 + z) * std::size_t(dims[1]) + std::size_t(y0 + y)) *
+          const T* row = data + (std::size_t(z0 + z) * std::size_t(dims[1]) + std::size_t(y0 + y)) *
                                         std::size_t(dims[0]) + std::size_t(x0);
           for (int x = 0; x < nx; ++x) {
-            float v = row[x];
+            float v = float(row[x]);
             if (!std::isfinite(v)) v = outside;
             block[(x << 6) | (y << 3) | z] = v;
             all_outside &= (v == outside);
@@ -138,10 +142,9 @@ struct BuildBody {
   }
 };
 
-}  // namespace
-
-Volume from_dense(const float* data, const std::array<int, 3>& dims, openvdb::math::Transform::Ptr xform,
-                  const DenseSource& source) {
+template <class T>
+Volume build_dense(const T* data, const std::array<int, 3>& dims, openvdb::math::Transform::Ptr xform,
+                   const DenseSource& source) {
   for (int d : dims)
     if (d <= 0)
       throw Error(source.path, "dimensions " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" +
@@ -157,7 +160,7 @@ Volume from_dense(const float* data, const std::array<int, 3>& dims, openvdb::ma
   const std::size_t block_count = std::size_t(nblocks[0]) * std::size_t(nblocks[1]) * std::size_t(nblocks[2]);
   std::vector<std::unique_ptr<Leaf>> leaves(block_count);
   const double scale = s.max > s.min ? kBins / (double(s.max) - double(s.min)) : 0.0;
-  BuildBody body(data, dims, nblocks, outside, s.min, scale, &leaves);
+  BuildBody<T> body(data, dims, nblocks, outside, s.min, scale, &leaves);
   tbb::parallel_deterministic_reduce(tbb::blocked_range<std::size_t>(0, block_count, 8), body);
 
   openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(outside);
@@ -191,6 +194,18 @@ Volume from_dense(const float* data, const std::array<int, 3>& dims, openvdb::ma
   st.histogram[outside_bin] -= s.nan + s.inf;
   st.suggested_isovalue = otsu_threshold(st.histogram, st.min, st.max);
   return v;
+}
+
+}  // namespace
+
+Volume from_dense(const float* data, const std::array<int, 3>& dims, openvdb::math::Transform::Ptr xform,
+                  const DenseSource& source) {
+  return build_dense(data, dims, std::move(xform), source);
+}
+
+Volume from_dense_u8(const std::uint8_t* data, const std::array<int, 3>& dims, openvdb::math::Transform::Ptr xform,
+                     const DenseSource& source) {
+  return build_dense(data, dims, std::move(xform), source);
 }
 
 }  // namespace isocurv::volume

@@ -36,8 +36,13 @@ Volume load(const std::string& path, const LoadOptions& options) {
     if (ends_with(name, ".raw") || ends_with(name, ".raw.gz") || ends_with(name, ".bin-gz") ||
         ends_with(name, ".bin.gz") || ends_with(name, ".bin"))
       return load_raw(path, options);
+  } catch (const Error&) {
+    throw;
   } catch (const std::bad_alloc&) {
     throw Error(path, "out of memory while loading");
+  } catch (const std::exception& e) {
+    // Library exceptions (OpenVDB, VTK, the standard library) become one-line errors too.
+    throw Error(path, e.what());
   }
   throw Error(path,
               "unknown volume file extension (supported: .vdb .nrrd .nhdr .mhd .mha .nii .nii.gz .vti .vtk .slc "

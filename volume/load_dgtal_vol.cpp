@@ -13,7 +13,7 @@ namespace isocurv::volume {
 
 Volume load_dgtal_vol(const std::string& path, const LoadOptions& options) {
   const std::uint64_t size = file_size(path);
-  const Bytes file = read_bytes(path, 0, size);
+  Bytes file = read_bytes(path, 0, size);
 
   // Header: lines up to the "." terminator (at most 64 KiB of text).
   std::map<std::string, std::string> keys;
@@ -50,7 +50,6 @@ Volume load_dgtal_vol(const std::string& path, const LoadOptions& options) {
   const std::size_t payload_size = file.size() - pos;
   if (version == 3) {
     voxels = inflate_exact(path, payload, payload_size, count, "voxel data");
-    payload = voxels.data();
   } else if (payload_size != count) {
     throw Error(path, "voxel data has " + std::to_string(payload_size) + " bytes, the header's " + keys["X"] + "x" +
                           keys["Y"] + "x" + keys["Z"] + " needs " + std::to_string(count) +
@@ -63,8 +62,10 @@ Volume load_dgtal_vol(const std::string& path, const LoadOptions& options) {
     const double s = parse_numbers_exact(path, keys["Voxel-Size"], 1, "Voxel-Size")[0];
     if (s > 0) image.spacing = {s, s, s};
   }
-  decode_into(image, payload, count, VoxelType::UInt8, false);
-  voxels = {};
+  if (version == 3)
+    decode_into(image, std::move(voxels), 0, count, VoxelType::UInt8, false);
+  else
+    decode_into(image, std::move(file), pos, count, VoxelType::UInt8, false);
   return finish_dense(std::move(image), path, "dgtal-vol", options);
 }
 

@@ -129,8 +129,7 @@ Volume load_metaimage(const std::string& path, const LoadOptions& options) {
     image.voxel_type = voxel_type_name(*type);
   } else if (compressed) {
     const Bytes z = read_bytes(data_path, data_offset, available);
-    const Bytes bytes = inflate_exact(data_path, z.data(), z.size(), bytes_needed, "voxel data");
-    decode_into(image, bytes.data(), count, *type, msb);
+    decode_into(image, inflate_exact(data_path, z.data(), z.size(), bytes_needed, "voxel data"), 0, count, *type, msb);
   } else {
     if (available < bytes_needed)
       throw Error(data_path, "voxel data is truncated: " + std::to_string(available) + " bytes, the header's " +
@@ -139,8 +138,7 @@ Volume load_metaimage(const std::string& path, const LoadOptions& options) {
     if (data_path != path && data_offset == 0 && available > bytes_needed)
       throw Error(data_path, "data file has " + std::to_string(available) + " bytes, the header's dimensions need " +
                                  std::to_string(bytes_needed));
-    const Bytes bytes = read_bytes(data_path, data_offset, bytes_needed);
-    decode_into(image, bytes.data(), count, *type, msb);
+    decode_into(image, read_bytes(data_path, data_offset, bytes_needed), 0, count, *type, msb);
   }
   return finish_dense(std::move(image), path, "metaimage", options);
 }

@@ -124,11 +124,11 @@ Volume load_nifti(const std::string& path, const LoadOptions& options) {
   std::uint8_t low_byte;
   std::memcpy(&low_byte, &one, 1);
   const bool file_big_endian = swap != (low_byte == 0);  // swapped relative to the host's order
-  decode_into(image, bytes.data(), count, *type, file_big_endian);
-  bytes = {};
+  decode_into(image, std::move(bytes), 0, count, *type, file_big_endian);
 
   const float slope = h.f32(112), inter = h.f32(116);
   if (std::isfinite(slope) && slope != 0 && std::isfinite(inter) && !(slope == 1 && inter == 0)) {
+    ensure_float(image);
     float* v = image.values.data();
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, image.values.size(), 1 << 16),
                       [&](const tbb::blocked_range<std::size_t>& r) {

@@ -181,9 +181,8 @@ Volume load_nrrd(const std::string& path, const LoadOptions& options) {
   } else if (gzip) {
     if (byte_skip < 0) throw Error(path, "byte skip -1 is only valid with raw encoding");
     const Bytes z = read_bytes(data_path, data_offset, data_size - data_offset);
-    const Bytes bytes =
-        inflate_exact(data_path, z.data(), z.size(), bytes_needed + std::uint64_t(byte_skip), "voxel data");
-    decode_into(image, bytes.data() + byte_skip, count, *type, big_endian);
+    decode_into(image, inflate_exact(data_path, z.data(), z.size(), bytes_needed + std::uint64_t(byte_skip), "voxel data"),
+                std::uint64_t(byte_skip), count, *type, big_endian);
   } else {
     const std::uint64_t available = data_size - data_offset;
     if (byte_skip == -1) byte_skip = available >= bytes_needed ? (long long)(available - bytes_needed) : 0;
@@ -192,8 +191,8 @@ Volume load_nrrd(const std::string& path, const LoadOptions& options) {
       throw Error(data_path, "voxel data is truncated: " + std::to_string(available) + " bytes, the header's " +
                                  std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" + std::to_string(d[2]) +
                                  " " + voxel_type_name(*type) + " needs " + std::to_string(bytes_needed));
-    const Bytes bytes = read_bytes(data_path, data_offset + std::uint64_t(byte_skip), bytes_needed);
-    decode_into(image, bytes.data(), count, *type, big_endian);
+    decode_into(image, read_bytes(data_path, data_offset + std::uint64_t(byte_skip), bytes_needed), 0, count, *type,
+                big_endian);
   }
   return finish_dense(std::move(image), path, "nrrd", options);
 }

@@ -72,8 +72,7 @@ Volume load_raw(const std::string& path, const LoadOptions& options) {
   image.dims = dims;
   image.spacing = raw.spacing;
   image.origin = raw.origin;
-  decode_into(image, bytes.data(), count, *type, big_endian);
-  bytes = {};
+  decode_into(image, std::move(bytes), 0, count, *type, big_endian);
   return finish_dense(std::move(image), path, "raw", options);
 }
 

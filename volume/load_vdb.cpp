@@ -1,5 +1,6 @@
 // OpenVDB files: the grid named by options.grid, else the first float/double grid (half-stored
-// float grids included); double grids are converted to float. The grid stays sparse: its domain
+// float grids included) in the file's grid listing, which OpenVDB keeps ordered by name; double
+// grids are converted to float. The grid stays sparse: its domain
 // is the active bounding box and its statistics cover the active voxels.
 #include <openvdb/io/File.h>
 #include <openvdb/tree/LeafManager.h>

@@ -5,6 +5,8 @@
 #include <vtkImageData.h>
 #include <vtkMatrix3x3.h>
 #include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkOutputWindow.h>
 #include <vtkPointData.h>
 #include <vtkSLCReader.h>
 #include <vtkSmartPointer.h>
@@ -14,6 +16,8 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+
+#include <mutex>
 
 #include "core/error.h"
 #include "volume/dense_image.h"
@@ -50,6 +54,51 @@ struct ErrorCatcher {
   }
 };
 
+/// Replaces VTK's global output window while a file is read, so that messages VTK sends there
+/// (generic warnings such as "Error reading ascii data", which no observer sees) are captured
+/// instead of printed. A mutex serialises readers, as the window is process-wide.
+class CapturingWindow : public vtkOutputWindow {
+ public:
+  static CapturingWindow* New();
+  vtkTypeMacro(CapturingWindow, vtkOutputWindow);
+  void DisplayText(const char*) override {}
+  void DisplayErrorText(const char* t) override { keep(t); }
+  void DisplayWarningText(const char* t) override { keep(t); }
+  void DisplayGenericWarningText(const char* t) override { keep(t); }
+  void DisplayDebugText(const char*) override {}
+  std::string message;
+
+ private:
+  void keep(const char* t) {
+    if (message.empty() && t) message = trim(t);
+  }
+};
+vtkStandardNewMacro(CapturingWindow);
+
+class OutputWindowGuard {
+ public:
+  OutputWindowGuard() : lock_(mutex()), previous_(vtkOutputWindow::GetInstance()) {
+    previous_->Register(nullptr);
+    vtkOutputWindow::SetInstance(window_);
+  }
+  ~OutputWindowGuard() {
+    vtkOutputWindow::SetInstance(previous_);
+    previous_->UnRegister(nullptr);
+  }
+  OutputWindowGuard(const OutputWindowGuard&) = delete;
+  OutputWindowGuard& operator=(const OutputWindowGuard&) = delete;
+  const std::string& message() const { return window_->message; }
+
+ private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  std::lock_guard<std::mutex> lock_;
+  vtkOutputWindow* previous_;
+  vtkNew<CapturingWindow> window_;
+};
+
 std::string vtk_type_name(int t) {
   switch (t) {
     case VTK_UNSIGNED_CHAR: return "uint8";
@@ -84,6 +133,7 @@ Volume load_vtk_image(const std::string& path, const LoadOptions& options) {
   const bool xml = name.size() >= 4 && name.compare(name.size() - 4, 4, ".vti") == 0;
   const bool slc = name.size() >= 4 && name.compare(name.size() - 4, 4, ".slc") == 0;
   const std::string format = xml ? "vti" : slc ? "slc" : "vtk";
+  OutputWindowGuard window;
   ErrorCatcher errors;
   vtkSmartPointer<vtkImageData> image;
 
@@ -111,6 +161,7 @@ Volume load_vtk_image(const std::string& path, const LoadOptions& options) {
     image = reader->GetOutput();
   }
   if (!errors.message.empty()) throw Error(path, errors.message);
+  if (!window.message().empty()) throw Error(path, window.message());
   if (!image) throw Error(path, "VTK reader produced no image");
 
   vtkDataArray* array = image->GetPointData()->GetScalars();

@@ -298,36 +298,37 @@ TEST(VolumeLoadVdb, LevelSetFogAndDoubleGrids) {
   openvdb::initialize();
   TempDir dir;
   auto sphere = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(2.0f, openvdb::Vec3f(0.5f, 0, 0), 0.1f);
-  sphere->setName("ls");
+  sphere->setName("level_set");
   auto fog = openvdb::FloatGrid::create(0.0f);
-  fog->setName("density");
+  fog->setName("smoke");
   fog->setGridClass(openvdb::GRID_FOG_VOLUME);
   fog->tree().setValue(openvdb::Coord(1, 2, 3), 0.75f);
   fog->tree().setValue(openvdb::Coord(4, 2, 3), 0.25f);
   auto dbl = openvdb::DoubleGrid::create(0.0);
-  dbl->setName("dbl");
+  dbl->setName("values_d");
   dbl->tree().setValue(openvdb::Coord(-3, 0, 0), 1.5);
   dbl->tree().fill(openvdb::CoordBBox(openvdb::Coord(16), openvdb::Coord(31)), 2.5, true);
   auto vec = openvdb::Vec3SGrid::create();
-  vec->setName("vel");
+  vec->setName("a_velocity");
   vec->tree().setValue(openvdb::Coord(0), openvdb::Vec3s(1, 0, 0));
   const std::string path = dir.file("grids.vdb");
   openvdb::GridPtrVec grids{vec, sphere, fog, dbl};
   openvdb::io::File(path).write(grids);
 
-  const Volume ls = load(path);  // first float grid: the level set
-  EXPECT_EQ(ls.grid_name, "ls");
+  // First float grid in the file's listing (OpenVDB lists grids by name): the level set.
+  const Volume ls = load(path);
+  EXPECT_EQ(ls.grid_name, "level_set");
   EXPECT_EQ(ls.grid_class, "level set");
   EXPECT_EQ(ls.inside, Inside::Below);
   EXPECT_FALSE(ls.dense);
   EXPECT_EQ(ls.stats.suggested_isovalue, 0.0);
   EXPECT_EQ(ls.domain, sphere->evalActiveVoxelBoundingBox());
   EXPECT_EQ(ls.stats.voxels, sphere->activeVoxelCount());
-  EXPECT_NEAR(ls.spacing().x(), 0.1, 1e-12);
+  EXPECT_NEAR(ls.spacing().x(), 0.1, 1e-7);  // float voxel size
   EXPECT_LT(ls.stats.min, 0);
 
   LoadOptions o;
-  o.grid = "density";
+  o.grid = "smoke";
   const Volume f = load(path, o);
   EXPECT_EQ(f.grid_class, "fog volume");
   EXPECT_EQ(f.inside, Inside::Above);
@@ -336,7 +337,7 @@ TEST(VolumeLoadVdb, LevelSetFogAndDoubleGrids) {
   EXPECT_EQ(f.stats.max, 0.75);
   EXPECT_EQ(f.domain, openvdb::CoordBBox(openvdb::Coord(1, 2, 3), openvdb::Coord(4, 2, 3)));
 
-  o.grid = "dbl";
+  o.grid = "values_d";
   o.inside = Inside::Below;
   const Volume d = load(path, o);
   EXPECT_EQ(d.voxel_type, "double");

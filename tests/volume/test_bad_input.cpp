@@ -1,0 +1,204 @@
+// Every kind of bad input gives isocurv::Error naming the file, never a crash or a huge allocation.
+#include <gtest/gtest.h>
+#include <openvdb/io/File.h>
+
+#include <limits>
+
+#include "test_files.h"
+#include "volume/load.h"
+
+using namespace isocurv::volume;
+using namespace voltest;
+
+TEST(VolumeBadInput, MissingFileAndUnknownExtension) {
+  TempDir dir;
+  expect_error([&] { load(dir.file("nope.nrrd")); }, "nope.nrrd", "not found");
+  write_file(dir.file("thing.xyz"), "hello");
+  expect_error([&] { load(dir.file("thing.xyz")); }, "thing.xyz", "unknown volume file extension");
+}
+
+TEST(VolumeBadInput, RawLayoutProblems) {
+  TempDir dir;
+  write_file(dir.file("plain.raw"), to_bytes(ramp_values<std::uint8_t>()));
+  expect_error([&] { load(dir.file("plain.raw")); }, "plain.raw", "--dims");
+  LoadOptions o;
+  o.raw.dims = {5, 4, 3};
+  expect_error([&] { load(dir.file("plain.raw"), o); }, "plain.raw", "--type");
+  o.raw.type = "int64";
+  expect_error([&] { load(dir.file("plain.raw"), o); }, "plain.raw", "unsupported voxel type");
+  o.raw.type = "uint16";  // 120 bytes needed, 60 present
+  expect_error([&] { load(dir.file("plain.raw"), o); }, "plain.raw", "does not match");
+  o.raw.type = "uint8";
+  o.raw.dims = {5, 4, 2};  // file too long
+  expect_error([&] { load(dir.file("plain.raw"), o); }, "plain.raw", "does not match");
+  o.raw.dims = {5, -4, 3};
+  expect_error([&] { load(dir.file("plain.raw"), o); }, "plain.raw", "invalid dimensions");
+  o.raw.dims = {5, 4, 3};
+  o.raw.spacing = {1, 0, 1};
+  expect_error([&] { load(dir.file("plain.raw"), o); }, "plain.raw", "spacing");
+}
+
+TEST(VolumeBadInput, TruncatedAndOversizedCompressedStreams) {
+  TempDir dir;
+  auto gz = gzip_compress(to_bytes(ramp_values<std::uint8_t>(8, 8, 8)));
+  auto cut = gz;
+  cut.resize(gz.size() / 2);
+  write_file(dir.file("cut_8x8x8_uint8.raw.gz"), cut);
+  expect_error([&] { load(dir.file("cut_8x8x8_uint8.raw.gz")); }, "cut_8x8x8_uint8.raw.gz", "truncated");
+  write_file(dir.file("small_8x8x4_uint8.raw.gz"), gz);  // inflates to twice what the name says
+  expect_error([&] { load(dir.file("small_8x8x4_uint8.raw.gz")); }, "small_8x8x4_uint8.raw.gz", "more than");
+  // A corrupt name asking for 2^39 voxels from a tiny file: refused before allocating.
+  write_file(dir.file("huge_8192x8192x8192_uint8.raw.gz"), gz);
+  expect_error([&] { load(dir.file("huge_8192x8192x8192_uint8.raw.gz")); }, "huge_8192x8192x8192_uint8.raw.gz",
+               "truncated");
+
+  const std::string header = "X: 8\nY: 8\nZ: 8\nVersion: 3\n.\n";
+  auto z = zlib_compress(to_bytes(ramp_values<std::uint8_t>(8, 8, 8)));
+  std::string vol = header;
+  vol.append(z.begin(), z.begin() + long(z.size() / 2));
+  write_file(dir.file("cut.vol"), vol);
+  expect_error([&] { load(dir.file("cut.vol")); }, "cut.vol", "truncated");
+  std::string garbage = header + std::string(100, 'x');
+  write_file(dir.file("garbage.vol"), garbage);
+  expect_error([&] { load(dir.file("garbage.vol")); }, "garbage.vol", "not a valid zlib");
+  write_file(dir.file("nodot.vol"), "X: 8\nY: 8\nZ: 8\nVersion: 3\n");
+  expect_error([&] { load(dir.file("nodot.vol")); }, "nodot.vol", "terminator");
+  write_file(dir.file("absurd.vol"), "X: 2000000000\nY: 2000000000\nZ: 2000000000\nVersion: 3\n.\nxx");
+  expect_error([&] { load(dir.file("absurd.vol")); }, "absurd.vol", "implausibly large");
+  write_file(dir.file("noz.vol"), "X: 8\nY: 8\nVersion: 3\n.\nxx");
+  expect_error([&] { load(dir.file("noz.vol")); }, "noz.vol", "'Z'");
+}
+
+TEST(VolumeBadInput, NrrdHeaders) {
+  TempDir dir;
+  write_file(dir.file("nomagic.nrrd"), "hello\n\n");
+  expect_error([&] { load(dir.file("nomagic.nrrd")); }, "nomagic.nrrd", "NRRD");
+  const std::string base = "NRRD0004\ndimension: 3\nsizes: 5 4 3\nendian: little\nencoding: raw\n";
+  write_file(dir.file("type.nrrd"), base + "type: long long\n\n" + std::string(480, '\0'));
+  expect_error([&] { load(dir.file("type.nrrd")); }, "type.nrrd", "unsupported NRRD type");
+  write_file(dir.file("short.nrrd"), base + "type: short\n\n" + std::string(50, '\0'));
+  expect_error([&] { load(dir.file("short.nrrd")); }, "short.nrrd", "truncated");
+  write_file(dir.file("huge.nrrd"),
+             "NRRD0004\ndimension: 3\nsizes: 100000 100000 100\ntype: uchar\nencoding: raw\n\n" + std::string(50, '\0'));
+  expect_error([&] { load(dir.file("huge.nrrd")); }, "huge.nrrd", "truncated");
+  write_file(dir.file("dim4.nrrd"), "NRRD0004\ndimension: 4\nsizes: 1 5 4 3\ntype: uchar\nencoding: raw\n\n");
+  expect_error([&] { load(dir.file("dim4.nrrd")); }, "dim4.nrrd", "3-D");
+  write_file(dir.file("detached.nhdr"), "NRRD0004\ndimension: 3\nsizes: 5 4 3\ntype: uchar\nencoding: raw\ndata file: gone.raw\n");
+  expect_error([&] { load(dir.file("detached.nhdr")); }, "detached.nhdr", "not found");
+  write_file(dir.file("enc.nrrd"), "NRRD0004\ndimension: 3\nsizes: 5 4 3\ntype: uchar\nencoding: bzip2\n\n");
+  expect_error([&] { load(dir.file("enc.nrrd")); }, "enc.nrrd", "encoding");
+}
+
+TEST(VolumeBadInput, MetaImageHeaders) {
+  TempDir dir;
+  write_file(dir.file("nodim.mhd"), "NDims = 3\nElementType = MET_UCHAR\nElementDataFile = x.raw\n");
+  expect_error([&] { load(dir.file("nodim.mhd")); }, "nodim.mhd", "DimSize");
+  write_file(dir.file("type.mhd"), "NDims = 3\nDimSize = 5 4 3\nElementType = MET_ULONG_LONG\nElementDataFile = LOCAL\n");
+  expect_error([&] { load(dir.file("type.mhd")); }, "type.mhd", "ElementType");
+  write_file(dir.file("short.mha"), "NDims = 3\nDimSize = 5 4 3\nElementType = MET_FLOAT\nElementDataFile = LOCAL\n" +
+                                         std::string(10, '\0'));
+  expect_error([&] { load(dir.file("short.mha")); }, "short.mha", "truncated");
+  write_file(dir.file("nodata.mhd"), "NDims = 3\nDimSize = 5 4 3\nElementType = MET_UCHAR\nElementDataFile = gone.raw\n");
+  expect_error([&] { load(dir.file("nodata.mhd")); }, "nodata.mhd", "not found");
+  write_file(dir.file("bad.mhd"), "NDims = 3\nDimSize = 5 four 3\nElementType = MET_UCHAR\nElementDataFile = LOCAL\n");
+  expect_error([&] { load(dir.file("bad.mhd")); }, "bad.mhd", "DimSize");
+}
+
+TEST(VolumeBadInput, NiftiHeaders) {
+  TempDir dir;
+  write_file(dir.file("tiny.nii"), std::string(100, '\0'));
+  expect_error([&] { load(dir.file("tiny.nii")); }, "tiny.nii", "truncated");
+  std::vector<std::uint8_t> h(352, 0);
+  write_file(dir.file("nomagic.nii"), h);
+  expect_error([&] { load(dir.file("nomagic.nii")); }, "nomagic.nii", "NIfTI");
+  const std::int32_t s = 348;
+  std::memcpy(h.data(), &s, 4);
+  const std::int16_t dims[4] = {3, 5, 4, 3};
+  std::memcpy(&h[40], dims, sizeof dims);
+  const std::int16_t complex_type = 32;
+  std::memcpy(&h[70], &complex_type, 2);
+  const float off = 352;
+  std::memcpy(&h[108], &off, 4);
+  std::memcpy(&h[344], "n+1", 4);
+  write_file(dir.file("complex.nii"), h);
+  expect_error([&] { load(dir.file("complex.nii")); }, "complex.nii", "datatype");
+  const std::int16_t u8 = 2;
+  std::memcpy(&h[70], &u8, 2);
+  write_file(dir.file("nodata.nii"), h);
+  expect_error([&] { load(dir.file("nodata.nii")); }, "nodata.nii", "truncated");
+}
+
+TEST(VolumeBadInput, VtkFiles) {
+  TempDir dir;
+  write_file(dir.file("junk.vti"), "this is not xml");
+  expect_error([&] { load(dir.file("junk.vti")); }, "junk.vti");
+  write_file(dir.file("poly.vtk"), "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 0 float\n");
+  expect_error([&] { load(dir.file("poly.vtk")); }, "poly.vtk", "STRUCTURED_POINTS");
+  write_file(dir.file("short.vtk"),
+             "# vtk DataFile Version 3.0\nx\nASCII\nDATASET STRUCTURED_POINTS\nDIMENSIONS 5 4 3\nSPACING 1 1 1\n"
+             "ORIGIN 0 0 0\nPOINT_DATA 60\nSCALARS s float 1\nLOOKUP_TABLE default\n1 2 3\n");
+  expect_error([&] { load(dir.file("short.vtk")); }, "short.vtk");
+}
+
+TEST(VolumeBadInput, VdbWithoutFloatGridOrEmpty) {
+  openvdb::initialize();
+  TempDir dir;
+  auto vec = openvdb::Vec3SGrid::create();
+  vec->setName("vel");
+  vec->tree().setValue(openvdb::Coord(0), openvdb::Vec3s(1, 0, 0));
+  openvdb::GridPtrVec only_vec{vec};
+  openvdb::io::File(dir.file("vec.vdb")).write(only_vec);
+  expect_error([&] { load(dir.file("vec.vdb")); }, "vec.vdb", "no float grid");
+  LoadOptions o;
+  o.grid = "vel";
+  expect_error([&] { load(dir.file("vec.vdb"), o); }, "vec.vdb", "not float");
+  o.grid = "missing";
+  expect_error([&] { load(dir.file("vec.vdb"), o); }, "vec.vdb", "no grid named");
+
+  auto empty = openvdb::FloatGrid::create(1.0f);
+  empty->setName("empty");
+  openvdb::GridPtrVec only_empty{empty};
+  openvdb::io::File(dir.file("empty.vdb")).write(only_empty);
+  expect_error([&] { load(dir.file("empty.vdb")); }, "empty.vdb", "empty");
+
+  write_file(dir.file("junk.vdb"), std::string(200, 'j'));
+  expect_error([&] { load(dir.file("junk.vdb")); }, "junk.vdb");
+
+  auto nan = openvdb::FloatGrid::create(0.0f);
+  nan->setName("nan");
+  nan->tree().setValue(openvdb::Coord(0), std::numeric_limits<float>::quiet_NaN());
+  openvdb::GridPtrVec only_nan{nan};
+  openvdb::io::File(dir.file("nan.vdb")).write(only_nan);
+  expect_error([&] { load(dir.file("nan.vdb")); }, "nan.vdb", "NaN");
+}
+
+TEST(VolumeBadInput, NonFiniteVoxelsCountedReplacedOrRejected) {
+  TempDir dir;
+  auto values = ramp_values<float>();
+  values[7] = std::numeric_limits<float>::quiet_NaN();
+  values[8] = -std::numeric_limits<float>::infinity();
+  write_file(dir.file("some_5x4x3_float32.raw"), to_bytes(values));
+  const Volume v = load(dir.file("some_5x4x3_float32.raw"));
+  EXPECT_EQ(v.stats.nan_count, 1u);
+  EXPECT_EQ(v.stats.inf_count, 1u);
+  EXPECT_EQ(v.grid->tree().getValue(openvdb::Coord(2, 1, 0)), 0.0f);  // index 7 -> the minimum
+  EXPECT_EQ(v.stats.max, 234.0);
+
+  std::vector<float> all(60, std::numeric_limits<float>::quiet_NaN());
+  write_file(dir.file("all_5x4x3_float32.raw"), to_bytes(all));
+  expect_error([&] { load(dir.file("all_5x4x3_float32.raw")); }, "all_5x4x3_float32.raw", "NaN");
+
+  // A level set with a NaN voxel: counted, replaced by the finite maximum (outside for Below).
+  openvdb::initialize();
+  auto ls = openvdb::FloatGrid::create(3.0f);
+  ls->setGridClass(openvdb::GRID_LEVEL_SET);
+  ls->setName("ls");
+  ls->tree().setValue(openvdb::Coord(0), -1.0f);
+  ls->tree().setValue(openvdb::Coord(1, 0, 0), 2.0f);
+  ls->tree().setValue(openvdb::Coord(2, 0, 0), std::numeric_limits<float>::quiet_NaN());
+  openvdb::GridPtrVec grids{ls};
+  openvdb::io::File(dir.file("nanls.vdb")).write(grids);
+  const Volume l = load(dir.file("nanls.vdb"));
+  EXPECT_EQ(l.stats.nan_count, 1u);
+  EXPECT_EQ(l.grid->tree().getValue(openvdb::Coord(2, 0, 0)), 2.0f);
+}
