@@ -1,7 +1,6 @@
 #pragma once
 // Shared by the benchmarks: median wall time, peak extra memory of one run, dense VTK images.
-#include <sys/wait.h>
-#include <unistd.h>
+#include <malloc.h>
 
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
@@ -41,29 +40,16 @@ inline long status_kb(const char* key) {
   return -1;
 }
 
-/// Peak memory (MiB) that one call of f adds on top of what the process already holds: run in a
-/// forked child whose high-water mark is reset first (Linux /proc/self/clear_refs).
+/// Peak memory (MiB) that one call of f adds on top of what the process holds: the high-water
+/// mark is reset first (Linux /proc/self/clear_refs) and freed heap handed back (malloc_trim).
+/// In-process, since OpenCL runtimes do not survive fork().
 inline double peak_extra_mib(const std::function<void()>& f) {
-  int fd[2];
-  if (pipe(fd) != 0) return -1;
-  pid_t pid = fork();
-  if (pid == 0) {
-    close(fd[0]);
-    { std::ofstream("/proc/self/clear_refs") << "5"; }
-    long before = status_kb("VmRSS:");
-    f();
-    long peak = status_kb("VmHWM:");
-    double mib = (peak - before) / 1024.0;
-    if (write(fd[1], &mib, sizeof mib) != sizeof mib) _exit(1);
-    _exit(0);
-  }
-  close(fd[1]);
-  double mib = -1;
-  if (read(fd[0], &mib, sizeof mib) != sizeof mib) mib = -1;
-  close(fd[0]);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return mib;
+  malloc_trim(0);
+  { std::ofstream("/proc/self/clear_refs") << "5"; }
+  const long before = status_kb("VmRSS:");
+  f();
+  const long peak = status_kb("VmHWM:");
+  return (peak - before) / 1024.0;
 }
 
 /// The volume's dense domain as a vtkImageData (float scalars, spacing and origin of the
