@@ -30,7 +30,7 @@ void register_run(CLI::App& app) {
     StageTimer timer;
     Surface s = load_surface(in, o, timer);  // fails before any output folder is made
     if (s.mesh.triangles.empty())
-      throw Error(in, "no surface at isovalue " + std::to_string(s.isovalue) + " (see isocurv info for the value range)");
+      throw Error(in, "no surface at isovalue " + format_number(s.isovalue) + " (see isocurv info for the value range)");
     s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, o, timer);
     std::error_code ec;
     fs::create_directories(dir, ec);

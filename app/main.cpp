@@ -12,6 +12,13 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "isocurv 0.1.0");
   isocurv::app::register_commands(app);
+  // Name a mistyped command (CLI11 would only say that a subcommand is required).
+  const auto known = app.get_subcommands([&](const CLI::App* c) { return argc > 1 && c->check_name(argv[1]); });
+  if (argc > 1 && argv[1][0] != '-' && known.empty()) {
+    std::fprintf(stderr, "isocurv: unknown command '%s' (commands: info extract curvature run render view check devices; "
+                         "see isocurv --help)\n", argv[1]);
+    return 1;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,6 +1,7 @@
 #include "app/pipeline.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -60,6 +61,12 @@ bool is_mesh_path(const std::string& path) {
   return false;
 }
 
+std::string format_number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
+
 Device& device_for(const CommonOptions& o) {
   static std::map<int, std::shared_ptr<Device>> opened;
   if (o.device < 0) return Device::default_device();
@@ -76,8 +83,8 @@ volume::Volume load_volume(const std::string& path, const CommonOptions& o, Stag
   if (!std::isfinite(value))
     throw Error(path, "isovalue must be a finite number");
   if (o.iso && (value < v.stats.min || value > v.stats.max))
-    throw Error(path, "isovalue " + std::to_string(value) + " is outside the value range [" +
-                          std::to_string(v.stats.min) + ", " + std::to_string(v.stats.max) + "]");
+    throw Error(path, "isovalue " + format_number(value) + " is outside the value range [" +
+                          format_number(v.stats.min) + ", " + format_number(v.stats.max) + "]");
   if (iso) *iso = value;
   return v;
 }

@@ -78,6 +78,9 @@ curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Vol
 /// genus, and min/max/mean/percentiles of H, K, k1, k2 when a field is present.
 nlohmann::json surface_report(const Surface& s);
 
+/// A number as %g (for messages).
+std::string format_number(double x);
+
 /// Writes text atomically (for JSON outputs).
 void write_text_file(const std::string& path, const std::string& text);
 

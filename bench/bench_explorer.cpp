@@ -122,7 +122,9 @@ void print_header(bool render) {
   if (render) std::printf(" %8s %8s %7s", "+rnd med", "+rnd max", "+rnd/s");
   std::printf(" %8s %8s %7s", "VTK med", "VTK max", "VTK/s");
   if (render) std::printf(" %8s %7s", "+rnd med", "+rnd/s");
-  std::printf(" %8s %6s\n", "VTK/ours", "target");
+  std::printf(" %8s %7s", "VTK/ours", "10/s");
+  if (render) std::printf(" %8s", "10/s+rnd");
+  std::printf("\n");
 }
 
 void print_row(const Row& r, bool render) {
@@ -133,10 +135,12 @@ void print_row(const Row& r, bool render) {
     std::printf(" %8.1f %8.1f %7.1f", r.ours_render.median, r.ours_render.max, ups(r.ours_render.median));
   std::printf(" %8.1f %8.1f %7.1f", r.vtk.median, r.vtk.max, ups(r.vtk.median));
   if (render) std::printf(" %8.1f %7.1f", r.vtk_render.median, ups(r.vtk_render.median));
-  // The target judged on what the user waits for: the update, plus the re-render when measured.
-  const Summary& user = render ? r.ours_render : r.ours;
-  const char* target = user.max <= 100.0 ? "met" : user.median <= 100.0 ? "median" : "MISSED";
-  std::printf(" %8.2f %6s\n", r.ours.median > 0 ? r.vtk.median / r.ours.median : 0.0, target);
+  // The target (100 ms a step), judged on the update alone (what cmd_view reports as update_ms) and
+  // with the re-render (what the user waits for).
+  auto verdict = [](const Summary& s) { return s.max <= 100.0 ? "met" : s.median <= 100.0 ? "median" : "MISSED"; };
+  std::printf(" %8.2f %7s", r.ours.median > 0 ? r.vtk.median / r.ours.median : 0.0, verdict(r.ours));
+  if (render) std::printf(" %8s", verdict(r.ours_render));
+  std::printf("\n");
   std::fflush(stdout);
 }
 
@@ -280,9 +284,9 @@ int main(int argc, char** argv) {
       std::printf("%-24s skipped: %s\n", r.name, e.what());
     }
   }
-  std::printf("\ntarget: met = every isovalue's update%s within 100 ms; median = the median within 100 ms but not the\n"
-              "slowest isovalue; MISSED = the median above 100 ms. VTK/ours = ratio of the median updates (no render).\n",
-              c.render ? " (+ re-render)" : "");
+  std::printf("\n10/s (update alone) and 10/s+rnd (with the re-render): met = every isovalue within 100 ms; median = the\n"
+              "median within 100 ms but not the slowest isovalue; MISSED = the median above 100 ms.\n"
+              "VTK/ours = VTK's median update over ours (no render; above 1 means ours is faster).\n");
   std::printf("Mesher setup (once per volume, before the first update), ms:");
   for (const Row& r : rows) std::printf("  %s %.0f", r.name.c_str(), r.setup_ms);
   std::printf("\n");

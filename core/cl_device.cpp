@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <mutex>
 
+#include "core/cl_scratch.h"
 #include "core/error.h"
 
 namespace isocurv {
@@ -115,6 +116,14 @@ cl::Program& Device::program(const std::string& name, const char* source, const 
     throw Error("OpenCL program '" + name + "' failed to build on " + info_.name + ":\n" + log);
   }
   return programs_.emplace(key, prog).first->second;
+}
+
+Device::Device() = default;
+Device::~Device() = default;
+
+ScratchBuffers& Device::scratch() {
+  if (!scratch_) scratch_ = std::make_unique<ScratchBuffers>(*this);
+  return *scratch_;
 }
 
 std::string cl_error_name(int code) {

@@ -12,6 +12,8 @@
 
 namespace isocurv {
 
+class ScratchBuffers;
+
 /// One OpenCL device as `isocurv devices` lists it.
 struct DeviceInfo {
   int index = -1;          ///< position in list_devices(), what --device takes
@@ -45,12 +47,20 @@ class Device {
   /// throws Error carrying the compiler's log.
   cl::Program& program(const std::string& name, const char* source, const std::string& options = "");
 
+  /// The device's reusable scratch buffers (core/cl_scratch.h). Like the queue, for one thread at
+  /// a time.
+  ScratchBuffers& scratch();
+
+  Device();
+  ~Device();
+
  private:
   DeviceInfo info_;
   cl::Device device_;
   cl::Context context_;
   cl::CommandQueue queue_;
   std::map<std::string, cl::Program> programs_;
+  std::unique_ptr<ScratchBuffers> scratch_;
 };
 
 /// Rounds n up to a multiple of m (for global work sizes).

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "core/cl_scan.h"
+#include "core/cl_scratch.h"
 #include "core/error.h"
 
 namespace isocurv {
@@ -17,10 +18,9 @@ void radix_sort_pairs(Device& dev, cl::Buffer& keys, cl::Buffer& values, std::ui
   cl::Program& prog = dev.program("radix_sort", kernels::radix_sort_cl);
   const std::uint32_t p = std::clamp<std::uint32_t>(n / 4096, 1, 256);
   const std::uint32_t chunk = (n + p - 1) / p;
-  auto& ctx = dev.context();
-  cl::Buffer hist(ctx, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * 256 * p);
-  cl::Buffer keys2(ctx, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * n);
-  cl::Buffer values2(ctx, CL_MEM_READ_WRITE, sizeof(std::uint32_t) * n);
+  cl::Buffer& hist = dev.scratch().get(kRadixHistogram, sizeof(std::uint32_t) * 256 * p);
+  cl::Buffer& keys2 = dev.scratch().get(kRadixKeys, sizeof(std::uint32_t) * n);
+  cl::Buffer& values2 = dev.scratch().get(kRadixValues, sizeof(std::uint32_t) * n);
   cl::Kernel kh(prog, "radix_histogram"), ks(prog, "radix_scatter");
   cl::Buffer *src_k = &keys, *src_v = &values, *dst_k = &keys2, *dst_v = &values2;
   const int passes = (key_bits + 7) / 8;

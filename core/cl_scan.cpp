@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/cl_scratch.h"
+
 namespace isocurv {
 namespace kernels {
 extern const char* const scan_cl;
@@ -13,7 +15,7 @@ std::uint32_t exclusive_scan(Device& dev, const cl::Buffer& in, const cl::Buffer
   // Enough chunks to feed every compute unit, few enough for the serial middle pass.
   const std::uint32_t p = std::clamp<std::uint32_t>(n / 512, 1, 4096);
   const std::uint32_t chunk = (n + p - 1) / p;
-  cl::Buffer totals(dev.context(), CL_MEM_READ_WRITE, sizeof(std::uint32_t) * (p + 1));
+  cl::Buffer& totals = dev.scratch().get(kScanTotals, sizeof(std::uint32_t) * (p + 1));
   cl::Kernel k1(prog, "scan_chunk_totals"), k2(prog, "scan_totals"), k3(prog, "scan_chunks");
   k1.setArg(0, in); k1.setArg(1, n); k1.setArg(2, chunk); k1.setArg(3, totals);
   k2.setArg(0, totals); k2.setArg(1, p);

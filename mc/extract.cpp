@@ -5,6 +5,7 @@
 
 #include "core/cl_radix_sort.h"
 #include "core/cl_scan.h"
+#include "core/cl_scratch.h"
 #include "core/error.h"
 #include "mc/bricks.h"
 #include "mc/case_table.h"
@@ -62,31 +63,33 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
   auto t2 = Clock::now();
   if (!origins.empty()) {
     try {
-      auto& ctx = st.device.context();
       auto& q = st.device.queue();
       const auto ncells = static_cast<std::uint32_t>(origins.size() * 512);
       std::vector<cl_int4> orig4(origins.size());
       for (std::size_t i = 0; i < origins.size(); ++i) orig4[i] = to_int4(origins[i]);
-      cl::Buffer d_samples(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, samples.size() * sizeof(float), samples.data());
-      cl::Buffer d_origins(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, orig4.size() * sizeof(cl_int4), orig4.data());
-      cl::Buffer d_counts(ctx, CL_MEM_READ_WRITE, ncells * sizeof(std::uint32_t));
-      cl::Buffer d_offsets(ctx, CL_MEM_READ_WRITE, ncells * sizeof(std::uint32_t));
+      ScratchBuffers& scratch = st.device.scratch();
+      cl::Buffer& d_samples = scratch.get(kMcSamples, samples.size() * sizeof(float));
+      cl::Buffer& d_origins = scratch.get(kMcOrigins, orig4.size() * sizeof(cl_int4));
+      q.enqueueWriteBuffer(d_samples, CL_FALSE, 0, samples.size() * sizeof(float), samples.data());
+      q.enqueueWriteBuffer(d_origins, CL_FALSE, 0, orig4.size() * sizeof(cl_int4), orig4.data());
+      // Triangle counts per cell, scanned in place into each cell's first triangle.
+      cl::Buffer& d_offsets = scratch.get(kMcOffsets, ncells * sizeof(std::uint32_t));
       const cl_int4 cmin = to_int4(f.cells.min()), cmax = to_int4(f.cells.max()), korg = to_int4(f.key_origin);
 
       cl::Kernel classify(*st.program, "mc_classify");
       classify.setArg(0, d_samples); classify.setArg(1, d_origins); classify.setArg(2, ncells);
       classify.setArg(3, cmin); classify.setArg(4, cmax); classify.setArg(5, st.tri_count);
-      classify.setArg(6, d_counts);
+      classify.setArg(6, d_offsets);
       q.enqueueNDRangeKernel(classify, cl::NullRange, cl::NDRange(ncells));
-      const std::uint32_t ntri = exclusive_scan(st.device, d_counts, d_offsets, ncells);
+      const std::uint32_t ntri = exclusive_scan(st.device, d_offsets, d_offsets, ncells);
       const std::uint64_t nvert64 = std::uint64_t(ntri) * 3;
       if (nvert64 >= 0xffffffffULL) throw Error(st.volume.path, "isosurface too large (over 1.4 billion triangles)");
       const auto n = static_cast<std::uint32_t>(nvert64);
       if (n > 0) {
-        cl::Buffer d_pos(ctx, CL_MEM_READ_WRITE, std::size_t(n) * 3 * sizeof(float));
-        cl::Buffer d_keys(ctx, CL_MEM_READ_WRITE, std::size_t(n) * sizeof(cl_ulong));
-        cl::Buffer d_hash(ctx, CL_MEM_READ_WRITE, std::size_t(n) * sizeof(std::uint32_t));
-        cl::Buffer d_order(ctx, CL_MEM_READ_WRITE, std::size_t(n) * sizeof(std::uint32_t));
+        cl::Buffer& d_pos = scratch.get(kMcPositions, std::size_t(n) * 3 * sizeof(float));
+        cl::Buffer& d_keys = scratch.get(kMcKeys, std::size_t(n) * sizeof(cl_ulong));
+        cl::Buffer& d_hash = scratch.get(kMcHashes, std::size_t(n) * sizeof(std::uint32_t));
+        cl::Buffer& d_order = scratch.get(kMcOrder, std::size_t(n) * sizeof(std::uint32_t));
         cl_float16 world{};
         for (int i = 0; i < 12; ++i) world.s[i] = f.world[i];
         const cl_uint mask = options.hash_bits >= 32 ? 0xffffffffu : ((1u << options.hash_bits) - 1u);
@@ -100,12 +103,12 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
         q.enqueueNDRangeKernel(gen, cl::NullRange, cl::NDRange(ncells));
 
         // Sort a copy of the hashes with the vertex indices; the originals stay for lookups.
-        cl::Buffer d_sorted_hash(ctx, CL_MEM_READ_WRITE, std::size_t(n) * sizeof(std::uint32_t));
+        cl::Buffer& d_sorted_hash = scratch.get(kMcSortedHashes, std::size_t(n) * sizeof(std::uint32_t));
         q.enqueueCopyBuffer(d_hash, d_sorted_hash, 0, 0, std::size_t(n) * sizeof(std::uint32_t));
         radix_sort_pairs(st.device, d_sorted_hash, d_order, n, options.hash_bits);
 
-        cl::Buffer d_rep(ctx, CL_MEM_READ_WRITE, std::size_t(n) * sizeof(std::uint32_t));
-        cl::Buffer d_first(ctx, CL_MEM_READ_WRITE, std::size_t(n) * sizeof(std::uint32_t));
+        cl::Buffer& d_rep = scratch.get(kMcRepresentative, std::size_t(n) * sizeof(std::uint32_t));
+        cl::Buffer& d_first = scratch.get(kMcFirst, std::size_t(n) * sizeof(std::uint32_t));
         cl::Kernel fuse(*st.program, "mc_fuse");
         fuse.setArg(0, d_hash); fuse.setArg(1, d_keys); fuse.setArg(2, d_sorted_hash); fuse.setArg(3, d_order);
         fuse.setArg(4, n); fuse.setArg(5, d_rep); fuse.setArg(6, d_first);
@@ -113,9 +116,9 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
         // d_hash is free now: reuse it for the fused indices.
         const std::uint32_t nfused = exclusive_scan(st.device, d_first, d_hash, n);
 
-        cl::Buffer d_out_pos(ctx, CL_MEM_WRITE_ONLY, std::size_t(nfused) * 3 * sizeof(float));
-        cl::Buffer d_out_keys(ctx, CL_MEM_WRITE_ONLY, (options.keep_edge_keys ? std::size_t(nfused) : 1) * sizeof(cl_ulong));
-        cl::Buffer d_tris(ctx, CL_MEM_WRITE_ONLY, std::size_t(n) * sizeof(std::uint32_t));
+        cl::Buffer& d_out_pos = scratch.get(kMcOutPositions, std::size_t(nfused) * 3 * sizeof(float));
+        cl::Buffer& d_out_keys = scratch.get(kMcOutKeys, (options.keep_edge_keys ? std::size_t(nfused) : 1) * sizeof(cl_ulong));
+        cl::Buffer& d_tris = scratch.get(kMcTriangles, std::size_t(n) * sizeof(std::uint32_t));
         cl::Kernel compact(*st.program, "mc_compact");
         compact.setArg(0, d_pos); compact.setArg(1, d_keys); compact.setArg(2, d_rep); compact.setArg(3, d_first);
         compact.setArg(4, d_hash); compact.setArg(5, n); compact.setArg(6, d_out_pos); compact.setArg(7, d_out_keys);

@@ -93,13 +93,22 @@ Volume load_vdb(const std::string& path, const LoadOptions& options) {
     case openvdb::GRID_FOG_VOLUME: v.grid_class = "fog volume"; break;
     default: v.grid_class = "unknown"; break;
   }
-  v.inside = options.inside.value_or(v.grid_class == "level set" ? Inside::Below : Inside::Above);
+  // Files may say which side is inside and at which value the surface is (isocurv's own
+  // datasets do); an explicit --inside still wins.
+  Inside inside = v.grid_class == "level set" ? Inside::Below : Inside::Above;
+  if (auto meta = v.grid->getMetadata<openvdb::StringMetadata>("inside")) {
+    if (meta->value() == "below") inside = Inside::Below;
+    if (meta->value() == "above") inside = Inside::Above;
+  }
+  v.inside = options.inside.value_or(inside);
   v.dense = false;
   v.domain = v.grid->evalActiveVoxelBoundingBox();
   if (v.grid->activeVoxelCount() == 0 || v.domain.empty())
     throw Error(path, "grid '" + v.grid_name + "' is empty (no active voxels)");
 
   compute_stats(v);
+  if (auto meta = v.grid->getMetadata<openvdb::FloatMetadata>("isovalue")) v.stats.suggested_isovalue = meta->value();
+  else if (auto dmeta = v.grid->getMetadata<openvdb::DoubleMetadata>("isovalue")) v.stats.suggested_isovalue = dmeta->value();
   if (v.stats.voxels == v.stats.nan_count + v.stats.inf_count)
     throw Error(path, "all active voxels of grid '" + v.grid_name + "' are NaN or Inf");
   if (v.stats.nan_count + v.stats.inf_count > 0 || !std::isfinite(v.grid->background())) {

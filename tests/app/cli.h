@@ -64,6 +64,10 @@ inline CliResult run_isocurv(const std::vector<std::string>& args, double timeou
   r.command = "isocurv";
   for (const auto& a : args) r.command += " " + a;
   const std::string exe = isocurv_exe();
+  if (access(exe.c_str(), X_OK) != 0) {
+    r.err = "the isocurv executable is missing: " + exe + " (build the isocurv target)";
+    return r;
+  }
   std::vector<char*> argv;
   argv.push_back(const_cast<char*>(exe.c_str()));
   for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));

@@ -206,6 +206,10 @@ TEST(CliView, FailsCleanlyBeforeOpeningAWindow) {
   expect_clean_failure(missing, "missing.vdb");
   const auto iso = run_isocurv({"view", dataset("sphere"), "--iso", "42"}, 30);
   expect_clean_failure(iso, "outside the value range");
+  // With no X display (DISPLAY is unset for every run here) the interactive window cannot open:
+  // a clear error rather than a hang behind an invisible window.
+  const auto headless = run_isocurv({"view", dataset("sphere")}, 30);
+  expect_clean_failure(headless, "display");
   const auto opt = run_isocurv({"view", dataset("sphere"), "--color", "X"}, 30);
   EXPECT_NE(opt.exit_code, 0) << opt.describe();
   EXPECT_FALSE(opt.timed_out);

@@ -1,0 +1,44 @@
+#include "core/cl_scratch.h"
+
+#include <sys/mman.h>
+
+#include <cstdlib>
+
+#include "core/error.h"
+
+namespace isocurv {
+namespace {
+constexpr std::size_t kHugePage = std::size_t(2) << 20;
+}
+
+ScratchBuffers::~ScratchBuffers() {
+  for (Slot& s : slots_) {
+    s.buffer = cl::Buffer();
+    std::free(s.host);
+  }
+}
+
+cl::Buffer& ScratchBuffers::get(std::size_t slot, std::size_t bytes) {
+  if (slot >= slots_.size()) throw Error("scratch slot " + std::to_string(slot) + " out of range");
+  Slot& s = slots_[slot];
+  if (bytes <= s.bytes && s.bytes > 0) return s.buffer;
+  std::size_t want = std::max<std::size_t>(bytes + bytes / 2, 4096);
+  s.buffer = cl::Buffer();
+  std::free(s.host);
+  s.host = nullptr;
+  s.bytes = 0;
+  if (device_.info().type == "CPU") {
+    // Host memory the CPU device works in directly; huge pages make first touches cheap.
+    want = (want + kHugePage - 1) / kHugePage * kHugePage;
+    s.host = std::aligned_alloc(kHugePage, want);
+    if (!s.host) throw Error("out of memory allocating " + std::to_string(want >> 20) + " MiB of device scratch");
+    madvise(s.host, want, MADV_HUGEPAGE);
+    s.buffer = cl::Buffer(device_.context(), CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, want, s.host);
+  } else {
+    s.buffer = cl::Buffer(device_.context(), CL_MEM_READ_WRITE, want);
+  }
+  s.bytes = want;
+  return s.buffer;
+}
+
+}  // namespace isocurv

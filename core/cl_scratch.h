@@ -1,0 +1,42 @@
+#pragma once
+// Device buffers kept between calls, so repeated extractions (the explorer's slider) and repeated
+// estimates do not pay for fresh memory each time. On CPU devices they are backed by host memory
+// in huge pages (first-touching small pages is slow on virtual machines).
+#include <memory>
+#include <vector>
+
+#include "core/cl_device.h"
+
+namespace isocurv {
+
+/// The slots of a device's scratch buffers (one owner each).
+enum ScratchSlot : std::size_t {
+  kScanTotals, kRadixHistogram, kRadixKeys, kRadixValues,
+  kMcSamples, kMcOrigins, kMcOffsets, kMcPositions, kMcKeys, kMcHashes, kMcOrder, kMcSortedHashes,
+  kMcRepresentative, kMcFirst, kMcOutPositions, kMcOutKeys, kMcTriangles,
+  kScratchSlots
+};
+
+/// Reusable device buffers by slot. Not thread-safe: like the device's queue, one user at a time.
+class ScratchBuffers {
+ public:
+  explicit ScratchBuffers(Device& device) : device_(device), slots_(kScratchSlots) {}
+  ~ScratchBuffers();
+  ScratchBuffers(const ScratchBuffers&) = delete;
+  ScratchBuffers& operator=(const ScratchBuffers&) = delete;
+
+  /// Buffer `slot` (< kScratchSlots) with room for at least `bytes` (grown by half again when too small;
+  /// contents are not preserved across growth). Valid until the next get() of the same slot.
+  cl::Buffer& get(std::size_t slot, std::size_t bytes);
+
+ private:
+  struct Slot {
+    cl::Buffer buffer;
+    void* host = nullptr;
+    std::size_t bytes = 0;
+  };
+  Device& device_;
+  std::vector<Slot> slots_;
+};
+
+}  // namespace isocurv
