@@ -10,6 +10,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/progress.h"
+#include "curvature/ao_scale.h"
 #include "curvature/estimate.h"
 #include "io/mesh_file.h"
 #include "mc/extract.h"
@@ -122,15 +123,8 @@ curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Vol
   }
   if (o.ao_scale > 0) {
     co.ao_scale = o.ao_scale;
-  } else if (!mesh.triangles.empty()) {  // 4 mean edge lengths: occlusion over a few triangles
-    double sum = 0;
-    for (const Tri& t : mesh.triangles)
-      for (int k = 0; k < 3; ++k) {
-        const Vec3f &a = mesh.positions[t[k]], &b = mesh.positions[t[(k + 1) % 3]];
-        sum += std::sqrt(double(a[0] - b[0]) * (a[0] - b[0]) + double(a[1] - b[1]) * (a[1] - b[1]) +
-                         double(a[2] - b[2]) * (a[2] - b[2]));
-      }
-    co.ao_scale = static_cast<float>(4 * sum / (3.0 * mesh.triangles.size()));
+  } else {
+    co.ao_scale = curvature::default_ao_scale(mesh);
   }
   Device& dev = device_for(o);
   timer.start("curvature");

@@ -30,6 +30,7 @@
 #include "bench/bench_util.h"
 #include "core/cl_device.h"
 #include "core/error.h"
+#include "curvature/ao_scale.h"
 #include "curvature/estimate.h"
 #include "datasets/field.h"
 #include "datasets/sample.h"
@@ -71,19 +72,6 @@ Summary summarize(const std::vector<std::vector<double>>& per_iso) {
   if (medians.empty()) return {};
   std::sort(medians.begin(), medians.end());
   return {medians[medians.size() / 2], medians.back()};
-}
-
-/// The AO radius the app uses: 4 mean edge lengths (app/pipeline.cpp, estimate_curvature).
-float app_ao_scale(const Mesh& mesh) {
-  if (mesh.triangles.empty()) return 1.0f;
-  double sum = 0;
-  for (const Tri& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k) {
-      const Vec3f &a = mesh.positions[t[k]], &b = mesh.positions[t[(k + 1) % 3]];
-      sum += std::sqrt(double(a[0] - b[0]) * (a[0] - b[0]) + double(a[1] - b[1]) * (a[1] - b[1]) +
-                       double(a[2] - b[2]) * (a[2] - b[2]));
-    }
-  return static_cast<float>(4 * sum / (3.0 * mesh.triangles.size()));
 }
 
 /// One offscreen window per side, kept for the whole run as the explorer keeps its own.
@@ -163,7 +151,7 @@ Row run_volume(const std::string& name, const volume::Volume& v, const Config& c
   auto ours_update = [&](std::size_t i, bool render) {
     Mesh mesh = mesher.extract(isos[i]);
     curvature::Options co;
-    co.ao_scale = app_ao_scale(mesh);
+    co.ao_scale = curvature::default_ao_scale(mesh);
     curvature::CurvatureField field = curvature::estimate(mesh, dev, co);
     tris[i] = mesh.triangles.size();
     if (render && win) {

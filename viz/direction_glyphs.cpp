@@ -22,18 +22,6 @@ bool usable(const Vec3f& v) {
 
 }  // namespace
 
-double mean_edge_length(const Mesh& mesh) {
-  if (mesh.triangles.empty()) return 0;
-  double sum = 0;
-  for (const Tri& t : mesh.triangles)
-    for (int e = 0; e < 3; ++e) {
-      const Vec3f& a = mesh.positions[t[e]];
-      const Vec3f& b = mesh.positions[t[(e + 1) % 3]];
-      sum += length({b[0] - a[0], b[1] - a[1], b[2] - a[2]});
-    }
-  return sum / (3.0 * static_cast<double>(mesh.triangles.size()));
-}
-
 vtkSmartPointer<vtkPolyData> direction_glyphs(const Mesh& mesh, const curvature::CurvatureField& field) {
   auto glyphs = vtkSmartPointer<vtkPolyData>::New();
   auto points = vtkSmartPointer<vtkPoints>::New();

@@ -3,6 +3,7 @@
 #include <vtkSmartPointer.h>
 
 #include "core/mesh.h"
+#include "core/mesh_measures.h"
 #include "curvature/curvature_field.h"
 
 class vtkPolyData;
@@ -21,8 +22,5 @@ constexpr unsigned char kDir2Color[3] = {20, 20, 20};     // near-black
 /// without finite non-zero directions are skipped; empty when the field has no dir1/dir2.
 /// Deterministic: the first vertex (by index) in each cell is chosen.
 vtkSmartPointer<vtkPolyData> direction_glyphs(const Mesh& mesh, const curvature::CurvatureField& field);
-
-/// The mean length of the mesh's triangle edges (0 for a mesh without triangles).
-double mean_edge_length(const Mesh& mesh);
 
 }  // namespace isocurv::viz

@@ -92,7 +92,7 @@ TEST(VizDirectionGlyphs, EvenSubsampleTwoColouredSegmentsPerVertex) {
   glyphs->GetPoint(0, a);
   glyphs->GetPoint(1, b);
   const double len = std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
-  const double edge = viz::mean_edge_length(s.mesh);
+  const double edge = mean_edge_length(s.mesh);
   EXPECT_GT(len, 1.0 * edge);
   EXPECT_LT(len, 4.0 * edge);
 

@@ -20,6 +20,9 @@ struct Expect {
   double sx, sy, sz;       ///< spacing
 };
 
+// Shown by GoogleTest (and so in CTest's test names) instead of the struct's bytes.
+void PrintTo(const Expect& e, std::ostream* os) { *os << e.file; }
+
 constexpr double kAny = std::numeric_limits<double>::quiet_NaN();
 
 const Expect kFiles[] = {
