@@ -36,7 +36,7 @@ void run_case(const Case& c, int runs) {
   const volume::Volume& v = c.volume;
   std::size_t ours_tris = 0;
   mc::ExtractTimings steps;
-  auto ours = [&] { ours_tris = mc::extract(v, c.iso, dev, {}, &steps).triangles.size(); };
+  auto ours = [&] { ours_tris = mc::extract(v, c.iso, dev).triangles.size(); };
   auto image = bench::to_image(v);
   std::size_t fe_tris = 0;
   auto fe = [&] {
@@ -62,8 +62,10 @@ void run_case(const Case& c, int runs) {
   const double m_ours = bench::peak_extra_mib(ours), m_fe = bench::peak_extra_mib(fe), m_vdb = bench::peak_extra_mib(vdb);
   std::printf("%-26s %10zu %9.1f %8.1f %7.2f %9.1f %7.2f %8.1f %8.1f %8.1f %8.1f\n", c.name.c_str(), ours_tris, t_ours,
               t_fe, t_fe / t_ours, t_vdb, t_vdb / t_ours, ours_tris / t_ours / 1000.0, m_ours, m_fe, m_vdb);
-  std::printf("%-26s   ours: select+index %.1f ms, gather %.1f ms, device %.1f ms, %zu bricks\n", "", steps.select,
-              steps.gather, steps.device, steps.bricks);
+  mc::extract(v, c.iso, dev, {}, &steps);  // once more, steps separated
+  std::printf("%-26s   ours, %zu bricks: select %.1f, gather %.1f, classify+scan %.1f, generate %.1f, sort %.1f, "
+              "fuse %.1f, compact+read %.1f ms\n", "", steps.bricks, steps.select, steps.gather, steps.classify,
+              steps.generate, steps.sort, steps.fuse, steps.compact);
   (void)fe_tris;
   (void)vdb_tris;
   std::fflush(stdout);

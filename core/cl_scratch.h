@@ -13,7 +13,7 @@ namespace isocurv {
 enum ScratchSlot : std::size_t {
   kScanTotals, kRadixHistogram, kRadixKeys, kRadixValues,
   kMcSamples, kMcOrigins, kMcOffsets, kMcPositions, kMcKeys, kMcHashes, kMcOrder, kMcSortedHashes,
-  kMcRepresentative, kMcFirst, kMcOutPositions, kMcOutKeys, kMcTriangles,
+  kMcBucketStarts, kMcRepresentative, kMcFirst, kMcOutPositions, kMcOutKeys, kMcTriangles,
   kScratchSlots
 };
 

@@ -89,9 +89,8 @@ std::vector<openvdb::Coord> BrickIndex::candidates(const Frame& f) const {
   return out;
 }
 
-std::vector<float> gather_bricks(const volume::Volume& v, const Frame& f, std::vector<openvdb::Coord>& origins) {
+void gather_bricks(const volume::Volume& v, const Frame& f, std::vector<openvdb::Coord>& origins, float* samples) {
   const std::size_t n = origins.size();
-  std::vector<float> samples(n * kBrickSamples);
   std::vector<char> keep(n, 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16), [&](const tbb::blocked_range<std::size_t>& r) {
     auto acc = v.grid->getConstAccessor();
@@ -107,16 +106,20 @@ std::vector<float> gather_bricks(const volume::Volume& v, const Frame& f, std::v
         data[k] = leaf ? leaf->buffer().data() : nullptr;
         tile[k] = leaf ? 0.0f : acc.getValue(bo);
       }
-      float* out = samples.data() + b * kBrickSamples;
+      float* out = samples + b * kBrickSamples;
       bool in = false, outside = false;
+      // Fast path: the whole apron holds data, so no sample needs the domain test.
+      const bool all_data = !f.clip || f.domain.isInside(openvdb::CoordBBox(o, o + openvdb::Coord(kBrick)));
       for (int z = 0; z < kApron; ++z)
         for (int y = 0; y < kApron; ++y)
           for (int x = 0; x < kApron; ++x) {
             const int k = (x >> 3) | ((y >> 3) << 1) | ((z >> 3) << 2);
             const float value = data[k] ? data[k][((x & 7) << 6) | ((y & 7) << 3) | (z & 7)] : tile[k];
-            const float s = f.signed_value(o + openvdb::Coord(x, y, z), value);
+            const float s = all_data ? (std::isfinite(value) ? f.sign * (value - f.isovalue) : f.outside)
+                                     : f.signed_value(o + openvdb::Coord(x, y, z), value);
             *out++ = s;
-            (s > 0 ? in : outside) = true;
+            in |= s > 0;
+            outside |= !(s > 0);
           }
       keep[b] = in && outside;
     }
@@ -127,13 +130,11 @@ std::vector<float> gather_bricks(const volume::Volume& v, const Frame& f, std::v
     if (!keep[b]) continue;
     if (w != b) {
       origins[w] = origins[b];
-      std::copy_n(samples.begin() + b * kBrickSamples, kBrickSamples, samples.begin() + w * kBrickSamples);
+      std::copy_n(samples + b * kBrickSamples, kBrickSamples, samples + w * kBrickSamples);
     }
     ++w;
   }
   origins.resize(w);
-  samples.resize(w * kBrickSamples);
-  return samples;
 }
 
 }  // namespace isocurv::mc

@@ -36,9 +36,10 @@ class BrickIndex {
   std::vector<Block> blocks_;
 };
 
-/// The samples of the given bricks: kBrickSamples signed values each (Frame::signed_value),
-/// x fastest, starting at the brick origin. Bricks whose samples turn out not to straddle are
-/// dropped from `origins`. Parallel (TBB); deterministic order.
-std::vector<float> gather_bricks(const volume::Volume& v, const Frame& f, std::vector<openvdb::Coord>& origins);
+/// Writes the samples of the given bricks to `out` (room for origins.size() * kBrickSamples
+/// floats): kBrickSamples signed values each (Frame::signed_value), x fastest, from the brick
+/// origin. Bricks whose samples turn out not to straddle are dropped from `origins` and from
+/// `out` (which stays packed). Parallel (TBB); deterministic order.
+void gather_bricks(const volume::Volume& v, const Frame& f, std::vector<openvdb::Coord>& origins, float* out);
 
 }  // namespace isocurv::mc

@@ -1,5 +1,6 @@
 #include "mc/extract.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 
@@ -24,6 +25,8 @@ double ms_since(Clock::time_point t) {
 }
 
 cl_int4 to_int4(const openvdb::Coord& c) { return cl_int4{{c.x(), c.y(), c.z(), 0}}; }
+
+struct NoBricks {};  // thrown past the device steps when no brick straddles the isovalue
 
 }  // namespace
 
@@ -56,21 +59,39 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
   std::vector<openvdb::Coord> origins = st.index.candidates(f);
   tm.select = ms_since(t0);
   auto t1 = Clock::now();
-  std::vector<float> samples = gather_bricks(st.volume, f, origins);
-  tm.gather = ms_since(t1);
-  tm.bricks = origins.size();
   Mesh mesh;
-  auto t2 = Clock::now();
+  auto t2 = t1;
+  auto step = t2;
+  // With timings requested, drain the queue after each step and charge it its wall time.
+  auto mark = [&](double ExtractTimings::*field) {
+    if (!timings) return;
+    st.device.queue().finish();
+    tm.*field += ms_since(step);
+    step = Clock::now();
+  };
   if (!origins.empty()) {
     try {
       auto& q = st.device.queue();
+      ScratchBuffers& scratch = st.device.scratch();
+      // Gather straight into the device buffer (mapped: zero-copy on CPU devices).
+      const std::size_t sample_bytes = origins.size() * kBrickSamples * sizeof(float);
+      cl::Buffer& d_samples = scratch.get(kMcSamples, sample_bytes);
+      auto* mapped = static_cast<float*>(q.enqueueMapBuffer(d_samples, CL_TRUE, CL_MAP_WRITE_INVALIDATE_REGION, 0, sample_bytes));
+      try {
+        gather_bricks(st.volume, f, origins, mapped);
+      } catch (...) {
+        q.enqueueUnmapMemObject(d_samples, mapped);
+        throw;
+      }
+      q.enqueueUnmapMemObject(d_samples, mapped);
+      tm.gather = ms_since(t1);
+      tm.bricks = origins.size();
+      t2 = step = Clock::now();
+      if (origins.empty()) throw NoBricks{};
       const auto ncells = static_cast<std::uint32_t>(origins.size() * 512);
       std::vector<cl_int4> orig4(origins.size());
       for (std::size_t i = 0; i < origins.size(); ++i) orig4[i] = to_int4(origins[i]);
-      ScratchBuffers& scratch = st.device.scratch();
-      cl::Buffer& d_samples = scratch.get(kMcSamples, samples.size() * sizeof(float));
       cl::Buffer& d_origins = scratch.get(kMcOrigins, orig4.size() * sizeof(cl_int4));
-      q.enqueueWriteBuffer(d_samples, CL_FALSE, 0, samples.size() * sizeof(float), samples.data());
       q.enqueueWriteBuffer(d_origins, CL_FALSE, 0, orig4.size() * sizeof(cl_int4), orig4.data());
       // Triangle counts per cell, scanned in place into each cell's first triangle.
       cl::Buffer& d_offsets = scratch.get(kMcOffsets, ncells * sizeof(std::uint32_t));
@@ -82,6 +103,7 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
       classify.setArg(6, d_offsets);
       q.enqueueNDRangeKernel(classify, cl::NullRange, cl::NDRange(ncells));
       const std::uint32_t ntri = exclusive_scan(st.device, d_offsets, d_offsets, ncells);
+      mark(&ExtractTimings::classify);
       const std::uint64_t nvert64 = std::uint64_t(ntri) * 3;
       if (nvert64 >= 0xffffffffULL) throw Error(st.volume.path, "isosurface too large (over 1.4 billion triangles)");
       const auto n = static_cast<std::uint32_t>(nvert64);
@@ -101,20 +123,32 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
         gen.setArg(a++, kMinEdgeFraction); gen.setArg(a++, world); gen.setArg(a++, mask);
         gen.setArg(a++, d_pos); gen.setArg(a++, d_keys); gen.setArg(a++, d_hash); gen.setArg(a++, d_order);
         q.enqueueNDRangeKernel(gen, cl::NullRange, cl::NDRange(ncells));
+        mark(&ExtractTimings::generate);
 
         // Sort a copy of the hashes with the vertex indices; the originals stay for lookups.
         cl::Buffer& d_sorted_hash = scratch.get(kMcSortedHashes, std::size_t(n) * sizeof(std::uint32_t));
         q.enqueueCopyBuffer(d_hash, d_sorted_hash, 0, 0, std::size_t(n) * sizeof(std::uint32_t));
         radix_sort_pairs(st.device, d_sorted_hash, d_order, n, options.hash_bits);
+        mark(&ExtractTimings::sort);
 
         cl::Buffer& d_rep = scratch.get(kMcRepresentative, std::size_t(n) * sizeof(std::uint32_t));
         cl::Buffer& d_first = scratch.get(kMcFirst, std::size_t(n) * sizeof(std::uint32_t));
+        // A table of where each value of the hash's top (up to 16) bits starts narrows each binary search.
+        const int table_bits = std::min(16, options.hash_bits);
+        const cl_uint shift = static_cast<cl_uint>(options.hash_bits - table_bits);
+        const cl_uint nbuckets = 1u << table_bits;
+        cl::Buffer& d_starts = scratch.get(kMcBucketStarts, (std::size_t(nbuckets) + 1) * sizeof(std::uint32_t));
+        cl::Kernel starts(*st.program, "mc_bucket_starts");
+        starts.setArg(0, d_sorted_hash); starts.setArg(1, n); starts.setArg(2, shift); starts.setArg(3, nbuckets);
+        starts.setArg(4, d_starts);
+        q.enqueueNDRangeKernel(starts, cl::NullRange, cl::NDRange(std::size_t(n) + 1));
         cl::Kernel fuse(*st.program, "mc_fuse");
         fuse.setArg(0, d_hash); fuse.setArg(1, d_keys); fuse.setArg(2, d_sorted_hash); fuse.setArg(3, d_order);
-        fuse.setArg(4, n); fuse.setArg(5, d_rep); fuse.setArg(6, d_first);
+        fuse.setArg(4, n); fuse.setArg(5, d_starts); fuse.setArg(6, shift); fuse.setArg(7, d_rep); fuse.setArg(8, d_first);
         q.enqueueNDRangeKernel(fuse, cl::NullRange, cl::NDRange(n));
         // d_hash is free now: reuse it for the fused indices.
         const std::uint32_t nfused = exclusive_scan(st.device, d_first, d_hash, n);
+        mark(&ExtractTimings::fuse);
 
         cl::Buffer& d_out_pos = scratch.get(kMcOutPositions, std::size_t(nfused) * 3 * sizeof(float));
         cl::Buffer& d_out_keys = scratch.get(kMcOutKeys, (options.keep_edge_keys ? std::size_t(nfused) : 1) * sizeof(cl_ulong));
@@ -134,7 +168,10 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           q.enqueueReadBuffer(d_out_keys, CL_FALSE, 0, std::size_t(nfused) * sizeof(cl_ulong), mesh.edge_keys.data());
         }
         q.finish();
+        mark(&ExtractTimings::compact);
       }
+    } catch (const NoBricks&) {
+      // every candidate brick lay wholly on one side: an empty mesh
     } catch (const cl::Error& e) {
       throw Error(st.volume.path, std::string("marching cubes failed on the OpenCL device: ") + e.what() + " (" +
                                       cl_error_name(e.err()) + ")");

@@ -100,17 +100,31 @@ __kernel void mc_generate(__global const float* samples, __global const int4* or
   }
 }
 
-// The index kernel: for vertex i, binary search its hash among the sorted hashes, walk back to
-// the first equal hash, then forward comparing edge keys to resolve collisions. The match found
-// first is the smallest vertex index on that edge (the sort is stable): its representative.
+// Where each bucket of sorted hashes begins: starts[b] = first j with (sorted_hashes[j] >> shift)
+// >= b, for b in [0, nbuckets]. One work item per j in [0, n]; every entry is written once.
+__kernel void mc_bucket_starts(__global const uint* sorted_hashes, uint n, uint shift, uint nbuckets,
+                               __global uint* starts) {
+  uint j = get_global_id(0);
+  if (j > n) return;
+  long cur = j < n ? (long)(sorted_hashes[j] >> shift) : (long)nbuckets;
+  long prev = j > 0 ? (long)(sorted_hashes[j - 1] >> shift) : -1;
+  for (long b = prev + 1; b <= cur; ++b) starts[b] = j;
+}
+
+// The index kernel: for vertex i, binary search its hash among the sorted hashes (within the
+// bucket of its top bits), walk back to the first equal hash, then forward comparing edge keys to
+// resolve collisions. The match found first is the smallest vertex index on that edge (the sort is
+// stable): its representative.
 __kernel void mc_fuse(__global const uint* hashes, __global const ulong* keys,
                       __global const uint* sorted_hashes, __global const uint* sorted_order, uint n,
+                      __global const uint* starts, uint shift,
                       __global uint* representative, __global uint* is_first) {
   uint i = get_global_id(0);
   if (i >= n) return;
   uint h = hashes[i];
-  int lo = 0, hi = (int)n - 1, j = 0;
-  while (lo <= hi) {  // finds some entry equal to h: i's own hash is present
+  uint b = h >> shift;
+  int lo = (int)starts[b], hi = (int)starts[b + 1] - 1, j = lo;
+  while (lo <= hi) {  // finds some entry equal to h: i's own hash is in this bucket
     int mid = lo + (hi - lo) / 2;
     uint m = sorted_hashes[mid];
     if (m < h) lo = mid + 1;
