@@ -64,8 +64,8 @@ void run_case(const Case& c, int runs) {
               t_fe, t_fe / t_ours, t_vdb, t_vdb / t_ours, ours_tris / t_ours / 1000.0, m_ours, m_fe, m_vdb);
   mc::extract(v, c.iso, dev, {}, &steps);  // once more, steps separated
   std::printf("%-26s   ours, %zu bricks: select %.1f, gather %.1f, classify+scan %.1f, generate %.1f, sort %.1f, "
-              "fuse %.1f, compact+read %.1f ms\n", "", steps.bricks, steps.select, steps.gather, steps.classify,
-              steps.generate, steps.sort, steps.fuse, steps.compact);
+              "fuse %.1f, read %.1f ms\n", "", steps.bricks, steps.select, steps.gather, steps.classify,
+              steps.generate, steps.sort, steps.fuse, steps.read);
   (void)fe_tris;
   (void)vdb_tris;
   std::fflush(stdout);

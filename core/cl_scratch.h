@@ -12,8 +12,8 @@ namespace isocurv {
 /// The slots of a device's scratch buffers (one owner each).
 enum ScratchSlot : std::size_t {
   kScanTotals, kRadixHistogram, kRadixKeys, kRadixValues,
-  kMcSamples, kMcOrigins, kMcOffsets, kMcPositions, kMcKeys, kMcHashes, kMcOrder, kMcSortedHashes,
-  kMcBucketStarts, kMcRepresentative, kMcFirst, kMcOutPositions, kMcOutKeys, kMcTriangles,
+  kMcSamples, kMcOrigins, kMcTriangleOffsets, kMcVertexOffsets, kMcPositions, kMcKeys, kMcHashes,
+  kMcOrder, kMcTable, kMcBucketStarts, kMcTriangles,
   kScratchSlots
 };
 

@@ -13,13 +13,13 @@ namespace isocurv::mc {
 struct ExtractTimings {
   double select = 0;    ///< choosing straddling bricks (host)
   double gather = 0;    ///< copying their samples with aprons (host)
-  double device = 0;    ///< classify, scan, generate, sort, fuse, compact, read back
+  double device = 0;    ///< classify, scans, generate, sort, fuse, read back
   // The device steps, separated (queue drained after each) only when timings are requested:
-  double classify = 0;  ///< upload, triangle counts per cell and their scan
-  double generate = 0;  ///< unfused vertices, edge keys and hashes
-  double sort = 0;      ///< radix sort of (hash, index)
-  double fuse = 0;      ///< binary search and collision walk, scan of first occurrences
-  double compact = 0;   ///< fused positions and indices, read back to the host
+  double classify = 0;  ///< upload, triangle and vertex counts per cell and their scans
+  double generate = 0;  ///< one vertex per crossed edge: position, edge key, hash
+  double sort = 0;      ///< radix sort of (hash, vertex) pairs
+  double fuse = 0;      ///< lookup table; every triangle corner's vertex (binary search, walk)
+  double read = 0;      ///< positions, triangles (and edge keys) read back to the host
   double total = 0;
   std::size_t bricks = 0;  ///< bricks processed
 };

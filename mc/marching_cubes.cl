@@ -1,8 +1,14 @@
-// Marching cubes with vertex fusion (Griffin et al. 2012, section 3.4).
+// Marching cubes with vertex fusion (after Griffin et al. 2012, section 3.4).
 // Input: bricks of 9x9x9 signed samples (> 0 inside), x fastest, and each brick's index-space
 // origin. A brick holds 8x8x8 cells; global id = brick * 512 + cell, cell = x + 8 y + 64 z.
 // Mirrors mc/case_table.h (corner/edge numbering), mc/edge_key.h (keys, hash) and mc/frame.h
 // (edge_fraction), which the C++ reference uses.
+//
+// Each crossed cube edge is emitted once, by the cell that owns it: the cell whose lower corner is
+// the edge's lower end (or, for edges on the frame's upper faces, the last cell below them). The
+// vertices carry a hash of their edge's identity and are radix sorted by it; each triangle corner
+// then finds its vertex by a binary search for the hash and a walk over equal hashes comparing
+// edge identities. The output has no duplicate and no unreferenced vertex by construction.
 
 #define APRON 9
 #define BRICK_SAMPLES 729
@@ -13,6 +19,7 @@ __constant int corner_x[8] = {0, 1, 1, 0, 0, 1, 1, 0};
 __constant int corner_y[8] = {0, 0, 1, 1, 0, 0, 1, 1};
 __constant int corner_z[8] = {0, 0, 0, 0, 1, 1, 1, 1};
 __constant int edge_low[12] = {0, 1, 3, 0, 4, 5, 7, 4, 0, 1, 3, 2};
+__constant int edge_high[12] = {1, 2, 2, 3, 5, 6, 6, 7, 4, 5, 7, 6};
 __constant int edge_axis[12] = {0, 1, 0, 1, 0, 1, 0, 1, 2, 2, 2, 2};
 __constant int axis_step[3] = {1, APRON, APRON * APRON};
 
@@ -38,15 +45,42 @@ inline int4 cell_coord(__global const int4* origins, uint gid, __global const fl
   return (int4)(o.x + x, o.y + y, o.z + z, 0);
 }
 
-// Triangles per cell (0 outside the frame's cells).
+// Bit e set when cube edge e joins an inside corner to an outside one.
+inline uint crossed_edges(int index) {
+  uint mask = 0;
+  for (int e = 0; e < 12; ++e)
+    mask |= (uint)(((index >> edge_low[e]) ^ (index >> edge_high[e])) & 1) << e;
+  return mask;
+}
+
+// Bit e set when this cell owns edge e: the edge's lower end is the cell's lower corner, except
+// along an axis where the cell is the frame's last, whose upper face it owns too.
+inline uint owned_edges(int4 g, int4 cell_max) {
+  int mx = g.x == cell_max.x, my = g.y == cell_max.y, mz = g.z == cell_max.z;
+  uint mask = 0;
+  for (int e = 0; e < 12; ++e) {
+    int lo = edge_low[e];
+    if ((!corner_x[lo] || mx) && (!corner_y[lo] || my) && (!corner_z[lo] || mz)) mask |= 1u << e;
+  }
+  return mask;
+}
+
+// Per cell: triangles, and the crossed edges it owns (0 outside the frame's cells).
 __kernel void mc_classify(__global const float* samples, __global const int4* origins, uint ncells,
                           int4 cell_min, int4 cell_max, __global const uchar* tri_count,
-                          __global uint* counts) {
+                          __global uint* tri_counts, __global uint* vertex_counts) {
   uint gid = get_global_id(0);
   if (gid >= ncells) return;
   __global const float* s;
   int4 g = cell_coord(origins, gid, &s, samples);
-  counts[gid] = cell_valid(g, cell_min, cell_max) ? tri_count[cell_case(s)] : 0u;
+  uint ntri = 0, nvert = 0;
+  if (cell_valid(g, cell_min, cell_max)) {
+    int index = cell_case(s);
+    ntri = tri_count[index];
+    if (ntri) nvert = popcount(crossed_edges(index) & owned_edges(g, cell_max));
+  }
+  tri_counts[gid] = ntri;
+  vertex_counts[gid] = nvert;
 }
 
 inline ulong edge_key(uint x, uint y, uint z, uint axis) {
@@ -62,101 +96,109 @@ inline uint edge_hash(ulong key, uint mask) {
   return (uint)key & mask;
 }
 
-// One unfused vertex per triangle corner: position (world), edge key, hash, and its own index
-// as the sort value. offsets[gid] = first triangle of the cell.
+inline ulong cell_edge_key(int4 g, int e, int4 key_origin) {
+  int lo = edge_low[e];
+  return edge_key((uint)(g.x + corner_x[lo] - key_origin.x), (uint)(g.y + corner_y[lo] - key_origin.y),
+                  (uint)(g.z + corner_z[lo] - key_origin.z), (uint)edge_axis[e]);
+}
+
+// One vertex per owned crossed edge, from vertex_offsets[gid] on, in edge order: its world
+// position, edge key and hash, and its own index (the sort's value).
 __kernel void mc_generate(__global const float* samples, __global const int4* origins, uint ncells,
                           int4 cell_min, int4 cell_max, int4 key_origin,
-                          __global const uchar* tri_count, __global const char* tri_edges,
-                          __global const uint* offsets, float min_fraction,
-                          float16 world, uint hash_mask,
+                          __global const uint* vertex_offsets, uint nvertices, float min_fraction, float16 world, uint hash_mask,
                           __global float* positions, __global ulong* keys,
                           __global uint* hashes, __global uint* order) {
   uint gid = get_global_id(0);
   if (gid >= ncells) return;
+  uint v = vertex_offsets[gid];
+  if ((gid + 1 < ncells ? vertex_offsets[gid + 1] : nvertices) == v) return;
   __global const float* s;
   int4 g = cell_coord(origins, gid, &s, samples);
-  if (!cell_valid(g, cell_min, cell_max)) return;
-  int index = cell_case(s);
-  int ntri = tri_count[index];
-  uint v = offsets[gid] * 3u;
-  for (int k = 0; k < 3 * ntri; ++k, ++v) {
-    int e = tri_edges[index * 16 + k];
+  uint edges = crossed_edges(cell_case(s)) & owned_edges(g, cell_max);
+  for (int e = 0; e < 12; ++e) {
+    if (!(edges & (1u << e))) continue;
     int lo = edge_low[e], axis = edge_axis[e];
     float s0 = s[corner_offset[lo]], s1 = s[corner_offset[lo] + axis_step[axis]];
     float t = s0 / (s0 - s1);
     t = fmin(fmax(t, min_fraction), 1.0f - min_fraction);
-    int ax = g.x + corner_x[lo], ay = g.y + corner_y[lo], az = g.z + corner_z[lo];
-    float px = (float)ax + (axis == 0 ? t : 0.0f);
-    float py = (float)ay + (axis == 1 ? t : 0.0f);
-    float pz = (float)az + (axis == 2 ? t : 0.0f);
+    float px = (float)(g.x + corner_x[lo]) + (axis == 0 ? t : 0.0f);
+    float py = (float)(g.y + corner_y[lo]) + (axis == 1 ? t : 0.0f);
+    float pz = (float)(g.z + corner_z[lo]) + (axis == 2 ? t : 0.0f);
     positions[3 * v + 0] = world.s0 * px + world.s1 * py + world.s2 * pz + world.s3;
     positions[3 * v + 1] = world.s4 * px + world.s5 * py + world.s6 * pz + world.s7;
     positions[3 * v + 2] = world.s8 * px + world.s9 * py + world.sa * pz + world.sb;
-    ulong key = edge_key((uint)(ax - key_origin.x), (uint)(ay - key_origin.y),
-                         (uint)(az - key_origin.z), (uint)axis);
+    ulong key = cell_edge_key(g, e, key_origin);
     keys[v] = key;
     hashes[v] = edge_hash(key, hash_mask);
     order[v] = v;
+    ++v;
   }
 }
 
-// Where each bucket of sorted hashes begins: starts[b] = first j with (sorted_hashes[j] >> shift)
-// >= b, for b in [0, nbuckets]. One work item per j in [0, n]; every entry is written once.
-__kernel void mc_bucket_starts(__global const uint* sorted_hashes, uint n, uint shift, uint nbuckets,
-                               __global uint* starts) {
+// The lookup table, from the sorted (hash, vertex) pairs: entries[j] = (hash, vertex, key) side by
+// side (one cache line per probe), and starts[b] = first j whose hash's top bits (hash >> shift)
+// are >= b, for b in [0, nbuckets]. One work item per j in [0, n]; every entry is written once.
+__kernel void mc_table(__global const uint* sorted_hashes, __global const uint* sorted_order,
+                       __global const ulong* keys, uint n, uint shift, uint nbuckets,
+                       __global uint4* entries, __global uint* starts) {
   uint j = get_global_id(0);
   if (j > n) return;
-  long cur = j < n ? (long)(sorted_hashes[j] >> shift) : (long)nbuckets;
+  long cur = (long)nbuckets;
+  if (j < n) {
+    uint h = sorted_hashes[j], u = sorted_order[j];
+    ulong key = keys[u];
+    entries[j] = (uint4)(h, u, (uint)key, (uint)(key >> 32));
+    cur = (long)(h >> shift);
+  }
   long prev = j > 0 ? (long)(sorted_hashes[j - 1] >> shift) : -1;
   for (long b = prev + 1; b <= cur; ++b) starts[b] = j;
 }
 
-// The index kernel: for vertex i, binary search its hash among the sorted hashes (within the
-// bucket of its top bits), walk back to the first equal hash, then forward comparing edge keys to
-// resolve collisions. The match found first is the smallest vertex index on that edge (the sort is
-// stable): its representative.
-__kernel void mc_fuse(__global const uint* hashes, __global const ulong* keys,
-                      __global const uint* sorted_hashes, __global const uint* sorted_order, uint n,
-                      __global const uint* starts, uint shift,
-                      __global uint* representative, __global uint* is_first) {
-  uint i = get_global_id(0);
-  if (i >= n) return;
-  uint h = hashes[i];
-  uint b = h >> shift;
-  int lo = (int)starts[b], hi = (int)starts[b + 1] - 1, j = lo;
-  while (lo <= hi) {  // finds some entry equal to h: i's own hash is in this bucket
-    int mid = lo + (hi - lo) / 2;
-    uint m = sorted_hashes[mid];
-    if (m < h) lo = mid + 1;
-    else if (m > h) hi = mid - 1;
-    else { j = mid; break; }
+// The index kernel, per cell: every triangle corner's vertex. Edges the cell owns are its own
+// vertices (in edge order from its offset); the others are found by a binary search for the edge's
+// hash (the first equal entry, within the bucket of its top bits), then a walk over equal hashes
+// comparing edge keys to resolve collisions.
+__kernel void mc_index(__global const float* samples, __global const int4* origins, uint ncells,
+                       int4 cell_max, int4 key_origin, uint hash_mask,
+                       __global const char* tri_edges,
+                       __global const uint* tri_offsets, uint ntriangles, __global const uint* vertex_offsets,
+                       __global const uint4* entries, uint n, __global const uint* starts, uint shift,
+                       __global uint* triangles) {
+  uint gid = get_global_id(0);
+  if (gid >= ncells) return;
+  uint first = tri_offsets[gid];
+  uint ntri = (gid + 1 < ncells ? tri_offsets[gid + 1] : ntriangles) - first;
+  if (ntri == 0) return;
+  __global const float* s;
+  int4 g = cell_coord(origins, gid, &s, samples);
+  int index = cell_case(s);
+  uint owned = crossed_edges(index) & owned_edges(g, cell_max);
+  uint own_base = vertex_offsets[gid];
+  __global uint* out = triangles + 3 * (size_t)first;
+  for (int k = 0; k < 3 * (int)ntri; ++k) {
+    int e = tri_edges[index * 16 + k];
+    uint vertex;
+    if (owned & (1u << e)) {
+      vertex = own_base + popcount(owned & ((1u << e) - 1u));
+    } else {
+      ulong key = cell_edge_key(g, e, key_origin);
+      uint h = edge_hash(key, hash_mask);
+      uint b = h >> shift;
+      uint lo = starts[b], hi = starts[b + 1];
+      while (lo < hi) {  // lower bound of h in [lo, hi)
+        uint mid = lo + (hi - lo) / 2;
+        if (entries[mid].x < h) lo = mid + 1;
+        else hi = mid;
+      }
+      vertex = 0xffffffffu;  // stays so only if the edge's owner was not processed (a bug)
+      uint klo = (uint)key, khi = (uint)(key >> 32);
+      for (uint j = lo; j < n; ++j) {
+        uint4 t = entries[j];
+        if (t.x != h) break;
+        if (t.z == klo && t.w == khi) { vertex = t.y; break; }
+      }
+    }
+    out[k] = vertex;
   }
-  while (j > 0 && sorted_hashes[j - 1] == h) --j;
-  ulong key = keys[i];
-  uint rep = i;
-  for (; (uint)j < n && sorted_hashes[j] == h; ++j) {
-    uint u = sorted_order[j];
-    if (keys[u] == key) { rep = u; break; }
-  }
-  representative[i] = rep;
-  is_first[i] = rep == i ? 1u : 0u;
-}
-
-// Compaction: the first vertex of each edge moves to its fused index; every triangle corner gets
-// the fused index of its representative.
-__kernel void mc_compact(__global const float* positions, __global const ulong* keys,
-                         __global const uint* representative, __global const uint* is_first,
-                         __global const uint* fused_index, uint n,
-                         __global float* out_positions, __global ulong* out_keys, uint write_keys,
-                         __global uint* out_triangles) {
-  uint i = get_global_id(0);
-  if (i >= n) return;
-  if (is_first[i]) {
-    uint f = fused_index[i];
-    out_positions[3 * f + 0] = positions[3 * i + 0];
-    out_positions[3 * f + 1] = positions[3 * i + 1];
-    out_positions[3 * f + 2] = positions[3 * i + 2];
-    if (write_keys) out_keys[f] = keys[i];
-  }
-  out_triangles[i] = fused_index[representative[i]];
 }
