@@ -10,15 +10,15 @@ inline std::uint64_t edge_key(std::uint32_t x, std::uint32_t y, std::uint32_t z,
   return (std::uint64_t(x) << 42) | (std::uint64_t(y) << 22) | (std::uint64_t(z) << 2) | axis;
 }
 
-/// 32-bit hash of an edge key (murmur3's 64-bit finaliser), keeping the low `bits` bits.
-inline std::uint32_t edge_hash(std::uint64_t key, int bits) {
-  key ^= key >> 33;
-  key *= 0xff51afd7ed558ccdULL;
-  key ^= key >> 33;
-  key *= 0xc4ceb9fe1a85ec53ULL;
-  key ^= key >> 33;
+/// 32-bit hash of the edge at key coordinates (x, y, z) along `axis`, spatially coherent:
+/// 8^3-voxel blocks in order (`blocks_x` by `blocks_y` a layer), 1536 edge slots each, wrapping
+/// past 2^32, then keeping the low `bits` bits. Sorting by it keeps neighbouring edges together.
+inline std::uint32_t edge_hash(std::uint32_t x, std::uint32_t y, std::uint32_t z, std::uint32_t axis,
+                               std::uint32_t blocks_x, std::uint32_t blocks_y, int bits) {
+  const std::uint32_t block = (x >> 3) + blocks_x * ((y >> 3) + blocks_y * (z >> 3));
+  const std::uint32_t slot = (((z & 7u) << 6) | ((y & 7u) << 3) | (x & 7u)) * 3u + axis;
   const std::uint32_t mask = bits >= 32 ? 0xffffffffu : ((1u << bits) - 1u);
-  return static_cast<std::uint32_t>(key) & mask;
+  return (block * 1536u + slot) & mask;
 }
 
 /// Largest coordinate span (voxels) an extraction can key.

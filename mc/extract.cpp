@@ -117,21 +117,27 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           cl::Buffer& d_order = scratch.get(kMcOrder, std::size_t(nvert) * sizeof(std::uint32_t));
           cl_float16 world{};
           for (int i = 0; i < 12; ++i) world.s[i] = f.world[i];
-          const cl_uint mask = options.hash_bits >= 32 ? 0xffffffffu : ((1u << options.hash_bits) - 1u);
+          const openvdb::Coord key_span = f.cells.max() - f.key_origin + openvdb::Coord(2);
+        const cl_uint2 blocks{{cl_uint(key_span.x() / 8 + 1), cl_uint(key_span.y() / 8 + 1)}};
+        const cl_uint mask = options.hash_bits >= 32 ? 0xffffffffu : ((1u << options.hash_bits) - 1u);
           cl::Kernel gen(*st.program, "mc_generate");
           set_args(gen, d_samples, d_origins, ncells, cmin, cmax, korg, d_vert_offsets, nvert, kMinEdgeFraction, world,
-                   mask, d_pos, d_keys, d_hash, d_order);
+                   blocks, mask, d_pos, d_keys, d_hash, d_order);
           q.enqueueNDRangeKernel(gen, cl::NullRange, cl::NDRange(ncells));
           mark(&ExtractTimings::generate);
 
           radix_sort_pairs(st.device, d_hash, d_order, nvert, options.hash_bits);
           mark(&ExtractTimings::sort);
 
-          // The lookup table, with a bucket index over the hash's top bits (about one vertex a bucket).
-          int table_bits = 1;
-          while (table_bits < 24 && (std::uint64_t(1) << (table_bits + 1)) <= nvert) ++table_bits;
-          table_bits = std::min(table_bits, options.hash_bits);
-          const cl_uint shift = static_cast<cl_uint>(options.hash_bits - table_bits);
+          // The lookup table, with a bucket index over the top bits of the hashes' range (about
+          // one vertex a bucket).
+          const std::uint64_t nblocks = std::uint64_t(blocks.s[0]) * blocks.s[1] * std::uint64_t(key_span.z() / 8 + 1);
+          const std::uint64_t hash_range = std::min(nblocks * 1536, std::uint64_t(mask) + 1);
+          int range_bits = 1, table_bits = 1;
+          while (range_bits < 32 && (std::uint64_t(1) << range_bits) < hash_range) ++range_bits;
+          while (table_bits < range_bits && (std::uint64_t(1) << table_bits) <= nvert) ++table_bits;
+          table_bits = std::min(table_bits, 24);
+          const cl_uint shift = static_cast<cl_uint>(range_bits - table_bits);
           const cl_uint nbuckets = 1u << table_bits;
           cl::Buffer& d_table = scratch.get(kMcTable, std::max<std::size_t>(nvert, 1) * 4 * sizeof(std::uint32_t));
           cl::Buffer& d_starts = scratch.get(kMcBucketStarts, (std::size_t(nbuckets) + 1) * sizeof(std::uint32_t));
@@ -140,7 +146,7 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           q.enqueueNDRangeKernel(table, cl::NullRange, cl::NDRange(std::size_t(nvert) + 1));
           cl::Buffer& d_tris = scratch.get(kMcTriangles, std::size_t(ntri) * 3 * sizeof(std::uint32_t));
           cl::Kernel index(*st.program, "mc_index");
-          set_args(index, d_samples, d_origins, ncells, cmax, korg, mask, st.tri_edges, d_tri_offsets, ntri,
+          set_args(index, d_samples, d_origins, ncells, cmax, korg, blocks, mask, st.tri_edges, d_tri_offsets, ntri,
                    d_vert_offsets, d_table, nvert, d_starts, shift, d_tris);
           q.enqueueNDRangeKernel(index, cl::NullRange, cl::NDRange(ncells));
           mark(&ExtractTimings::fuse);

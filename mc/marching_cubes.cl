@@ -87,26 +87,30 @@ inline ulong edge_key(uint x, uint y, uint z, uint axis) {
   return ((ulong)x << 42) | ((ulong)y << 22) | ((ulong)z << 2) | (ulong)axis;
 }
 
-inline uint edge_hash(ulong key, uint mask) {
-  key ^= key >> 33;
-  key *= 0xff51afd7ed558ccdUL;
-  key ^= key >> 33;
-  key *= 0xc4ceb9fe1a85ec53UL;
-  key ^= key >> 33;
-  return (uint)key & mask;
+// 32-bit hash of an edge (key coordinates x, y, z and axis), spatially coherent: 8^3-voxel
+// blocks in order, 1536 edge slots each, wrapping past 2^32 (over 2.8 million blocks), then
+// masked. Sorting by it keeps neighbouring edges together, so lookups stay in cache.
+inline uint edge_hash(uint x, uint y, uint z, uint axis, uint2 blocks, uint mask) {
+  uint block = (x >> 3) + blocks.x * ((y >> 3) + blocks.y * (z >> 3));
+  uint slot = (((z & 7u) << 6) | ((y & 7u) << 3) | (x & 7u)) * 3u + axis;
+  return (block * 1536u + slot) & mask;
 }
 
-inline ulong cell_edge_key(int4 g, int e, int4 key_origin) {
+// Key and hash of cube edge e of the cell at g.
+inline ulong cell_edge(int4 g, int e, int4 key_origin, uint2 blocks, uint mask, uint* hash) {
   int lo = edge_low[e];
-  return edge_key((uint)(g.x + corner_x[lo] - key_origin.x), (uint)(g.y + corner_y[lo] - key_origin.y),
-                  (uint)(g.z + corner_z[lo] - key_origin.z), (uint)edge_axis[e]);
+  uint x = (uint)(g.x + corner_x[lo] - key_origin.x), y = (uint)(g.y + corner_y[lo] - key_origin.y),
+       z = (uint)(g.z + corner_z[lo] - key_origin.z), axis = (uint)edge_axis[e];
+  *hash = edge_hash(x, y, z, axis, blocks, mask);
+  return edge_key(x, y, z, axis);
 }
 
 // One vertex per owned crossed edge, from vertex_offsets[gid] on, in edge order: its world
 // position, edge key and hash, and its own index (the sort's value).
 __kernel void mc_generate(__global const float* samples, __global const int4* origins, uint ncells,
                           int4 cell_min, int4 cell_max, int4 key_origin,
-                          __global const uint* vertex_offsets, uint nvertices, float min_fraction, float16 world, uint hash_mask,
+                          __global const uint* vertex_offsets, uint nvertices, float min_fraction,
+                          float16 world, uint2 blocks, uint hash_mask,
                           __global float* positions, __global ulong* keys,
                           __global uint* hashes, __global uint* order) {
   uint gid = get_global_id(0);
@@ -128,9 +132,9 @@ __kernel void mc_generate(__global const float* samples, __global const int4* or
     positions[3 * v + 0] = world.s0 * px + world.s1 * py + world.s2 * pz + world.s3;
     positions[3 * v + 1] = world.s4 * px + world.s5 * py + world.s6 * pz + world.s7;
     positions[3 * v + 2] = world.s8 * px + world.s9 * py + world.sa * pz + world.sb;
-    ulong key = cell_edge_key(g, e, key_origin);
-    keys[v] = key;
-    hashes[v] = edge_hash(key, hash_mask);
+    uint h;
+    keys[v] = cell_edge(g, e, key_origin, blocks, hash_mask, &h);
+    hashes[v] = h;
     order[v] = v;
     ++v;
   }
@@ -160,7 +164,7 @@ __kernel void mc_table(__global const uint* sorted_hashes, __global const uint* 
 // hash (the first equal entry, within the bucket of its top bits), then a walk over equal hashes
 // comparing edge keys to resolve collisions.
 __kernel void mc_index(__global const float* samples, __global const int4* origins, uint ncells,
-                       int4 cell_max, int4 key_origin, uint hash_mask,
+                       int4 cell_max, int4 key_origin, uint2 blocks, uint hash_mask,
                        __global const char* tri_edges,
                        __global const uint* tri_offsets, uint ntriangles, __global const uint* vertex_offsets,
                        __global const uint4* entries, uint n, __global const uint* starts, uint shift,
@@ -182,14 +186,15 @@ __kernel void mc_index(__global const float* samples, __global const int4* origi
     if (owned & (1u << e)) {
       vertex = own_base + popcount(owned & ((1u << e) - 1u));
     } else {
-      ulong key = cell_edge_key(g, e, key_origin);
-      uint h = edge_hash(key, hash_mask);
+      uint h;
+      ulong key = cell_edge(g, e, key_origin, blocks, hash_mask, &h);
       uint b = h >> shift;
-      uint lo = starts[b], hi = starts[b + 1];
-      while (lo < hi) {  // lower bound of h in [lo, hi)
-        uint mid = lo + (hi - lo) / 2;
-        if (entries[mid].x < h) lo = mid + 1;
-        else hi = mid;
+      uint lo = starts[b], len = starts[b + 1] - lo;
+      while (len > 0) {  // lower bound of h in [lo, lo + len), without branches on the data
+        uint step = len >> 1, mid = lo + step;
+        bool less = entries[mid].x < h;
+        lo = less ? mid + 1 : lo;
+        len = less ? len - step - 1 : step;
       }
       vertex = 0xffffffffu;  // stays so only if the edge's owner was not processed (a bug)
       uint klo = (uint)key, khi = (uint)(key >> 32);
