@@ -8,6 +8,7 @@
 #include "core/cl_scan.h"
 #include "core/cl_scratch.h"
 #include "core/error.h"
+#include "core/huge_pages.h"
 #include "mc/bricks.h"
 #include "mc/case_table.h"
 #include "mc/frame.h"
@@ -151,12 +152,12 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           q.enqueueNDRangeKernel(index, cl::NullRange, cl::NDRange(ncells));
           mark(&ExtractTimings::fuse);
 
-          mesh.positions.resize(nvert);
-          mesh.triangles.resize(ntri);
+          resize_in_huge_pages(mesh.positions, nvert);
+          resize_in_huge_pages(mesh.triangles, ntri);
           q.enqueueReadBuffer(d_pos, CL_FALSE, 0, std::size_t(nvert) * 3 * sizeof(float), mesh.positions.data());
           q.enqueueReadBuffer(d_tris, CL_FALSE, 0, std::size_t(ntri) * 3 * sizeof(std::uint32_t), mesh.triangles.data());
           if (options.keep_edge_keys) {
-            mesh.edge_keys.resize(nvert);
+            resize_in_huge_pages(mesh.edge_keys, nvert);
             q.enqueueReadBuffer(d_keys, CL_FALSE, 0, std::size_t(nvert) * sizeof(cl_ulong), mesh.edge_keys.data());
           }
           q.finish();

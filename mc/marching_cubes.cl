@@ -159,10 +159,31 @@ __kernel void mc_table(__global const uint* sorted_hashes, __global const uint* 
   for (long b = prev + 1; b <= cur; ++b) starts[b] = j;
 }
 
-// The index kernel, per cell: every triangle corner's vertex. Edges the cell owns are its own
-// vertices (in edge order from its offset); the others are found by a binary search for the edge's
-// hash (the first equal entry, within the bucket of its top bits), then a walk over equal hashes
-// comparing edge keys to resolve collisions.
+// The vertex of edge `key` (hash h): a binary search for the first entry with hash h (within the
+// bucket of h's top bits), then a walk over the entries of equal hash comparing edge keys, which
+// resolves collisions. ~0 only if the edge's owner was not processed (a bug).
+inline uint find_vertex(ulong key, uint h, __global const uint4* entries, uint n,
+                        __global const uint* starts, uint shift) {
+  uint b = h >> shift;
+  uint lo = starts[b], len = starts[b + 1] - lo;
+  while (len > 0) {  // lower bound of h in [lo, lo + len), without branches on the data
+    uint step = len >> 1, mid = lo + step;
+    bool less = entries[mid].x < h;
+    lo = less ? mid + 1 : lo;
+    len = less ? len - step - 1 : step;
+  }
+  uint klo = (uint)key, khi = (uint)(key >> 32);
+  for (uint j = lo; j < n; ++j) {
+    uint4 t = entries[j];
+    if (t.x != h) break;
+    if (t.z == klo && t.w == khi) return t.y;
+  }
+  return 0xffffffffu;
+}
+
+// The index kernel, per cell: the vertex of each crossed edge, then every triangle corner's.
+// Edges the cell owns are its own vertices (in edge order from its offset); the others are looked
+// up once each by their hash (find_vertex).
 __kernel void mc_index(__global const float* samples, __global const int4* origins, uint ncells,
                        int4 cell_max, int4 key_origin, uint2 blocks, uint hash_mask,
                        __global const char* tri_edges,
@@ -177,33 +198,19 @@ __kernel void mc_index(__global const float* samples, __global const int4* origi
   __global const float* s;
   int4 g = cell_coord(origins, gid, &s, samples);
   int index = cell_case(s);
-  uint owned = crossed_edges(index) & owned_edges(g, cell_max);
-  uint own_base = vertex_offsets[gid];
-  __global uint* out = triangles + 3 * (size_t)first;
-  for (int k = 0; k < 3 * (int)ntri; ++k) {
-    int e = tri_edges[index * 16 + k];
-    uint vertex;
+  uint crossed = crossed_edges(index), owned = crossed & owned_edges(g, cell_max);
+  uint vertex[12];
+  uint v = vertex_offsets[gid];
+  for (int e = 0; e < 12; ++e) {
+    if (!(crossed & (1u << e))) continue;
     if (owned & (1u << e)) {
-      vertex = own_base + popcount(owned & ((1u << e) - 1u));
+      vertex[e] = v++;
     } else {
       uint h;
       ulong key = cell_edge(g, e, key_origin, blocks, hash_mask, &h);
-      uint b = h >> shift;
-      uint lo = starts[b], len = starts[b + 1] - lo;
-      while (len > 0) {  // lower bound of h in [lo, lo + len), without branches on the data
-        uint step = len >> 1, mid = lo + step;
-        bool less = entries[mid].x < h;
-        lo = less ? mid + 1 : lo;
-        len = less ? len - step - 1 : step;
-      }
-      vertex = 0xffffffffu;  // stays so only if the edge's owner was not processed (a bug)
-      uint klo = (uint)key, khi = (uint)(key >> 32);
-      for (uint j = lo; j < n; ++j) {
-        uint4 t = entries[j];
-        if (t.x != h) break;
-        if (t.z == klo && t.w == khi) { vertex = t.y; break; }
-      }
+      vertex[e] = find_vertex(key, h, entries, n, starts, shift);
     }
-    out[k] = vertex;
   }
+  __global uint* out = triangles + 3 * (size_t)first;
+  for (int k = 0; k < 3 * (int)ntri; ++k) out[k] = vertex[tri_edges[index * 16 + k]];
 }
