@@ -1,0 +1,30 @@
+#pragma once
+// Fresh large host arrays backed by transparent huge pages: on virtual machines first touches of
+// small pages are slow (about 3 ms per MiB here), of huge pages some 30 times faster.
+#include <sys/mman.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace isocurv {
+
+/// Advises the kernel to back [data, data + bytes) with huge pages where whole 2 MiB pages fit.
+/// Call before the memory is first written. A hint only: no effect where unsupported.
+inline void advise_huge_pages(void* data, std::size_t bytes) {
+  constexpr std::uintptr_t kHuge = std::uintptr_t(2) << 20;
+  const auto begin = (reinterpret_cast<std::uintptr_t>(data) + kHuge - 1) & ~(kHuge - 1);
+  const auto end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(kHuge - 1);
+  if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+}
+
+/// v.resize(n) for an empty vector, its new storage advised into huge pages before it is filled.
+template <typename T>
+void resize_in_huge_pages(std::vector<T>& v, std::size_t n) {
+  if (v.capacity() < n) {
+    v.reserve(n);
+    advise_huge_pages(v.data(), n * sizeof(T));
+  }
+  v.resize(n);
+}
+
+}  // namespace isocurv
