@@ -36,6 +36,7 @@ struct CurvatureScene::Impl {
   curvature::CurvatureField field;
   RenderOptions options;
   ColorRange range;
+  bool glyphs_stale = true;  // the glyphs are built when first shown after a surface change
 
   Impl() {
     renderer->GradientBackgroundOn();
@@ -104,6 +105,10 @@ struct CurvatureScene::Impl {
     title->SetInput(options.title.c_str());
     title->SetVisibility(!options.title.empty());
     glyph_actor->SetVisibility(options.dirs && !mesh.positions.empty());
+    if (options.dirs && glyphs_stale) {
+      glyph_mapper->SetInputData(direction_glyphs(mesh, field));
+      glyphs_stale = false;
+    }
     if (mesh.positions.empty()) {
       range = {};
       scalar_bar->SetLookupTable(make_color_map(range));
@@ -143,7 +148,7 @@ void CurvatureScene::set_surface(const Mesh& mesh, const curvature::CurvatureFie
   shading.normals = s.field.normals;
   s.surface = io::to_polydata(s.mesh, &shading);
   s.surface_mapper->SetInputData(s.surface);
-  s.glyph_mapper->SetInputData(direction_glyphs(s.mesh, s.field));
+  s.glyphs_stale = true;
   s.recolor();
 }
 
