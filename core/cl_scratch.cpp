@@ -1,16 +1,11 @@
 #include "core/cl_scratch.h"
 
-#include <sys/mman.h>
-
 #include <cstdlib>
 
 #include "core/error.h"
+#include "core/huge_pages.h"
 
 namespace isocurv {
-namespace {
-constexpr std::size_t kHugePage = std::size_t(2) << 20;
-}
-
 ScratchBuffers::~ScratchBuffers() {
   for (Slot& s : slots_) {
     s.buffer = cl::Buffer();
@@ -29,10 +24,10 @@ cl::Buffer& ScratchBuffers::get(std::size_t slot, std::size_t bytes) {
   s.bytes = 0;
   if (device_.info().type == "CPU") {
     // Host memory the CPU device works in directly; huge pages make first touches cheap.
-    want = (want + kHugePage - 1) / kHugePage * kHugePage;
-    s.host = std::aligned_alloc(kHugePage, want);
+    want = (want + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;
+    s.host = std::aligned_alloc(kHugePageBytes, want);
     if (!s.host) throw Error("out of memory allocating " + std::to_string(want >> 20) + " MiB of device scratch");
-    madvise(s.host, want, MADV_HUGEPAGE);
+    advise_huge_pages(s.host, want);
     s.buffer = cl::Buffer(device_.context(), CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, want, s.host);
   } else {
     s.buffer = cl::Buffer(device_.context(), CL_MEM_READ_WRITE, want);

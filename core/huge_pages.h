@@ -8,10 +8,12 @@
 
 namespace isocurv {
 
+constexpr std::size_t kHugePageBytes = std::size_t(2) << 20;  ///< x86-64 transparent huge page
+
 /// Advises the kernel to back [data, data + bytes) with huge pages where whole 2 MiB pages fit.
 /// Call before the memory is first written. A hint only: no effect where unsupported.
 inline void advise_huge_pages(void* data, std::size_t bytes) {
-  constexpr std::uintptr_t kHuge = std::uintptr_t(2) << 20;
+  constexpr std::uintptr_t kHuge = kHugePageBytes;
   const auto begin = (reinterpret_cast<std::uintptr_t>(data) + kHuge - 1) & ~(kHuge - 1);
   const auto end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(kHuge - 1);
   if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);

@@ -10,6 +10,12 @@ inline std::uint64_t edge_key(std::uint32_t x, std::uint32_t y, std::uint32_t z,
   return (std::uint64_t(x) << 42) | (std::uint64_t(y) << 22) | (std::uint64_t(z) << 2) | axis;
 }
 
+/// Edge slots a hash gives each 8^3-voxel block (8^3 lower corners, 3 axes).
+constexpr std::uint32_t kEdgeSlotsPerBlock = 8 * 8 * 8 * 3;
+
+/// The mask keeping the low `bits` (1..32) bits of a hash.
+inline std::uint32_t hash_mask(int bits) { return bits >= 32 ? 0xffffffffu : ((1u << bits) - 1u); }
+
 /// 32-bit hash of the edge at key coordinates (x, y, z) along `axis`, spatially coherent:
 /// 8^3-voxel blocks in order (`blocks_x` by `blocks_y` a layer), 1536 edge slots each, wrapping
 /// past 2^32, then keeping the low `bits` bits. Sorting by it keeps neighbouring edges together.
@@ -17,8 +23,7 @@ inline std::uint32_t edge_hash(std::uint32_t x, std::uint32_t y, std::uint32_t z
                                std::uint32_t blocks_x, std::uint32_t blocks_y, int bits) {
   const std::uint32_t block = (x >> 3) + blocks_x * ((y >> 3) + blocks_y * (z >> 3));
   const std::uint32_t slot = (((z & 7u) << 6) | ((y & 7u) << 3) | (x & 7u)) * 3u + axis;
-  const std::uint32_t mask = bits >= 32 ? 0xffffffffu : ((1u << bits) - 1u);
-  return (block * 1536u + slot) & mask;
+  return (block * kEdgeSlotsPerBlock + slot) & hash_mask(bits);
 }
 
 /// Largest coordinate span (voxels) an extraction can key.

@@ -11,6 +11,7 @@
 #include "core/huge_pages.h"
 #include "mc/bricks.h"
 #include "mc/case_table.h"
+#include "mc/edge_key.h"
 #include "mc/frame.h"
 
 namespace isocurv::kernels {
@@ -119,10 +120,10 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           cl_float16 world{};
           for (int i = 0; i < 12; ++i) world.s[i] = f.world[i];
           const openvdb::Coord key_span = f.cells.max() - f.key_origin + openvdb::Coord(2);
-        const cl_uint2 blocks{{cl_uint(key_span.x() / 8 + 1), cl_uint(key_span.y() / 8 + 1)}};
-        const cl_uint mask = options.hash_bits >= 32 ? 0xffffffffu : ((1u << options.hash_bits) - 1u);
+          const cl_uint2 blocks{{cl_uint(key_span.x() / 8 + 1), cl_uint(key_span.y() / 8 + 1)}};
+          const cl_uint mask = hash_mask(options.hash_bits);
           cl::Kernel gen(*st.program, "mc_generate");
-          set_args(gen, d_samples, d_origins, ncells, cmin, cmax, korg, d_vert_offsets, nvert, kMinEdgeFraction, world,
+          set_args(gen, d_samples, d_origins, ncells, cmax, korg, d_vert_offsets, nvert, kMinEdgeFraction, world,
                    blocks, mask, d_pos, d_keys, d_hash, d_order);
           q.enqueueNDRangeKernel(gen, cl::NullRange, cl::NDRange(ncells));
           mark(&ExtractTimings::generate);
@@ -133,7 +134,7 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           // The lookup table, with a bucket index over the top bits of the hashes' range (about
           // one vertex a bucket).
           const std::uint64_t nblocks = std::uint64_t(blocks.s[0]) * blocks.s[1] * std::uint64_t(key_span.z() / 8 + 1);
-          const std::uint64_t hash_range = std::min(nblocks * 1536, std::uint64_t(mask) + 1);
+          const std::uint64_t hash_range = std::min(nblocks * kEdgeSlotsPerBlock, std::uint64_t(mask) + 1);
           int range_bits = 1, table_bits = 1;
           while (range_bits < 32 && (std::uint64_t(1) << range_bits) < hash_range) ++range_bits;
           while (table_bits < range_bits && (std::uint64_t(1) << table_bits) <= nvert) ++table_bits;

@@ -108,7 +108,7 @@ inline ulong cell_edge(int4 g, int e, int4 key_origin, uint2 blocks, uint mask, 
 // One vertex per owned crossed edge, from vertex_offsets[gid] on, in edge order: its world
 // position, edge key and hash, and its own index (the sort's value).
 __kernel void mc_generate(__global const float* samples, __global const int4* origins, uint ncells,
-                          int4 cell_min, int4 cell_max, int4 key_origin,
+                          int4 cell_max, int4 key_origin,
                           __global const uint* vertex_offsets, uint nvertices, float min_fraction,
                           float16 world, uint2 blocks, uint hash_mask,
                           __global float* positions, __global ulong* keys,
