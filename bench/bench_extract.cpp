@@ -9,6 +9,7 @@
 #include <vtkPolyData.h>
 #include <vtkSMPTools.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -62,10 +63,21 @@ void run_case(const Case& c, int runs) {
   const double m_ours = bench::peak_extra_mib(ours), m_fe = bench::peak_extra_mib(fe), m_vdb = bench::peak_extra_mib(vdb);
   std::printf("%-26s %10zu %9.1f %8.1f %7.2f %9.1f %7.2f %8.1f %8.1f %8.1f %8.1f\n", c.name.c_str(), ours_tris, t_ours,
               t_fe, t_fe / t_ours, t_vdb, t_vdb / t_ours, ours_tris / t_ours / 1000.0, m_ours, m_fe, m_vdb);
-  mc::extract(v, c.iso, dev, {}, &steps);  // once more, steps separated
-  std::printf("%-26s   ours, %zu bricks: select %.1f, gather %.1f, classify+scan %.1f, generate %.1f, sort %.1f, "
-              "fuse %.1f, read %.1f ms\n", "", steps.bricks, steps.select, steps.gather, steps.classify,
-              steps.generate, steps.sort, steps.fuse, steps.read);
+  // The steps separated (the queue drained after each): medians over the runs, per step.
+  std::vector<mc::ExtractTimings> per_run(std::max(1, runs));
+  for (auto& r : per_run) mc::extract(v, c.iso, dev, {}, &r);
+  auto median = [&](double mc::ExtractTimings::*field) {
+    std::vector<double> t;
+    for (const auto& r : per_run) t.push_back(r.*field);
+    std::sort(t.begin(), t.end());
+    return t[t.size() / 2];
+  };
+  steps = per_run.front();
+  std::printf("%-26s   ours, %zu bricks: prepare %.1f, select %.1f, gather %.1f, classify+scan %.1f, seams %.1f, "
+              "sort %.1f, emit %.1f, read %.1f ms\n", "", steps.bricks, median(&mc::ExtractTimings::prepare),
+              median(&mc::ExtractTimings::select), median(&mc::ExtractTimings::gather),
+              median(&mc::ExtractTimings::classify), median(&mc::ExtractTimings::seams),
+              median(&mc::ExtractTimings::sort), median(&mc::ExtractTimings::emit), median(&mc::ExtractTimings::read));
   (void)fe_tris;
   (void)vdb_tris;
   std::fflush(stdout);

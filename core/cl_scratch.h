@@ -12,8 +12,8 @@ namespace isocurv {
 /// The slots of a device's scratch buffers (one owner each).
 enum ScratchSlot : std::size_t {
   kScanTotals, kRadixHistogram, kRadixKeys, kRadixValues,
-  kMcSamples, kMcOrigins, kMcTriangleOffsets, kMcVertexOffsets, kMcPositions, kMcKeys, kMcHashes,
-  kMcOrder, kMcTable, kMcBucketStarts, kMcTriangles,
+  kMcSamples, kMcOrigins, kMcCases, kMcRowRanks, kMcTriangleOffsets, kMcVertexOffsets, kMcSeamOffsets, kMcPositions,
+  kMcKeys, kMcHashes, kMcOrder, kMcSeamVertices, kMcSeamKeys, kMcTable, kMcBucketStarts, kMcTriangles,
   kScratchSlots
 };
 

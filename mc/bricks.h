@@ -30,6 +30,7 @@ class BrickIndex {
     bool nonfinite;   ///< holds a NaN or Inf voxel
     bool clipped;     ///< partly or wholly outside the data domain of a dense volume
   };
+  static Block leaf_range(const float* values);  ///< range of a leaf's 512 values
   const Block& block(int bx, int by, int bz) const;
   openvdb::Coord first_;  ///< origin of block (0,0,0)
   int nx_ = 0, ny_ = 0, nz_ = 0;

@@ -21,6 +21,8 @@ const CaseTable& case_table() {
         t.edges[c][3 * n + 2] = static_cast<std::int8_t>(e[3 * n + 2]);
       }
       t.triangle_count[c] = static_cast<std::uint8_t>(n);
+      for (int k = 0; k < 12; ++k)
+        if (((c >> kEdgeLow[k]) ^ (c >> kEdgeHigh[k])) & 1) t.crossed[c] |= static_cast<std::uint16_t>(1u << k);
     }
     return t;
   }();

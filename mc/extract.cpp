@@ -26,6 +26,8 @@ double ms_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
 }
 
+constexpr std::size_t kBricksPerGroup = 8;
+
 cl_int4 to_int4(const openvdb::Coord& c) { return cl_int4{{c.x(), c.y(), c.z(), 0}}; }
 
 template <typename... Args>
@@ -41,7 +43,7 @@ struct Mesher::State {
   Device& device;
   BrickIndex index;
   cl::Program* program = nullptr;
-  cl::Buffer tri_count, tri_edges;
+  cl::Buffer tri_count, tri_edges, crossed;
   State(const volume::Volume& v, Device& d) : volume(v), device(d), index(v) {}
 };
 
@@ -53,6 +55,8 @@ Mesher::Mesher(const volume::Volume& v, Device& device) : state_(std::make_uniqu
                            static_cast<void*>(const_cast<std::uint8_t*>(t.triangle_count.data())));
   s.tri_edges = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, std::size_t(256 * 16),
                            static_cast<void*>(const_cast<std::int8_t*>(&t.edges[0][0])));
+  s.crossed = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(t.crossed),
+                         static_cast<void*>(const_cast<std::uint16_t*>(t.crossed.data())));
 }
 
 Mesher::~Mesher() = default;
@@ -94,64 +98,81 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
       tm.bricks = origins.size();
       t2 = step = Clock::now();
       if (!origins.empty()) {  // else every candidate lay wholly on one side: an empty mesh
-        const auto ncells = static_cast<std::uint32_t>(origins.size() * 512);
+        const auto nbricks = static_cast<std::uint32_t>(origins.size());
+        // One work item per brick, a few bricks per work group (PoCL runs a group on one thread).
+        const cl::NDRange brick_range((nbricks + kBricksPerGroup - 1) / kBricksPerGroup * kBricksPerGroup);
+        const cl::NDRange brick_group(kBricksPerGroup);
         std::vector<cl_int4> orig4(origins.size());
         for (std::size_t i = 0; i < origins.size(); ++i) orig4[i] = to_int4(origins[i]);
         cl::Buffer& d_origins = scratch.get(kMcOrigins, orig4.size() * sizeof(cl_int4));
         q.enqueueWriteBuffer(d_origins, CL_FALSE, 0, orig4.size() * sizeof(cl_int4), orig4.data());
-        // Triangles and owned vertices per cell, each scanned in place into the cell's first one.
-        cl::Buffer& d_tri_offsets = scratch.get(kMcTriangleOffsets, ncells * sizeof(std::uint32_t));
-        cl::Buffer& d_vert_offsets = scratch.get(kMcVertexOffsets, ncells * sizeof(std::uint32_t));
+        // Every cell's case; triangles, vertices and seam vertices per brick, each scanned in
+        // place into the brick's first one.
+        cl::Buffer& d_cases = scratch.get(kMcCases, std::size_t(nbricks) * 512);
+        cl::Buffer& d_row_ranks = scratch.get(kMcRowRanks, std::size_t(nbricks) * 64 * sizeof(cl_ushort));
+        cl::Buffer& d_tri_offsets = scratch.get(kMcTriangleOffsets, nbricks * sizeof(std::uint32_t));
+        cl::Buffer& d_vert_offsets = scratch.get(kMcVertexOffsets, nbricks * sizeof(std::uint32_t));
+        cl::Buffer& d_seam_offsets = scratch.get(kMcSeamOffsets, nbricks * sizeof(std::uint32_t));
         const cl_int4 cmin = to_int4(f.cells.min()), cmax = to_int4(f.cells.max()), korg = to_int4(f.key_origin);
 
         cl::Kernel classify(*st.program, "mc_classify");
-        set_args(classify, d_samples, d_origins, ncells, cmin, cmax, st.tri_count, d_tri_offsets, d_vert_offsets);
-        q.enqueueNDRangeKernel(classify, cl::NullRange, cl::NDRange(ncells));
-        const std::uint32_t ntri = exclusive_scan(st.device, d_tri_offsets, d_tri_offsets, ncells);
-        const std::uint32_t nvert = exclusive_scan(st.device, d_vert_offsets, d_vert_offsets, ncells);
+        set_args(classify, d_samples, d_origins, nbricks, cmin, cmax, st.tri_count, st.crossed, d_cases,
+                 d_row_ranks, d_tri_offsets, d_vert_offsets, d_seam_offsets);
+        q.enqueueNDRangeKernel(classify, cl::NullRange, brick_range, brick_group);
+        const std::uint32_t ntri = exclusive_scan(st.device, d_tri_offsets, d_tri_offsets, nbricks);
+        const std::uint32_t nvert = exclusive_scan(st.device, d_vert_offsets, d_vert_offsets, nbricks);
+        const std::uint32_t nseam = exclusive_scan(st.device, d_seam_offsets, d_seam_offsets, nbricks);
         mark(&ExtractTimings::classify);
         if (std::uint64_t(ntri) * 3 >= 0xffffffffULL)
           throw Error(st.volume.path, "isosurface too large (over 1.4 billion triangles)");
         if (ntri > 0) {
-          cl::Buffer& d_pos = scratch.get(kMcPositions, std::size_t(nvert) * 3 * sizeof(float));
-          cl::Buffer& d_keys = scratch.get(kMcKeys, std::size_t(nvert) * sizeof(cl_ulong));
-          cl::Buffer& d_hash = scratch.get(kMcHashes, std::size_t(nvert) * sizeof(std::uint32_t));
-          cl::Buffer& d_order = scratch.get(kMcOrder, std::size_t(nvert) * sizeof(std::uint32_t));
-          cl_float16 world{};
-          for (int i = 0; i < 12; ++i) world.s[i] = f.world[i];
           const openvdb::Coord key_span = f.cells.max() - f.key_origin + openvdb::Coord(2);
           const cl_uint2 blocks{{cl_uint(key_span.x() / 8 + 1), cl_uint(key_span.y() / 8 + 1)}};
           const cl_uint mask = hash_mask(options.hash_bits);
-          cl::Kernel gen(*st.program, "mc_generate");
-          set_args(gen, d_samples, d_origins, ncells, cmax, korg, d_vert_offsets, nvert, kMinEdgeFraction, world,
-                   blocks, mask, d_pos, d_keys, d_hash, d_order);
-          q.enqueueNDRangeKernel(gen, cl::NullRange, cl::NDRange(ncells));
-          mark(&ExtractTimings::generate);
+          // The seam vertices as (hash, j) pairs, sorted by hash.
+          const std::size_t nseam1 = std::max<std::uint32_t>(nseam, 1);
+          cl::Buffer& d_hash = scratch.get(kMcHashes, nseam1 * sizeof(std::uint32_t));
+          cl::Buffer& d_order = scratch.get(kMcOrder, nseam1 * sizeof(std::uint32_t));
+          cl::Buffer& d_seam_vertex = scratch.get(kMcSeamVertices, nseam1 * sizeof(std::uint32_t));
+          cl::Buffer& d_seam_keys = scratch.get(kMcSeamKeys, nseam1 * sizeof(cl_ulong));
+          cl::Kernel seams(*st.program, "mc_seams");
+          set_args(seams, d_origins, nbricks, cmax, korg, blocks, mask, st.crossed, d_cases, d_row_ranks,
+                   d_vert_offsets, d_seam_offsets, d_hash, d_order, d_seam_vertex, d_seam_keys);
+          q.enqueueNDRangeKernel(seams, cl::NullRange, brick_range, brick_group);
+          mark(&ExtractTimings::seams);
 
-          radix_sort_pairs(st.device, d_hash, d_order, nvert, options.hash_bits);
+          radix_sort_pairs(st.device, d_hash, d_order, nseam, options.hash_bits);
           mark(&ExtractTimings::sort);
 
           // The lookup table, with a bucket index over the top bits of the hashes' range (about
-          // one vertex a bucket).
+          // one seam vertex a bucket).
           const std::uint64_t nblocks = std::uint64_t(blocks.s[0]) * blocks.s[1] * std::uint64_t(key_span.z() / 8 + 1);
           const std::uint64_t hash_range = std::min(nblocks * kEdgeSlotsPerBlock, std::uint64_t(mask) + 1);
           int range_bits = 1, table_bits = 1;
           while (range_bits < 32 && (std::uint64_t(1) << range_bits) < hash_range) ++range_bits;
-          while (table_bits < range_bits && (std::uint64_t(1) << table_bits) <= nvert) ++table_bits;
+          while (table_bits < range_bits && (std::uint64_t(1) << table_bits) <= nseam) ++table_bits;
           table_bits = std::min(table_bits, 24);
           const cl_uint shift = static_cast<cl_uint>(range_bits - table_bits);
           const cl_uint nbuckets = 1u << table_bits;
-          cl::Buffer& d_table = scratch.get(kMcTable, std::max<std::size_t>(nvert, 1) * 4 * sizeof(std::uint32_t));
+          cl::Buffer& d_table = scratch.get(kMcTable, nseam1 * 4 * sizeof(std::uint32_t));
           cl::Buffer& d_starts = scratch.get(kMcBucketStarts, (std::size_t(nbuckets) + 1) * sizeof(std::uint32_t));
           cl::Kernel table(*st.program, "mc_table");
-          set_args(table, d_hash, d_order, d_keys, nvert, shift, nbuckets, d_table, d_starts);
-          q.enqueueNDRangeKernel(table, cl::NullRange, cl::NDRange(std::size_t(nvert) + 1));
+          set_args(table, d_hash, d_order, d_seam_vertex, d_seam_keys, nseam, shift, nbuckets, d_table, d_starts);
+          q.enqueueNDRangeKernel(table, cl::NullRange, cl::NDRange(std::size_t(nseam) + 1));
+
+          // Positions and triangles (and edge keys when asked for).
+          cl::Buffer& d_pos = scratch.get(kMcPositions, std::size_t(nvert) * 3 * sizeof(float));
           cl::Buffer& d_tris = scratch.get(kMcTriangles, std::size_t(ntri) * 3 * sizeof(std::uint32_t));
-          cl::Kernel index(*st.program, "mc_index");
-          set_args(index, d_samples, d_origins, ncells, cmax, korg, blocks, mask, st.tri_edges, d_tri_offsets, ntri,
-                   d_vert_offsets, d_table, nvert, d_starts, shift, d_tris);
-          q.enqueueNDRangeKernel(index, cl::NullRange, cl::NDRange(ncells));
-          mark(&ExtractTimings::fuse);
+          const cl_uint write_keys = options.keep_edge_keys ? 1 : 0;
+          cl::Buffer& d_keys = scratch.get(kMcKeys, (write_keys ? nvert : 1) * sizeof(cl_ulong));
+          cl_float16 world{};
+          for (int i = 0; i < 12; ++i) world.s[i] = f.world[i];
+          cl::Kernel emit(*st.program, "mc_emit");
+          set_args(emit, d_samples, d_origins, nbricks, cmax, korg, blocks, mask, kMinEdgeFraction, world,
+                   st.tri_edges, st.tri_count, st.crossed, d_cases, d_tri_offsets, d_vert_offsets, d_table, nseam,
+                   d_starts, shift, d_pos, d_tris, write_keys, d_keys);
+          q.enqueueNDRangeKernel(emit, cl::NullRange, brick_range, brick_group);
+          mark(&ExtractTimings::emit);
 
           resize_in_huge_pages(mesh.positions, nvert);
           resize_in_huge_pages(mesh.triangles, ntri);
@@ -177,7 +198,15 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
 }
 
 Mesh extract(const volume::Volume& v, float isovalue, Device& device, const Options& options, ExtractTimings* timings) {
-  return Mesher(v, device).extract(isovalue, options, timings);
+  const auto t0 = Clock::now();
+  Mesher mesher(v, device);
+  const double prepare = ms_since(t0);
+  Mesh mesh = mesher.extract(isovalue, options, timings);
+  if (timings) {
+    timings->prepare = prepare;
+    timings->total += prepare;
+  }
+  return mesh;
 }
 
 }  // namespace isocurv::mc

@@ -11,14 +11,15 @@ namespace isocurv::mc {
 
 /// Time spent in each step of one extraction, milliseconds.
 struct ExtractTimings {
+  double prepare = 0;   ///< per-block value ranges (one-shot extract() only; a Mesher does it once)
   double select = 0;    ///< choosing straddling bricks (host)
   double gather = 0;    ///< copying their samples with aprons (host)
-  double device = 0;    ///< classify, scans, generate, sort, fuse, read back
+  double device = 0;    ///< classify, scans, seams, sort, emit, read back
   // The device steps, separated (queue drained after each) only when timings are requested:
-  double classify = 0;  ///< upload, triangle and vertex counts per cell and their scans
-  double generate = 0;  ///< one vertex per crossed edge: position, edge key, hash
-  double sort = 0;      ///< radix sort of (hash, vertex) pairs
-  double fuse = 0;      ///< lookup table; every triangle corner's vertex (binary search, walk)
+  double classify = 0;  ///< upload, cell cases, triangle/vertex/seam-vertex counts per brick, scans
+  double seams = 0;     ///< the vertices other bricks look up: edge hash, key, vertex number
+  double sort = 0;      ///< radix sort of their (hash, j) pairs
+  double emit = 0;      ///< lookup table; positions; every triangle corner's vertex
   double read = 0;      ///< positions, triangles (and edge keys) read back to the host
   double total = 0;
   std::size_t bricks = 0;  ///< bricks processed

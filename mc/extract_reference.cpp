@@ -23,13 +23,7 @@ Mesh extract_reference(const volume::Volume& v, float isovalue, const Options& o
     const std::uint64_t key = edge_key(k.x(), k.y(), k.z(), axis);
     auto it = vertex_of_edge.find(key);
     if (it != vertex_of_edge.end()) return it->second;
-    // The upper corner of the edge: the corner one step along `axis` from `lo`.
-    int hi = 0;
-    for (int c = 0; c < 8; ++c)
-      if (kCornerX[c] == kCornerX[lo] + (axis == 0) && kCornerY[c] == kCornerY[lo] + (axis == 1) &&
-          kCornerZ[c] == kCornerZ[lo] + (axis == 2))
-        hi = c;
-    const float t = edge_fraction(s[lo], s[hi]);
+    const float t = edge_fraction(s[lo], s[kEdgeHigh[edge]]);
     double p[3] = {double(a.x()), double(a.y()), double(a.z())};
     p[axis] += t;
     Vec3f w;

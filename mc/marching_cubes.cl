@@ -1,14 +1,20 @@
 // Marching cubes with vertex fusion (after Griffin et al. 2012, section 3.4).
 // Input: bricks of 9x9x9 signed samples (> 0 inside), x fastest, and each brick's index-space
-// origin. A brick holds 8x8x8 cells; global id = brick * 512 + cell, cell = x + 8 y + 64 z.
+// origin. A brick holds 8x8x8 cells, cell = x + 8 y + 64 z. One work item per brick walks its
+// cells in order: on a CPU device that keeps the samples in cache, reuses each sample row across
+// the cells that share it, and pays no per-cell work-item cost; empty cells cost a byte test.
 // Mirrors mc/case_table.h (corner/edge numbering), mc/edge_key.h (keys, hash) and mc/frame.h
 // (edge_fraction), which the C++ reference uses.
 //
-// Each crossed cube edge is emitted once, by the cell that owns it: the cell whose lower corner is
-// the edge's lower end (or, for edges on the frame's upper faces, the last cell below them). The
-// vertices carry a hash of their edge's identity and are radix sorted by it; each triangle corner
-// then finds its vertex by a binary search for the hash and a walk over equal hashes comparing
-// edge identities. The output has no duplicate and no unreferenced vertex by construction.
+// Each crossed cube edge gets one vertex, from the cell that owns it: the cell whose lower corner
+// is the edge's lower end (or, for edges on the frame's upper faces, the last cell below them).
+// Steps: mc_classify (cases; triangles, vertices and seam vertices per brick), scans, mc_seams
+// (the vertices other bricks will look up, with a hash of their edge's identity), radix sort by
+// hash, mc_table, mc_emit (positions and triangles). A cell finds the vertex of an edge owned in
+// its own brick directly (the brick is walked from its last cell, so owners come first), and one
+// owned by another brick by a binary search for the edge's hash in the sorted seam vertices and a
+// walk over equal hashes comparing edge identities. The output has no duplicate and no
+// unreferenced vertex by construction.
 
 #define APRON 9
 #define BRICK_SAMPLES 729
@@ -19,43 +25,13 @@ __constant int corner_x[8] = {0, 1, 1, 0, 0, 1, 1, 0};
 __constant int corner_y[8] = {0, 0, 1, 1, 0, 0, 1, 1};
 __constant int corner_z[8] = {0, 0, 0, 0, 1, 1, 1, 1};
 __constant int edge_low[12] = {0, 1, 3, 0, 4, 5, 7, 4, 0, 1, 3, 2};
-__constant int edge_high[12] = {1, 2, 2, 3, 5, 6, 6, 7, 4, 5, 7, 6};
 __constant int edge_axis[12] = {0, 1, 0, 1, 0, 1, 0, 1, 2, 2, 2, 2};
 __constant int axis_step[3] = {1, APRON, APRON * APRON};
 
-inline int cell_case(__global const float* s) {
-  int index = 0;
-  for (int c = 0; c < 8; ++c)
-    if (s[corner_offset[c]] > 0.0f) index |= 1 << c;
-  return index;
-}
-
-// True when the cell's lower corner lies in [cell_min, cell_max].
-inline bool cell_valid(int4 g, int4 cell_min, int4 cell_max) {
-  return g.x >= cell_min.x && g.y >= cell_min.y && g.z >= cell_min.z &&
-         g.x <= cell_max.x && g.y <= cell_max.y && g.z <= cell_max.z;
-}
-
-inline int4 cell_coord(__global const int4* origins, uint gid, __global const float** s,
-                       __global const float* samples) {
-  uint b = gid >> 9, c = gid & 511u;
-  int x = c & 7, y = (c >> 3) & 7, z = c >> 6;
-  *s = samples + (size_t)b * BRICK_SAMPLES + x + APRON * y + APRON * APRON * z;
-  int4 o = origins[b];
-  return (int4)(o.x + x, o.y + y, o.z + z, 0);
-}
-
-// Bit e set when cube edge e joins an inside corner to an outside one.
-inline uint crossed_edges(int index) {
-  uint mask = 0;
-  for (int e = 0; e < 12; ++e)
-    mask |= (uint)(((index >> edge_low[e]) ^ (index >> edge_high[e])) & 1) << e;
-  return mask;
-}
-
-// Bit e set when this cell owns edge e: the edge's lower end is the cell's lower corner, except
-// along an axis where the cell is the frame's last, whose upper face it owns too.
+// Bit e set when the cell at g owns edge e: the edge's lower end is the cell's lower corner,
+// except along an axis where the cell is the frame's last, whose upper face it owns too.
 inline uint owned_edges(int4 g, int4 cell_max) {
+  if (g.x != cell_max.x && g.y != cell_max.y && g.z != cell_max.z) return 0x109u;  // edges 0, 3, 8
   int mx = g.x == cell_max.x, my = g.y == cell_max.y, mz = g.z == cell_max.z;
   uint mask = 0;
   for (int e = 0; e < 12; ++e) {
@@ -65,22 +41,78 @@ inline uint owned_edges(int4 g, int4 cell_max) {
   return mask;
 }
 
-// Per cell: triangles, and the crossed edges it owns (0 outside the frame's cells).
-__kernel void mc_classify(__global const float* samples, __global const int4* origins, uint ncells,
+// Index of the lowest set bit of m (m != 0).
+inline uint lowest_bit(uint m) { return 31u - clz(m & (~m + 1u)); }
+
+// True when none of the 8 cells of a row of cases (8 bytes read as one ulong) has triangles: every
+// byte is 0 or 255, i.e. each byte's bits all equal their lower neighbour's.
+inline bool row_empty(__global const uchar* row_cases) {
+  ulong r = *(__global const ulong*)row_cases;
+  return ((r ^ (r << 1)) & 0xfefefefefefefefeUL) == 0;
+}
+
+// The cells of brick b's 8^3 that lie in [cell_min, cell_max]: local ranges lo..hi per axis.
+inline void brick_range(int4 o, int4 cell_min, int4 cell_max, int4* lo, int4* hi) {
+  *lo = max((int4)(0), cell_min - o);
+  *hi = min((int4)(7), cell_max - o);
+}
+
+// The edges a cell of another brick uses, by where the cell lies: seam_table[(x == 0) |
+// (y == 0) << 1 | (z == 0) << 2] (local coordinates) has bit e set when edge e's lower end is 0
+// along an axis across the edge (the cells there lie one brick down).
+__constant ushort seam_table[8] = {0x0, 0x588, 0x311, 0x799, 0xf, 0x58f, 0x31f, 0x79f};
+
+// Per brick: every cell's case (0 for cells outside the frame) into cases[512 b ..]; the brick's
+// triangles, vertices (owned crossed edges) and seam vertices (those other bricks use); and for
+// each row of cells (y, z) the number of the brick's vertices before it, into row_ranks[64 b ..].
+// crossed[case]: bit e set when edge e joins an inside corner to an outside one.
+__kernel void mc_classify(__global const float* samples, __global const int4* origins, uint nbricks,
                           int4 cell_min, int4 cell_max, __global const uchar* tri_count,
-                          __global uint* tri_counts, __global uint* vertex_counts) {
-  uint gid = get_global_id(0);
-  if (gid >= ncells) return;
-  __global const float* s;
-  int4 g = cell_coord(origins, gid, &s, samples);
-  uint ntri = 0, nvert = 0;
-  if (cell_valid(g, cell_min, cell_max)) {
-    int index = cell_case(s);
-    ntri = tri_count[index];
-    if (ntri) nvert = popcount(crossed_edges(index) & owned_edges(g, cell_max));
+                          __global const ushort* crossed, __global uchar* cases, __global ushort* row_ranks,
+                          __global uint* brick_triangles, __global uint* brick_vertices,
+                          __global uint* brick_seams) {
+  uint b = get_global_id(0);
+  if (b >= nbricks) return;
+  __global const float* s = samples + (size_t)b * BRICK_SAMPLES;
+  __global uchar* out = cases + (size_t)b * 512;
+  __global ushort* ranks = row_ranks + (size_t)b * 64;
+  int4 o = origins[b];
+  o.w = 0;
+  int4 lo, hi;
+  brick_range(o, cell_min, cell_max, &lo, &hi);
+  // Inside bits of each sample row (y, z): bit x set when sample x is inside.
+  uint rows[APRON * APRON];
+  for (int r = 0; r < APRON * APRON; ++r) {
+    uint m = 0;
+    for (int x = 0; x < APRON; ++x) m |= (uint)(s[APRON * r + x] > 0.0f) << x;
+    rows[r] = m;
   }
-  tri_counts[gid] = ntri;
-  vertex_counts[gid] = nvert;
+  for (int c = 0; c < 512; ++c) out[c] = 0;
+  uint ntri = 0, nvert = 0, nseam = 0;
+  for (int z = 0; z < 8; ++z)
+    for (int y = 0; y < 8; ++y) {
+      ranks[y + 8 * z] = (ushort)nvert;
+      if (z < lo.z || z > hi.z || y < lo.y || y > hi.y) continue;
+      // Corners 0, 1 on row a; 3, 2 on b; 4, 5 on c; 7, 6 on d (x and x + 1).
+      uint a = rows[y + APRON * z], bb = rows[y + 1 + APRON * z];
+      uint c = rows[y + APRON * (z + 1)], d = rows[y + 1 + APRON * (z + 1)];
+      if (a == bb && a == c && a == d && (a == 0u || a == 0x1ffu)) continue;  // a row of empty cells
+      for (int x = lo.x; x <= hi.x; ++x) {
+        uint index = ((a >> x) & 1u) | ((a >> x) & 2u) | (((bb >> x) & 2u) << 1) | (((bb >> x) & 1u) << 3) |
+                     (((c >> x) & 1u) << 4) | (((c >> x) & 2u) << 4) | (((d >> x) & 2u) << 5) |
+                     (((d >> x) & 1u) << 7);
+        out[x + 8 * y + 64 * z] = (uchar)index;
+        uint n = tri_count[index];
+        if (n == 0) continue;
+        ntri += n;
+        uint owned = crossed[index] & owned_edges(o + (int4)(x, y, z, 0), cell_max);
+        nvert += popcount(owned);
+        nseam += popcount(owned & seam_table[(x == 0) | (y == 0) << 1 | (z == 0) << 2]);
+      }
+    }
+  brick_triangles[b] = ntri;
+  brick_vertices[b] = nvert;
+  brick_seams[b] = nseam;
 }
 
 inline ulong edge_key(uint x, uint y, uint z, uint axis) {
@@ -105,46 +137,53 @@ inline ulong cell_edge(int4 g, int e, int4 key_origin, uint2 blocks, uint mask, 
   return edge_key(x, y, z, axis);
 }
 
-// One vertex per owned crossed edge, from vertex_offsets[gid] on, in edge order: its world
-// position, edge key and hash, and its own index (the sort's value).
-__kernel void mc_generate(__global const float* samples, __global const int4* origins, uint ncells,
-                          int4 cell_max, int4 key_origin,
-                          __global const uint* vertex_offsets, uint nvertices, float min_fraction,
-                          float16 world, uint2 blocks, uint hash_mask,
-                          __global float* positions, __global ulong* keys,
-                          __global uint* hashes, __global uint* order) {
-  uint gid = get_global_id(0);
-  if (gid >= ncells) return;
-  uint v = vertex_offsets[gid];
-  if ((gid + 1 < ncells ? vertex_offsets[gid + 1] : nvertices) == v) return;
-  __global const float* s;
-  int4 g = cell_coord(origins, gid, &s, samples);
-  uint edges = crossed_edges(cell_case(s)) & owned_edges(g, cell_max);
-  for (int e = 0; e < 12; ++e) {
-    if (!(edges & (1u << e))) continue;
-    int lo = edge_low[e], axis = edge_axis[e];
-    float s0 = s[corner_offset[lo]], s1 = s[corner_offset[lo] + axis_step[axis]];
-    float t = s0 / (s0 - s1);
-    t = fmin(fmax(t, min_fraction), 1.0f - min_fraction);
-    float px = (float)(g.x + corner_x[lo]) + (axis == 0 ? t : 0.0f);
-    float py = (float)(g.y + corner_y[lo]) + (axis == 1 ? t : 0.0f);
-    float pz = (float)(g.z + corner_z[lo]) + (axis == 2 ? t : 0.0f);
-    positions[3 * v + 0] = world.s0 * px + world.s1 * py + world.s2 * pz + world.s3;
-    positions[3 * v + 1] = world.s4 * px + world.s5 * py + world.s6 * pz + world.s7;
-    positions[3 * v + 2] = world.s8 * px + world.s9 * py + world.sa * pz + world.sb;
-    uint h;
-    keys[v] = cell_edge(g, e, key_origin, blocks, hash_mask, &h);
-    hashes[v] = h;
-    order[v] = v;
-    ++v;
+// Per brick, from seam_offsets[b] on: the seam vertices (seam_table), cell by cell in edge order,
+// as (hash, own index j) pairs for the sort, with their vertex number (vertex_offsets[b] plus the
+// rank among the brick's vertices, the numbering mc_emit gives) and edge key. Only the rows on
+// the brick's lower faces and the first cell of every other row hold seam vertices.
+__kernel void mc_seams(__global const int4* origins, uint nbricks, int4 cell_max, int4 key_origin,
+                       uint2 blocks, uint hash_mask, __global const ushort* crossed,
+                       __global const uchar* cases, __global const ushort* row_ranks,
+                       __global const uint* vertex_offsets, __global const uint* seam_offsets,
+                       __global uint* hashes, __global uint* order, __global uint* seam_vertex,
+                       __global ulong* seam_keys) {
+  uint b = get_global_id(0);
+  if (b >= nbricks) return;
+  __global const uchar* bc = cases + (size_t)b * 512;
+  __global const ushort* ranks = row_ranks + (size_t)b * 64;
+  int4 o = origins[b];
+  o.w = 0;
+  uint first = vertex_offsets[b], j = seam_offsets[b];
+  for (int row = 0; row < 64; ++row) {
+    int y = row & 7, z = row >> 3;
+    bool whole = y == 0 || z == 0;
+    if (whole && row_empty(bc + 8 * row)) continue;
+    uint v = first + ranks[row];
+    for (int x = 0; x < (whole ? 8 : 1); ++x) {
+      uint index = bc[8 * row + x];
+      if (index == 0 || index == 255) continue;
+      int4 g = o + (int4)(x, y, z, 0);
+      uint owned = crossed[index] & owned_edges(g, cell_max);
+      for (uint seam = owned & seam_table[(x == 0) | (y == 0) << 1 | (z == 0) << 2]; seam; seam &= seam - 1u) {
+        uint e = lowest_bit(seam);
+        uint h;
+        seam_keys[j] = cell_edge(g, (int)e, key_origin, blocks, hash_mask, &h);
+        hashes[j] = h;
+        order[j] = j;
+        seam_vertex[j] = v + popcount(owned & ((1u << e) - 1u));
+        ++j;
+      }
+      v += popcount(owned);
+    }
   }
 }
 
-// The lookup table, from the sorted (hash, vertex) pairs: entries[j] = (hash, vertex, key) side by
+// The lookup table, from the sorted (hash, seam j) pairs: entries[j] = (hash, vertex, key) side by
 // side (one cache line per probe), and starts[b] = first j whose hash's top bits (hash >> shift)
 // are >= b, for b in [0, nbuckets]. One work item per j in [0, n]; every entry is written once.
 __kernel void mc_table(__global const uint* sorted_hashes, __global const uint* sorted_order,
-                       __global const ulong* keys, uint n, uint shift, uint nbuckets,
+                       __global const uint* seam_vertex, __global const ulong* keys, uint n, uint shift,
+                       uint nbuckets,
                        __global uint4* entries, __global uint* starts) {
   uint j = get_global_id(0);
   if (j > n) return;
@@ -152,7 +191,7 @@ __kernel void mc_table(__global const uint* sorted_hashes, __global const uint* 
   if (j < n) {
     uint h = sorted_hashes[j], u = sorted_order[j];
     ulong key = keys[u];
-    entries[j] = (uint4)(h, u, (uint)key, (uint)(key >> 32));
+    entries[j] = (uint4)(h, seam_vertex[u], (uint)key, (uint)(key >> 32));
     cur = (long)(h >> shift);
   }
   long prev = j > 0 ? (long)(sorted_hashes[j - 1] >> shift) : -1;
@@ -181,36 +220,112 @@ inline uint find_vertex(ulong key, uint h, __global const uint4* entries, uint n
   return 0xffffffffu;
 }
 
-// The index kernel, per cell: the vertex of each crossed edge, then every triangle corner's.
-// Edges the cell owns are its own vertices (in edge order from its offset); the others are looked
-// up once each by their hash (find_vertex).
-__kernel void mc_index(__global const float* samples, __global const int4* origins, uint ncells,
-                       int4 cell_max, int4 key_origin, uint2 blocks, uint hash_mask,
-                       __global const char* tri_edges,
-                       __global const uint* tri_offsets, uint ntriangles, __global const uint* vertex_offsets,
-                       __global const uint4* entries, uint n, __global const uint* starts, uint shift,
-                       __global uint* triangles) {
-  uint gid = get_global_id(0);
-  if (gid >= ncells) return;
-  uint first = tri_offsets[gid];
-  uint ntri = (gid + 1 < ncells ? tri_offsets[gid + 1] : ntriangles) - first;
-  if (ntri == 0) return;
-  __global const float* s;
-  int4 g = cell_coord(origins, gid, &s, samples);
-  int index = cell_case(s);
-  uint crossed = crossed_edges(index), owned = crossed & owned_edges(g, cell_max);
-  uint vertex[12];
-  uint v = vertex_offsets[gid];
-  for (int e = 0; e < 12; ++e) {
-    if (!(crossed & (1u << e))) continue;
-    if (owned & (1u << e)) {
-      vertex[e] = v++;
-    } else {
-      uint h;
-      ulong key = cell_edge(g, e, key_origin, blocks, hash_mask, &h);
-      vertex[e] = find_vertex(key, h, entries, n, starts, shift);
+// Slot of cube edge e of the cell at local (0,0,0) in a brick's vertex map: 3 * (lower end's
+// x + 9 y + 81 z) + axis. A cell's slot adds 3 * (x + 9 y + 81 z).
+__constant int edge_slot[12] = {0, 3 * 1 + 1, 3 * 9 + 0, 1, 3 * 81 + 0, 3 * 82 + 1,
+                                3 * 90 + 0, 3 * 81 + 1, 2, 3 * 1 + 2, 3 * 9 + 2, 3 * 10 + 2};
+
+// Per brick, the vertices (positions, and edge keys when write_keys) from vertex_offsets[b] on and
+// the triangles from triangle_offsets[b] on, in three walks over the non-empty cells: (1) each owned
+// crossed edge's vertex, recorded in the brick's vertex map `own` (by edge_slot); (2) the edges
+// on the brick's upper faces that another brick owns, looked up by their hash (find_vertex) into
+// the map; (3) every triangle corner from the map, without branches.
+__kernel void mc_emit(__global const float* samples, __global const int4* origins, uint nbricks,
+                      int4 cell_max, int4 key_origin, uint2 blocks, uint hash_mask, float min_fraction,
+                      float16 world, __global const char* tri_edges, __global const uchar* tri_count,
+                      __global const ushort* crossed, __global const uchar* cases,
+                      __global const uint* triangle_offsets, __global const uint* vertex_offsets,
+                      __global const uint4* entries, uint nseams, __global const uint* starts, uint shift,
+                      __global float* positions, __global uint* triangles, uint write_keys,
+                      __global ulong* keys) {
+  uint b = get_global_id(0);
+  if (b >= nbricks) return;
+  __global const float* brick = samples + (size_t)b * BRICK_SAMPLES;
+  __global const uchar* bc = cases + (size_t)b * 512;
+  int4 o = origins[b];
+  o.w = 0;
+  uint own[APRON * APRON * APRON * 3];
+  // (1) The brick's own vertices, cell by cell in edge order.
+  uint w = vertex_offsets[b];
+  for (int cell = 0; cell < 512; ++cell) {
+    if ((cell & 7) == 0 && row_empty(bc + cell)) {
+      cell += 7;
+      continue;
+    }
+    uint index = bc[cell];
+    if (index == 0 || index == 255) continue;
+    int x = cell & 7, y = (cell >> 3) & 7, z = cell >> 6;
+    int4 g = o + (int4)(x, y, z, 0);
+    __global const float* s = brick + x + APRON * y + APRON * APRON * z;
+    int base = 3 * (x + APRON * y + APRON * APRON * z);
+    for (uint rest = crossed[index] & owned_edges(g, cell_max); rest; rest &= rest - 1u) {
+      int e = (int)lowest_bit(rest);
+      int lo = edge_low[e], axis = edge_axis[e];
+      float s0 = s[corner_offset[lo]], s1 = s[corner_offset[lo] + axis_step[axis]];
+      float f = s0 / (s0 - s1);
+      f = fmin(fmax(f, min_fraction), 1.0f - min_fraction);
+      float px = (float)(g.x + corner_x[lo]) + (axis == 0 ? f : 0.0f);
+      float py = (float)(g.y + corner_y[lo]) + (axis == 1 ? f : 0.0f);
+      float pz = (float)(g.z + corner_z[lo]) + (axis == 2 ? f : 0.0f);
+      positions[3 * w + 0] = world.s0 * px + world.s1 * py + world.s2 * pz + world.s3;
+      positions[3 * w + 1] = world.s4 * px + world.s5 * py + world.s6 * pz + world.s7;
+      positions[3 * w + 2] = world.s8 * px + world.s9 * py + world.sa * pz + world.sb;
+      if (write_keys) {
+        uint h;
+        keys[w] = cell_edge(g, e, key_origin, blocks, hash_mask, &h);
+      }
+      own[base + edge_slot[e]] = w++;
     }
   }
-  __global uint* out = triangles + 3 * (size_t)first;
-  for (int k = 0; k < 3 * (int)ntri; ++k) out[k] = vertex[tri_edges[index * 16 + k]];
+  // (2) Edges whose lower end lies on an upper face (local coordinate 8) that continues into
+  // another brick: only the cells in the last layer along an axis reach them. Up to four cells
+  // share such an edge; `found` marks the slots already listed. The slots are listed first and
+  // looked up after, so the independent lookups overlap in the processor.
+  int4 next = (int4)(cell_max.x > o.x + 7, cell_max.y > o.y + 7, cell_max.z > o.z + 7, 0);
+  uint found[(3 * APRON * APRON * APRON + 31) / 32];
+  for (int i = 0; i < (3 * APRON * APRON * APRON + 31) / 32; ++i) found[i] = 0;
+  ushort todo[3 * APRON * APRON * 3];  // at most 3 faces of 9 x 9 edge ends, 3 axes each
+  int ntodo = 0;
+  for (int row = 0; row < 64; ++row) {
+    int y = row & 7, z = row >> 3;
+    bool whole = (y == 7 && next.y) || (z == 7 && next.z);  // else only the row's last cell
+    if ((!whole && !next.x) || row_empty(bc + 8 * row)) continue;
+    for (int x = whole ? 0 : 7; x < 8; ++x) {
+      uint index = bc[8 * row + x];
+      if (index == 0 || index == 255) continue;
+      int base = 3 * (x + APRON * y + APRON * APRON * z);
+      for (uint rest = crossed[index]; rest; rest &= rest - 1u) {
+        int e = (int)lowest_bit(rest);
+        int lo = edge_low[e];
+        int slot = base + edge_slot[e];
+        if (((x + corner_x[lo] == 8 && next.x) || (y + corner_y[lo] == 8 && next.y) ||
+             (z + corner_z[lo] == 8 && next.z)) && !((found[slot >> 5] >> (slot & 31)) & 1u)) {
+          found[slot >> 5] |= 1u << (slot & 31);
+          todo[ntodo++] = (ushort)slot;
+        }
+      }
+    }
+  }
+  for (int i = 0; i < ntodo; ++i) {
+    int slot = todo[i], axis = slot % 3, end = slot / 3;
+    int4 g = o + (int4)(end % APRON, (end / APRON) % APRON, end / (APRON * APRON), 0);
+    uint h;
+    ulong key = cell_edge(g, axis == 0 ? 0 : axis == 1 ? 3 : 8, key_origin, blocks, hash_mask, &h);
+    own[slot] = find_vertex(key, h, entries, nseams, starts, shift);
+  }
+  // (3) The triangles.
+  __global uint* out = triangles + 3 * (size_t)triangle_offsets[b];
+  for (int cell = 0; cell < 512; ++cell) {
+    if ((cell & 7) == 0 && row_empty(bc + cell)) {
+      cell += 7;
+      continue;
+    }
+    uint index = bc[cell];
+    int n = 3 * tri_count[index];
+    int x = cell & 7, y = (cell >> 3) & 7, z = cell >> 6;
+    int base = 3 * (x + APRON * y + APRON * APRON * z);
+    __global const char* te = tri_edges + index * 16;
+    for (int k = 0; k < n; ++k) out[k] = own[base + edge_slot[te[k]]];
+    out += n;
+  }
 }
