@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <utility>
 
+#include "core/cl_launch.h"
 #include "core/cl_scan.h"
 #include "core/cl_scratch.h"
 #include "core/error.h"
@@ -11,6 +12,10 @@ namespace isocurv {
 namespace kernels {
 extern const char* const radix_sort_cl;
 }
+
+namespace {
+constexpr std::size_t kChunkGroup = 8;  // chunks per work group
+}  // namespace
 
 void radix_sort_pairs(Device& dev, cl::Buffer& keys, cl::Buffer& values, std::uint32_t n, int key_bits) {
   if (key_bits < 1 || key_bits > 32) throw Error("radix sort: key_bits must be 1..32");
@@ -26,13 +31,11 @@ void radix_sort_pairs(Device& dev, cl::Buffer& keys, cl::Buffer& values, std::ui
   const int passes = (key_bits + 7) / 8;
   for (int pass = 0; pass < passes; ++pass) {
     const std::uint32_t shift = 8u * pass;
-    kh.setArg(0, *src_k); kh.setArg(1, n); kh.setArg(2, chunk); kh.setArg(3, shift); kh.setArg(4, p);
-    kh.setArg(5, hist);
-    dev.queue().enqueueNDRangeKernel(kh, cl::NullRange, cl::NDRange(p));
+    set_args(kh, *src_k, n, chunk, shift, p, hist);
+    launch(dev.queue(), kh, p, kChunkGroup);
     exclusive_scan(dev, hist, hist, 256 * p);
-    ks.setArg(0, *src_k); ks.setArg(1, *src_v); ks.setArg(2, n); ks.setArg(3, chunk); ks.setArg(4, shift);
-    ks.setArg(5, p); ks.setArg(6, hist); ks.setArg(7, *dst_k); ks.setArg(8, *dst_v);
-    dev.queue().enqueueNDRangeKernel(ks, cl::NullRange, cl::NDRange(p));
+    set_args(ks, *src_k, *src_v, n, chunk, shift, p, hist, *dst_k, *dst_v);
+    launch(dev.queue(), ks, p, kChunkGroup);
     std::swap(src_k, dst_k);
     std::swap(src_v, dst_v);
   }

@@ -7,6 +7,7 @@
 __kernel void radix_histogram(__global const uint* keys, uint n, uint chunk, uint shift, uint p,
                               __global uint* hist) {
   uint c = get_global_id(0);
+  if (c >= p) return;
   uint count[RADIX];
   for (int d = 0; d < RADIX; ++d) count[d] = 0;
   uint begin = c * chunk, end = min(begin + chunk, n);
@@ -18,6 +19,7 @@ __kernel void radix_scatter(__global const uint* keys, __global const uint* valu
                             uint shift, uint p, __global const uint* offsets,
                             __global uint* keys_out, __global uint* values_out) {
   uint c = get_global_id(0);
+  if (c >= p) return;
   uint offset[RADIX];
   for (int d = 0; d < RADIX; ++d) offset[d] = offsets[d * p + c];
   uint begin = c * chunk, end = min(begin + chunk, n);

@@ -2,8 +2,9 @@
 // per-chunk totals, a serial scan of the P totals, then a sequential scan of each chunk from its
 // offset. Sequential runs per work item suit CPU devices; integer sums make it deterministic.
 
-__kernel void scan_chunk_totals(__global const uint* in, uint n, uint chunk, __global uint* totals) {
+__kernel void scan_chunk_totals(__global const uint* in, uint n, uint chunk, uint p, __global uint* totals) {
   uint c = get_global_id(0);
+  if (c >= p) return;
   uint begin = c * chunk, end = min(begin + chunk, n);
   uint sum = 0;
   for (uint i = begin; i < end; ++i) sum += in[i];
@@ -22,9 +23,10 @@ __kernel void scan_totals(__global uint* totals, uint p) {
   totals[p] = sum;
 }
 
-__kernel void scan_chunks(__global const uint* in, __global uint* out, uint n, uint chunk,
+__kernel void scan_chunks(__global const uint* in, __global uint* out, uint n, uint chunk, uint p,
                           __global const uint* offsets) {
   uint c = get_global_id(0);
+  if (c >= p) return;
   uint begin = c * chunk, end = min(begin + chunk, n);
   uint sum = offsets[c];
   for (uint i = begin; i < end; ++i) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/cl_launch.h"
 #include "core/error.h"
 #include "curvature/derived.h"
 #include "curvature/input.h"
@@ -99,21 +100,7 @@ Session& session_for(Device& device) {
   return *sessions.back();
 }
 
-template <class... Args>
-void set_args(cl::Kernel& k, Args&&... args) {
-  cl_uint i = 0;
-  (k.setArg(i++, std::forward<Args>(args)), ...);
-}
-
-// A fixed work-group size: PoCL compiles one variant per local size, so letting it choose would
-// recompile for every new mesh size.
-constexpr std::size_t kGroup = 64;
-
-void launch(cl::CommandQueue& q, cl::Kernel& k, std::size_t items) {
-  if (items > 0)
-    q.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(round_up(items, kGroup)),
-                           cl::NDRange(kGroup));
-}
+constexpr std::size_t kGroup = 64;  // work-group size of every launch (core/cl_launch.h)
 
 template <class T>
 void upload(cl::CommandQueue& q, cl::Context& ctx, Buffer& b, const std::vector<T>& v) {
@@ -179,38 +166,38 @@ void run(const Mesh& mesh, Device& device, const Options& options, CurvatureFiel
   const cl_uint vcount = cl_uint(nv), fcount = cl_uint(nf), lcount = cl_uint(s.large.size());
   set_args(s.corner_normals_areas, s.positions.buffer, s.triangles.buffer, fcount,
            cl_int(options.normal_weights == NormalWeights::area), s.corner.buffer);
-  launch(q, s.corner_normals_areas, nf);
+  launch(q, s.corner_normals_areas, nf, kGroup);
   set_args(s.vertex_normals_areas, s.offsets.buffer, s.corners.buffer, s.corner.buffer,
            s.given_normals.buffer, cl_int(given), vcount, s.normals.buffer, s.area.buffer);
-  launch(q, s.vertex_normals_areas, nv);
+  launch(q, s.vertex_normals_areas, nv, kGroup);
   set_args(s.vertex_boundary, s.offsets.buffer, s.corners.buffer, s.triangles.buffer, vcount,
            s.boundary.buffer);
-  launch(q, s.vertex_boundary, nv);
+  launch(q, s.vertex_boundary, nv, kGroup);
   set_args(s.vertex_boundary_large, s.offsets.buffer, s.corners.buffer, s.triangles.buffer,
            s.large_fans.buffer, lcount, s.boundary.buffer);
-  launch(q, s.vertex_boundary_large, s.large.size());
+  launch(q, s.vertex_boundary_large, s.large.size(), kGroup);
   step(t.normals_areas);
 
   set_args(s.corner_tensors, s.positions.buffer, s.triangles.buffer, s.normals.buffer, fcount,
            s.corner.buffer);
-  launch(q, s.corner_tensors, nf);
+  launch(q, s.corner_tensors, nf, kGroup);
   step(t.tensor);
 
   set_args(s.vertex_sums, s.offsets.buffer, s.corners.buffer, s.corner.buffer, vcount,
            s.sums.buffer);
-  launch(q, s.vertex_sums, nv);
+  launch(q, s.vertex_sums, nv, kGroup);
   set_args(s.vertex_principal, s.sums.buffer, s.normals.buffer, vcount,
            cl_float(options.ao_scale), s.k1.buffer, s.k2.buffer, s.dir1.buffer, s.dir2.buffer,
            s.H.buffer, s.K.buffer, s.shape.buffer, s.curved.buffer, s.ao.buffer);
-  launch(q, s.vertex_principal, nv);
+  launch(q, s.vertex_principal, nv, kGroup);
   step(t.directions);
 
   set_args(s.corner_dcurv, s.positions.buffer, s.triangles.buffer, s.k1.buffer, s.k2.buffer,
            s.dir1.buffer, s.dir2.buffer, fcount, s.corner.buffer);
-  launch(q, s.corner_dcurv, nf);
+  launch(q, s.corner_dcurv, nf, kGroup);
   set_args(s.vertex_dcurv, s.offsets.buffer, s.corners.buffer, s.corner.buffer, s.sums.buffer,
            vcount, s.dcurv.buffer);
-  launch(q, s.vertex_dcurv, nv);
+  launch(q, s.vertex_dcurv, nv, kGroup);
   step(t.derivative);
 
   download(q, s.normals, out.normals, nv);

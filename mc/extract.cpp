@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstring>
 
+#include "core/cl_launch.h"
 #include "core/cl_radix_sort.h"
 #include "core/cl_scan.h"
 #include "core/cl_scratch.h"
@@ -26,15 +27,10 @@ double ms_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
 }
 
-constexpr std::size_t kBricksPerGroup = 8;
+constexpr std::size_t kBricksPerGroup = 8;  // one work item per brick (PoCL runs a group on one thread)
+constexpr std::size_t kTableGroup = 64;
 
 cl_int4 to_int4(const openvdb::Coord& c) { return cl_int4{{c.x(), c.y(), c.z(), 0}}; }
-
-template <typename... Args>
-void set_args(cl::Kernel& k, const Args&... args) {
-  cl_uint i = 0;
-  (k.setArg(i++, args), ...);
-}
 
 }  // namespace
 
@@ -99,9 +95,6 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
       t2 = step = Clock::now();
       if (!origins.empty()) {  // else every candidate lay wholly on one side: an empty mesh
         const auto nbricks = static_cast<std::uint32_t>(origins.size());
-        // One work item per brick, a few bricks per work group (PoCL runs a group on one thread).
-        const cl::NDRange brick_range((nbricks + kBricksPerGroup - 1) / kBricksPerGroup * kBricksPerGroup);
-        const cl::NDRange brick_group(kBricksPerGroup);
         std::vector<cl_int4> orig4(origins.size());
         for (std::size_t i = 0; i < origins.size(); ++i) orig4[i] = to_int4(origins[i]);
         cl::Buffer& d_origins = scratch.get(kMcOrigins, orig4.size() * sizeof(cl_int4));
@@ -118,7 +111,7 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
         cl::Kernel classify(*st.program, "mc_classify");
         set_args(classify, d_samples, d_origins, nbricks, cmin, cmax, st.tri_count, st.crossed, d_cases,
                  d_row_ranks, d_tri_offsets, d_vert_offsets, d_seam_offsets);
-        q.enqueueNDRangeKernel(classify, cl::NullRange, brick_range, brick_group);
+        launch(q, classify, nbricks, kBricksPerGroup);
         const std::uint32_t ntri = exclusive_scan(st.device, d_tri_offsets, d_tri_offsets, nbricks);
         const std::uint32_t nvert = exclusive_scan(st.device, d_vert_offsets, d_vert_offsets, nbricks);
         const std::uint32_t nseam = exclusive_scan(st.device, d_seam_offsets, d_seam_offsets, nbricks);
@@ -138,7 +131,7 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           cl::Kernel seams(*st.program, "mc_seams");
           set_args(seams, d_origins, nbricks, cmax, korg, blocks, mask, st.crossed, d_cases, d_row_ranks,
                    d_vert_offsets, d_seam_offsets, d_hash, d_order, d_seam_vertex, d_seam_keys);
-          q.enqueueNDRangeKernel(seams, cl::NullRange, brick_range, brick_group);
+          launch(q, seams, nbricks, kBricksPerGroup);
           mark(&ExtractTimings::seams);
 
           radix_sort_pairs(st.device, d_hash, d_order, nseam, options.hash_bits);
@@ -158,7 +151,7 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           cl::Buffer& d_starts = scratch.get(kMcBucketStarts, (std::size_t(nbuckets) + 1) * sizeof(std::uint32_t));
           cl::Kernel table(*st.program, "mc_table");
           set_args(table, d_hash, d_order, d_seam_vertex, d_seam_keys, nseam, shift, nbuckets, d_table, d_starts);
-          q.enqueueNDRangeKernel(table, cl::NullRange, cl::NDRange(std::size_t(nseam) + 1));
+          launch(q, table, std::size_t(nseam) + 1, kTableGroup);
 
           // Positions and triangles (and edge keys when asked for).
           cl::Buffer& d_pos = scratch.get(kMcPositions, std::size_t(nvert) * 3 * sizeof(float));
@@ -171,7 +164,7 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           set_args(emit, d_samples, d_origins, nbricks, cmax, korg, blocks, mask, kMinEdgeFraction, world,
                    st.tri_edges, st.tri_count, st.crossed, d_cases, d_tri_offsets, d_vert_offsets, d_table, nseam,
                    d_starts, shift, d_pos, d_tris, write_keys, d_keys);
-          q.enqueueNDRangeKernel(emit, cl::NullRange, brick_range, brick_group);
+          launch(q, emit, nbricks, kBricksPerGroup);
           mark(&ExtractTimings::emit);
 
           resize_in_huge_pages(mesh.positions, nvert);
