@@ -94,9 +94,11 @@ std::vector<openvdb::Coord> BrickIndex::candidates(const Frame& f) const {
   const int bz1 = floor_div8(f.cells.max().z()) - first_.z() / 8;
   const bool above = f.sign > 0;
   const float iso = f.isovalue;
-  for (int bz = bz0; bz <= bz1; ++bz)
+  // z innermost, as in VDB leaves: a brick's apron along z is the next brick's own leaf, still in
+  // cache when that brick is gathered.
+  for (int bx = bx0; bx <= bx1; ++bx)
     for (int by = by0; by <= by1; ++by)
-      for (int bx = bx0; bx <= bx1; ++bx) {
+      for (int bz = bz0; bz <= bz1; ++bz) {
         bool in = false, out_side = false;
         // The brick's samples lie in its own block and the blocks one step up along each axis.
         for (int dz = 0; dz < 2; ++dz)
@@ -139,25 +141,25 @@ void gather_bricks(const volume::Volume& v, const Frame& f, std::vector<openvdb:
       bool leaves = true;
       for (int k = 0; k < 8; ++k) leaves &= data[k] != nullptr;
       if (all_data && leaves) {
-        // Fast path: eight leaves, no domain test. Row (y, z): x = 0..7 from one leaf (stride 64
-        // in VDB's z-fastest order), x = 8 from the leaf after it along x.
+        // Fast path: eight leaves, no domain test. Column (x, y): z = 0..7 straight from one leaf
+        // (VDB's order is z fastest too), z = 8 from the leaf after it along z.
         const float sign = f.sign, iso = f.isovalue, outside_value = f.outside;
         auto signed_value = [&](float value) {
           return std::fabs(value) <= std::numeric_limits<float>::max() ? sign * (value - iso) : outside_value;
         };
         unsigned any_in = 0, any_out = 0;
-        for (int z = 0; z < kApron; ++z)
+        for (int x = 0; x < kApron; ++x)
           for (int y = 0; y < kApron; ++y) {
-            const int k = ((y >> 3) << 1) | ((z >> 3) << 2);
-            const int offset = ((y & 7) << 3) | (z & 7);
-            const float* row = data[k] + offset;
-            for (int x = 0; x < kBrick; ++x) {
-              const float sv = signed_value(row[x << 6]);
-              out[x] = sv;
+            const int k = (x >> 3) | ((y >> 3) << 1);
+            const int offset = ((x & 7) << 6) | ((y & 7) << 3);
+            const float* column = data[k] + offset;
+            for (int z = 0; z < kBrick; ++z) {
+              const float sv = signed_value(column[z]);
+              out[z] = sv;
               any_in |= sv > 0;
               any_out |= !(sv > 0);
             }
-            const float sv = signed_value(data[k | 1][offset]);
+            const float sv = signed_value(data[k | 4][offset]);
             out[kBrick] = sv;
             any_in |= sv > 0;
             any_out |= !(sv > 0);
@@ -166,17 +168,27 @@ void gather_bricks(const volume::Volume& v, const Frame& f, std::vector<openvdb:
         in = any_in != 0;
         outside = any_out != 0;
       } else {
+        // General path, still by column: tiles stand in for missing leaves, and voxels outside
+        // the data domain of a clipped (dense) volume read as outside (Frame::signed_value).
+        bool z_in[kApron];
         for (int z = 0; z < kApron; ++z)
-          for (int y = 0; y < kApron; ++y)
-            for (int x = 0; x < kApron; ++x) {
-              const int k = (x >> 3) | ((y >> 3) << 1) | ((z >> 3) << 2);
-              const float value = data[k] ? data[k][((x & 7) << 6) | ((y & 7) << 3) | (z & 7)] : tile[k];
-              const float s = all_data ? (std::isfinite(value) ? f.sign * (value - f.isovalue) : f.outside)
-                                       : f.signed_value(o + openvdb::Coord(x, y, z), value);
+          z_in[z] = !f.clip || (o.z() + z >= f.domain.min().z() && o.z() + z <= f.domain.max().z());
+        for (int x = 0; x < kApron; ++x)
+          for (int y = 0; y < kApron; ++y) {
+            const int ox = o.x() + x, oy = o.y() + y;
+            const bool column_in = !f.clip || (ox >= f.domain.min().x() && ox <= f.domain.max().x() &&
+                                               oy >= f.domain.min().y() && oy <= f.domain.max().y());
+            const int k = (x >> 3) | ((y >> 3) << 1);
+            const int offset = ((x & 7) << 6) | ((y & 7) << 3);
+            for (int z = 0; z < kApron; ++z) {
+              const int kz = k | ((z >> 3) << 2);
+              const float value = data[kz] ? data[kz][offset | (z & 7)] : tile[kz];
+              const float s = column_in && z_in[z] && std::isfinite(value) ? f.sign * (value - f.isovalue) : f.outside;
               *out++ = s;
               in |= s > 0;
               outside |= !(s > 0);
             }
+          }
       }
       keep[b] = in && outside;
     }

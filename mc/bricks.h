@@ -21,7 +21,7 @@ class BrickIndex {
   explicit BrickIndex(const volume::Volume& v);
 
   /// Origins (index space, multiples of 8) of the bricks of `f` that may hold surface: a superset
-  /// of the straddling bricks, in a fixed order (z, y, x).
+  /// of the straddling bricks, in a fixed order (x, y, z; z fastest).
   std::vector<openvdb::Coord> candidates(const Frame& f) const;
 
  private:
@@ -38,7 +38,8 @@ class BrickIndex {
 };
 
 /// Writes the samples of the given bricks to `out` (room for origins.size() * kBrickSamples
-/// floats): kBrickSamples signed values each (Frame::signed_value), x fastest, from the brick
+/// floats): kBrickSamples signed values each (Frame::signed_value), z fastest (sample z + 9 y +
+/// 81 x, as in a VDB leaf), from the brick
 /// origin. Bricks whose samples turn out not to straddle are dropped from `origins` and from
 /// `out` (which stays packed). Parallel (TBB); deterministic order.
 void gather_bricks(const volume::Volume& v, const Frame& f, std::vector<openvdb::Coord>& origins, float* out);

@@ -32,6 +32,42 @@ constexpr std::size_t kTableGroup = 64;
 
 cl_int4 to_int4(const openvdb::Coord& c) { return cl_int4{{c.x(), c.y(), c.z(), 0}}; }
 
+// A kernel's output that ends in a host vector (already sized). On CPU devices the kernel writes
+// the vector's memory itself (a CL_MEM_USE_HOST_PTR buffer: PoCL uses the pointer as is, and
+// mapping it afterwards is the synchronisation, without a copy); elsewhere it writes a device
+// scratch buffer that fetch() reads back. An empty vector gets a small scratch buffer (an unused
+// kernel argument).
+template <class T>
+class OutputArray {
+ public:
+  OutputArray(Device& device, std::vector<T>& v, std::size_t scratch_slot)
+      : data_(v.data()), bytes_(v.size() * sizeof(T)) {
+    if (bytes_ > 0 && device.info().type == "CPU") {
+      own_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, bytes_, data_);
+      buffer_ = &own_;
+    } else {
+      buffer_ = &device.scratch().get(scratch_slot, std::max<std::size_t>(bytes_, sizeof(T)));
+    }
+  }
+  cl::Buffer& buffer() { return *buffer_; }
+  /// Enqueues what brings the kernel's results into the vector (blocks for a mapped buffer).
+  void fetch(cl::CommandQueue& q) {
+    if (bytes_ == 0) return;
+    if (buffer_ == &own_) {
+      void* p = q.enqueueMapBuffer(own_, CL_TRUE, CL_MAP_READ, 0, bytes_);
+      q.enqueueUnmapMemObject(own_, p);
+    } else {
+      q.enqueueReadBuffer(*buffer_, CL_FALSE, 0, bytes_, data_);
+    }
+  }
+
+ private:
+  void* data_;
+  std::size_t bytes_;
+  cl::Buffer own_;
+  cl::Buffer* buffer_ = nullptr;
+};
+
 }  // namespace
 
 struct Mesher::State {
@@ -153,28 +189,27 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           set_args(table, d_hash, d_order, d_seam_vertex, d_seam_keys, nseam, shift, nbuckets, d_table, d_starts);
           launch(q, table, std::size_t(nseam) + 1, kTableGroup);
 
-          // Positions and triangles (and edge keys when asked for).
-          cl::Buffer& d_pos = scratch.get(kMcPositions, std::size_t(nvert) * 3 * sizeof(float));
-          cl::Buffer& d_tris = scratch.get(kMcTriangles, std::size_t(ntri) * 3 * sizeof(std::uint32_t));
+          // Positions and triangles (and edge keys when asked for), straight into the mesh.
+          resize_in_huge_pages(mesh.positions, nvert);
+          resize_in_huge_pages(mesh.triangles, ntri);
           const cl_uint write_keys = options.keep_edge_keys ? 1 : 0;
-          cl::Buffer& d_keys = scratch.get(kMcKeys, (write_keys ? nvert : 1) * sizeof(cl_ulong));
+          if (write_keys) resize_in_huge_pages(mesh.edge_keys, nvert);
+          OutputArray out_pos(st.device, mesh.positions, kMcPositions);
+          OutputArray out_tris(st.device, mesh.triangles, kMcTriangles);
+          OutputArray out_keys(st.device, mesh.edge_keys, kMcKeys);
+          mark(&ExtractTimings::read);
           cl_float16 world{};
           for (int i = 0; i < 12; ++i) world.s[i] = f.world[i];
           cl::Kernel emit(*st.program, "mc_emit");
           set_args(emit, d_samples, d_origins, nbricks, cmax, korg, blocks, mask, kMinEdgeFraction, world,
                    st.tri_edges, st.tri_count, st.crossed, d_cases, d_tri_offsets, d_vert_offsets, d_table, nseam,
-                   d_starts, shift, d_pos, d_tris, write_keys, d_keys);
+                   d_starts, shift, out_pos.buffer(), out_tris.buffer(), write_keys, out_keys.buffer());
           launch(q, emit, nbricks, kBricksPerGroup);
           mark(&ExtractTimings::emit);
 
-          resize_in_huge_pages(mesh.positions, nvert);
-          resize_in_huge_pages(mesh.triangles, ntri);
-          q.enqueueReadBuffer(d_pos, CL_FALSE, 0, std::size_t(nvert) * 3 * sizeof(float), mesh.positions.data());
-          q.enqueueReadBuffer(d_tris, CL_FALSE, 0, std::size_t(ntri) * 3 * sizeof(std::uint32_t), mesh.triangles.data());
-          if (options.keep_edge_keys) {
-            resize_in_huge_pages(mesh.edge_keys, nvert);
-            q.enqueueReadBuffer(d_keys, CL_FALSE, 0, std::size_t(nvert) * sizeof(cl_ulong), mesh.edge_keys.data());
-          }
+          out_pos.fetch(q);
+          out_tris.fetch(q);
+          out_keys.fetch(q);
           q.finish();
           mark(&ExtractTimings::read);
         }

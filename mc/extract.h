@@ -20,7 +20,7 @@ struct ExtractTimings {
   double seams = 0;     ///< the vertices other bricks look up: edge hash, key, vertex number
   double sort = 0;      ///< radix sort of their (hash, j) pairs
   double emit = 0;      ///< lookup table; positions; every triangle corner's vertex
-  double read = 0;      ///< positions, triangles (and edge keys) read back to the host
+  double read = 0;      ///< the mesh's arrays: allocated, and read back from non-CPU devices
   double total = 0;
   std::size_t bricks = 0;  ///< bricks processed
 };

@@ -1,8 +1,9 @@
 // Marching cubes with vertex fusion (after Griffin et al. 2012, section 3.4).
-// Input: bricks of 9x9x9 signed samples (> 0 inside), x fastest, and each brick's index-space
-// origin. A brick holds 8x8x8 cells, cell = x + 8 y + 64 z. One work item per brick walks its
-// cells in order: on a CPU device that keeps the samples in cache, reuses each sample row across
-// the cells that share it, and pays no per-cell work-item cost; empty cells cost a byte test.
+// Input: bricks of 9x9x9 signed samples (> 0 inside), z fastest (sample z + 9 y + 81 x, as in a
+// VDB leaf), and each brick's index-space origin. A brick holds 8x8x8 cells, cell z + 8 y + 64 x;
+// a row is the 8 cells along z at one (x, y). One work item per brick walks its cells in order: on
+// a CPU device that keeps the samples in cache, reuses each sample row across the cells that
+// share it, and pays no per-cell work-item cost; a row of empty cells costs one 8-byte test.
 // Mirrors mc/case_table.h (corner/edge numbering), mc/edge_key.h (keys, hash) and mc/frame.h
 // (edge_fraction), which the C++ reference uses.
 //
@@ -19,14 +20,14 @@
 #define APRON 9
 #define BRICK_SAMPLES 729
 
-__constant int corner_offset[8] = {0, 1, 1 + APRON, APRON, APRON * APRON, 1 + APRON * APRON,
-                                   1 + APRON + APRON * APRON, APRON + APRON * APRON};
+__constant int corner_offset[8] = {0, APRON * APRON, APRON * APRON + APRON, APRON, 1, APRON * APRON + 1,
+                                   APRON * APRON + APRON + 1, APRON + 1};
 __constant int corner_x[8] = {0, 1, 1, 0, 0, 1, 1, 0};
 __constant int corner_y[8] = {0, 0, 1, 1, 0, 0, 1, 1};
 __constant int corner_z[8] = {0, 0, 0, 0, 1, 1, 1, 1};
 __constant int edge_low[12] = {0, 1, 3, 0, 4, 5, 7, 4, 0, 1, 3, 2};
 __constant int edge_axis[12] = {0, 1, 0, 1, 0, 1, 0, 1, 2, 2, 2, 2};
-__constant int axis_step[3] = {1, APRON, APRON * APRON};
+__constant int axis_step[3] = {APRON * APRON, APRON, 1};
 
 // Bit e set when the cell at g owns edge e: the edge's lower end is the cell's lower corner,
 // except along an axis where the cell is the frame's last, whose upper face it owns too.
@@ -64,7 +65,7 @@ __constant ushort seam_table[8] = {0x0, 0x588, 0x311, 0x799, 0xf, 0x58f, 0x31f, 
 
 // Per brick: every cell's case (0 for cells outside the frame) into cases[512 b ..]; the brick's
 // triangles, vertices (owned crossed edges) and seam vertices (those other bricks use); and for
-// each row of cells (y, z) the number of the brick's vertices before it, into row_ranks[64 b ..].
+// each row of cells (x, y) the number of the brick's vertices before it, into row_ranks[64 b ..].
 // crossed[case]: bit e set when edge e joins an inside corner to an outside one.
 __kernel void mc_classify(__global const float* samples, __global const int4* origins, uint nbricks,
                           int4 cell_min, int4 cell_max, __global const uchar* tri_count,
@@ -80,28 +81,28 @@ __kernel void mc_classify(__global const float* samples, __global const int4* or
   o.w = 0;
   int4 lo, hi;
   brick_range(o, cell_min, cell_max, &lo, &hi);
-  // Inside bits of each sample row (y, z): bit x set when sample x is inside.
+  // Inside bits of each sample row (x, y), row y + 9 x: bit z set when sample z is inside.
   uint rows[APRON * APRON];
   for (int r = 0; r < APRON * APRON; ++r) {
     uint m = 0;
-    for (int x = 0; x < APRON; ++x) m |= (uint)(s[APRON * r + x] > 0.0f) << x;
+    for (int z = 0; z < APRON; ++z) m |= (uint)(s[APRON * r + z] > 0.0f) << z;
     rows[r] = m;
   }
   for (int c = 0; c < 512; ++c) out[c] = 0;
   uint ntri = 0, nvert = 0, nseam = 0;
-  for (int z = 0; z < 8; ++z)
+  for (int x = 0; x < 8; ++x)
     for (int y = 0; y < 8; ++y) {
-      ranks[y + 8 * z] = (ushort)nvert;
-      if (z < lo.z || z > hi.z || y < lo.y || y > hi.y) continue;
-      // Corners 0, 1 on row a; 3, 2 on b; 4, 5 on c; 7, 6 on d (x and x + 1).
-      uint a = rows[y + APRON * z], bb = rows[y + 1 + APRON * z];
-      uint c = rows[y + APRON * (z + 1)], d = rows[y + 1 + APRON * (z + 1)];
+      ranks[y + 8 * x] = (ushort)nvert;
+      if (x < lo.x || x > hi.x || y < lo.y || y > hi.y) continue;
+      // Corners 0, 4 on sample row a (z and z + 1); 3, 7 on bb; 1, 5 on c; 2, 6 on d.
+      uint a = rows[y + APRON * x], bb = rows[y + 1 + APRON * x];
+      uint c = rows[y + APRON * (x + 1)], d = rows[y + 1 + APRON * (x + 1)];
       if (a == bb && a == c && a == d && (a == 0u || a == 0x1ffu)) continue;  // a row of empty cells
-      for (int x = lo.x; x <= hi.x; ++x) {
-        uint index = ((a >> x) & 1u) | ((a >> x) & 2u) | (((bb >> x) & 2u) << 1) | (((bb >> x) & 1u) << 3) |
-                     (((c >> x) & 1u) << 4) | (((c >> x) & 2u) << 4) | (((d >> x) & 2u) << 5) |
-                     (((d >> x) & 1u) << 7);
-        out[x + 8 * y + 64 * z] = (uchar)index;
+      for (int z = lo.z; z <= hi.z; ++z) {
+        uint index = ((a >> z) & 1u) | (((c >> z) & 1u) << 1) | (((d >> z) & 1u) << 2) | (((bb >> z) & 1u) << 3) |
+                     (((a >> z) & 2u) << 3) | (((c >> z) & 2u) << 4) | (((d >> z) & 2u) << 5) |
+                     (((bb >> z) & 2u) << 6);
+        out[z + 8 * y + 64 * x] = (uchar)index;
         uint n = tri_count[index];
         if (n == 0) continue;
         ntri += n;
@@ -140,7 +141,8 @@ inline ulong cell_edge(int4 g, int e, int4 key_origin, uint2 blocks, uint mask, 
 // Per brick, from seam_offsets[b] on: the seam vertices (seam_table), cell by cell in edge order,
 // as (hash, own index j) pairs for the sort, with their vertex number (vertex_offsets[b] plus the
 // rank among the brick's vertices, the numbering mc_emit gives) and edge key. Only the rows on
-// the brick's lower faces and the first cell of every other row hold seam vertices.
+// the brick's lower faces (x = 0 or y = 0) and the first cell of every other row hold seam
+// vertices.
 __kernel void mc_seams(__global const int4* origins, uint nbricks, int4 cell_max, int4 key_origin,
                        uint2 blocks, uint hash_mask, __global const ushort* crossed,
                        __global const uchar* cases, __global const ushort* row_ranks,
@@ -155,12 +157,12 @@ __kernel void mc_seams(__global const int4* origins, uint nbricks, int4 cell_max
   o.w = 0;
   uint first = vertex_offsets[b], j = seam_offsets[b];
   for (int row = 0; row < 64; ++row) {
-    int y = row & 7, z = row >> 3;
-    bool whole = y == 0 || z == 0;
+    int y = row & 7, x = row >> 3;
+    bool whole = x == 0 || y == 0;
     if (whole && row_empty(bc + 8 * row)) continue;
     uint v = first + ranks[row];
-    for (int x = 0; x < (whole ? 8 : 1); ++x) {
-      uint index = bc[8 * row + x];
+    for (int z = 0; z < (whole ? 8 : 1); ++z) {
+      uint index = bc[8 * row + z];
       if (index == 0 || index == 255) continue;
       int4 g = o + (int4)(x, y, z, 0);
       uint owned = crossed[index] & owned_edges(g, cell_max);
@@ -254,9 +256,9 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
     }
     uint index = bc[cell];
     if (index == 0 || index == 255) continue;
-    int x = cell & 7, y = (cell >> 3) & 7, z = cell >> 6;
+    int z = cell & 7, y = (cell >> 3) & 7, x = cell >> 6;
     int4 g = o + (int4)(x, y, z, 0);
-    __global const float* s = brick + x + APRON * y + APRON * APRON * z;
+    __global const float* s = brick + z + APRON * y + APRON * APRON * x;
     int base = 3 * (x + APRON * y + APRON * APRON * z);
     for (uint rest = crossed[index] & owned_edges(g, cell_max); rest; rest &= rest - 1u) {
       int e = (int)lowest_bit(rest);
@@ -287,22 +289,22 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
   ushort todo[3 * APRON * APRON * 3];  // at most 3 faces of 9 x 9 edge ends, 3 axes each
   int ntodo = 0;
   for (int row = 0; row < 64; ++row) {
-    int y = row & 7, z = row >> 3;
-    bool whole = (y == 7 && next.y) || (z == 7 && next.z);  // else only the row's last cell
-    if ((!whole && !next.x) || row_empty(bc + 8 * row)) continue;
-    for (int x = whole ? 0 : 7; x < 8; ++x) {
-      uint index = bc[8 * row + x];
+    int y = row & 7, x = row >> 3;
+    bool whole = (x == 7 && next.x) || (y == 7 && next.y);  // else only the row's last cell
+    if ((!whole && !next.z) || row_empty(bc + 8 * row)) continue;
+    for (int z = whole ? 0 : 7; z < 8; ++z) {
+      uint index = bc[8 * row + z];
       if (index == 0 || index == 255) continue;
       int base = 3 * (x + APRON * y + APRON * APRON * z);
-      for (uint rest = crossed[index]; rest; rest &= rest - 1u) {
-        int e = (int)lowest_bit(rest);
-        int lo = edge_low[e];
-        int slot = base + edge_slot[e];
-        if (((x + corner_x[lo] == 8 && next.x) || (y + corner_y[lo] == 8 && next.y) ||
-             (z + corner_z[lo] == 8 && next.z)) && !((found[slot >> 5] >> (slot & 31)) & 1u)) {
-          found[slot >> 5] |= 1u << (slot & 31);
-          todo[ntodo++] = (ushort)slot;
-        }
+      // Edges whose lower end is on the cell's upper x face: 1, 5, 9, 11; y face: 2, 6, 10, 11;
+      // z face: 4, 5, 6, 7.
+      uint reach = (x == 7 && next.x ? 0xa22u : 0u) | (y == 7 && next.y ? 0xc44u : 0u) |
+                   (z == 7 && next.z ? 0x0f0u : 0u);
+      for (uint rest = crossed[index] & reach; rest; rest &= rest - 1u) {
+        int slot = base + edge_slot[lowest_bit(rest)];
+        if ((found[slot >> 5] >> (slot & 31)) & 1u) continue;
+        found[slot >> 5] |= 1u << (slot & 31);
+        todo[ntodo++] = (ushort)slot;
       }
     }
   }
@@ -322,7 +324,7 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
     }
     uint index = bc[cell];
     int n = 3 * tri_count[index];
-    int x = cell & 7, y = (cell >> 3) & 7, z = cell >> 6;
+    int z = cell & 7, y = (cell >> 3) & 7, x = cell >> 6;
     int base = 3 * (x + APRON * y + APRON * APRON * z);
     __global const char* te = tri_edges + index * 16;
     for (int k = 0; k < n; ++k) out[k] = own[base + edge_slot[te[k]]];
