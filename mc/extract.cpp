@@ -27,7 +27,7 @@ double ms_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
 }
 
-constexpr std::size_t kBricksPerGroup = 8;  // one work item per brick (PoCL runs a group on one thread)
+constexpr std::size_t kBricksPerGroup = 1;  // one work item per brick (PoCL runs a group on one thread)
 constexpr std::size_t kTableGroup = 64;
 
 cl_int4 to_int4(const openvdb::Coord& c) { return cl_int4{{c.x(), c.y(), c.z(), 0}}; }

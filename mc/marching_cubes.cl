@@ -88,8 +88,11 @@ __kernel void mc_classify(__global const float* samples, __global const int4* or
     for (int z = 0; z < APRON; ++z) m |= (uint)(s[APRON * r + z] > 0.0f) << z;
     rows[r] = m;
   }
-  for (int c = 0; c < 512; ++c) out[c] = 0;
+  __global ulong* out8 = (__global ulong*)out;
+  for (int r = 0; r < 64; ++r) out8[r] = 0;
   uint ntri = 0, nvert = 0, nseam = 0;
+  uint zmask = ((2u << hi.z) - 1u) & ~((1u << lo.z) - 1u);  // bits lo.z .. hi.z
+  bool zlast = cell_max.z - o.z <= 7;  // the frame's last cells along z lie in this brick
   for (int x = 0; x < 8; ++x)
     for (int y = 0; y < 8; ++y) {
       ranks[y + 8 * x] = (ushort)nvert;
@@ -103,9 +106,20 @@ __kernel void mc_classify(__global const float* samples, __global const int4* or
                      (((a >> z) & 2u) << 3) | (((c >> z) & 2u) << 4) | (((d >> z) & 2u) << 5) |
                      (((bb >> z) & 2u) << 6);
         out[z + 8 * y + 64 * x] = (uchar)index;
-        uint n = tri_count[index];
-        if (n == 0) continue;
-        ntri += n;
+        ntri += tri_count[index];
+      }
+      if (!zlast && o.x + x != cell_max.x && o.y + y != cell_max.y) {
+        // No cell of the row is the frame's last: each owns the edges at its corner 0, the x edge
+        // (a against c), the y edge (a against bb) and the z edge (a against a shifted), and
+        // which of them are seam edges depends on the row and on z == 0 (seam_table).
+        uint ex = (a ^ c) & zmask, ey = (a ^ bb) & zmask, ez = (a ^ (a >> 1)) & zmask;
+        nvert += popcount(ex) + popcount(ey) + popcount(ez);
+        nseam += popcount(ex & (y == 0 ? 0xffu : 1u)) + popcount(ey & (x == 0 ? 0xffu : 1u)) +
+                 (x == 0 || y == 0 ? popcount(ez) : 0u);
+        continue;
+      }
+      for (int z = lo.z; z <= hi.z; ++z) {
+        uint index = out[z + 8 * y + 64 * x];
         uint owned = crossed[index] & owned_edges(o + (int4)(x, y, z, 0), cell_max);
         nvert += popcount(owned);
         nseam += popcount(owned & seam_table[(x == 0) | (y == 0) << 1 | (z == 0) << 2]);
