@@ -180,10 +180,13 @@ void gather_bricks(const volume::Volume& v, const Frame& f, std::vector<openvdb:
                                                oy >= f.domain.min().y() && oy <= f.domain.max().y());
             const int k = (x >> 3) | ((y >> 3) << 1);
             const int offset = ((x & 7) << 6) | ((y & 7) << 3);
+            float value[kApron];
+            if (data[k]) std::copy_n(data[k] + offset, kBrick, value);
+            else std::fill_n(value, kBrick, tile[k]);
+            value[kBrick] = data[k | 4] ? data[k | 4][offset] : tile[k | 4];
             for (int z = 0; z < kApron; ++z) {
-              const int kz = k | ((z >> 3) << 2);
-              const float value = data[kz] ? data[kz][offset | (z & 7)] : tile[kz];
-              const float s = column_in && z_in[z] && std::isfinite(value) ? f.sign * (value - f.isovalue) : f.outside;
+              const float s = column_in && z_in[z] && std::isfinite(value[z]) ? f.sign * (value[z] - f.isovalue)
+                                                                               : f.outside;
               *out++ = s;
               in |= s > 0;
               outside |= !(s > 0);

@@ -19,6 +19,7 @@
 
 #define APRON 9
 #define BRICK_SAMPLES 729
+#define UNKNOWN 0xffffffffu
 
 __constant int corner_offset[8] = {0, APRON * APRON, APRON * APRON + APRON, APRON, 1, APRON * APRON + 1,
                                    APRON * APRON + APRON + 1, APRON + 1};
@@ -242,10 +243,11 @@ __constant int edge_slot[12] = {0, 3 * 1 + 1, 3 * 9 + 0, 1, 3 * 81 + 0, 3 * 82 +
                                 3 * 90 + 0, 3 * 81 + 1, 2, 3 * 1 + 2, 3 * 9 + 2, 3 * 10 + 2};
 
 // Per brick, the vertices (positions, and edge keys when write_keys) from vertex_offsets[b] on and
-// the triangles from triangle_offsets[b] on, in three walks over the non-empty cells: (1) each owned
-// crossed edge's vertex, recorded in the brick's vertex map `own` (by edge_slot); (2) the edges
-// on the brick's upper faces that another brick owns, looked up by their hash (find_vertex) into
-// the map; (3) every triangle corner from the map, without branches.
+// the triangles from triangle_offsets[b] on, in two walks over the non-empty cells: (1) each owned
+// crossed edge's vertex, recorded in the brick's vertex map `own` (by edge_slot); (2) every
+// triangle corner from the map. Edges on the brick's upper faces that another brick owns are
+// marked unknown in the map first and looked up by their hash (find_vertex) when a triangle first
+// needs them.
 __kernel void mc_emit(__global const float* samples, __global const int4* origins, uint nbricks,
                       int4 cell_max, int4 key_origin, uint2 blocks, uint hash_mask, float min_fraction,
                       float16 world, __global const char* tri_edges, __global const uchar* tri_count,
@@ -261,6 +263,14 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
   int4 o = origins[b];
   o.w = 0;
   uint own[APRON * APRON * APRON * 3];
+  int4 next = (int4)(cell_max.x > o.x + 7, cell_max.y > o.y + 7, cell_max.z > o.z + 7, 0);
+  for (int i = 0; i < APRON * APRON; ++i)  // edges starting on an upper face another brick owns
+    for (int axis = 0; axis < 3; ++axis) {
+      int u = i % APRON, v = i / APRON;
+      if (next.x) own[3 * (8 + APRON * u + APRON * APRON * v) + axis] = UNKNOWN;
+      if (next.y) own[3 * (u + APRON * 8 + APRON * APRON * v) + axis] = UNKNOWN;
+      if (next.z) own[3 * (u + APRON * v + APRON * APRON * 8) + axis] = UNKNOWN;
+    }
   // (1) The brick's own vertices, cell by cell in edge order.
   uint w = vertex_offsets[b];
   for (int cell = 0; cell < 512; ++cell) {
@@ -293,43 +303,7 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
       own[base + edge_slot[e]] = w++;
     }
   }
-  // (2) Edges whose lower end lies on an upper face (local coordinate 8) that continues into
-  // another brick: only the cells in the last layer along an axis reach them. Up to four cells
-  // share such an edge; `found` marks the slots already listed. The slots are listed first and
-  // looked up after, so the independent lookups overlap in the processor.
-  int4 next = (int4)(cell_max.x > o.x + 7, cell_max.y > o.y + 7, cell_max.z > o.z + 7, 0);
-  uint found[(3 * APRON * APRON * APRON + 31) / 32];
-  for (int i = 0; i < (3 * APRON * APRON * APRON + 31) / 32; ++i) found[i] = 0;
-  ushort todo[3 * APRON * APRON * 3];  // at most 3 faces of 9 x 9 edge ends, 3 axes each
-  int ntodo = 0;
-  for (int row = 0; row < 64; ++row) {
-    int y = row & 7, x = row >> 3;
-    bool whole = (x == 7 && next.x) || (y == 7 && next.y);  // else only the row's last cell
-    if ((!whole && !next.z) || row_empty(bc + 8 * row)) continue;
-    for (int z = whole ? 0 : 7; z < 8; ++z) {
-      uint index = bc[8 * row + z];
-      if (index == 0 || index == 255) continue;
-      int base = 3 * (x + APRON * y + APRON * APRON * z);
-      // Edges whose lower end is on the cell's upper x face: 1, 5, 9, 11; y face: 2, 6, 10, 11;
-      // z face: 4, 5, 6, 7.
-      uint reach = (x == 7 && next.x ? 0xa22u : 0u) | (y == 7 && next.y ? 0xc44u : 0u) |
-                   (z == 7 && next.z ? 0x0f0u : 0u);
-      for (uint rest = crossed[index] & reach; rest; rest &= rest - 1u) {
-        int slot = base + edge_slot[lowest_bit(rest)];
-        if ((found[slot >> 5] >> (slot & 31)) & 1u) continue;
-        found[slot >> 5] |= 1u << (slot & 31);
-        todo[ntodo++] = (ushort)slot;
-      }
-    }
-  }
-  for (int i = 0; i < ntodo; ++i) {
-    int slot = todo[i], axis = slot % 3, end = slot / 3;
-    int4 g = o + (int4)(end % APRON, (end / APRON) % APRON, end / (APRON * APRON), 0);
-    uint h;
-    ulong key = cell_edge(g, axis == 0 ? 0 : axis == 1 ? 3 : 8, key_origin, blocks, hash_mask, &h);
-    own[slot] = find_vertex(key, h, entries, nseams, starts, shift);
-  }
-  // (3) The triangles.
+  // (2) The triangles.
   __global uint* out = triangles + 3 * (size_t)triangle_offsets[b];
   for (int cell = 0; cell < 512; ++cell) {
     if ((cell & 7) == 0 && row_empty(bc + cell)) {
@@ -341,7 +315,18 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
     int z = cell & 7, y = (cell >> 3) & 7, x = cell >> 6;
     int base = 3 * (x + APRON * y + APRON * APRON * z);
     __global const char* te = tri_edges + index * 16;
-    for (int k = 0; k < n; ++k) out[k] = own[base + edge_slot[te[k]]];
+    for (int k = 0; k < n; ++k) {
+      int slot = base + edge_slot[te[k]];
+      uint v = own[slot];
+      if (v == UNKNOWN) {  // first use of an edge owned by another brick
+        int axis = slot % 3, end = slot / 3;
+        int4 g = o + (int4)(end % APRON, (end / APRON) % APRON, end / (APRON * APRON), 0);
+        uint h;
+        ulong key = cell_edge(g, axis == 0 ? 0 : axis == 1 ? 3 : 8, key_origin, blocks, hash_mask, &h);
+        own[slot] = v = find_vertex(key, h, entries, nseams, starts, shift);
+      }
+      out[k] = v;
+    }
     out += n;
   }
 }
