@@ -15,25 +15,27 @@ extern const char* const radix_sort_cl;
 
 namespace {
 constexpr std::size_t kChunkGroup = 8;  // chunks per work group
+constexpr int kRadixBits = 11;          // digit width (radix_sort.cl's RADIX_BITS)
+constexpr std::uint32_t kRadix = 1u << kRadixBits;
 }  // namespace
 
 void radix_sort_pairs(Device& dev, cl::Buffer& keys, cl::Buffer& values, std::uint32_t n, int key_bits) {
   if (key_bits < 1 || key_bits > 32) throw Error("radix sort: key_bits must be 1..32");
   if (n < 2) return;
   cl::Program& prog = dev.program("radix_sort", kernels::radix_sort_cl);
-  const std::uint32_t p = std::clamp<std::uint32_t>(n / 4096, 1, 256);
+  const std::uint32_t p = std::clamp<std::uint32_t>(n / 8192, 1, 64);
   const std::uint32_t chunk = (n + p - 1) / p;
-  cl::Buffer& hist = dev.scratch().get(kRadixHistogram, sizeof(std::uint32_t) * 256 * p);
+  cl::Buffer& hist = dev.scratch().get(kRadixHistogram, sizeof(std::uint32_t) * kRadix * p);
   cl::Buffer& keys2 = dev.scratch().get(kRadixKeys, sizeof(std::uint32_t) * n);
   cl::Buffer& values2 = dev.scratch().get(kRadixValues, sizeof(std::uint32_t) * n);
   cl::Kernel kh(prog, "radix_histogram"), ks(prog, "radix_scatter");
   cl::Buffer *src_k = &keys, *src_v = &values, *dst_k = &keys2, *dst_v = &values2;
-  const int passes = (key_bits + 7) / 8;
+  const int passes = (key_bits + kRadixBits - 1) / kRadixBits;
   for (int pass = 0; pass < passes; ++pass) {
-    const std::uint32_t shift = 8u * pass;
+    const std::uint32_t shift = kRadixBits * pass;
     set_args(kh, *src_k, n, chunk, shift, p, hist);
     launch(dev.queue(), kh, p, kChunkGroup);
-    exclusive_scan(dev, hist, hist, 256 * p);
+    exclusive_scan(dev, hist, hist, kRadix * p);
     set_args(ks, *src_k, *src_v, n, chunk, shift, p, hist, *dst_k, *dst_v);
     launch(dev.queue(), ks, p, kChunkGroup);
     std::swap(src_k, dst_k);

@@ -170,15 +170,16 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           launch(q, seams, nbricks, kBricksPerGroup);
           mark(&ExtractTimings::seams);
 
-          radix_sort_pairs(st.device, d_hash, d_order, nseam, options.hash_bits);
-          mark(&ExtractTimings::sort);
-
-          // The lookup table, with a bucket index over the top bits of the hashes' range (about
-          // one seam vertex a bucket).
+          // Every hash lies below 2^range_bits: the sort needs no more key bits than that.
           const std::uint64_t nblocks = std::uint64_t(blocks.s[0]) * blocks.s[1] * std::uint64_t(key_span.z() / 8 + 1);
           const std::uint64_t hash_range = std::min(nblocks * kEdgeSlotsPerBlock, std::uint64_t(mask) + 1);
           int range_bits = 1, table_bits = 1;
           while (range_bits < 32 && (std::uint64_t(1) << range_bits) < hash_range) ++range_bits;
+          radix_sort_pairs(st.device, d_hash, d_order, nseam, range_bits);
+          mark(&ExtractTimings::sort);
+
+          // The lookup table, with a bucket index over the top bits of the hashes' range (about
+          // one seam vertex a bucket).
           while (table_bits < range_bits && (std::uint64_t(1) << table_bits) <= nseam) ++table_bits;
           table_bits = std::min(table_bits, 24);
           const cl_uint shift = static_cast<cl_uint>(range_bits - table_bits);
