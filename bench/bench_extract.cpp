@@ -73,8 +73,9 @@ void run_case(const Case& c, int runs) {
     return t[t.size() / 2];
   };
   steps = per_run.front();
-  std::printf("%-26s   ours, %zu bricks: prepare %.1f, select %.1f, gather %.1f, classify+scan %.1f, seams %.1f, "
-              "sort %.1f, emit %.1f, read %.1f ms\n", "", steps.bricks, median(&mc::ExtractTimings::prepare),
+  std::printf("%-26s   ours, %zu bricks, %zu seam vertices: prepare %.1f, select %.1f, gather %.1f, classify+scan "
+              "%.1f, seams %.1f, sort %.1f, emit %.1f, read %.1f ms\n", "", steps.bricks, steps.seam_vertices,
+              median(&mc::ExtractTimings::prepare),
               median(&mc::ExtractTimings::select), median(&mc::ExtractTimings::gather),
               median(&mc::ExtractTimings::classify), median(&mc::ExtractTimings::seams),
               median(&mc::ExtractTimings::sort), median(&mc::ExtractTimings::emit), median(&mc::ExtractTimings::read));

@@ -14,8 +14,8 @@ extern const char* const radix_sort_cl;
 }
 
 namespace {
-constexpr std::size_t kChunkGroup = 8;  // chunks per work group
-constexpr int kRadixBits = 11;          // digit width (radix_sort.cl's RADIX_BITS)
+constexpr std::size_t kChunkGroup = 1;  // a chunk per work group: PoCL runs a group on one thread
+constexpr int kRadixBits = 11;          // digit width: radix_sort.cl's RADIX_BITS, keep equal
 constexpr std::uint32_t kRadix = 1u << kRadixBits;
 }  // namespace
 

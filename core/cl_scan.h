@@ -1,5 +1,5 @@
 #pragma once
-// Exclusive prefix sum on the device (used by the mesher's compaction and the radix sort).
+// Exclusive prefix sum on the device (the mesher's offsets, the radix sort).
 #include "core/cl_device.h"
 
 namespace isocurv {

@@ -2,7 +2,7 @@
 // per-chunk digit histograms stored digit-major (hist[d * P + c]), an exclusive scan of them, then
 // a sequential stable scatter per chunk. Deterministic: the result depends only on the input.
 
-#define RADIX_BITS 11
+#define RADIX_BITS 11  // core/cl_radix_sort.cpp kRadixBits, keep equal
 #define RADIX (1 << RADIX_BITS)
 
 __kernel void radix_histogram(__global const uint* keys, uint n, uint chunk, uint shift, uint p,

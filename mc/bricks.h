@@ -39,9 +39,9 @@ class BrickIndex {
 
 /// Writes the samples of the given bricks to `out` (room for origins.size() * kBrickSamples
 /// floats): kBrickSamples signed values each (Frame::signed_value), z fastest (sample z + 9 y +
-/// 81 x, as in a VDB leaf), from the brick
-/// origin. Bricks whose samples turn out not to straddle are dropped from `origins` and from
-/// `out` (which stays packed). Parallel (TBB); deterministic order.
+/// 81 x, as in a VDB leaf), from the brick origin. Bricks whose samples turn out not to straddle
+/// are dropped from `origins` and from `out` (which stays packed). Parallel (TBB); deterministic
+/// order.
 void gather_bricks(const volume::Volume& v, const Frame& f, std::vector<openvdb::Coord>& origins, float* out);
 
 }  // namespace isocurv::mc

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstring>
+#include <string>
 
 #include "core/cl_launch.h"
 #include "core/cl_radix_sort.h"
@@ -32,6 +32,15 @@ constexpr std::size_t kTableGroup = 64;
 
 cl_int4 to_int4(const openvdb::Coord& c) { return cl_int4{{c.x(), c.y(), c.z(), 0}}; }
 
+// Waits for queued work (kernels may be writing into the mesh's vectors) before an error unwinds
+// them; a second failure there changes nothing for the caller.
+void drain(cl::CommandQueue& q) {
+  try {
+    q.finish();
+  } catch (...) {
+  }
+}
+
 // A kernel's output that ends in a host vector (already sized). On CPU devices the kernel writes
 // the vector's memory itself (a CL_MEM_USE_HOST_PTR buffer: PoCL uses the pointer as is, and
 // mapping it afterwards is the synchronisation, without a copy); elsewhere it writes a device
@@ -49,6 +58,8 @@ class OutputArray {
       buffer_ = &device.scratch().get(scratch_slot, std::max<std::size_t>(bytes_, sizeof(T)));
     }
   }
+  OutputArray(const OutputArray&) = delete;  // buffer_ may point at own_
+  OutputArray& operator=(const OutputArray&) = delete;
   cl::Buffer& buffer() { return *buffer_; }
   /// Enqueues what brings the kernel's results into the vector (blocks for a mapped buffer).
   void fetch(cl::CommandQueue& q) {
@@ -130,6 +141,9 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
       tm.bricks = origins.size();
       t2 = step = Clock::now();
       if (!origins.empty()) {  // else every candidate lay wholly on one side: an empty mesh
+        // At most 5 triangles a cell: the per-brick counts and their 32-bit scans cannot wrap.
+        if (origins.size() > 0xffffffffULL / (5 * 512))
+          throw Error(st.volume.path, "isosurface too large (" + std::to_string(origins.size()) + " bricks)");
         const auto nbricks = static_cast<std::uint32_t>(origins.size());
         std::vector<cl_int4> orig4(origins.size());
         for (std::size_t i = 0; i < origins.size(); ++i) orig4[i] = to_int4(origins[i]);
@@ -151,6 +165,7 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
         const std::uint32_t ntri = exclusive_scan(st.device, d_tri_offsets, d_tri_offsets, nbricks);
         const std::uint32_t nvert = exclusive_scan(st.device, d_vert_offsets, d_vert_offsets, nbricks);
         const std::uint32_t nseam = exclusive_scan(st.device, d_seam_offsets, d_seam_offsets, nbricks);
+        tm.seam_vertices = nseam;
         mark(&ExtractTimings::classify);
         if (std::uint64_t(ntri) * 3 >= 0xffffffffULL)
           throw Error(st.volume.path, "isosurface too large (over 1.4 billion triangles)");
@@ -186,9 +201,6 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           const cl_uint nbuckets = 1u << table_bits;
           cl::Buffer& d_table = scratch.get(kMcTable, nseam1 * 4 * sizeof(std::uint32_t));
           cl::Buffer& d_starts = scratch.get(kMcBucketStarts, (std::size_t(nbuckets) + 1) * sizeof(std::uint32_t));
-          cl::Kernel table(*st.program, "mc_table");
-          set_args(table, d_hash, d_order, d_seam_vertex, d_seam_keys, nseam, shift, nbuckets, d_table, d_starts);
-          launch(q, table, std::size_t(nseam) + 1, kTableGroup);
 
           // Positions and triangles (and edge keys when asked for), straight into the mesh.
           resize_in_huge_pages(mesh.positions, nvert);
@@ -199,6 +211,10 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           OutputArray out_tris(st.device, mesh.triangles, kMcTriangles);
           OutputArray out_keys(st.device, mesh.edge_keys, kMcKeys);
           mark(&ExtractTimings::read);
+
+          cl::Kernel table(*st.program, "mc_table");
+          set_args(table, d_hash, d_order, d_seam_vertex, d_seam_keys, nseam, shift, nbuckets, d_table, d_starts);
+          launch(q, table, std::size_t(nseam) + 1, kTableGroup);
           cl_float16 world{};
           for (int i = 0; i < 12; ++i) world.s[i] = f.world[i];
           cl::Kernel emit(*st.program, "mc_emit");
@@ -216,8 +232,12 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
         }
       }
     } catch (const cl::Error& e) {
+      drain(st.device.queue());
       throw Error(st.volume.path, std::string("marching cubes failed on the OpenCL device: ") + e.what() + " (" +
                                       cl_error_name(e.err()) + ")");
+    } catch (...) {
+      drain(st.device.queue());
+      throw;
     }
   }
   tm.device = ms_since(t2);

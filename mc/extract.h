@@ -11,7 +11,7 @@ namespace isocurv::mc {
 
 /// Time spent in each step of one extraction, milliseconds.
 struct ExtractTimings {
-  double prepare = 0;   ///< per-block value ranges (one-shot extract() only; a Mesher does it once)
+  double prepare = 0;   ///< Mesher construction: per-block value ranges, kernels (one-shot extract() only)
   double select = 0;    ///< choosing straddling bricks (host)
   double gather = 0;    ///< copying their samples with aprons (host)
   double device = 0;    ///< classify, scans, seams, sort, emit, read back
@@ -19,10 +19,11 @@ struct ExtractTimings {
   double classify = 0;  ///< upload, cell cases, triangle/vertex/seam-vertex counts per brick, scans
   double seams = 0;     ///< the vertices other bricks look up: edge hash, key, vertex number
   double sort = 0;      ///< radix sort of their (hash, j) pairs
-  double emit = 0;      ///< lookup table; positions; every triangle corner's vertex
+  double emit = 0;      ///< lookup table; positions; every triangle corner's vertex (mc_emit)
   double read = 0;      ///< the mesh's arrays: allocated, and read back from non-CPU devices
   double total = 0;
-  std::size_t bricks = 0;  ///< bricks processed
+  std::size_t bricks = 0;         ///< bricks processed
+  std::size_t seam_vertices = 0;  ///< vertices other bricks look up (hashed, sorted, searched)
 };
 
 /// A volume prepared for repeated extraction (the explorer's slider): the per-block value ranges

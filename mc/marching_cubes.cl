@@ -12,9 +12,9 @@
 // Steps: mc_classify (cases; triangles, vertices and seam vertices per brick), scans, mc_seams
 // (the vertices other bricks will look up, with a hash of their edge's identity), radix sort by
 // hash, mc_table, mc_emit (positions and triangles). A cell finds the vertex of an edge owned in
-// its own brick directly (the brick is walked from its last cell, so owners come first), and one
-// owned by another brick by a binary search for the edge's hash in the sorted seam vertices and a
-// walk over equal hashes comparing edge identities. The output has no duplicate and no
+// its own brick directly (mc_emit records the brick's vertices in a map before it writes
+// triangles), and one owned by another brick by a binary search for the edge's hash in the sorted
+// seam vertices and a walk over equal hashes comparing edge identities. The output has no duplicate and no
 // unreferenced vertex by construction.
 
 #define APRON 9
@@ -64,7 +64,8 @@ inline void brick_range(int4 o, int4 cell_min, int4 cell_max, int4* lo, int4* hi
 // along an axis across the edge (the cells there lie one brick down).
 __constant ushort seam_table[8] = {0x0, 0x588, 0x311, 0x799, 0xf, 0x58f, 0x31f, 0x79f};
 
-// Per brick: every cell's case (0 for cells outside the frame) into cases[512 b ..]; the brick's
+// Per brick: every cell's case into cases[512 b ..] (0 for cells outside the frame and for rows
+// with no triangles, whatever their case); the brick's
 // triangles, vertices (owned crossed edges) and seam vertices (those other bricks use); and for
 // each row of cells (x, y) the number of the brick's vertices before it, into row_ranks[64 b ..].
 // crossed[case]: bit e set when edge e joins an inside corner to an outside one.
@@ -223,10 +224,10 @@ inline uint find_vertex(ulong key, uint h, __global const uint4* entries, uint n
   uint b = h >> shift;
   uint lo = starts[b], len = starts[b + 1] - lo;
   while (len > 0) {  // lower bound of h in [lo, lo + len), without branches on the data
-    uint step = len >> 1, mid = lo + step;
+    uint half_len = len >> 1, mid = lo + half_len;
     bool less = entries[mid].x < h;
     lo = less ? mid + 1 : lo;
-    len = less ? len - step - 1 : step;
+    len = less ? len - half_len - 1 : half_len;
   }
   uint klo = (uint)key, khi = (uint)(key >> 32);
   for (uint j = lo; j < n; ++j) {
@@ -293,9 +294,10 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
       float px = (float)(g.x + corner_x[lo]) + (axis == 0 ? f : 0.0f);
       float py = (float)(g.y + corner_y[lo]) + (axis == 1 ? f : 0.0f);
       float pz = (float)(g.z + corner_z[lo]) + (axis == 2 ? f : 0.0f);
-      positions[3 * w + 0] = world.s0 * px + world.s1 * py + world.s2 * pz + world.s3;
-      positions[3 * w + 1] = world.s4 * px + world.s5 * py + world.s6 * pz + world.s7;
-      positions[3 * w + 2] = world.s8 * px + world.s9 * py + world.sa * pz + world.sb;
+      __global float* p = positions + 3 * (size_t)w;
+      p[0] = world.s0 * px + world.s1 * py + world.s2 * pz + world.s3;
+      p[1] = world.s4 * px + world.s5 * py + world.s6 * pz + world.s7;
+      p[2] = world.s8 * px + world.s9 * py + world.sa * pz + world.sb;
       if (write_keys) {
         uint h;
         keys[w] = cell_edge(g, e, key_origin, blocks, hash_mask, &h);

@@ -52,7 +52,7 @@ TEST_P(ScanSortSizes, ExclusiveScanMatchesStd) {
 TEST_P(ScanSortSizes, RadixSortIsAStableSortByTheKey) {
   Device& dev = Device::default_device();
   const std::size_t n = GetParam();
-  for (int bits : {5, 11, 23, 32}) {
+  for (int bits : {5, 11, 16, 22, 23, 32}) {  // one, two and three passes
     const std::uint32_t mask = bits == 32 ? 0xffffffffu : (1u << bits) - 1u;
     // Few distinct keys for narrow widths: many ties, so stability is tested.
     const auto keys = random_values(n, mask, 11u + unsigned(n) + unsigned(bits));
@@ -70,6 +70,18 @@ TEST_P(ScanSortSizes, RadixSortIsAStableSortByTheKey) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Core, ScanSortSizes, ::testing::Values(0, 1, 2, 511, 512, 513, 8191, 8192, 70001, 600000));
+
+TEST(ExclusiveScan, MoreElementsThanItsChunksHoldAtTheMinimumChunkSize) {
+  // Past 4096 chunks of 512 the chunks grow; the last ones may be empty.
+  Device& dev = Device::default_device();
+  const std::size_t n = 3'000'001;
+  const auto in = random_values(n, 0x3, 5);
+  std::vector<std::uint32_t> want(n);
+  std::exclusive_scan(in.begin(), in.end(), want.begin(), std::uint32_t(0));
+  cl::Buffer b = upload(dev, in), out(dev.context(), CL_MEM_READ_WRITE, n * sizeof(std::uint32_t));
+  EXPECT_EQ(exclusive_scan(dev, b, out, static_cast<std::uint32_t>(n)), want.back() + in.back());
+  EXPECT_EQ(download(dev, out, n), want);
+}
 
 TEST(RadixSort, RejectsKeyWidthsOutside1To32) {
   Device& dev = Device::default_device();
