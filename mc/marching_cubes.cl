@@ -46,11 +46,19 @@ inline uint owned_edges(int4 g, int4 cell_max) {
 // Index of the lowest set bit of m (m != 0).
 inline uint lowest_bit(uint m) { return 31u - clz(m & (~m + 1u)); }
 
-// True when none of the 8 cells of a row of cases (8 bytes read as one ulong) has triangles: every
-// byte is 0 or 255, i.e. each byte's bits all equal their lower neighbour's.
-inline bool row_empty(__global const uchar* row_cases) {
-  ulong r = *(__global const ulong*)row_cases;
-  return ((r ^ (r << 1)) & 0xfefefefefefefefeUL) == 0;
+// Bit z set for each cell of a row (8 case bytes, cell z at byte z) that has triangles, i.e. whose
+// case is neither 0 nor 255 (not all of its bits equal).
+inline uint row_cells(__global const uchar* row_cases) {
+#ifdef __ENDIAN_LITTLE__
+  ulong r = *(__global const ulong*)row_cases;  // 8-byte aligned: rows start at multiples of 8
+  ulong t = (r ^ (r << 1)) & 0xfefefefefefefefeUL;  // byte z nonzero iff cell z has triangles
+  ulong nonzero = (((t & 0x7f7f7f7f7f7f7f7fUL) + 0x7f7f7f7f7f7f7f7fUL) | t) & 0x8080808080808080UL;
+  return (uint)(((nonzero >> 7) * 0x0102040810204080UL) >> 56);  // byte z's flag to bit z
+#else
+  uint cells = 0;
+  for (int z = 0; z < 8; ++z) cells |= (uint)(row_cases[z] != 0 && row_cases[z] != 255) << z;
+  return cells;
+#endif
 }
 
 // The cells of brick b's 8^3 that lie in [cell_min, cell_max]: local ranges lo..hi per axis.
@@ -174,12 +182,12 @@ __kernel void mc_seams(__global const int4* origins, uint nbricks, int4 cell_max
   uint first = vertex_offsets[b], j = seam_offsets[b];
   for (int row = 0; row < 64; ++row) {
     int y = row & 7, x = row >> 3;
-    bool whole = x == 0 || y == 0;
-    if (whole && row_empty(bc + 8 * row)) continue;
+    // Every cell of a row on a lower face (x = 0 or y = 0), else only the first (z = 0).
+    uint cells = row_cells(bc + 8 * row) & (x == 0 || y == 0 ? 0xffu : 1u);
     uint v = first + ranks[row];
-    for (int z = 0; z < (whole ? 8 : 1); ++z) {
+    for (; cells; cells &= cells - 1u) {
+      int z = (int)lowest_bit(cells);
       uint index = bc[8 * row + z];
-      if (index == 0 || index == 255) continue;
       int4 g = o + (int4)(x, y, z, 0);
       uint owned = crossed[index] & owned_edges(g, cell_max);
       for (uint seam = owned & seam_table[(x == 0) | (y == 0) << 1 | (z == 0) << 2]; seam; seam &= seam - 1u) {
@@ -274,61 +282,56 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
     }
   // (1) The brick's own vertices, cell by cell in edge order.
   uint w = vertex_offsets[b];
-  for (int cell = 0; cell < 512; ++cell) {
-    if ((cell & 7) == 0 && row_empty(bc + cell)) {
-      cell += 7;
-      continue;
-    }
-    uint index = bc[cell];
-    if (index == 0 || index == 255) continue;
-    int z = cell & 7, y = (cell >> 3) & 7, x = cell >> 6;
-    int4 g = o + (int4)(x, y, z, 0);
-    __global const float* s = brick + z + APRON * y + APRON * APRON * x;
-    int base = 3 * (x + APRON * y + APRON * APRON * z);
-    for (uint rest = crossed[index] & owned_edges(g, cell_max); rest; rest &= rest - 1u) {
-      int e = (int)lowest_bit(rest);
-      int lo = edge_low[e], axis = edge_axis[e];
-      float s0 = s[corner_offset[lo]], s1 = s[corner_offset[lo] + axis_step[axis]];
-      float f = s0 / (s0 - s1);
-      f = fmin(fmax(f, min_fraction), 1.0f - min_fraction);
-      float px = (float)(g.x + corner_x[lo]) + (axis == 0 ? f : 0.0f);
-      float py = (float)(g.y + corner_y[lo]) + (axis == 1 ? f : 0.0f);
-      float pz = (float)(g.z + corner_z[lo]) + (axis == 2 ? f : 0.0f);
-      __global float* p = positions + 3 * (size_t)w;
-      p[0] = world.s0 * px + world.s1 * py + world.s2 * pz + world.s3;
-      p[1] = world.s4 * px + world.s5 * py + world.s6 * pz + world.s7;
-      p[2] = world.s8 * px + world.s9 * py + world.sa * pz + world.sb;
-      if (write_keys) {
-        uint h;
-        keys[w] = cell_edge(g, e, key_origin, blocks, hash_mask, &h);
+  for (int row = 0; row < 64; ++row) {
+    for (uint cells = row_cells(bc + 8 * row); cells; cells &= cells - 1u) {
+      int z = (int)lowest_bit(cells), y = row & 7, x = row >> 3;
+      uint index = bc[8 * row + z];
+      int4 g = o + (int4)(x, y, z, 0);
+      __global const float* s = brick + z + APRON * y + APRON * APRON * x;
+      int base = 3 * (x + APRON * y + APRON * APRON * z);
+      for (uint rest = crossed[index] & owned_edges(g, cell_max); rest; rest &= rest - 1u) {
+        int e = (int)lowest_bit(rest);
+        int lo = edge_low[e], axis = edge_axis[e];
+        float s0 = s[corner_offset[lo]], s1 = s[corner_offset[lo] + axis_step[axis]];
+        float f = s0 / (s0 - s1);
+        f = fmin(fmax(f, min_fraction), 1.0f - min_fraction);
+        float px = (float)(g.x + corner_x[lo]) + (axis == 0 ? f : 0.0f);
+        float py = (float)(g.y + corner_y[lo]) + (axis == 1 ? f : 0.0f);
+        float pz = (float)(g.z + corner_z[lo]) + (axis == 2 ? f : 0.0f);
+        __global float* p = positions + 3 * (size_t)w;
+        p[0] = world.s0 * px + world.s1 * py + world.s2 * pz + world.s3;
+        p[1] = world.s4 * px + world.s5 * py + world.s6 * pz + world.s7;
+        p[2] = world.s8 * px + world.s9 * py + world.sa * pz + world.sb;
+        if (write_keys) {
+          uint h;
+          keys[w] = cell_edge(g, e, key_origin, blocks, hash_mask, &h);
+        }
+        own[base + edge_slot[e]] = w++;
       }
-      own[base + edge_slot[e]] = w++;
     }
   }
   // (2) The triangles.
   __global uint* out = triangles + 3 * (size_t)triangle_offsets[b];
-  for (int cell = 0; cell < 512; ++cell) {
-    if ((cell & 7) == 0 && row_empty(bc + cell)) {
-      cell += 7;
-      continue;
-    }
-    uint index = bc[cell];
-    int n = 3 * tri_count[index];
-    int z = cell & 7, y = (cell >> 3) & 7, x = cell >> 6;
-    int base = 3 * (x + APRON * y + APRON * APRON * z);
-    __global const char* te = tri_edges + index * 16;
-    for (int k = 0; k < n; ++k) {
-      int slot = base + edge_slot[te[k]];
-      uint v = own[slot];
-      if (v == UNKNOWN) {  // first use of an edge owned by another brick
-        int axis = slot % 3, end = slot / 3;
-        int4 g = o + (int4)(end % APRON, (end / APRON) % APRON, end / (APRON * APRON), 0);
-        uint h;
-        ulong key = cell_edge(g, axis == 0 ? 0 : axis == 1 ? 3 : 8, key_origin, blocks, hash_mask, &h);
-        own[slot] = v = find_vertex(key, h, entries, nseams, starts, shift);
+  for (int row = 0; row < 64; ++row) {
+    for (uint cells = row_cells(bc + 8 * row); cells; cells &= cells - 1u) {
+      int z = (int)lowest_bit(cells), y = row & 7, x = row >> 3;
+      uint index = bc[8 * row + z];
+      int n = 3 * tri_count[index];
+      int base = 3 * (x + APRON * y + APRON * APRON * z);
+      __global const char* te = tri_edges + index * 16;
+      for (int k = 0; k < n; ++k) {
+        int slot = base + edge_slot[te[k]];
+        uint v = own[slot];
+        if (v == UNKNOWN) {  // first use of an edge owned by another brick
+          int axis = slot % 3, end = slot / 3;
+          int4 g = o + (int4)(end % APRON, (end / APRON) % APRON, end / (APRON * APRON), 0);
+          uint h;
+          ulong key = cell_edge(g, axis == 0 ? 0 : axis == 1 ? 3 : 8, key_origin, blocks, hash_mask, &h);
+          own[slot] = v = find_vertex(key, h, entries, nseams, starts, shift);
+        }
+        out[k] = v;
       }
-      out[k] = v;
+      out += n;
     }
-    out += n;
   }
 }
