@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <type_traits>
 
 #include "core/error.h"
 #include "datasets/c60.h"
@@ -22,7 +23,10 @@ template <class F>
 auto derivative(F&& f, const Vector3d& p, int a, double h) {
   Vector3d e = Vector3d::Zero();
   e[a] = h;
-  return (8.0 * (f(p + e) - f(p - e)) - (f(p + 2 * e) - f(p - 2 * e))) / (12.0 * h);
+  // Evaluated into R: an Eigen expression returned by `auto` would refer to dead temporaries.
+  using R = std::decay_t<decltype(f(p))>;
+  const R plus1 = f(p + e), minus1 = f(p - e), plus2 = f(p + 2 * e), minus2 = f(p - 2 * e);
+  return R((8.0 * (plus1 - minus1) - (plus2 - minus2)) / (12.0 * h));
 }
 
 // Random points in the box, and as many again projected onto the surface (where curvature matters).
