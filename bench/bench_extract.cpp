@@ -90,11 +90,16 @@ int main(int argc, char** argv) {
   bool quick = false;
   int runs = 5;
   std::string data = ISOCURV_SHARED_DATASETS;
+  std::string only;  // run only the volumes whose name contains this
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--quick")) quick = true;
     else if (!std::strcmp(argv[i], "--runs") && i + 1 < argc) runs = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--datasets") && i + 1 < argc) data = argv[++i];
-    else { std::fprintf(stderr, "usage: bench_extract [--quick] [--runs N] [--datasets DIR]\n"); return 2; }
+    else if (!std::strcmp(argv[i], "--only") && i + 1 < argc) only = argv[++i];
+    else {
+      std::fprintf(stderr, "usage: bench_extract [--quick] [--runs N] [--datasets DIR] [--only NAME_PART]\n");
+      return 2;
+    }
   }
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 2);
   vtkSMPTools::Initialize(2);
@@ -106,8 +111,10 @@ int main(int argc, char** argv) {
   std::vector<int> sizes = quick ? std::vector<int>{128} : std::vector<int>{256, 512};
   for (int n : sizes)
     for (const char* name : {"sphere", "torus", "gyroid"}) {
+      const std::string label = std::string(name) + " " + std::to_string(n) + "^3";
+      if (label.find(only) == std::string::npos) continue;
       auto field = datasets::make_field(name);
-      Case c{std::string(name) + " " + std::to_string(n) + "^3", datasets::sample(*field, n), float(field->isovalue())};
+      Case c{label, datasets::sample(*field, n), float(field->isovalue())};
       run_case(c, runs);
     }
   struct Real { const char* name; const char* file; float iso; };
@@ -117,7 +124,7 @@ int main(int argc, char** argv) {
                         {"octaflower 512 (aa)", "aa_octaflower/octa-flower17k-512-aa-l0_1.vol", 127.5f}};
   for (const Real& r : reals) {
     const std::string path = data + "/" + r.file;
-    if (!std::filesystem::exists(path)) continue;
+    if (!std::filesystem::exists(path) || std::string(r.name).find(only) == std::string::npos) continue;
     if (quick && std::strcmp(r.name, "lobster") != 0) continue;
     try {
       volume::LoadOptions lo;

@@ -14,34 +14,75 @@ int floor_div8(int v) { return v >= 0 ? v / 8 : -((-v + 7) / 8); }
 
 }  // namespace
 
-// The finite value range of a leaf's 512 values and whether any is NaN or infinite. Written as 16
-// independent lanes so the compiler vectorizes it (a NaN never wins a comparison, so it falls
-// out of the range by itself; infinities are masked to the start values).
-BrickIndex::Block BrickIndex::leaf_range(const float* d) {
+// The finite value ranges of a leaf's 512 values (VDB order: 64 x + 8 y + z) and of the parts of
+// it a lower neighbour's apron reads (Block::part), and whether any value is NaN or infinite. Written as 16 independent lanes so the compiler
+// vectorizes it (a NaN never wins a comparison, so it falls out of the ranges by itself;
+// infinities are masked to the start values).
+BrickIndex::Block BrickIndex::leaf_block(const float* d) {
   constexpr int kLanes = 16;
-  float lo[kLanes], hi[kLanes];
+  constexpr float kMax = std::numeric_limits<float>::max(), kLowest = std::numeric_limits<float>::lowest();
+  float lo[kLanes], hi[kLanes], ylo[8], yhi[8], zlo = kMax, zhi = kLowest;
   int bad[kLanes];
   for (int j = 0; j < kLanes; ++j) {
-    lo[j] = std::numeric_limits<float>::max();
-    hi[j] = std::numeric_limits<float>::lowest();
+    lo[j] = kMax;
+    hi[j] = kLowest;
     bad[j] = 0;
   }
-  for (int i = 0; i < 512; i += kLanes)
-    for (int j = 0; j < kLanes; ++j) {
-      const float x = d[i + j];
-      const bool finite = std::fabs(x) <= std::numeric_limits<float>::max();  // false for NaN, inf
-      bad[j] |= !finite;
-      const float in_lo = finite ? x : std::numeric_limits<float>::max();
-      const float in_hi = finite ? x : std::numeric_limits<float>::lowest();
-      lo[j] = in_lo < lo[j] ? in_lo : lo[j];
-      hi[j] = in_hi > hi[j] ? in_hi : hi[j];
-    }
-  Block b{lo[0], hi[0], bad[0] != 0, false};
-  for (int j = 1; j < kLanes; ++j) {
-    b.min = std::min(b.min, lo[j]);
-    b.max = std::max(b.max, hi[j]);
-    b.nonfinite |= bad[j] != 0;
+  for (int j = 0; j < 8; ++j) {
+    ylo[j] = kMax;
+    yhi[j] = kLowest;
   }
+  auto reduce = [&](const float* l, const float* h, int n) {
+    Range r{l[0], h[0]};
+    for (int j = 1; j < n; ++j) {
+      r.min = std::min(r.min, l[j]);
+      r.max = std::max(r.max, h[j]);
+    }
+    return r;
+  };
+  Block b{};
+  for (int x = 0; x < 8; ++x) {
+    for (int c = 0; c < 4; ++c) {  // 16 values: y = 2 c (lanes 0-7) and 2 c + 1 (lanes 8-15)
+      const float* v = d + 64 * x + 16 * c;
+      float in_lo[kLanes], in_hi[kLanes];
+      for (int j = 0; j < kLanes; ++j) {
+        const bool finite = std::fabs(v[j]) <= kMax;  // false for NaN and infinities
+        bad[j] |= !finite;
+        in_lo[j] = finite ? v[j] : kMax;
+        in_hi[j] = finite ? v[j] : kLowest;
+        lo[j] = in_lo[j] < lo[j] ? in_lo[j] : lo[j];
+        hi[j] = in_hi[j] > hi[j] ? in_hi[j] : hi[j];
+      }
+      if (c == 0)  // y = 0
+        for (int j = 0; j < 8; ++j) {
+          ylo[j] = in_lo[j] < ylo[j] ? in_lo[j] : ylo[j];
+          yhi[j] = in_hi[j] > yhi[j] ? in_hi[j] : yhi[j];
+        }
+      zlo = std::min({zlo, in_lo[0], in_lo[8]});  // z = 0
+      zhi = std::max({zhi, in_hi[0], in_hi[8]});
+    }
+    if (x == 0) b.part[1] = reduce(lo, hi, kLanes);
+  }
+  b.part[0] = reduce(lo, hi, kLanes);
+  b.part[2] = reduce(ylo, yhi, 8);
+  b.part[4] = Range{zlo, zhi};
+  auto line = [&](int step) {  // the 8 values from the corner along one axis
+    Range r{kMax, kLowest};
+    for (int i = 0; i < 8; ++i) {
+      const float x = d[i * step];
+      if (!(std::fabs(x) <= kMax)) continue;  // NaN or infinite
+      r.min = std::min(r.min, x);
+      r.max = std::max(r.max, x);
+    }
+    return r;
+  };
+  b.part[3] = line(1);   // x = y = 0, along z
+  b.part[5] = line(8);   // x = z = 0, along y
+  b.part[6] = line(64);  // y = z = 0, along x
+  const bool corner_finite = std::fabs(d[0]) <= kMax;
+  b.part[7] = corner_finite ? Range{d[0], d[0]} : Range{kMax, kLowest};
+  for (int j = 0; j < kLanes; ++j) b.nonfinite |= bad[j] != 0;
+  b.leaf = d;
   return b;
 }
 
@@ -56,6 +97,7 @@ BrickIndex::BrickIndex(const volume::Volume& v) {
   ny_ = floor_div8(box.max().y()) - first_.y() / 8 + 1;
   nz_ = floor_div8(box.max().z()) - first_.z() / 8 + 1;
   blocks_.resize(std::size_t(nx_) * ny_ * nz_);
+  background_ = v.grid->background();
   const openvdb::CoordBBox domain = v.domain;
   const bool dense = v.dense;
   tbb::parallel_for(tbb::blocked_range<int>(0, nz_ * ny_), [&](const tbb::blocked_range<int>& r) {
@@ -64,23 +106,24 @@ BrickIndex::BrickIndex(const volume::Volume& v) {
       const int bz = zy / ny_, by = zy % ny_;
       for (int bx = 0; bx < nx_; ++bx) {
         const openvdb::Coord o = first_ + openvdb::Coord(bx * 8, by * 8, bz * 8);
-        Block b{std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest(), false, false};
+        Block b;
         if (const auto* leaf = acc.probeConstLeaf(o)) {
-          b = leaf_range(leaf->buffer().data());
+          b = leaf_block(leaf->buffer().data());
         } else {
           const float x = acc.getValue(o);  // a tile or background: constant over the block
-          if (std::isfinite(x)) b.min = b.max = x;
-          else b.nonfinite = true;
+          b = Block{};
+          b.tile = x;
+          const bool finite = std::isfinite(x);
+          const Range r{finite ? x : std::numeric_limits<float>::max(),
+                        finite ? x : std::numeric_limits<float>::lowest()};
+          for (Range& p : b.part) p = r;
+          b.nonfinite = !finite;
         }
         b.clipped = dense && !domain.isInside(openvdb::CoordBBox(o, o + openvdb::Coord(7)));
-        blocks_[(std::size_t(bz) * ny_ + by) * nx_ + bx] = b;
+        blocks_[block_at(bx, by, bz)] = b;
       }
     }
   });
-}
-
-const BrickIndex::Block& BrickIndex::block(int bx, int by, int bz) const {
-  return blocks_[(std::size_t(bz) * ny_ + by) * nx_ + bx];
 }
 
 std::vector<openvdb::Coord> BrickIndex::candidates(const Frame& f) const {
@@ -100,39 +143,41 @@ std::vector<openvdb::Coord> BrickIndex::candidates(const Frame& f) const {
     for (int by = by0; by <= by1; ++by)
       for (int bz = bz0; bz <= bz1; ++bz) {
         bool in = false, out_side = false;
-        // The brick's samples lie in its own block and the blocks one step up along each axis.
-        for (int dz = 0; dz < 2; ++dz)
-          for (int dy = 0; dy < 2; ++dy)
-            for (int dx = 0; dx < 2; ++dx) {
-              const int x = bx + dx, y = by + dy, z = bz + dz;
-              if (x >= nx_ || y >= ny_ || z >= nz_) { out_side = true; continue; }
-              const Block& b = block(x, y, z);
-              if (b.nonfinite || b.clipped) out_side = true;
-              if (b.min > b.max) continue;
-              if (above ? b.max > iso : b.min < iso) in = true;
-              if (above ? b.min <= iso : b.max >= iso) out_side = true;
-            }
+        // The brick's samples lie in its own block and in a lower face, line or corner of each
+        // block one step up along some axes (Block::part).
+        for (int d = 0; d < 8; ++d) {
+          const int x = bx + (d & 1), y = by + ((d >> 1) & 1), z = bz + (d >> 2);
+          if (x >= nx_ || y >= ny_ || z >= nz_) { out_side = true; continue; }
+          const Block& b = blocks_[block_at(x, y, z)];
+          if (b.nonfinite || b.clipped) out_side = true;
+          const Range& r = b.part[d];
+          if (r.min > r.max) continue;
+          if (above ? r.max > iso : r.min < iso) in = true;
+          if (above ? r.min <= iso : r.max >= iso) out_side = true;
+        }
         if (in && out_side) out.push_back(first_ + openvdb::Coord(bx * 8, by * 8, bz * 8));
       }
   return out;
 }
 
-void gather_bricks(const volume::Volume& v, const Frame& f, std::vector<openvdb::Coord>& origins, float* samples) {
+void BrickIndex::gather(const Frame& f, std::vector<openvdb::Coord>& origins, float* samples) const {
   const std::size_t n = origins.size();
   std::vector<char> keep(n, 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16), [&](const tbb::blocked_range<std::size_t>& r) {
-    auto acc = v.grid->getConstAccessor();
     for (std::size_t b = r.begin(); b != r.end(); ++b) {
       const openvdb::Coord o = origins[b];
       // The brick's samples come from its own 8^3 block and the seven blocks above it: a leaf's
-      // buffer (VDB leaf offset = 64 x + 8 y + z) or a constant tile value.
+      // buffer (VDB leaf offset = 64 x + 8 y + z) or a constant tile value; blocks past the
+      // index (no frame's apron reaches them) read as the background.
       const float* data[8];
       float tile[8];
+      const int bx = (o.x() - first_.x()) / 8, by = (o.y() - first_.y()) / 8, bz = (o.z() - first_.z()) / 8;
       for (int k = 0; k < 8; ++k) {
-        const openvdb::Coord bo = o + openvdb::Coord((k & 1) * 8, ((k >> 1) & 1) * 8, (k >> 2) * 8);
-        const auto* leaf = acc.probeConstLeaf(bo);
-        data[k] = leaf ? leaf->buffer().data() : nullptr;
-        tile[k] = leaf ? 0.0f : acc.getValue(bo);
+        const int x = bx + (k & 1), y = by + ((k >> 1) & 1), z = bz + (k >> 2);
+        const bool known = x < nx_ && y < ny_ && z < nz_;
+        const Block* blk = known ? &blocks_[block_at(x, y, z)] : nullptr;
+        data[k] = blk ? blk->leaf : nullptr;
+        tile[k] = blk ? blk->tile : background_;
       }
       float* out = samples + b * kBrickSamples;
       bool in = false, outside = false;

@@ -14,34 +14,47 @@ constexpr int kApron = kBrick + 1;                  ///< samples per brick edge
 constexpr int kBrickSamples = kApron * kApron * kApron;
 
 /// Per-block value ranges of a volume, independent of the isovalue: built once, then any number
-/// of isovalues select bricks from it without touching the voxels again.
+/// of isovalues select and gather bricks from it without searching the tree again. Holds
+/// pointers into the volume's leaf buffers: the volume must outlive it, unchanged.
 class BrickIndex {
  public:
   /// Scans every 8^3 block (leaf or tile) covering the volume's cells once (TBB, parallel).
   explicit BrickIndex(const volume::Volume& v);
 
-  /// Origins (index space, multiples of 8) of the bricks of `f` that may hold surface: a superset
-  /// of the straddling bricks, in a fixed order (x, y, z; z fastest).
+  /// Origins (index space, multiples of 8) of the bricks of `f` that may hold surface, in a fixed
+  /// order (x, y, z; z fastest). A superset of the straddling bricks, nearly exact: a brick's
+  /// apron is judged by the ranges of just the neighbour blocks' samples it uses.
   std::vector<openvdb::Coord> candidates(const Frame& f) const;
 
+  /// Writes the samples of the given bricks to `out` (room for origins.size() * kBrickSamples
+  /// floats): kBrickSamples signed values each (Frame::signed_value), z fastest (sample z + 9 y
+  /// + 81 x, as in a VDB leaf), from the brick origin. Bricks whose samples turn out not to
+  /// straddle are dropped from `origins` and from `out` (which stays packed). Parallel (TBB);
+  /// deterministic order. `f` must come from the volume this index was built on.
+  void gather(const Frame& f, std::vector<openvdb::Coord>& origins, float* out) const;
+
  private:
+  struct Range {
+    float min, max;  ///< finite value range (min > max when there is none)
+  };
   struct Block {
-    float min, max;   ///< finite value range of the block (min > max when none)
+    /// part[d] (d = dx + 2 dy + 4 dz): the range of the samples a brick reads from this block
+    /// when the block lies d above it: all (d = 0), the lower face x = 0 (d = 1), y = 0, the line
+    /// x = y = 0, z = 0, x = z = 0, y = z = 0, the corner (d = 7).
+    Range part[8];
     bool nonfinite;   ///< holds a NaN or Inf voxel
     bool clipped;     ///< partly or wholly outside the data domain of a dense volume
+    const float* leaf;  ///< the leaf's 512 values (VDB order, z fastest), or null for a tile
+    float tile;       ///< the constant value of a block without a leaf
   };
-  static Block leaf_range(const float* values);  ///< range of a leaf's 512 values
-  const Block& block(int bx, int by, int bz) const;
+  static Block leaf_block(const float* values);  ///< ranges of a leaf's 512 values
+  std::size_t block_at(int bx, int by, int bz) const {
+    return (std::size_t(bz) * ny_ + by) * nx_ + bx;
+  }
   openvdb::Coord first_;  ///< origin of block (0,0,0)
   int nx_ = 0, ny_ = 0, nz_ = 0;
+  float background_ = 0;  ///< the grid's background value (blocks past the index)
   std::vector<Block> blocks_;
 };
-
-/// Writes the samples of the given bricks to `out` (room for origins.size() * kBrickSamples
-/// floats): kBrickSamples signed values each (Frame::signed_value), z fastest (sample z + 9 y +
-/// 81 x, as in a VDB leaf), from the brick origin. Bricks whose samples turn out not to straddle
-/// are dropped from `origins` and from `out` (which stays packed). Parallel (TBB); deterministic
-/// order.
-void gather_bricks(const volume::Volume& v, const Frame& f, std::vector<openvdb::Coord>& origins, float* out);
 
 }  // namespace isocurv::mc

@@ -131,7 +131,7 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
       cl::Buffer& d_samples = scratch.get(kMcSamples, sample_bytes);
       auto* mapped = static_cast<float*>(q.enqueueMapBuffer(d_samples, CL_TRUE, CL_MAP_WRITE_INVALIDATE_REGION, 0, sample_bytes));
       try {
-        gather_bricks(st.volume, f, origins, mapped);
+        st.index.gather(f, origins, mapped);
       } catch (...) {
         q.enqueueUnmapMemObject(d_samples, mapped);
         throw;
