@@ -17,12 +17,14 @@ constexpr std::uint32_t kEdgeSlotsPerBlock = 8 * 8 * 8 * 3;
 inline std::uint32_t hash_mask(int bits) { return bits >= 32 ? 0xffffffffu : ((1u << bits) - 1u); }
 
 /// 32-bit hash of the edge at key coordinates (x, y, z) along `axis`, spatially coherent:
-/// 8^3-voxel blocks in order (`blocks_x` by `blocks_y` a layer), 1536 edge slots each, wrapping
-/// past 2^32, then keeping the low `bits` bits. Sorting by it keeps neighbouring edges together.
+/// 8^3-voxel blocks in order, z fastest like the bricks (`blocks_z` a column, `blocks_y` columns
+/// a layer), 1536 edge slots each (z fastest too), wrapping past 2^32, then keeping the low
+/// `bits` bits. Sorting by it keeps neighbouring edges together, and a walk over the bricks in
+/// their order looks its seam vertices up in a few ascending streams.
 inline std::uint32_t edge_hash(std::uint32_t x, std::uint32_t y, std::uint32_t z, std::uint32_t axis,
-                               std::uint32_t blocks_x, std::uint32_t blocks_y, int bits) {
-  const std::uint32_t block = (x >> 3) + blocks_x * ((y >> 3) + blocks_y * (z >> 3));
-  const std::uint32_t slot = (((z & 7u) << 6) | ((y & 7u) << 3) | (x & 7u)) * 3u + axis;
+                               std::uint32_t blocks_z, std::uint32_t blocks_y, int bits) {
+  const std::uint32_t block = (z >> 3) + blocks_z * ((y >> 3) + blocks_y * (x >> 3));
+  const std::uint32_t slot = (((x & 7u) << 6) | ((y & 7u) << 3) | (z & 7u)) * 3u + axis;
   return (block * kEdgeSlotsPerBlock + slot) & hash_mask(bits);
 }
 

@@ -171,7 +171,7 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           throw Error(st.volume.path, "isosurface too large (over 1.4 billion triangles)");
         if (ntri > 0) {
           const openvdb::Coord key_span = f.cells.max() - f.key_origin + openvdb::Coord(2);
-          const cl_uint2 blocks{{cl_uint(key_span.x() / 8 + 1), cl_uint(key_span.y() / 8 + 1)}};
+          const cl_uint2 blocks{{cl_uint(key_span.z() / 8 + 1), cl_uint(key_span.y() / 8 + 1)}};  // edge_hash
           const cl_uint mask = hash_mask(options.hash_bits);
           // The seam vertices as (hash, j) pairs, sorted by hash.
           const std::size_t nseam1 = std::max<std::uint32_t>(nseam, 1);
@@ -186,7 +186,7 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           mark(&ExtractTimings::seams);
 
           // Every hash lies below 2^range_bits: the sort needs no more key bits than that.
-          const std::uint64_t nblocks = std::uint64_t(blocks.s[0]) * blocks.s[1] * std::uint64_t(key_span.z() / 8 + 1);
+          const std::uint64_t nblocks = std::uint64_t(blocks.s[0]) * blocks.s[1] * std::uint64_t(key_span.x() / 8 + 1);
           const std::uint64_t hash_range = std::min(nblocks * kEdgeSlotsPerBlock, std::uint64_t(mask) + 1);
           int range_bits = 1, table_bits = 1;
           while (range_bits < 32 && (std::uint64_t(1) << range_bits) < hash_range) ++range_bits;

@@ -11,12 +11,12 @@ using namespace isocurv::mc;
 
 TEST(EdgeHash, DistinctEdgesOfAVolumeDoNotCollide) {
   const std::uint32_t nx = 37, ny = 29, nz = 21;  // not multiples of 8
-  const std::uint32_t bx = nx / 8 + 1, by = ny / 8 + 1;
+  const std::uint32_t bz = nz / 8 + 1, by = ny / 8 + 1;
   std::unordered_set<std::uint32_t> seen;
   for (std::uint32_t z = 0; z < nz; ++z)
     for (std::uint32_t y = 0; y < ny; ++y)
       for (std::uint32_t x = 0; x < nx; ++x)
-        for (std::uint32_t a = 0; a < 3; ++a) EXPECT_TRUE(seen.insert(edge_hash(x, y, z, a, bx, by, 32)).second);
+        for (std::uint32_t a = 0; a < 3; ++a) EXPECT_TRUE(seen.insert(edge_hash(x, y, z, a, bz, by, 32)).second);
 }
 
 TEST(EdgeHash, NeighboursInABlockHashWithinOneBlocksSlots) {
