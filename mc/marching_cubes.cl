@@ -61,6 +61,12 @@ inline uint row_cells(__global const uchar* row_cases) {
 #endif
 }
 
+// Byte z of the result holds bit z of m (bits 0-7), each nibble spread by one multiplication
+// (the partial products land on distinct bits, so nothing carries).
+inline ulong spread8(uint m) {
+  return (ulong)((m & 15u) * 0x204081u & 0x01010101u) | (ulong)(((m >> 4) & 15u) * 0x204081u & 0x01010101u) << 32;
+}
+
 // The cells of brick b's 8^3 that lie in [cell_min, cell_max]: local ranges lo..hi per axis.
 inline void brick_range(int4 o, int4 cell_min, int4 cell_max, int4* lo, int4* hi) {
   *lo = max((int4)(0), cell_min - o);
@@ -99,25 +105,25 @@ __kernel void mc_classify(__global const float* samples, __global const int4* or
     rows[r] = m;
   }
   __global ulong* out8 = (__global ulong*)out;
-  for (int r = 0; r < 64; ++r) out8[r] = 0;
   uint ntri = 0, nvert = 0, nseam = 0;
   uint zmask = ((2u << hi.z) - 1u) & ~((1u << lo.z) - 1u);  // bits lo.z .. hi.z
+  ulong zbytes = spread8(zmask) * 0xffUL;                  // bytes lo.z .. hi.z all ones
   bool zlast = cell_max.z - o.z <= 7;  // the frame's last cells along z lie in this brick
   for (int x = 0; x < 8; ++x)
     for (int y = 0; y < 8; ++y) {
       ranks[y + 8 * x] = (ushort)nvert;
+      out8[y + 8 * x] = 0;
       if (x < lo.x || x > hi.x || y < lo.y || y > hi.y) continue;
       // Corners 0, 4 on sample row a (z and z + 1); 3, 7 on bb; 1, 5 on c; 2, 6 on d.
       uint a = rows[y + APRON * x], bb = rows[y + 1 + APRON * x];
       uint c = rows[y + APRON * (x + 1)], d = rows[y + 1 + APRON * (x + 1)];
       if (a == bb && a == c && a == d && (a == 0u || a == 0x1ffu)) continue;  // a row of empty cells
-      for (int z = lo.z; z <= hi.z; ++z) {
-        uint index = ((a >> z) & 1u) | (((c >> z) & 1u) << 1) | (((d >> z) & 1u) << 2) | (((bb >> z) & 1u) << 3) |
-                     (((a >> z) & 2u) << 3) | (((c >> z) & 2u) << 4) | (((d >> z) & 2u) << 5) |
-                     (((bb >> z) & 2u) << 6);
-        out[z + 8 * y + 64 * x] = (uchar)index;
-        ntri += tri_count[index];
-      }
+      // The row's 8 cases at once, byte z = cell z's case (corner bit k of every byte together).
+      ulong row = spread8(a) | spread8(c) << 1 | spread8(d) << 2 | spread8(bb) << 3 | spread8(a >> 1) << 4 |
+                  spread8(c >> 1) << 5 | spread8(d >> 1) << 6 | spread8(bb >> 1) << 7;
+      row &= zbytes;
+      out8[y + 8 * x] = row;
+      for (int z = 0; z < 8; ++z) ntri += tri_count[(row >> (8 * z)) & 0xffu];
       if (!zlast && o.x + x != cell_max.x && o.y + y != cell_max.y) {
         // No cell of the row is the frame's last: each owns the edges at its corner 0, the x edge
         // (a against c), the y edge (a against bb) and the z edge (a against a shifted), and
