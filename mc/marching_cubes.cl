@@ -279,7 +279,8 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
   __global const uchar* bc = cases + (size_t)b * 512;
   int4 o = origins[b];
   o.w = 0;
-  uint own[APRON * APRON * APRON * 3];
+  uint own[APRON * APRON * APRON * 3];  // vertex numbers relative to the brick's first, `first`
+  uint first = vertex_offsets[b];
   int4 next = (int4)(cell_max.x > o.x + 7, cell_max.y > o.y + 7, cell_max.z > o.z + 7, 0);
   for (int i = 0; i < APRON * APRON; ++i)  // edges starting on an upper face another brick owns
     for (int axis = 0; axis < 3; ++axis) {
@@ -288,16 +289,41 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
       if (next.y) own[3 * (u + APRON * 8 + APRON * APRON * v) + axis] = UNKNOWN;
       if (next.z) own[3 * (u + APRON * v + APRON * APRON * 8) + axis] = UNKNOWN;
     }
-  // (1) The brick's own vertices, cell by cell in edge order.
-  uint w = vertex_offsets[b];
+  // (1) The brick's own vertices, cell by cell in edge order, staged in `stage` (copied out at the
+  // end). A cell inside the frame owns just its x, y and z edges at corner 0: it writes all three
+  // without branches, each advancing the count only when crossed (the next write overwrites an
+  // uncrossed one, and map entries of uncrossed edges are never read).
+  float stage[3 * (3 * APRON * APRON * APRON + 1)];  // room for every edge, and one write past
+  uint w = 0;
+  float3 ax = (float3)(world.s0, world.s4, world.s8), ay = (float3)(world.s1, world.s5, world.s9),
+         az = (float3)(world.s2, world.s6, world.sa), at = (float3)(world.s3, world.s7, world.sb);
   for (int row = 0; row < 64; ++row) {
+    int y = row & 7, x = row >> 3;
     for (uint cells = row_cells(bc + 8 * row); cells; cells &= cells - 1u) {
-      int z = (int)lowest_bit(cells), y = row & 7, x = row >> 3;
+      int z = (int)lowest_bit(cells);
       uint index = bc[8 * row + z];
       int4 g = o + (int4)(x, y, z, 0);
       __global const float* s = brick + z + APRON * y + APRON * APRON * x;
       int base = 3 * (x + APRON * y + APRON * APRON * z);
-      for (uint rest = crossed[index] & owned_edges(g, cell_max); rest; rest &= rest - 1u) {
+      uint cross = crossed[index];
+      if (!write_keys && g.x != cell_max.x && g.y != cell_max.y && g.z != cell_max.z) {
+        float s0 = s[0];
+        float fx = fmin(fmax(s0 / (s0 - s[APRON * APRON]), min_fraction), 1.0f - min_fraction);
+        float fy = fmin(fmax(s0 / (s0 - s[APRON]), min_fraction), 1.0f - min_fraction);
+        float fz = fmin(fmax(s0 / (s0 - s[1]), min_fraction), 1.0f - min_fraction);
+        float3 corner = ax * (float)g.x + ay * (float)g.y + az * (float)g.z + at;
+        vstore3(corner + ax * fx, w, stage);
+        own[base] = w;
+        w += cross & 1u;
+        vstore3(corner + ay * fy, w, stage);
+        own[base + 1] = w;
+        w += (cross >> 3) & 1u;
+        vstore3(corner + az * fz, w, stage);
+        own[base + 2] = w;
+        w += (cross >> 8) & 1u;
+        continue;
+      }
+      for (uint rest = cross & owned_edges(g, cell_max); rest; rest &= rest - 1u) {
         int e = (int)lowest_bit(rest);
         int lo = edge_low[e], axis = edge_axis[e];
         float s0 = s[corner_offset[lo]], s1 = s[corner_offset[lo] + axis_step[axis]];
@@ -306,18 +332,17 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
         float px = (float)(g.x + corner_x[lo]) + (axis == 0 ? f : 0.0f);
         float py = (float)(g.y + corner_y[lo]) + (axis == 1 ? f : 0.0f);
         float pz = (float)(g.z + corner_z[lo]) + (axis == 2 ? f : 0.0f);
-        __global float* p = positions + 3 * (size_t)w;
-        p[0] = world.s0 * px + world.s1 * py + world.s2 * pz + world.s3;
-        p[1] = world.s4 * px + world.s5 * py + world.s6 * pz + world.s7;
-        p[2] = world.s8 * px + world.s9 * py + world.sa * pz + world.sb;
+        vstore3(ax * px + ay * py + az * pz + at, w, stage);
         if (write_keys) {
           uint h;
-          keys[w] = cell_edge(g, e, key_origin, blocks, hash_mask, &h);
+          keys[first + w] = cell_edge(g, e, key_origin, blocks, hash_mask, &h);
         }
         own[base + edge_slot[e]] = w++;
       }
     }
   }
+  __global float* p = positions + 3 * (size_t)first;
+  for (uint i = 0; i < 3 * w; ++i) p[i] = stage[i];
   // (2) The triangles.
   __global uint* out = triangles + 3 * (size_t)triangle_offsets[b];
   for (int row = 0; row < 64; ++row) {
@@ -329,13 +354,14 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
       __global const char* te = tri_edges + index * 16;
       for (int k = 0; k < n; ++k) {
         int slot = base + edge_slot[te[k]];
-        uint v = own[slot];
-        if (v == UNKNOWN) {  // first use of an edge owned by another brick
+        uint v = own[slot] + first;
+        if (v == UNKNOWN + first) {  // first use of an edge owned by another brick
           int axis = slot % 3, end = slot / 3;
           int4 g = o + (int4)(end % APRON, (end / APRON) % APRON, end / (APRON * APRON), 0);
           uint h;
           ulong key = cell_edge(g, axis == 0 ? 0 : axis == 1 ? 3 : 8, key_origin, blocks, hash_mask, &h);
-          own[slot] = v = find_vertex(key, h, entries, nseams, starts, shift);
+          v = find_vertex(key, h, entries, nseams, starts, shift);
+          own[slot] = v - first;
         }
         out[k] = v;
       }
