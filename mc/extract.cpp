@@ -86,7 +86,7 @@ struct Mesher::State {
   Device& device;
   BrickIndex index;
   cl::Program* program = nullptr;
-  cl::Buffer tri_count, tri_edges, crossed;
+  cl::Buffer tri_count, tri_edges, crossed, case_slots;
   State(const volume::Volume& v, Device& d) : volume(v), device(d), index(v) {}
 };
 
@@ -100,6 +100,16 @@ Mesher::Mesher(const volume::Volume& v, Device& device) : state_(std::make_uniqu
                            static_cast<void*>(const_cast<std::int8_t*>(&t.edges[0][0])));
   s.crossed = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(t.crossed),
                          static_cast<void*>(const_cast<std::uint16_t*>(t.crossed.data())));
+  s.case_slots = cl::Buffer(device.context(), CL_MEM_READ_WRITE, 256 * 16 * sizeof(cl_ushort));
+  try {
+    cl::Kernel slots(*s.program, "mc_case_slots");
+    set_args(slots, s.tri_edges, s.case_slots);
+    launch(device.queue(), slots, 256, kTableGroup);
+  } catch (const cl::Error& e) {
+    drain(device.queue());
+    throw Error(std::string("marching cubes setup failed on the OpenCL device: ") + e.what() + " (" +
+                cl_error_name(e.err()) + ")");
+  }
 }
 
 Mesher::~Mesher() = default;
@@ -219,7 +229,7 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           for (int i = 0; i < 12; ++i) world.s[i] = f.world[i];
           cl::Kernel emit(*st.program, "mc_emit");
           set_args(emit, d_samples, d_origins, nbricks, cmax, korg, blocks, mask, kMinEdgeFraction, world,
-                   st.tri_edges, st.tri_count, st.crossed, d_cases, d_tri_offsets, d_vert_offsets, d_table, nseam,
+                   st.case_slots, st.tri_count, st.crossed, d_cases, d_tri_offsets, ntri, d_vert_offsets, d_table, nseam,
                    d_starts, shift, out_pos.buffer(), out_tris.buffer(), write_keys, out_keys.buffer());
           launch(q, emit, nbricks, kBricksPerGroup);
           mark(&ExtractTimings::emit);

@@ -259,6 +259,18 @@ inline uint find_vertex(ulong key, uint h, __global const uint4* entries, uint n
 __constant int edge_slot[12] = {0, 3 * 1 + 1, 3 * 9 + 0, 1, 3 * 81 + 0, 3 * 82 + 1,
                                 3 * 90 + 0, 3 * 81 + 1, 2, 3 * 1 + 2, 3 * 9 + 2, 3 * 10 + 2};
 
+// The vertex of the edge at `slot` of brick o's vertex map that another brick owns (an edge
+// starting on an upper face), found by its hash, minus `first` (map entries are relative).
+inline uint seam_vertex(int slot, int4 o, int4 key_origin, uint2 blocks, uint hash_mask,
+                        __global const uint4* entries, uint nseams, __global const uint* starts, uint shift,
+                        uint first) {
+  int axis = slot % 3, end = slot / 3;
+  int4 g = o + (int4)(end % APRON, (end / APRON) % APRON, end / (APRON * APRON), 0);
+  uint h;
+  ulong key = cell_edge(g, axis == 0 ? 0 : axis == 1 ? 3 : 8, key_origin, blocks, hash_mask, &h);
+  return find_vertex(key, h, entries, nseams, starts, shift) - first;
+}
+
 // Per brick, the vertices (positions, and edge keys when write_keys) from vertex_offsets[b] on and
 // the triangles from triangle_offsets[b] on, in two walks over the non-empty cells: (1) each owned
 // crossed edge's vertex, recorded in the brick's vertex map `own` (by edge_slot); (2) every
@@ -267,9 +279,9 @@ __constant int edge_slot[12] = {0, 3 * 1 + 1, 3 * 9 + 0, 1, 3 * 81 + 0, 3 * 82 +
 // needs them.
 __kernel void mc_emit(__global const float* samples, __global const int4* origins, uint nbricks,
                       int4 cell_max, int4 key_origin, uint2 blocks, uint hash_mask, float min_fraction,
-                      float16 world, __global const char* tri_edges, __global const uchar* tri_count,
+                      float16 world, __global const ushort* case_slots, __global const uchar* tri_count,
                       __global const ushort* crossed, __global const uchar* cases,
-                      __global const uint* triangle_offsets, __global const uint* vertex_offsets,
+                      __global const uint* triangle_offsets, uint ntriangles, __global const uint* vertex_offsets,
                       __global const uint4* entries, uint nseams, __global const uint* starts, uint shift,
                       __global float* positions, __global uint* triangles, uint write_keys,
                       __global ulong* keys) {
@@ -343,29 +355,46 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
   }
   __global float* p = positions + 3 * (size_t)first;
   for (uint i = 0; i < 3 * w; ++i) p[i] = stage[i];
-  // (2) The triangles.
+  // (2) The triangles. Cells write their first 6 corners (2 triangles, the common most) without
+  // a loop, when the brick's triangles leave room: a cell with fewer overwrites the extra ones
+  // with its successor's.
   __global uint* out = triangles + 3 * (size_t)triangle_offsets[b];
+  __global const uint* end = triangles + 3 * (size_t)(b + 1 < nbricks ? triangle_offsets[b + 1] : ntriangles);
   for (int row = 0; row < 64; ++row) {
     for (uint cells = row_cells(bc + 8 * row); cells; cells &= cells - 1u) {
       int z = (int)lowest_bit(cells), y = row & 7, x = row >> 3;
       uint index = bc[8 * row + z];
       int n = 3 * tri_count[index];
       int base = 3 * (x + APRON * y + APRON * APRON * z);
-      __global const char* te = tri_edges + index * 16;
-      for (int k = 0; k < n; ++k) {
-        int slot = base + edge_slot[te[k]];
-        uint v = own[slot] + first;
-        if (v == UNKNOWN + first) {  // first use of an edge owned by another brick
-          int axis = slot % 3, end = slot / 3;
-          int4 g = o + (int4)(end % APRON, (end / APRON) % APRON, end / (APRON * APRON), 0);
-          uint h;
-          ulong key = cell_edge(g, axis == 0 ? 0 : axis == 1 ? 3 : 8, key_origin, blocks, hash_mask, &h);
-          v = find_vertex(key, h, entries, nseams, starts, shift);
-          own[slot] = v - first;
+      __global const ushort* ts = case_slots + index * 16;
+      int k = 0;
+      if (out + 6 <= end)
+        for (; k < 6; ++k) {
+          int slot = base + ts[k];
+          uint v = own[slot];
+          if (v == UNKNOWN && k < n) v = own[slot] = seam_vertex(slot, o, key_origin, blocks, hash_mask, entries,
+                                                                 nseams, starts, shift, first);
+          out[k] = v + first;
         }
-        out[k] = v;
+      for (; k < n; ++k) {
+        int slot = base + ts[k];
+        uint v = own[slot];
+        if (v == UNKNOWN) v = own[slot] = seam_vertex(slot, o, key_origin, blocks, hash_mask, entries, nseams,
+                                                      starts, shift, first);
+        out[k] = v + first;
       }
       out += n;
     }
+  }
+}
+
+// case_slots[16 c + k]: the vertex-map slot (edge_slot) of corner k of case c's triangles, 0 past
+// the last. One work item per case; run once per Mesher.
+__kernel void mc_case_slots(__global const char* tri_edges, __global ushort* case_slots) {
+  uint c = get_global_id(0);
+  if (c >= 256) return;
+  for (int k = 0; k < 16; ++k) {
+    int e = tri_edges[16 * c + k];
+    case_slots[16 * c + k] = (ushort)(e >= 0 ? edge_slot[e] : 0);
   }
 }
