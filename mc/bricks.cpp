@@ -100,6 +100,7 @@ BrickIndex::BrickIndex(const volume::Volume& v) {
   background_ = v.grid->background();
   const openvdb::CoordBBox domain = v.domain;
   const bool dense = v.dense;
+  // x fastest: dense volumes' leaves lie in memory in that order, so the scan streams.
   tbb::parallel_for(tbb::blocked_range<int>(0, nz_ * ny_), [&](const tbb::blocked_range<int>& r) {
     auto acc = v.grid->getConstAccessor();
     for (int zy = r.begin(); zy != r.end(); ++zy) {
@@ -154,6 +155,7 @@ std::vector<openvdb::Coord> BrickIndex::candidates(const Frame& f) const {
           if (r.min > r.max) continue;
           if (above ? r.max > iso : r.min < iso) in = true;
           if (above ? r.min <= iso : r.max >= iso) out_side = true;
+          if (in && out_side) break;  // often at d = 0: the brick's own block straddles
         }
         if (in && out_side) out.push_back(first_ + openvdb::Coord(bx * 8, by * 8, bz * 8));
       }

@@ -48,8 +48,8 @@ class BrickIndex {
     float tile;       ///< the constant value of a block without a leaf
   };
   static Block leaf_block(const float* values);  ///< ranges of a leaf's 512 values
-  std::size_t block_at(int bx, int by, int bz) const {
-    return (std::size_t(bz) * ny_ + by) * nx_ + bx;
+  std::size_t block_at(int bx, int by, int bz) const {  ///< z fastest, the bricks' order
+    return (std::size_t(bx) * ny_ + by) * nz_ + bz;
   }
   openvdb::Coord first_;  ///< origin of block (0,0,0)
   int nx_ = 0, ny_ = 0, nz_ = 0;
