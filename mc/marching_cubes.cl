@@ -320,17 +320,16 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
       uint cross = crossed[index];
       if (!write_keys && g.x != cell_max.x && g.y != cell_max.y && g.z != cell_max.z) {
         float s0 = s[0];
-        float fx = fmin(fmax(s0 / (s0 - s[APRON * APRON]), min_fraction), 1.0f - min_fraction);
-        float fy = fmin(fmax(s0 / (s0 - s[APRON]), min_fraction), 1.0f - min_fraction);
-        float fz = fmin(fmax(s0 / (s0 - s[1]), min_fraction), 1.0f - min_fraction);
+        float3 f = (float3)(s0) / ((float3)(s0) - (float3)(s[APRON * APRON], s[APRON], s[1]));  // one division
+        f = fmin(fmax(f, (float3)(min_fraction)), (float3)(1.0f - min_fraction));
         float3 corner = ax * (float)g.x + ay * (float)g.y + az * (float)g.z + at;
-        vstore3(corner + ax * fx, w, stage);
+        vstore3(corner + ax * f.x, w, stage);
         own[base] = w;
         w += cross & 1u;
-        vstore3(corner + ay * fy, w, stage);
+        vstore3(corner + ay * f.y, w, stage);
         own[base + 1] = w;
         w += (cross >> 3) & 1u;
-        vstore3(corner + az * fz, w, stage);
+        vstore3(corner + az * f.z, w, stage);
         own[base + 2] = w;
         w += (cross >> 8) & 1u;
         continue;
