@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 // GCC's function multiversioning (x86-64 with ifunc): an AVX2 build of a hot loop beside the
@@ -48,6 +49,20 @@ ISOCURV_VECTOR_CLONES bool gather_leaves(const float* const* data, float sign, f
       out += kApron;
     }
   return any_in && any_out;
+}
+
+// Samples of the brick at `o` that lie outside the data domain of a clipped (dense) volume read
+// as outside (Frame::signed_value). True when the brick still straddles.
+bool clip_to_domain(const Frame& f, const openvdb::Coord& o, float* out) {
+  bool in = false, outside = false;
+  for (int x = 0; x < kApron; ++x)
+    for (int y = 0; y < kApron; ++y)
+      for (int z = 0; z < kApron; ++z, ++out) {
+        if (!f.domain.isInside(o + openvdb::Coord(x, y, z))) *out = f.outside;
+        in |= *out > 0;
+        outside |= !(*out > 0);
+      }
+  return in && outside;
 }
 
 }  // namespace
@@ -205,56 +220,37 @@ void BrickIndex::gather(const Frame& f, std::vector<openvdb::Coord>& origins, fl
   const std::size_t n = origins.size();
   std::vector<char> keep(n, 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16), [&](const tbb::blocked_range<std::size_t>& r) {
+    // A block without a leaf (a tile, or past the index: the background) reads as a leaf-sized
+    // buffer of its constant value, filled when the value changes.
+    float tiles[8][512];
+    std::uint32_t tile_bits[8];
+    bool tile_filled[8] = {};
     for (std::size_t b = r.begin(); b != r.end(); ++b) {
       const openvdb::Coord o = origins[b];
-      // The brick's samples come from its own 8^3 block and the seven blocks above it: a leaf's
-      // buffer (VDB leaf offset = 64 x + 8 y + z) or a constant tile value; blocks past the
-      // index (no frame's apron reaches them) read as the background.
+      // The brick's samples come from its own 8^3 block and the seven blocks above it (VDB leaf
+      // offset = 64 x + 8 y + z).
       const float* data[8];
-      float tile[8];
       const int bx = (o.x() - first_.x()) / 8, by = (o.y() - first_.y()) / 8, bz = (o.z() - first_.z()) / 8;
       for (int k = 0; k < 8; ++k) {
         const int x = bx + (k & 1), y = by + ((k >> 1) & 1), z = bz + (k >> 2);
-        const bool known = x < nx_ && y < ny_ && z < nz_;
-        const Block* blk = known ? &blocks_[block_at(x, y, z)] : nullptr;
+        const Block* blk = x < nx_ && y < ny_ && z < nz_ ? &blocks_[block_at(x, y, z)] : nullptr;
         data[k] = blk ? blk->leaf : nullptr;
-        tile[k] = blk ? blk->tile : background_;
+        if (data[k]) continue;
+        const float value = blk ? blk->tile : background_;
+        std::uint32_t bits;
+        std::memcpy(&bits, &value, sizeof bits);
+        if (!tile_filled[k] || tile_bits[k] != bits) {
+          std::fill_n(tiles[k], 512, value);
+          tile_filled[k] = true;
+          tile_bits[k] = bits;
+        }
+        data[k] = tiles[k];
       }
       float* out = samples + b * kBrickSamples;
-      bool in = false, outside = false;
-      // Fast path: the whole apron holds data, so no sample needs the domain test.
-      const bool all_data = !f.clip || f.domain.isInside(openvdb::CoordBBox(o, o + openvdb::Coord(kBrick)));
-      bool leaves = true;
-      for (int k = 0; k < 8; ++k) leaves &= data[k] != nullptr;
-      if (all_data && leaves) {
-        in = outside = gather_leaves(data, f.sign, f.isovalue, f.outside, out);
-      } else {
-        // General path, still by column: tiles stand in for missing leaves, and voxels outside
-        // the data domain of a clipped (dense) volume read as outside (Frame::signed_value).
-        bool z_in[kApron];
-        for (int z = 0; z < kApron; ++z)
-          z_in[z] = !f.clip || (o.z() + z >= f.domain.min().z() && o.z() + z <= f.domain.max().z());
-        for (int x = 0; x < kApron; ++x)
-          for (int y = 0; y < kApron; ++y) {
-            const int ox = o.x() + x, oy = o.y() + y;
-            const bool column_in = !f.clip || (ox >= f.domain.min().x() && ox <= f.domain.max().x() &&
-                                               oy >= f.domain.min().y() && oy <= f.domain.max().y());
-            const int k = (x >> 3) | ((y >> 3) << 1);
-            const int offset = ((x & 7) << 6) | ((y & 7) << 3);
-            float value[kApron];
-            if (data[k]) std::copy_n(data[k] + offset, kBrick, value);
-            else std::fill_n(value, kBrick, tile[k]);
-            value[kBrick] = data[k | 4] ? data[k | 4][offset] : tile[k | 4];
-            for (int z = 0; z < kApron; ++z) {
-              const float s = column_in && z_in[z] && std::isfinite(value[z]) ? f.sign * (value[z] - f.isovalue)
-                                                                               : f.outside;
-              *out++ = s;
-              in |= s > 0;
-              outside |= !(s > 0);
-            }
-          }
-      }
-      keep[b] = in && outside;
+      bool straddles = gather_leaves(data, f.sign, f.isovalue, f.outside, out);
+      if (f.clip && !f.domain.isInside(openvdb::CoordBBox(o, o + openvdb::Coord(kBrick))))
+        straddles = clip_to_domain(f, o, out);
+      keep[b] = straddles;
     }
   });
   // Drop the bricks that do not straddle after all (order kept).
