@@ -322,14 +322,14 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
         float s0 = s[0];
         float3 f = (float3)(s0) / ((float3)(s0) - (float3)(s[APRON * APRON], s[APRON], s[1]));  // one division
         f = fmin(fmax(f, (float3)(min_fraction)), (float3)(1.0f - min_fraction));
-        float3 corner = ax * (float)g.x + ay * (float)g.y + az * (float)g.z + at;
-        vstore3(corner + ax * f.x, w, stage);
+        float3 c = convert_float3(g.xyz), p = c + f;  // world map of (x + fx, y, z), ...
+        vstore3(ax * p.x + ay * c.y + az * c.z + at, w, stage);
         own[base] = w;
         w += cross & 1u;
-        vstore3(corner + ay * f.y, w, stage);
+        vstore3(ax * c.x + ay * p.y + az * c.z + at, w, stage);
         own[base + 1] = w;
         w += (cross >> 3) & 1u;
-        vstore3(corner + az * f.z, w, stage);
+        vstore3(ax * c.x + ay * c.y + az * p.z + at, w, stage);
         own[base + 2] = w;
         w += (cross >> 8) & 1u;
         continue;
