@@ -294,12 +294,22 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
   uint own[APRON * APRON * APRON * 3];  // vertex numbers relative to the brick's first, `first`
   uint first = vertex_offsets[b];
   int4 next = (int4)(cell_max.x > o.x + 7, cell_max.y > o.y + 7, cell_max.z > o.z + 7, 0);
-  for (int i = 0; i < APRON * APRON; ++i)  // edges starting on an upper face another brick owns
-    for (int axis = 0; axis < 3; ++axis) {
-      int u = i % APRON, v = i / APRON;
-      if (next.x) own[3 * (8 + APRON * u + APRON * APRON * v) + axis] = UNKNOWN;
-      if (next.y) own[3 * (u + APRON * 8 + APRON * APRON * v) + axis] = UNKNOWN;
-      if (next.z) own[3 * (u + APRON * v + APRON * APRON * 8) + axis] = UNKNOWN;
+  // Edges starting on an upper face another brick owns, along the face (an edge across it leaves
+  // the brick): unknown until looked up.
+  for (int v = 0; v < APRON; ++v)
+    for (int u = 0; u < APRON; ++u) {
+      if (next.x) {
+        int i = 3 * (8 + APRON * u + APRON * APRON * v);
+        own[i + 1] = own[i + 2] = UNKNOWN;
+      }
+      if (next.y) {
+        int i = 3 * (u + APRON * 8 + APRON * APRON * v);
+        own[i] = own[i + 2] = UNKNOWN;
+      }
+      if (next.z) {
+        int i = 3 * (u + APRON * v + APRON * APRON * 8);
+        own[i] = own[i + 1] = UNKNOWN;
+      }
     }
   // (1) The brick's own vertices, cell by cell in edge order, staged in `stage` (copied out at the
   // end). A cell inside the frame owns just its x, y and z edges at corner 0: it writes all three
