@@ -5,7 +5,8 @@
 namespace isocurv {
 
 /// Sorts n (key, value) uint pairs by the low `key_bits` bits of key (1..32; higher bits must be
-/// zero), stably, in place in `keys` and `values`. 11 bits a pass. Blocks until done.
+/// zero), stably, in place in `keys` and `values`: as few passes as digits of at most 11 bits
+/// allow, the bits shared evenly between them. Blocks until done.
 void radix_sort_pairs(Device& dev, cl::Buffer& keys, cl::Buffer& values, std::uint32_t n, int key_bits);
 
 }  // namespace isocurv

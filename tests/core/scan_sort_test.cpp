@@ -52,7 +52,7 @@ TEST_P(ScanSortSizes, ExclusiveScanMatchesStd) {
 TEST_P(ScanSortSizes, RadixSortIsAStableSortByTheKey) {
   Device& dev = Device::default_device();
   const std::size_t n = GetParam();
-  for (int bits : {5, 11, 16, 22, 23, 32}) {  // one, two and three passes
+  for (int bits : {5, 11, 16, 22, 23, 32}) {  // one, two and three passes of 5 to 11 bits
     const std::uint32_t mask = bits == 32 ? 0xffffffffu : (1u << bits) - 1u;
     // Few distinct keys for narrow widths: many ties, so stability is tested.
     const auto keys = random_values(n, mask, 11u + unsigned(n) + unsigned(bits));
@@ -69,7 +69,7 @@ TEST_P(ScanSortSizes, RadixSortIsAStableSortByTheKey) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Core, ScanSortSizes, ::testing::Values(0, 1, 2, 511, 512, 513, 8191, 8192, 70001, 600000));
+INSTANTIATE_TEST_SUITE_P(Core, ScanSortSizes, ::testing::Values(0, 1, 2, 511, 512, 513, 8191, 8192, 16383, 16385, 70001, 600000));
 
 TEST(ExclusiveScan, MoreElementsThanItsChunksHoldAtTheMinimumChunkSize) {
   // Past 4096 chunks of 512 the chunks grow; the last ones may be empty.
