@@ -19,9 +19,9 @@
 
 namespace isocurv::bench {
 
-/// Median wall time in ms of `runs` calls of f (after one untimed warm-up call).
+/// Median wall time in ms of `runs` calls of f (after three untimed warm-up calls).
 inline double median_ms(const std::function<void()>& f, int runs) {
-  f();
+  for (int i = 0; i < 3; ++i) f();
   std::vector<double> t;
   for (int i = 0; i < runs; ++i) {
     auto t0 = std::chrono::steady_clock::now();
