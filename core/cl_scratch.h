@@ -13,7 +13,7 @@ namespace isocurv {
 enum ScratchSlot : std::size_t {
   kScanTotals, kRadixHistogram, kRadixKeys, kRadixValues,
   kMcSamples, kMcOrigins, kMcCases, kMcRowRanks, kMcTriangleOffsets, kMcVertexOffsets, kMcSeamOffsets, kMcPositions,
-  kMcKeys, kMcHashes, kMcOrder, kMcSeamVertices, kMcSeamKeys, kMcTable, kMcBucketStarts, kMcTriangles,
+  kMcKeys, kMcHashes, kMcOrder, kMcSeamVertices, kMcSeamKeys, kMcTable, kMcTableVertices, kMcTableKeys, kMcBucketStarts, kMcTriangles,
   kScratchSlots
 };
 

@@ -209,7 +209,9 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           table_bits = std::min(table_bits, 24);
           const cl_uint shift = static_cast<cl_uint>(range_bits - table_bits);
           const cl_uint nbuckets = 1u << table_bits;
-          cl::Buffer& d_table = scratch.get(kMcTable, nseam1 * 4 * sizeof(std::uint32_t));
+          cl::Buffer& d_table_hashes = scratch.get(kMcTable, nseam1 * sizeof(std::uint32_t));
+          cl::Buffer& d_table_vertices = scratch.get(kMcTableVertices, nseam1 * sizeof(std::uint32_t));
+          cl::Buffer& d_table_keys = scratch.get(kMcTableKeys, nseam1 * sizeof(cl_ulong));
           cl::Buffer& d_starts = scratch.get(kMcBucketStarts, (std::size_t(nbuckets) + 1) * sizeof(std::uint32_t));
 
           // Positions and triangles (and edge keys when asked for), straight into the mesh.
@@ -223,13 +225,14 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           mark(&ExtractTimings::read);
 
           cl::Kernel table(*st.program, "mc_table");
-          set_args(table, d_hash, d_order, d_seam_vertex, d_seam_keys, nseam, shift, nbuckets, d_table, d_starts);
+          set_args(table, d_hash, d_order, d_seam_vertex, d_seam_keys, nseam, shift, nbuckets, d_table_hashes,
+                   d_table_vertices, d_table_keys, d_starts);
           launch(q, table, std::size_t(nseam) + 1, kTableGroup);
           cl_float16 world{};
           for (int i = 0; i < 12; ++i) world.s[i] = f.world[i];
           cl::Kernel emit(*st.program, "mc_emit");
           set_args(emit, d_samples, d_origins, nbricks, cmax, korg, blocks, mask, kMinEdgeFraction, world,
-                   st.case_slots, st.tri_count, st.crossed, d_cases, d_tri_offsets, ntri, d_vert_offsets, d_table, nseam,
+                   st.case_slots, st.tri_count, st.crossed, d_cases, d_tri_offsets, ntri, d_vert_offsets, d_table_hashes, d_table_vertices, d_table_keys, nseam,
                    d_starts, shift, out_pos.buffer(), out_tris.buffer(), write_keys, out_keys.buffer());
           launch(q, emit, nbricks, kBricksPerGroup);
           mark(&ExtractTimings::emit);

@@ -212,45 +212,38 @@ __kernel void mc_seams(__global const int4* origins, uint nbricks, int4 cell_max
   }
 }
 
-// The lookup table, from the sorted (hash, seam j) pairs: entries[j] = (hash, vertex, key) side by
-// side (one cache line per probe), and starts[b] = first j whose hash's top bits (hash >> shift)
-// are >= b, for b in [0, nbuckets]. One work item per j in [0, n]; every entry is written once.
+// The lookup table, from the sorted (hash, seam j) pairs: hashes[j], vertices[j] and keys[j] (the
+// hashes apart, so a bucket's scan reads one or two cache lines), and starts[b] = first j whose
+// hash's top bits (hash >> shift) are >= b, for b in [0, nbuckets]. One work item per j in
+// [0, n]; every entry is written once.
 __kernel void mc_table(__global const uint* sorted_hashes, __global const uint* sorted_order,
-                       __global const uint* seam_vertex, __global const ulong* keys, uint n, uint shift,
-                       uint nbuckets,
-                       __global uint4* entries, __global uint* starts) {
+                       __global const uint* seam_vertex, __global const ulong* seam_keys, uint n, uint shift,
+                       uint nbuckets, __global uint* hashes, __global uint* vertices, __global ulong* keys,
+                       __global uint* starts) {
   uint j = get_global_id(0);
   if (j > n) return;
   long cur = (long)nbuckets;
   if (j < n) {
     uint h = sorted_hashes[j], u = sorted_order[j];
-    ulong key = keys[u];
-    entries[j] = (uint4)(h, seam_vertex[u], (uint)key, (uint)(key >> 32));
+    hashes[j] = h;
+    vertices[j] = seam_vertex[u];
+    keys[j] = seam_keys[u];
     cur = (long)(h >> shift);
   }
   long prev = j > 0 ? (long)(sorted_hashes[j - 1] >> shift) : -1;
   for (long b = prev + 1; b <= cur; ++b) starts[b] = j;
 }
 
-// The vertex of edge `key` (hash h): a binary search for the first entry with hash h (within the
-// bucket of h's top bits), then a walk over the entries of equal hash comparing edge keys, which
-// resolves collisions. ~0 only if the edge's owner was not processed (a bug).
-inline uint find_vertex(ulong key, uint h, __global const uint4* entries, uint n,
-                        __global const uint* starts, uint shift) {
+// The vertex of edge `key` (hash h): a scan of the bucket of h's top bits for the first entry
+// with hash h (buckets are short), then a walk over the entries of equal hash comparing edge
+// keys, which resolves collisions. ~0 only if the edge's owner was not processed (a bug).
+inline uint find_vertex(ulong key, uint h, __global const uint* hashes, __global const uint* vertices,
+                        __global const ulong* keys, uint n, __global const uint* starts, uint shift) {
   uint b = h >> shift;
-  uint lo = starts[b], len = starts[b + 1] - lo;
-  while (len > 0) {  // lower bound of h in [lo, lo + len), without branches on the data
-    uint half_len = len >> 1, mid = lo + half_len;
-    bool less = entries[mid].x < h;
-    lo = less ? mid + 1 : lo;
-    len = less ? len - half_len - 1 : half_len;
-  }
-  uint klo = (uint)key, khi = (uint)(key >> 32);
-  for (uint j = lo; j < n; ++j) {
-    uint4 t = entries[j];
-    if (t.x != h) break;
-    if (t.z == klo && t.w == khi) return t.y;
-  }
+  uint j = starts[b], end = starts[b + 1];
+  while (j < end && hashes[j] < h) ++j;
+  for (; j < n && hashes[j] == h; ++j)
+    if (keys[j] == key) return vertices[j];
   return 0xffffffffu;
 }
 
@@ -262,13 +255,13 @@ __constant int edge_slot[12] = {0, 3 * 1 + 1, 3 * 9 + 0, 1, 3 * 81 + 0, 3 * 82 +
 // The vertex of the edge at `slot` of brick o's vertex map that another brick owns (an edge
 // starting on an upper face), found by its hash, minus `first` (map entries are relative).
 inline uint seam_vertex(int slot, int4 o, int4 key_origin, uint2 blocks, uint hash_mask,
-                        __global const uint4* entries, uint nseams, __global const uint* starts, uint shift,
-                        uint first) {
+                        __global const uint* hashes, __global const uint* vertices, __global const ulong* keys,
+                        uint nseams, __global const uint* starts, uint shift, uint first) {
   int axis = slot % 3, end = slot / 3;
   int4 g = o + (int4)(end % APRON, (end / APRON) % APRON, end / (APRON * APRON), 0);
   uint h;
   ulong key = cell_edge(g, axis == 0 ? 0 : axis == 1 ? 3 : 8, key_origin, blocks, hash_mask, &h);
-  return find_vertex(key, h, entries, nseams, starts, shift) - first;
+  return find_vertex(key, h, hashes, vertices, keys, nseams, starts, shift) - first;
 }
 
 // Per brick, the vertices (positions, and edge keys when write_keys) from vertex_offsets[b] on and
@@ -282,7 +275,8 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
                       float16 world, __global const ushort* case_slots, __global const uchar* tri_count,
                       __global const ushort* crossed, __global const uchar* cases,
                       __global const uint* triangle_offsets, uint ntriangles, __global const uint* vertex_offsets,
-                      __global const uint4* entries, uint nseams, __global const uint* starts, uint shift,
+                      __global const uint* table_hashes, __global const uint* table_vertices,
+                      __global const ulong* table_keys, uint nseams, __global const uint* starts, uint shift,
                       __global float* positions, __global uint* triangles, uint write_keys,
                       __global ulong* keys) {
   uint b = get_global_id(0);
@@ -381,15 +375,16 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
         for (; k < 6; ++k) {
           int slot = base + ts[k];
           uint v = own[slot];
-          if (v == UNKNOWN && k < n) v = own[slot] = seam_vertex(slot, o, key_origin, blocks, hash_mask, entries,
-                                                                 nseams, starts, shift, first);
+          if (v == UNKNOWN && k < n) v = own[slot] = seam_vertex(slot, o, key_origin, blocks, hash_mask, table_hashes,
+                                                                 table_vertices, table_keys, nseams, starts, shift,
+                                                                 first);
           out[k] = v + first;
         }
       for (; k < n; ++k) {
         int slot = base + ts[k];
         uint v = own[slot];
-        if (v == UNKNOWN) v = own[slot] = seam_vertex(slot, o, key_origin, blocks, hash_mask, entries, nseams,
-                                                      starts, shift, first);
+        if (v == UNKNOWN) v = own[slot] = seam_vertex(slot, o, key_origin, blocks, hash_mask, table_hashes,
+                                                      table_vertices, table_keys, nseams, starts, shift, first);
         out[k] = v + first;
       }
       out += n;
