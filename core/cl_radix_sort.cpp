@@ -39,7 +39,7 @@ void radix_sort_pairs(Device& dev, cl::Buffer& keys, cl::Buffer& values, std::ui
     const std::uint32_t shift = digit_bits * pass;
     set_args(kh, *src_k, n, chunk, shift, bits, p, hist);
     launch(dev.queue(), kh, p, kChunkGroup);
-    exclusive_scan(dev, hist, hist, radix * p);
+    enqueue_exclusive_scan(dev, hist, hist, radix * p);
     set_args(ks, *src_k, *src_v, n, chunk, shift, bits, p, hist, *dst_k, *dst_v);
     launch(dev.queue(), ks, p, kChunkGroup);
     std::swap(src_k, dst_k);

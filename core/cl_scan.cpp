@@ -14,8 +14,13 @@ namespace {
 constexpr std::size_t kChunkGroup = 8;  // chunks per work group
 }  // namespace
 
-std::uint32_t exclusive_scan(Device& dev, const cl::Buffer& in, const cl::Buffer& out, std::uint32_t n) {
-  if (n == 0) return 0;
+void enqueue_exclusive_scan(Device& dev, const cl::Buffer& in, const cl::Buffer& out, std::uint32_t n,
+                            const cl::Buffer* total, std::uint32_t index) {
+  auto& q = dev.queue();
+  if (n == 0) {
+    if (total) q.enqueueFillBuffer(*total, cl_uint(0), sizeof(std::uint32_t) * index, sizeof(std::uint32_t));
+    return;
+  }
   cl::Program& prog = dev.program("scan", kernels::scan_cl);
   // Enough chunks to feed every compute unit, few enough for the serial middle pass.
   const std::uint32_t p = std::clamp<std::uint32_t>(n / 512, 1, 4096);
@@ -23,14 +28,20 @@ std::uint32_t exclusive_scan(Device& dev, const cl::Buffer& in, const cl::Buffer
   cl::Buffer& totals = dev.scratch().get(kScanTotals, sizeof(std::uint32_t) * (p + 1));
   cl::Kernel k1(prog, "scan_chunk_totals"), k2(prog, "scan_totals"), k3(prog, "scan_chunks");
   set_args(k1, in, n, chunk, p, totals);
-  set_args(k2, totals, p);
+  set_args(k2, totals, p, total ? *total : totals, total ? index : p);
   set_args(k3, in, out, n, chunk, p, totals);
-  auto& q = dev.queue();
   launch(q, k1, p, kChunkGroup);
   launch(q, k2, 1, 1);
   launch(q, k3, p, kChunkGroup);
+}
+
+std::uint32_t exclusive_scan(Device& dev, const cl::Buffer& in, const cl::Buffer& out, std::uint32_t n) {
+  if (n == 0) return 0;
+  enqueue_exclusive_scan(dev, in, out, n);
+  const std::uint32_t p = std::clamp<std::uint32_t>(n / 512, 1, 4096);  // as enqueue_exclusive_scan chose
   std::uint32_t total = 0;
-  q.enqueueReadBuffer(totals, CL_TRUE, sizeof(std::uint32_t) * p, sizeof(std::uint32_t), &total);
+  dev.queue().enqueueReadBuffer(dev.scratch().get(kScanTotals, sizeof(std::uint32_t) * (p + 1)), CL_TRUE,
+                                sizeof(std::uint32_t) * p, sizeof(std::uint32_t), &total);
   return total;
 }
 

@@ -18,6 +18,8 @@ cl::Buffer& ScratchBuffers::get(std::size_t slot, std::size_t bytes) {
   Slot& s = slots_[slot];
   if (bytes <= s.bytes && s.bytes > 0) return s.buffer;
   std::size_t want = std::max<std::size_t>(bytes + bytes / 2, 4096);
+  // Queued commands may still use the old buffer (and its host memory): let them finish first.
+  if (s.bytes > 0) device_.queue().finish();
   s.buffer = cl::Buffer();
   std::free(s.host);
   s.host = nullptr;

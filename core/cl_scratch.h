@@ -12,7 +12,7 @@ namespace isocurv {
 /// The slots of a device's scratch buffers (one owner each).
 enum ScratchSlot : std::size_t {
   kScanTotals, kRadixHistogram, kRadixKeys, kRadixValues,
-  kMcSamples, kMcOrigins, kMcCases, kMcRowRanks, kMcTriangleOffsets, kMcVertexOffsets, kMcSeamOffsets, kMcPositions,
+  kMcSamples, kMcCounts, kMcOrigins, kMcCases, kMcRowRanks, kMcTriangleOffsets, kMcVertexOffsets, kMcSeamOffsets, kMcPositions,
   kMcKeys, kMcHashes, kMcOrder, kMcSeamVertices, kMcSeamKeys, kMcTable, kMcTableVertices, kMcTableKeys, kMcBucketStarts, kMcTriangles,
   kScratchSlots
 };
@@ -26,7 +26,8 @@ class ScratchBuffers {
   ScratchBuffers& operator=(const ScratchBuffers&) = delete;
 
   /// Buffer `slot` (< kScratchSlots) with room for at least `bytes` (grown by half again when too small;
-  /// contents are not preserved across growth). Valid until the next get() of the same slot.
+  /// contents are not preserved across growth, which first waits for the device's queue to drain).
+  /// Valid until the next get() of the same slot.
   cl::Buffer& get(std::size_t slot, std::size_t bytes);
 
  private:

@@ -11,8 +11,9 @@ __kernel void scan_chunk_totals(__global const uint* in, uint n, uint chunk, uin
   totals[c] = sum;
 }
 
-// One work item: exclusive scan of totals[0..p) in place; totals[p] receives the grand total.
-__kernel void scan_totals(__global uint* totals, uint p) {
+// One work item: exclusive scan of totals[0..p) in place; totals[p] and result[index] receive the
+// grand total.
+__kernel void scan_totals(__global uint* totals, uint p, __global uint* result, uint index) {
   if (get_global_id(0) != 0) return;
   uint sum = 0;
   for (uint i = 0; i < p; ++i) {
@@ -21,6 +22,7 @@ __kernel void scan_totals(__global uint* totals, uint p) {
     sum += v;
   }
   totals[p] = sum;
+  result[index] = sum;
 }
 
 __kernel void scan_chunks(__global const uint* in, __global uint* out, uint n, uint chunk, uint p,

@@ -172,9 +172,13 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
         set_args(classify, d_samples, d_origins, nbricks, cmin, cmax, st.tri_count, st.crossed, d_cases,
                  d_row_ranks, d_tri_offsets, d_vert_offsets, d_seam_offsets);
         launch(q, classify, nbricks, kBricksPerGroup);
-        const std::uint32_t ntri = exclusive_scan(st.device, d_tri_offsets, d_tri_offsets, nbricks);
-        const std::uint32_t nvert = exclusive_scan(st.device, d_vert_offsets, d_vert_offsets, nbricks);
-        const std::uint32_t nseam = exclusive_scan(st.device, d_seam_offsets, d_seam_offsets, nbricks);
+        cl::Buffer& d_counts = scratch.get(kMcCounts, 3 * sizeof(std::uint32_t));
+        enqueue_exclusive_scan(st.device, d_tri_offsets, d_tri_offsets, nbricks, &d_counts, 0);
+        enqueue_exclusive_scan(st.device, d_vert_offsets, d_vert_offsets, nbricks, &d_counts, 1);
+        enqueue_exclusive_scan(st.device, d_seam_offsets, d_seam_offsets, nbricks, &d_counts, 2);
+        std::uint32_t counts[3];
+        q.enqueueReadBuffer(d_counts, CL_TRUE, 0, sizeof counts, counts);
+        const std::uint32_t ntri = counts[0], nvert = counts[1], nseam = counts[2];
         tm.seam_vertices = nseam;
         mark(&ExtractTimings::classify);
         if (std::uint64_t(ntri) * 3 >= 0xffffffffULL)
