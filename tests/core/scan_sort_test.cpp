@@ -83,6 +83,31 @@ TEST(ExclusiveScan, MoreElementsThanItsChunksHoldAtTheMinimumChunkSize) {
   EXPECT_EQ(download(dev, out, n), want);
 }
 
+TEST(ExclusiveScan, EnqueuedScansOfDifferentSizesLeaveTheirTotalsInOneBuffer) {
+  // Queued back to back (sizes that need different chunk counts, and an empty one), each total
+  // lands in its own slot of the result buffer; the slots around them are left alone.
+  Device& dev = Device::default_device();
+  const std::vector<std::size_t> sizes{70001, 0, 513, 600000};
+  std::vector<std::vector<std::uint32_t>> in;
+  std::vector<cl::Buffer> buffers;
+  cl::Buffer totals = upload(dev, std::vector<std::uint32_t>(sizes.size() + 2, 0xdeadbeefu));
+  for (std::size_t i = 0; i < sizes.size(); ++i) {
+    in.push_back(random_values(sizes[i], 0xff, 40u + unsigned(i)));
+    buffers.push_back(upload(dev, in.back()));
+    enqueue_exclusive_scan(dev, buffers.back(), buffers.back(), static_cast<std::uint32_t>(sizes[i]), &totals,
+                           static_cast<std::uint32_t>(i + 1));
+  }
+  const auto got = download(dev, totals, sizes.size() + 2);
+  EXPECT_EQ(got.front(), 0xdeadbeefu);
+  EXPECT_EQ(got.back(), 0xdeadbeefu);
+  for (std::size_t i = 0; i < sizes.size(); ++i) {
+    EXPECT_EQ(got[i + 1], std::accumulate(in[i].begin(), in[i].end(), std::uint32_t(0))) << sizes[i];
+    std::vector<std::uint32_t> want(sizes[i]);
+    std::exclusive_scan(in[i].begin(), in[i].end(), want.begin(), std::uint32_t(0));
+    EXPECT_EQ(download(dev, buffers[i], sizes[i]), want) << sizes[i];
+  }
+}
+
 TEST(RadixSort, RejectsKeyWidthsOutside1To32) {
   Device& dev = Device::default_device();
   cl::Buffer k = upload(dev, {3, 1, 2}), v = upload(dev, {0, 1, 2});
