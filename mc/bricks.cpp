@@ -193,26 +193,35 @@ std::vector<openvdb::Coord> BrickIndex::candidates(const Frame& f) const {
   const bool above = f.sign > 0;
   const float iso = f.isovalue;
   // z innermost, as in VDB leaves: a brick's apron along z is the next brick's own leaf, still in
-  // cache when that brick is gathered.
-  for (int bx = bx0; bx <= bx1; ++bx)
-    for (int by = by0; by <= by1; ++by)
-      for (int bz = bz0; bz <= bz1; ++bz) {
-        bool in = false, out_side = false;
-        // The brick's samples lie in its own block and in a lower face, line or corner of each
-        // block one step up along some axes (Block::part).
-        for (int d = 0; d < 8; ++d) {
-          const int x = bx + (d & 1), y = by + ((d >> 1) & 1), z = bz + (d >> 2);
-          if (x >= nx_ || y >= ny_ || z >= nz_) { out_side = true; continue; }
-          const Block& b = blocks_[block_at(x, y, z)];
-          if (b.nonfinite || b.clipped) out_side = true;
-          const Range& r = b.part[d];
-          if (r.min > r.max) continue;
-          if (above ? r.max > iso : r.min < iso) in = true;
-          if (above ? r.min <= iso : r.max >= iso) out_side = true;
-          if (in && out_side) break;  // often at d = 0: the brick's own block straddles
+  // cache when that brick is gathered. Slices of constant x in parallel, joined in order.
+  std::vector<std::vector<openvdb::Coord>> slices(std::size_t(std::max(0, bx1 - bx0 + 1)));
+  tbb::parallel_for(tbb::blocked_range<int>(bx0, bx1 + 1), [&](const tbb::blocked_range<int>& range) {
+    for (int bx = range.begin(); bx != range.end(); ++bx) {
+      std::vector<openvdb::Coord>& slice = slices[std::size_t(bx - bx0)];
+      for (int by = by0; by <= by1; ++by)
+        for (int bz = bz0; bz <= bz1; ++bz) {
+          bool in = false, out_side = false;
+          // The brick's samples lie in its own block and in a lower face, line or corner of each
+          // block one step up along some axes (Block::part).
+          for (int d = 0; d < 8; ++d) {
+            const int x = bx + (d & 1), y = by + ((d >> 1) & 1), z = bz + (d >> 2);
+            if (x >= nx_ || y >= ny_ || z >= nz_) { out_side = true; continue; }
+            const Block& b = blocks_[block_at(x, y, z)];
+            if (b.nonfinite || b.clipped) out_side = true;
+            const Range& r = b.part[d];
+            if (r.min > r.max) continue;
+            if (above ? r.max > iso : r.min < iso) in = true;
+            if (above ? r.min <= iso : r.max >= iso) out_side = true;
+            if (in && out_side) break;  // often at d = 0: the brick's own block straddles
+          }
+          if (in && out_side) slice.push_back(first_ + openvdb::Coord(bx * 8, by * 8, bz * 8));
         }
-        if (in && out_side) out.push_back(first_ + openvdb::Coord(bx * 8, by * 8, bz * 8));
-      }
+    }
+  });
+  std::size_t total = 0;
+  for (const auto& slice : slices) total += slice.size();
+  out.reserve(total);
+  for (const auto& slice : slices) out.insert(out.end(), slice.begin(), slice.end());
   return out;
 }
 
