@@ -275,6 +275,7 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
                       float16 world, __global const ushort* case_slots, __global const uchar* tri_count,
                       __global const ushort* crossed, __global const uchar* cases,
                       __global const uint* triangle_offsets, uint ntriangles, __global const uint* vertex_offsets,
+                      uint nvertices,
                       __global const uint* table_hashes, __global const uint* table_vertices,
                       __global const ulong* table_keys, uint nseams, __global const uint* starts, uint shift,
                       __global float* positions, __global uint* triangles, uint write_keys,
@@ -305,11 +306,13 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
         own[i] = own[i + 1] = UNKNOWN;
       }
     }
-  // (1) The brick's own vertices, cell by cell in edge order, staged in `stage` (copied out at the
-  // end). A cell inside the frame owns just its x, y and z edges at corner 0: it writes all three
-  // without branches, each advancing the count only when crossed (the next write overwrites an
-  // uncrossed one, and map entries of uncrossed edges are never read).
-  float stage[3 * (3 * APRON * APRON * APRON + 1)];  // room for every edge, and one write past
+  // (1) The brick's own vertices, cell by cell in edge order, into positions[first + w]. A cell
+  // inside the frame owns just its x, y and z edges at corner 0: it writes all three without
+  // branches, each advancing the count only when crossed (the next write overwrites an uncrossed
+  // one, and map entries of uncrossed edges are never read); a write past the brick's last vertex
+  // is dropped (the next brick's).
+  __global float* pos = positions + 3 * (size_t)first;
+  uint nv = (b + 1 < nbricks ? vertex_offsets[b + 1] : nvertices) - first;
   uint w = 0;
   float3 ax = (float3)(world.s0, world.s4, world.s8), ay = (float3)(world.s1, world.s5, world.s9),
          az = (float3)(world.s2, world.s6, world.sa), at = (float3)(world.s3, world.s7, world.sb);
@@ -327,13 +330,13 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
         float3 f = (float3)(s0) / ((float3)(s0) - (float3)(s[APRON * APRON], s[APRON], s[1]));  // one division
         f = fmin(fmax(f, (float3)(min_fraction)), (float3)(1.0f - min_fraction));
         float3 c = convert_float3(g.xyz), p = c + f;  // world map of (x + fx, y, z), ...
-        vstore3(ax * p.x + ay * c.y + az * c.z + at, w, stage);
+        if (w < nv) vstore3(ax * p.x + ay * c.y + az * c.z + at, w, pos);
         own[base] = w;
         w += cross & 1u;
-        vstore3(ax * c.x + ay * p.y + az * c.z + at, w, stage);
+        if (w < nv) vstore3(ax * c.x + ay * p.y + az * c.z + at, w, pos);
         own[base + 1] = w;
         w += (cross >> 3) & 1u;
-        vstore3(ax * c.x + ay * c.y + az * p.z + at, w, stage);
+        if (w < nv) vstore3(ax * c.x + ay * c.y + az * p.z + at, w, pos);
         own[base + 2] = w;
         w += (cross >> 8) & 1u;
         continue;
@@ -347,7 +350,7 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
         float px = (float)(g.x + corner_x[lo]) + (axis == 0 ? f : 0.0f);
         float py = (float)(g.y + corner_y[lo]) + (axis == 1 ? f : 0.0f);
         float pz = (float)(g.z + corner_z[lo]) + (axis == 2 ? f : 0.0f);
-        vstore3(ax * px + ay * py + az * pz + at, w, stage);
+        vstore3(ax * px + ay * py + az * pz + at, w, pos);
         if (write_keys) {
           uint h;
           keys[first + w] = cell_edge(g, e, key_origin, blocks, hash_mask, &h);
@@ -356,8 +359,6 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
       }
     }
   }
-  __global float* p = positions + 3 * (size_t)first;
-  for (uint i = 0; i < 3 * w; ++i) p[i] = stage[i];
   // (2) The triangles. Cells write their first 6 corners (2 triangles, the common most) without
   // a loop, when the brick's triangles leave room: a cell with fewer overwrites the extra ones
   // with its successor's.
