@@ -234,14 +234,25 @@ __kernel void mc_table(__global const uint* sorted_hashes, __global const uint* 
   for (long b = prev + 1; b <= cur; ++b) starts[b] = j;
 }
 
-// The vertex of edge `key` (hash h): a scan of the bucket of h's top bits for the first entry
-// with hash h (buckets are short), then a walk over the entries of equal hash comparing edge
-// keys, which resolves collisions. ~0 only if the edge's owner was not processed (a bug).
+// The vertex of edge `key` (hash h): the first entry with hash h in the bucket of h's top bits,
+// by binary search in a long bucket (collisions, a narrowed hash) and by a scan in a short one
+// (the usual dozen entries, one or two cache lines of hashes: faster than a search's dependent
+// probes), then a walk over the entries of equal hash comparing edge keys, which resolves
+// collisions. ~0 only if the edge's owner was not processed (a bug).
 inline uint find_vertex(ulong key, uint h, __global const uint* hashes, __global const uint* vertices,
                         __global const ulong* keys, uint n, __global const uint* starts, uint shift) {
   uint b = h >> shift;
-  uint j = starts[b], end = starts[b + 1];
-  while (j < end && hashes[j] < h) ++j;
+  uint j = starts[b], len = starts[b + 1] - j;
+  while (len > 16) {  // halve to a short range that holds the lower bound of h
+    uint half_len = len >> 1;
+    if (hashes[j + half_len] < h) {
+      j += half_len + 1;
+      len -= half_len + 1;
+    } else {
+      len = half_len;
+    }
+  }
+  for (uint end = j + len; j < end && hashes[j] < h;) ++j;
   for (; j < n && hashes[j] == h; ++j)
     if (keys[j] == key) return vertices[j];
   return 0xffffffffu;
