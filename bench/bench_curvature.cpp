@@ -62,6 +62,7 @@ Mesh mesh_of(const volume::Volume& v, float iso) { return mc::extract(v, iso, De
 }  // namespace
 
 int main(int argc, char** argv) {
+  bench::keep_freed_memory();
   bool quick = false;
   int runs = 5;
   for (int i = 1; i < argc; ++i) {

@@ -216,6 +216,7 @@ int usage() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  bench::keep_freed_memory();
   Config c;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--passes") && i + 1 < argc) c.passes = std::max(1, std::atoi(argv[++i]));

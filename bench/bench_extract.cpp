@@ -87,6 +87,7 @@ void run_case(const Case& c, int runs) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  bench::keep_freed_memory();
   bool quick = false;
   int runs = 5;
   std::string data = ISOCURV_SHARED_DATASETS;

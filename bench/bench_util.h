@@ -19,9 +19,24 @@
 
 namespace isocurv::bench {
 
-/// Median wall time in ms of `runs` calls of f (after three untimed warm-up calls).
+/// Keeps freed heap memory in the process (no trimming; arrays up to 32 MiB from the heap, not
+/// fresh mappings), so every method's repeated runs reuse touched pages: first touches of small
+/// pages cost about 3 ms per MiB on this virtual machine and would otherwise be timed anew in
+/// each run, for whichever method happens to free and re-map. Call once, first thing.
+inline void keep_freed_memory() {
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+}
+
+/// Median wall time in ms of `runs` calls of f, after untimed warm-up calls: at least 2, then
+/// until half a second has passed or 10 were made (steady state: the first few calls pay for
+/// first touches of memory, JIT compiles and the like).
 inline double median_ms(const std::function<void()>& f, int runs) {
-  for (int i = 0; i < 3; ++i) f();
+  const auto warm_start = std::chrono::steady_clock::now();
+  for (int i = 0; i < 10; ++i) {
+    f();
+    if (i >= 1 && std::chrono::steady_clock::now() - warm_start > std::chrono::milliseconds(500)) break;
+  }
   std::vector<double> t;
   for (int i = 0; i < runs; ++i) {
     auto t0 = std::chrono::steady_clock::now();

@@ -1,5 +1,7 @@
 #include "mc/bricks.h"
 
+#include "core/huge_pages.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -150,7 +152,7 @@ BrickIndex::BrickIndex(const volume::Volume& v) {
   nx_ = floor_div8(box.max().x()) - first_.x() / 8 + 1;
   ny_ = floor_div8(box.max().y()) - first_.y() / 8 + 1;
   nz_ = floor_div8(box.max().z()) - first_.z() / 8 + 1;
-  blocks_.resize(std::size_t(nx_) * ny_ * nz_);
+  resize_in_huge_pages(blocks_, std::size_t(nx_) * ny_ * nz_);  // first touches of small pages are slow on VMs
   background_ = v.grid->background();
   const openvdb::CoordBBox domain = v.domain;
   const bool dense = v.dense;

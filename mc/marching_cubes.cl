@@ -13,9 +13,9 @@
 // (the vertices other bricks will look up, with a hash of their edge's identity), radix sort by
 // hash, mc_table, mc_emit (positions and triangles). A cell finds the vertex of an edge owned in
 // its own brick directly (mc_emit records the brick's vertices in a map before it writes
-// triangles), and one owned by another brick by a binary search for the edge's hash in the sorted
-// seam vertices and a walk over equal hashes comparing edge identities. The output has no duplicate and no
-// unreferenced vertex by construction.
+// triangles), and one owned by another brick by a search for the edge's hash in the sorted seam
+// vertices and a walk over equal hashes comparing edge identities. The output has no duplicate
+// and no unreferenced vertex by construction.
 
 #define APRON 9
 #define BRICK_SAMPLES 729
