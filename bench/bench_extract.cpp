@@ -1,7 +1,7 @@
 // Extraction benchmark: isocurv's device marching cubes (PoCL here) beside vtkFlyingEdges3D and
 // openvdb::tools::volumeToMesh on the same volumes in the same run. Not a test: prints a table.
 //
-//   bench_extract [--quick] [--runs N] [--datasets DIR]
+//   bench_extract [--quick] [--runs N] [--datasets DIR] [--only NAME_PART]
 #include <openvdb/tools/VolumeToMesh.h>
 #include <tbb/global_control.h>
 #include <vtkFlyingEdges3D.h>
