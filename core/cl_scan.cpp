@@ -36,12 +36,10 @@ void enqueue_exclusive_scan(Device& dev, const cl::Buffer& in, const cl::Buffer&
 }
 
 std::uint32_t exclusive_scan(Device& dev, const cl::Buffer& in, const cl::Buffer& out, std::uint32_t n) {
-  if (n == 0) return 0;
-  enqueue_exclusive_scan(dev, in, out, n);
-  const std::uint32_t p = std::clamp<std::uint32_t>(n / 512, 1, 4096);  // as enqueue_exclusive_scan chose
+  cl::Buffer& total_buffer = dev.scratch().get(kScanTotal, sizeof(std::uint32_t));
+  enqueue_exclusive_scan(dev, in, out, n, &total_buffer, 0);
   std::uint32_t total = 0;
-  dev.queue().enqueueReadBuffer(dev.scratch().get(kScanTotals, sizeof(std::uint32_t) * (p + 1)), CL_TRUE,
-                                sizeof(std::uint32_t) * p, sizeof(std::uint32_t), &total);
+  dev.queue().enqueueReadBuffer(total_buffer, CL_TRUE, 0, sizeof total, &total);
   return total;
 }
 

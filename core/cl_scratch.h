@@ -11,9 +11,9 @@ namespace isocurv {
 
 /// The slots of a device's scratch buffers (one owner each).
 enum ScratchSlot : std::size_t {
-  kScanTotals, kRadixHistogram, kRadixKeys, kRadixValues,
+  kScanTotals, kScanTotal, kRadixHistogram, kRadixKeys, kRadixValues,
   kMcSamples, kMcCounts, kMcOrigins, kMcCases, kMcRowRanks, kMcTriangleOffsets, kMcVertexOffsets, kMcSeamOffsets, kMcPositions,
-  kMcKeys, kMcHashes, kMcOrder, kMcSeamVertices, kMcSeamKeys, kMcTable, kMcTableVertices, kMcTableKeys, kMcBucketStarts, kMcTriangles,
+  kMcKeys, kMcHashes, kMcOrder, kMcSeamVertices, kMcSeamKeys, kMcTableHashes, kMcTableVertices, kMcTableKeys, kMcBucketStarts, kMcTriangles,
   kScratchSlots
 };
 

@@ -39,8 +39,9 @@ class BrickIndex {
   };
   struct Block {
     /// part[d] (d = dx + 2 dy + 4 dz): the range of the samples a brick reads from this block
-    /// when the block lies d above it: all (d = 0), the lower face x = 0 (d = 1), y = 0, the line
-    /// x = y = 0, z = 0, x = z = 0, y = z = 0, the corner (d = 7).
+    /// when the block lies d above it. d = 0: the whole block; 1: its face x = 0; 2: face y = 0;
+    /// 3: line x = y = 0 (along z); 4: face z = 0; 5: line x = z = 0 (along y); 6: line
+    /// y = z = 0 (along x); 7: the corner (0, 0, 0).
     Range part[8];
     bool nonfinite;   ///< holds a NaN or Inf voxel
     bool clipped;     ///< partly or wholly outside the data domain of a dense volume

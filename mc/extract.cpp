@@ -213,7 +213,7 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           table_bits = std::min(table_bits, 24);
           const cl_uint shift = static_cast<cl_uint>(range_bits - table_bits);
           const cl_uint nbuckets = 1u << table_bits;
-          cl::Buffer& d_table_hashes = scratch.get(kMcTable, nseam1 * sizeof(std::uint32_t));
+          cl::Buffer& d_table_hashes = scratch.get(kMcTableHashes, nseam1 * sizeof(std::uint32_t));
           cl::Buffer& d_table_vertices = scratch.get(kMcTableVertices, nseam1 * sizeof(std::uint32_t));
           cl::Buffer& d_table_keys = scratch.get(kMcTableKeys, nseam1 * sizeof(cl_ulong));
           cl::Buffer& d_starts = scratch.get(kMcBucketStarts, (std::size_t(nbuckets) + 1) * sizeof(std::uint32_t));

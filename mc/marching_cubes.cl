@@ -370,9 +370,9 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
       }
     }
   }
-  // (2) The triangles. Cells write their first 6 corners (2 triangles, the common most) without
-  // a loop, when the brick's triangles leave room: a cell with fewer overwrites the extra ones
-  // with its successor's.
+  // (2) The triangles. Cells write their first 6 corners (2 triangles, the most common case)
+  // without a loop, when the brick's triangles leave room: a cell with fewer writes its padding
+  // corners (map slot 0 of the cell, a value never used) where its successor's then go.
   __global uint* out = triangles + 3 * (size_t)triangle_offsets[b];
   __global const uint* end = triangles + 3 * (size_t)(b + 1 < nbricks ? triangle_offsets[b + 1] : ntriangles);
   for (int row = 0; row < 64; ++row) {
@@ -387,7 +387,7 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
         for (; k < 6; ++k) {
           int slot = base + ts[k];
           uint v = own[slot];
-          if (v == UNKNOWN && k < n) v = own[slot] = seam_vertex(slot, o, key_origin, blocks, hash_mask, table_hashes,
+          if (k < n && v == UNKNOWN) v = own[slot] = seam_vertex(slot, o, key_origin, blocks, hash_mask, table_hashes,
                                                                  table_vertices, table_keys, nseams, starts, shift,
                                                                  first);
           out[k] = v + first;

@@ -182,6 +182,36 @@ TEST(Extract, BrickSeamsInEveryDirectionLeaveNoCracksOrDuplicates) {
   expect_closed(s, 2);
 }
 
+TEST(Extract, WithoutEdgeKeysTheOutputIsTheSame) {
+  // The tests above compare against the reference with edge keys on, which sends every vertex
+  // through mc_emit's general path; without keys, cells inside the frame take the branch-free
+  // one. Both must give the same mesh, bit for bit (and so the reference's).
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1, 1);
+  std::vector<float> noise(23 * 19 * 29);
+  for (auto& x : noise) x = u(rng);
+  std::size_t i = 0;
+  auto random = test::sampled([&](double, double, double) { return noise[i++]; }, {23, 19, 29});
+  volume::Volume ls;
+  ls.grid = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(10.0f, openvdb::Vec3f(0.3f, -0.2f, 0.1f), 0.5f);
+  ls.dense = false;
+  ls.inside = volume::Inside::Below;
+  ls.domain = ls.grid->evalActiveVoxelBoundingBox();
+  ls.stats.min = -1.5;
+  ls.stats.max = 1.5;
+  const auto ball = test::ball(33, 11.0, 16.0);
+  for (bool cap : {false, true}) {
+    mc::Options plain, with_keys = keys();
+    plain.cap = with_keys.cap = cap;
+    for (const volume::Volume* v : std::vector<const volume::Volume*>{&random, &ball, &ls}) {
+      const Mesh a = mc::extract(*v, 0.0f, dev(), plain), b = mc::extract(*v, 0.0f, dev(), with_keys);
+      EXPECT_GT(a.triangles.size(), 0u);
+      EXPECT_TRUE(bit_identical(a, b)) << (v == &random ? "noise" : v == &ball ? "ball" : "level set")
+                                       << (cap ? ", capped" : "");
+    }
+  }
+}
+
 TEST(Extract, NarrowHashGivesIdenticalOutput) {
   auto torus = test::sampled([](double x, double y, double z) {
     return test::torus_density(x - 20, y - 20, z - 10, 12, 4);
