@@ -68,6 +68,28 @@ void expect_closed(const Mesh& m, long long euler) {
   EXPECT_EQ(c.euler, euler);
 }
 
+// 23x19x29 voxels of uniform noise in [-1, 1] (every case occurs at isovalue 0).
+volume::Volume noise_volume(unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-1, 1);
+  std::vector<float> noise(23 * 19 * 29);
+  for (auto& x : noise) x = u(rng);
+  std::size_t i = 0;
+  return test::sampled([&](double, double, double) { return noise[i++]; }, {23, 19, 29});
+}
+
+// A sparse VDB level set (negative inside, narrow band, tiles inside) across many leaves.
+volume::Volume level_set_sphere() {
+  volume::Volume ls;
+  ls.grid = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(10.0f, openvdb::Vec3f(0.3f, -0.2f, 0.1f), 0.5f);
+  ls.dense = false;
+  ls.inside = volume::Inside::Below;
+  ls.domain = ls.grid->evalActiveVoxelBoundingBox();
+  ls.stats.min = -1.5;
+  ls.stats.max = 1.5;
+  return ls;
+}
+
 bool bit_identical(const Mesh& a, const Mesh& b) {
   return a.positions.size() == b.positions.size() && a.triangles.size() == b.triangles.size() &&
          std::memcmp(a.positions.data(), b.positions.data(), a.positions.size() * sizeof(Vec3f)) == 0 &&
@@ -146,12 +168,7 @@ TEST(Extract, CappedGyroidIsClosedAndMatchesReference) {
 }
 
 TEST(Extract, RandomNoiseMatchesReferenceWithEveryCase) {
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<float> u(-1, 1);
-  std::vector<float> noise(23 * 19 * 29);
-  for (auto& x : noise) x = u(rng);
-  std::size_t i = 0;
-  auto v = test::sampled([&](double, double, double) { return noise[i++]; }, {23, 19, 29});
+  auto v = noise_volume(7);
   mc::Options o = keys();
   o.cap = true;
   Mesh m = mc::extract(v, 0.0f, dev(), o);
@@ -169,14 +186,7 @@ TEST(Extract, BrickSeamsInEveryDirectionLeaveNoCracksOrDuplicates) {
   Mesh m = mc::extract(v, 0.0f, dev(), keys());
   expect_same_mesh(m, mc::extract_reference(v, 0.0f, keys()));
   expect_closed(m, 2);
-  // A sparse VDB level set (negative inside, narrow band, tiles inside) across many leaves.
-  volume::Volume ls;
-  ls.grid = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(10.0f, openvdb::Vec3f(0.3f, -0.2f, 0.1f), 0.5f);
-  ls.dense = false;
-  ls.inside = volume::Inside::Below;
-  ls.domain = ls.grid->evalActiveVoxelBoundingBox();
-  ls.stats.min = -1.5;
-  ls.stats.max = 1.5;
+  const volume::Volume ls = level_set_sphere();
   Mesh s = mc::extract(ls, 0.0f, dev(), keys());
   expect_same_mesh(s, mc::extract_reference(ls, 0.0f, keys()));
   expect_closed(s, 2);
@@ -186,19 +196,8 @@ TEST(Extract, WithoutEdgeKeysTheOutputIsTheSame) {
   // The tests above compare against the reference with edge keys on, which sends every vertex
   // through mc_emit's general path; without keys, cells inside the frame take the branch-free
   // one. Both must give the same mesh, bit for bit (and so the reference's).
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<float> u(-1, 1);
-  std::vector<float> noise(23 * 19 * 29);
-  for (auto& x : noise) x = u(rng);
-  std::size_t i = 0;
-  auto random = test::sampled([&](double, double, double) { return noise[i++]; }, {23, 19, 29});
-  volume::Volume ls;
-  ls.grid = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(10.0f, openvdb::Vec3f(0.3f, -0.2f, 0.1f), 0.5f);
-  ls.dense = false;
-  ls.inside = volume::Inside::Below;
-  ls.domain = ls.grid->evalActiveVoxelBoundingBox();
-  ls.stats.min = -1.5;
-  ls.stats.max = 1.5;
+  const auto random = noise_volume(5);
+  const volume::Volume ls = level_set_sphere();
   const auto ball = test::ball(33, 11.0, 16.0);
   for (bool cap : {false, true}) {
     mc::Options plain, with_keys = keys();
