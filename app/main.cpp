@@ -6,8 +6,10 @@
 
 #include "app/commands.h"
 #include "core/error.h"
+#include "core/huge_pages.h"
 
 int main(int argc, char** argv) {
+  isocurv::retain_freed_memory();  // the explorer re-extracts on every slider move
   CLI::App app{"isocurv: isosurfaces and their curvature from volumes (OpenVDB, OpenCL, VTK)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "isocurv 0.1.0");

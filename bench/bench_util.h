@@ -15,18 +15,15 @@
 #include <string>
 #include <vector>
 
+#include "core/huge_pages.h"
 #include "volume/volume.h"
 
 namespace isocurv::bench {
 
-/// Keeps freed heap memory in the process (no trimming; arrays up to 32 MiB from the heap, not
-/// fresh mappings), so every method's repeated runs reuse touched pages: first touches of small
-/// pages cost about 3 ms per MiB on this virtual machine and would otherwise be timed anew in
-/// each run, for whichever method happens to free and re-map. Call once, first thing.
-inline void keep_freed_memory() {
-  mallopt(M_TRIM_THRESHOLD, 1 << 30);
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);
-}
+/// Keeps freed heap memory in the process (core/huge_pages.h), so every method's repeated runs
+/// reuse touched pages rather than timing fresh page faults, for whichever method happens to free
+/// and re-map. Call once, first thing.
+inline void keep_freed_memory() { retain_freed_memory(); }
 
 /// Median wall time in ms of `runs` calls of f, after untimed warm-up calls: at least 2, then
 /// until half a second has passed or 10 were made (steady state: the first few calls pay for
