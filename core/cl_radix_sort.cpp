@@ -1,6 +1,7 @@
 #include "core/cl_radix_sort.h"
 
 #include <algorithm>
+#include <string>
 #include <utility>
 
 #include "core/cl_launch.h"
@@ -15,13 +16,14 @@ extern const char* const radix_sort_cl;
 
 namespace {
 constexpr std::size_t kChunkGroup = 1;  // a chunk per work group: PoCL runs a group on one thread
-constexpr int kMaxRadixBits = 11;       // widest digit: radix_sort.cl's MAX_RADIX_BITS, keep equal
+constexpr int kMaxRadixBits = 11;       // widest digit, radix_sort.cl's MAX_RADIX_BITS
 }  // namespace
 
 void radix_sort_pairs(Device& dev, cl::Buffer& keys, cl::Buffer& values, std::uint32_t n, int key_bits) {
   if (key_bits < 1 || key_bits > 32) throw Error("radix sort: key_bits must be 1..32");
   if (n < 2) return;
-  cl::Program& prog = dev.program("radix_sort", kernels::radix_sort_cl);
+  cl::Program& prog =
+      dev.program("radix_sort", kernels::radix_sort_cl, "-DMAX_RADIX_BITS=" + std::to_string(kMaxRadixBits));
   // As few passes as digits of up to kMaxRadixBits allow, the bits shared evenly between them.
   const int passes = (key_bits + kMaxRadixBits - 1) / kMaxRadixBits;
   const int digit_bits = (key_bits + passes - 1) / passes;

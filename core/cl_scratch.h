@@ -12,8 +12,9 @@ namespace isocurv {
 /// The slots of a device's scratch buffers (one owner each).
 enum ScratchSlot : std::size_t {
   kScanTotals, kScanTotal, kRadixHistogram, kRadixKeys, kRadixValues,
-  kMcSamples, kMcCounts, kMcOrigins, kMcCases, kMcRowRanks, kMcTriangleOffsets, kMcVertexOffsets, kMcSeamOffsets, kMcPositions,
-  kMcKeys, kMcHashes, kMcOrder, kMcSeamVertices, kMcSeamKeys, kMcTableHashes, kMcTableVertices, kMcTableKeys, kMcBucketStarts, kMcTriangles,
+  kMcSamples, kMcCounts, kMcOrigins, kMcCases, kMcRowRanks, kMcTriangleOffsets, kMcVertexOffsets,
+  kMcSeamOffsets, kMcPositions, kMcKeys, kMcHashes, kMcOrder, kMcSeamVertices, kMcSeamKeys,
+  kMcTableHashes, kMcTableVertices, kMcTableKeys, kMcBucketStarts, kMcTriangles,
   kScratchSlots
 };
 

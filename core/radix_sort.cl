@@ -3,7 +3,7 @@
 // scan of them, then a sequential stable scatter per chunk. Deterministic: the result depends
 // only on the input.
 
-#define MAX_RADIX_BITS 11  // core/cl_radix_sort.cpp kMaxRadixBits, keep equal
+// MAX_RADIX_BITS: the widest digit, defined by the build options (core/cl_radix_sort.cpp).
 
 __kernel void radix_histogram(__global const uint* keys, uint n, uint chunk, uint shift, uint bits, uint p,
                               __global uint* hist) {

@@ -10,8 +10,8 @@
 #include <cstring>
 #include <limits>
 
-// GCC's function multiversioning (x86-64 glibc, which resolves it with an ifunc): an AVX2 build of a hot loop beside the
-// baseline one.
+// GCC's function multiversioning (x86-64 glibc, which resolves it with an ifunc): an AVX2 build
+// of a hot loop beside the baseline one.
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__GLIBC__)
 #define ISOCURV_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
 #else
@@ -24,9 +24,9 @@ namespace {
 int floor_div8(int v) { return v >= 0 ? v / 8 : -((-v + 7) / 8); }
 
 // A brick's gather from its eight blocks' values (leaf buffers, or leaf-sized buffers of a tile's
-// value), before any clipping to the domain. Column (x, y): z = 0..7 straight from one block (VDB's
-// order is z fastest too), z = 8 from the block after it along z. Writes the 729 signed values to `out`; true when some are inside
-// and some are not.
+// value), before any clipping to the domain. Column (x, y): z = 0..7 straight from one block
+// (VDB's order is z fastest too), z = 8 from the block after it along z. Writes the 729 signed
+// values to `out`; true when some are inside and some are not.
 ISOCURV_VECTOR_CLONES bool gather_leaves(const float* const* data, float sign, float iso, float outside_value,
                                          float* out) {
   auto signed_value = [&](float value) {

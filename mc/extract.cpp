@@ -236,8 +236,9 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           for (int i = 0; i < 12; ++i) world.s[i] = f.world[i];
           cl::Kernel emit(*st.program, "mc_emit");
           set_args(emit, d_samples, d_origins, nbricks, cmax, korg, blocks, mask, kMinEdgeFraction, world,
-                   st.case_slots, st.tri_count, st.crossed, d_cases, d_tri_offsets, ntri, d_vert_offsets, nvert, d_table_hashes, d_table_vertices, d_table_keys, nseam,
-                   d_starts, shift, out_pos.buffer(), out_tris.buffer(), write_keys, out_keys.buffer());
+                   st.case_slots, st.tri_count, st.crossed, d_cases, d_tri_offsets, ntri, d_vert_offsets, nvert,
+                   d_table_hashes, d_table_vertices, d_table_keys, nseam, d_starts, shift, out_pos.buffer(),
+                   out_tris.buffer(), write_keys, out_keys.buffer());
           launch(q, emit, nbricks, kBricksPerGroup);
           mark(&ExtractTimings::emit);
 
