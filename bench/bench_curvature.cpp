@@ -31,8 +31,6 @@ void run_case(const std::string& name, const Mesh& mesh, int runs, bool with_ref
   Device& dev = Device::default_device();
   curvature::Timings steps;
   auto ours = [&] { curvature::estimate(mesh, dev, {}, nullptr); };
-  const double t_ours = bench::median_ms(ours, runs);
-  curvature::estimate(mesh, dev, {}, &steps);  // step times (queue drained between steps)
   auto poly = io::to_polydata(mesh, nullptr);
   auto vtk = [&](int type) {
     vtkNew<vtkCurvatures> c;
@@ -40,8 +38,10 @@ void run_case(const std::string& name, const Mesh& mesh, int runs, bool with_ref
     c->SetCurvatureType(type);
     c->Update();
   };
-  const double t_mean = bench::median_ms([&] { vtk(VTK_CURVATURE_MEAN); }, runs);
-  const double t_gauss = bench::median_ms([&] { vtk(VTK_CURVATURE_GAUSS); }, runs);
+  const std::vector<double> t = bench::medians_ms(
+      {{ours, runs}, {[&] { vtk(VTK_CURVATURE_MEAN); }, runs}, {[&] { vtk(VTK_CURVATURE_GAUSS); }, runs}});
+  const double t_ours = t[0], t_mean = t[1], t_gauss = t[2];
+  curvature::estimate(mesh, dev, {}, &steps);  // step times (queue drained between steps)
   double t_ref = -1;
   if (with_reference) {
     tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);

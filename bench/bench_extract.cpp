@@ -57,9 +57,8 @@ void run_case(const Case& c, int runs) {
     openvdb::tools::volumeToMesh(*v.grid, pts, tris, quads, double(c.iso));
     vdb_tris = tris.size() + 2 * quads.size();
   };
-  const double t_ours = bench::median_ms(ours, runs);
-  const double t_fe = bench::median_ms(fe, runs);
-  const double t_vdb = bench::median_ms(vdb, std::max(1, runs / 2));
+  const std::vector<double> t = bench::medians_ms({{ours, runs}, {fe, runs}, {vdb, std::max(1, runs / 2)}});
+  const double t_ours = t[0], t_fe = t[1], t_vdb = t[2];
   const double m_ours = bench::peak_extra_mib(ours), m_fe = bench::peak_extra_mib(fe), m_vdb = bench::peak_extra_mib(vdb);
   std::printf("%-26s %10zu %9.1f %8.1f %7.2f %9.1f %7.2f %8.1f %8.1f %8.1f %8.1f\n", c.name.c_str(), ours_tris, t_ours,
               t_fe, t_fe / t_ours, t_vdb, t_vdb / t_ours, ours_tris / t_ours / 1000.0, m_ours, m_fe, m_vdb);

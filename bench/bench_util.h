@@ -25,23 +25,41 @@ namespace isocurv::bench {
 /// and re-map. Call once, first thing.
 inline void keep_freed_memory() { retain_freed_memory(); }
 
-/// Median wall time in ms of `runs` calls of f, after untimed warm-up calls: at least 2, then
-/// until half a second has passed or 10 were made (steady state: the first few calls pay for
-/// first touches of memory, JIT compiles and the like).
-inline double median_ms(const std::function<void()>& f, int runs) {
-  const auto warm_start = std::chrono::steady_clock::now();
-  for (int i = 0; i < 10; ++i) {
-    f();
-    if (i >= 1 && std::chrono::steady_clock::now() - warm_start > std::chrono::milliseconds(500)) break;
+/// A method to time and how many timed calls it gets.
+struct Timed {
+  std::function<void()> f;
+  int runs;
+};
+
+/// Median wall time in ms of each method's timed calls. Each first gets untimed warm-up calls
+/// (at least 2, then until half a second has passed or 10 were made: the first calls pay for first
+/// touches of memory, JIT compiles and the like); then the methods are timed in turns, one call
+/// each a round, so a shared machine slowing down or speeding up weighs on all of them alike.
+inline std::vector<double> medians_ms(const std::vector<Timed>& methods) {
+  for (const Timed& m : methods) {
+    const auto warm_start = std::chrono::steady_clock::now();
+    for (int i = 0; i < 10; ++i) {
+      m.f();
+      if (i >= 1 && std::chrono::steady_clock::now() - warm_start > std::chrono::milliseconds(500)) break;
+    }
   }
-  std::vector<double> t;
-  for (int i = 0; i < runs; ++i) {
-    auto t0 = std::chrono::steady_clock::now();
-    f();
-    t.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  std::vector<std::vector<double>> t(methods.size());
+  for (bool more = true; more;) {
+    more = false;
+    for (std::size_t i = 0; i < methods.size(); ++i) {
+      if (int(t[i].size()) >= std::max(1, methods[i].runs)) continue;
+      const auto t0 = std::chrono::steady_clock::now();
+      methods[i].f();
+      t[i].push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      more = true;
+    }
   }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
+  std::vector<double> medians;
+  for (auto& ti : t) {
+    std::sort(ti.begin(), ti.end());
+    medians.push_back(ti[ti.size() / 2]);
+  }
+  return medians;
 }
 
 inline long status_kb(const char* key) {

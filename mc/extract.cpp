@@ -184,8 +184,11 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
         if (std::uint64_t(ntri) * 3 >= 0xffffffffULL)
           throw Error(st.volume.path, "isosurface too large (over 1.4 billion triangles)");
         if (ntri > 0) {
-          const openvdb::Coord key_span = f.cells.max() - f.key_origin + openvdb::Coord(2);
-          const cl_uint2 blocks{{cl_uint(key_span.z() / 8 + 1), cl_uint(key_span.y() / 8 + 1)}};  // edge_hash
+          // Hash coordinates count from the brick-aligned corner below the cells (edge_hash).
+          const openvdb::Coord hash_origin(f.cells.min().x() & ~7, f.cells.min().y() & ~7, f.cells.min().z() & ~7);
+          const openvdb::Coord hash_span = f.cells.max() + openvdb::Coord(1) - hash_origin;  // largest coordinate
+          const cl_uint2 blocks{{cl_uint(hash_span.z() / 8 + 1), cl_uint(hash_span.y() / 8 + 1)}};
+          const cl_int4 horg = to_int4(hash_origin);
           const cl_uint mask = hash_mask(options.hash_bits);
           // The seam vertices as (hash, j) pairs, sorted by hash.
           const std::size_t nseam1 = std::max<std::uint32_t>(nseam, 1);
@@ -194,13 +197,13 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           cl::Buffer& d_seam_vertex = scratch.get(kMcSeamVertices, nseam1 * sizeof(std::uint32_t));
           cl::Buffer& d_seam_keys = scratch.get(kMcSeamKeys, nseam1 * sizeof(cl_ulong));
           cl::Kernel seams(*st.program, "mc_seams");
-          set_args(seams, d_origins, nbricks, cmax, korg, blocks, mask, st.crossed, d_cases, d_row_ranks,
+          set_args(seams, d_origins, nbricks, cmax, korg, horg, blocks, mask, st.crossed, d_cases, d_row_ranks,
                    d_vert_offsets, d_seam_offsets, d_hash, d_order, d_seam_vertex, d_seam_keys);
           launch(q, seams, nbricks, kBricksPerGroup);
           mark(&ExtractTimings::seams);
 
           // Every hash lies below 2^range_bits: the sort needs no more key bits than that.
-          const std::uint64_t nblocks = std::uint64_t(blocks.s[0]) * blocks.s[1] * std::uint64_t(key_span.x() / 8 + 1);
+          const std::uint64_t nblocks = std::uint64_t(blocks.s[0]) * blocks.s[1] * std::uint64_t(hash_span.x() / 8 + 1);
           const std::uint64_t hash_range = std::min(nblocks * kEdgeSlotsPerBlock, std::uint64_t(mask) + 1);
           int range_bits = 1, table_bits = 1;
           while (range_bits < 32 && (std::uint64_t(1) << range_bits) < hash_range) ++range_bits;
@@ -235,7 +238,7 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           cl_float16 world{};
           for (int i = 0; i < 12; ++i) world.s[i] = f.world[i];
           cl::Kernel emit(*st.program, "mc_emit");
-          set_args(emit, d_samples, d_origins, nbricks, cmax, korg, blocks, mask, kMinEdgeFraction, world,
+          set_args(emit, d_samples, d_origins, nbricks, cmax, korg, horg, blocks, mask, kMinEdgeFraction, world,
                    st.case_slots, st.tri_count, st.crossed, d_cases, d_tri_offsets, ntri, d_vert_offsets, nvert,
                    d_table_hashes, d_table_vertices, d_table_keys, nseam, d_starts, shift, out_pos.buffer(),
                    out_tris.buffer(), write_keys, out_keys.buffer());

@@ -13,13 +13,13 @@
 // (the vertices other bricks will look up, with a hash of their edge's identity), radix sort by
 // hash, mc_table, mc_emit (positions and triangles). A cell finds the vertex of an edge owned in
 // its own brick directly (mc_emit records the brick's vertices in a map before it writes
-// triangles), and one owned by another brick by a search for the edge's hash in the sorted seam
-// vertices and a walk over equal hashes comparing edge identities. The output has no duplicate
-// and no unreferenced vertex by construction.
+// triangles), and one owned by a brick above from the same map: before its walk, each brick
+// records the seam vertices on the faces it shares with the bricks above, found as runs of the
+// sorted hashes (the hash numbers a block's lower faces as a few runs) and placed by their edge
+// keys. The output has no duplicate and no unreferenced vertex by construction.
 
 #define APRON 9
 #define BRICK_SAMPLES 729
-#define UNKNOWN 0xffffffffu
 
 __constant int corner_offset[8] = {0, APRON * APRON, APRON * APRON + APRON, APRON, 1, APRON * APRON + 1,
                                    APRON * APRON + APRON + 1, APRON + 1};
@@ -150,24 +150,33 @@ inline ulong edge_key(uint x, uint y, uint z, uint axis) {
   return ((ulong)x << 42) | ((ulong)y << 22) | ((ulong)z << 2) | (ulong)axis;
 }
 
-// 32-bit hash of an edge (key coordinates x, y, z and axis), spatially coherent: 8^3-voxel
-// blocks in order, z fastest like the bricks (blocks = (blocks a column, columns a layer)), 1536
-// edge slots each, wrapping past 2^32 (over 2.8 million blocks), then masked. Sorting by it keeps
-// neighbouring edges together, and mc_emit, walking the bricks in order, looks seam vertices up
-// in a few ascending streams that stay in cache.
+// Order of point (x, y, z) (each 0..7) in its 8^3 block, the lower faces' points first: face
+// x = 0 is [0, 64), face y = 0 [56, 120), face z = 0 [49, 57) and [113, 169) (mc/edge_key.h).
+inline uint block_point(uint x, uint y, uint z) {
+  if (x == 0) return y == 0 ? 56 + z : z == 0 ? 48 + y : (y - 1) * 7 + (z - 1);
+  if (y == 0) return z == 0 ? 112 + x : 64 + (x - 1) * 7 + (z - 1);
+  if (z == 0) return 120 + (x - 1) * 7 + (y - 1);
+  return 169 + ((x - 1) * 7 + (y - 1)) * 7 + (z - 1);
+}
+
+// 32-bit hash of an edge starting at hash coordinates (x, y, z) (index space from a brick-aligned
+// origin) along `axis`, spatially coherent: the bricks' 8^3 blocks in order, z fastest like the
+// bricks (blocks = (blocks a column, columns a layer)), 1536 edge slots each (block_point order,
+// so each lower face is one or two runs of hashes), wrapping past 2^32 (over 2.8 million blocks),
+// then masked.
 inline uint edge_hash(uint x, uint y, uint z, uint axis, uint2 blocks, uint mask) {
   uint block = (z >> 3) + blocks.x * ((y >> 3) + blocks.y * (x >> 3));
-  uint slot = (((x & 7u) << 6) | ((y & 7u) << 3) | (z & 7u)) * 3u + axis;
-  return (block * 1536u + slot) & mask;
+  return (block * 1536u + block_point(x & 7u, y & 7u, z & 7u) * 3u + axis) & mask;
 }
 
 // Key and hash of cube edge e of the cell at g.
-inline ulong cell_edge(int4 g, int e, int4 key_origin, uint2 blocks, uint mask, uint* hash) {
+inline ulong cell_edge(int4 g, int e, int4 key_origin, int4 hash_origin, uint2 blocks, uint mask, uint* hash) {
   int lo = edge_low[e];
-  uint x = (uint)(g.x + corner_x[lo] - key_origin.x), y = (uint)(g.y + corner_y[lo] - key_origin.y),
-       z = (uint)(g.z + corner_z[lo] - key_origin.z), axis = (uint)edge_axis[e];
-  *hash = edge_hash(x, y, z, axis, blocks, mask);
-  return edge_key(x, y, z, axis);
+  int4 c = g + (int4)(corner_x[lo], corner_y[lo], corner_z[lo], 0);
+  uint axis = (uint)edge_axis[e];
+  int4 h = c - hash_origin, k = c - key_origin;
+  *hash = edge_hash((uint)h.x, (uint)h.y, (uint)h.z, axis, blocks, mask);
+  return edge_key((uint)k.x, (uint)k.y, (uint)k.z, axis);
 }
 
 // Per brick, from seam_offsets[b] on: the seam vertices (seam_table), cell by cell in edge order,
@@ -176,7 +185,7 @@ inline ulong cell_edge(int4 g, int e, int4 key_origin, uint2 blocks, uint mask, 
 // the brick's lower faces (x = 0 or y = 0) and the first cell of every other row hold seam
 // vertices.
 __kernel void mc_seams(__global const int4* origins, uint nbricks, int4 cell_max, int4 key_origin,
-                       uint2 blocks, uint hash_mask, __global const ushort* crossed,
+                       int4 hash_origin, uint2 blocks, uint hash_mask, __global const ushort* crossed,
                        __global const uchar* cases, __global const ushort* row_ranks,
                        __global const uint* vertex_offsets, __global const uint* seam_offsets,
                        __global uint* hashes, __global uint* order, __global uint* seam_vertex,
@@ -201,7 +210,7 @@ __kernel void mc_seams(__global const int4* origins, uint nbricks, int4 cell_max
       for (uint seam = owned & seam_table[(x == 0) | (y == 0) << 1 | (z == 0) << 2]; seam; seam &= seam - 1u) {
         uint e = lowest_bit(seam);
         uint h;
-        seam_keys[j] = cell_edge(g, (int)e, key_origin, blocks, hash_mask, &h);
+        seam_keys[j] = cell_edge(g, (int)e, key_origin, hash_origin, blocks, hash_mask, &h);
         hashes[j] = h;
         order[j] = j;
         seam_vertex[j] = v + popcount(owned & ((1u << e) - 1u));
@@ -234,60 +243,88 @@ __kernel void mc_table(__global const uint* sorted_hashes, __global const uint* 
   for (long b = prev + 1; b <= cur; ++b) starts[b] = j;
 }
 
-// The vertex of edge `key` (hash h): the first entry with hash h in the bucket of h's top bits,
-// by binary search in a long bucket (collisions, a narrowed hash) and by a scan in a short one
-// (the usual dozen entries, one or two cache lines of hashes: faster than a search's dependent
-// probes), then a walk over the entries of equal hash comparing edge keys, which resolves
-// collisions. ~0 only if the edge's owner was not processed (a bug).
-inline uint find_vertex(ulong key, uint h, __global const uint* hashes, __global const uint* vertices,
-                        __global const ulong* keys, uint n, __global const uint* starts, uint shift) {
-  uint b = h >> shift;
-  uint j = starts[b], len = starts[b + 1] - j;
-  while (len > 16) {  // halve to a short range that holds the lower bound of h
+// Slot of cube edge e of the cell at local (0,0,0) in a brick's vertex map: 3 * (lower end's
+// x + 9 y + 81 z) + axis. A cell's slot adds 3 * (x + 9 y + 81 z).
+__constant int edge_slot[12] = {0, 3 * 1 + 1, 3 * 9 + 0, 1, 3 * 81 + 0, 3 * 82 + 1,
+                                3 * 90 + 0, 3 * 81 + 1, 2, 3 * 1 + 2, 3 * 9 + 2, 3 * 10 + 2};
+
+// Records in the vertex map `own` of the brick at o the seam vertices with (masked) hashes in
+// [a, b): every table entry there whose edge lies in the brick's 9^3 lattice (keys compared, so
+// entries of other edges, from collisions, are passed over). The first entry is found in the
+// bucket of a's top bits: scanned when short (the usual dozen entries), binary-searched when long
+// (collisions, a narrowed hash).
+inline void record_run(uint a, ulong b, int4 o, int4 key_origin, __global const uint* hashes,
+                       __global const uint* vertices, __global const ulong* keys, uint n,
+                       __global const uint* starts, uint shift, uint first, uint* own) {
+  uint bucket = a >> shift;
+  uint j = starts[bucket], len = starts[bucket + 1] - j;
+  while (len > 16) {  // halve to a short range that holds the lower bound of a
     uint half_len = len >> 1;
-    if (hashes[j + half_len] < h) {
+    if (hashes[j + half_len] < a) {
       j += half_len + 1;
       len -= half_len + 1;
     } else {
       len = half_len;
     }
   }
-  for (uint end = j + len; j < end && hashes[j] < h;) ++j;
-  for (; j < n && hashes[j] == h; ++j)
-    if (keys[j] == key) return vertices[j];
-  return 0xffffffffu;
+  for (uint end = j + len; j < end && hashes[j] < a;) ++j;
+  int4 d = key_origin - o;
+  for (; j < n && hashes[j] < b; ++j) {
+    ulong key = keys[j];
+    int axis = (int)(key & 3u);
+    int4 l = (int4)((int)(key >> 42), (int)(key >> 22) & 0xfffff, (int)(key >> 2) & 0xfffff, 0) + d;
+    int along = axis == 0 ? l.x : axis == 1 ? l.y : l.z;
+    if ((uint)l.x <= 8u && (uint)l.y <= 8u && (uint)l.z <= 8u && along < 8)
+      own[3 * (l.x + APRON * l.y + APRON * APRON * l.z) + axis] = vertices[j] - first;
+  }
 }
 
-// Slot of cube edge e of the cell at local (0,0,0) in a brick's vertex map: 3 * (lower end's
-// x + 9 y + 81 z) + axis. A cell's slot adds 3 * (x + 9 y + 81 z).
-__constant int edge_slot[12] = {0, 3 * 1 + 1, 3 * 9 + 0, 1, 3 * 81 + 0, 3 * 82 + 1,
-                                3 * 90 + 0, 3 * 81 + 1, 2, 3 * 1 + 2, 3 * 9 + 2, 3 * 10 + 2};
+// The hashes of the points of block face, line or corner d (dx + 2 dy + 4 dz: the points at 0
+// along each axis with d set), in block_point order: up to two runs [begin, end).
+__constant uchar face_runs[8][4] = {{0, 0, 0, 0},   {0, 64, 0, 0},  {56, 120, 0, 0}, {56, 64, 0, 0},
+                                    {49, 57, 113, 169}, {49, 57, 0, 0}, {56, 57, 113, 120}, {56, 57, 0, 0}};
 
-// The vertex of the edge at `slot` of brick o's vertex map that another brick owns (an edge
-// starting on an upper face), found by its hash, minus `first` (map entries are relative).
-inline uint seam_vertex(int slot, int4 o, int4 key_origin, uint2 blocks, uint hash_mask,
-                        __global const uint* hashes, __global const uint* vertices, __global const ulong* keys,
-                        uint nseams, __global const uint* starts, uint shift, uint first) {
-  int axis = slot % 3, end = slot / 3;
-  int4 g = o + (int4)(end % APRON, (end / APRON) % APRON, end / (APRON * APRON), 0);
-  uint h;
-  ulong key = cell_edge(g, axis == 0 ? 0 : axis == 1 ? 3 : 8, key_origin, blocks, hash_mask, &h);
-  return find_vertex(key, h, hashes, vertices, keys, nseams, starts, shift) - first;
+// Records in `own` the vertices of the edges on the upper faces of the brick at o (hash block
+// (bx, by, bz)) that the bricks above own: each is a seam vertex of the block d above (d = dx + 2
+// dy + 4 dz), on that block's face, line or corner touching this brick, and so hashes into one of
+// face_runs[d]. Blocks above are visited only where the brick's cells reach its upper face.
+inline void record_upper_faces(int4 o, int4 cell_max, int4 key_origin, uint3 bb, uint2 blocks, uint mask,
+                               __global const uint* hashes, __global const uint* vertices,
+                               __global const ulong* keys, uint n, __global const uint* starts, uint shift,
+                               uint first, uint* own) {
+  int4 reach = (int4)(cell_max.x >= o.x + 7, cell_max.y >= o.y + 7, cell_max.z >= o.z + 7, 0);
+  for (int d = 1; d < 8; ++d) {
+    int dx = d & 1, dy = (d >> 1) & 1, dz = d >> 2;
+    if ((dx && !reach.x) || (dy && !reach.y) || (dz && !reach.z)) continue;
+    uint block = (bb.z + dz) + blocks.x * ((bb.y + dy) + blocks.y * (bb.x + dx));
+    for (int r = 0; r < 4; r += 2) {
+      uint begin = face_runs[d][r], end = face_runs[d][r + 1];
+      if (begin == end) break;
+      uint lo = block * 1536u + 3u * begin, len = 3u * (end - begin);
+      ulong full = (ulong)mask + 1;
+      if (len >= full) {  // a hash narrower than the run: every entry
+        record_run(0, full, o, key_origin, hashes, vertices, keys, n, starts, shift, first, own);
+        continue;
+      }
+      uint a = lo & mask;
+      ulong b = (ulong)a + len;
+      record_run(a, min(b, full), o, key_origin, hashes, vertices, keys, n, starts, shift, first, own);
+      if (b > full) record_run(0, b - full, o, key_origin, hashes, vertices, keys, n, starts, shift, first, own);
+    }
+  }
 }
 
 // Per brick, the vertices (positions, and edge keys when write_keys) from vertex_offsets[b] on and
-// the triangles from triangle_offsets[b] on, in two walks over the non-empty cells: (1) each owned
-// crossed edge's vertex, recorded in the brick's vertex map `own` (by edge_slot); (2) every
-// triangle corner from the map. Edges on the brick's upper faces that another brick owns are
-// marked unknown in the map first and looked up by their hash (find_vertex) when a triangle first
-// needs them.
+// the triangles from triangle_offsets[b] on, with the brick's vertex map `own` (by edge_slot): (0)
+// the vertices of the edges on its upper faces that other bricks own, from the seam table
+// (record_upper_faces); (1) a walk over the non-empty cells writing each owned crossed edge's
+// vertex and recording it in the map; (2) a second walk writing every triangle corner from the map.
 __kernel void mc_emit(__global const float* samples, __global const int4* origins, uint nbricks,
-                      int4 cell_max, int4 key_origin, uint2 blocks, uint hash_mask, float min_fraction,
-                      float16 world, __global const ushort* case_slots, __global const uchar* tri_count,
-                      __global const ushort* crossed, __global const uchar* cases,
+                      int4 cell_max, int4 key_origin, int4 hash_origin, uint2 blocks, uint hash_mask,
+                      float min_fraction, float16 world, __global const ushort* case_slots,
+                      __global const uchar* tri_count, __global const ushort* crossed, __global const uchar* cases,
                       __global const uint* triangle_offsets, uint ntriangles, __global const uint* vertex_offsets,
-                      uint nvertices,
-                      __global const uint* table_hashes, __global const uint* table_vertices,
+                      uint nvertices, __global const uint* table_hashes, __global const uint* table_vertices,
                       __global const ulong* table_keys, uint nseams, __global const uint* starts, uint shift,
                       __global float* positions, __global uint* triangles, uint write_keys,
                       __global ulong* keys) {
@@ -299,24 +336,9 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
   o.w = 0;
   uint own[APRON * APRON * APRON * 3];  // vertex numbers relative to the brick's first, `first`
   uint first = vertex_offsets[b];
-  int4 next = (int4)(cell_max.x > o.x + 7, cell_max.y > o.y + 7, cell_max.z > o.z + 7, 0);
-  // Edges starting on an upper face another brick owns, along the face (an edge across it leaves
-  // the brick): unknown until looked up.
-  for (int v = 0; v < APRON; ++v)
-    for (int u = 0; u < APRON; ++u) {
-      if (next.x) {
-        int i = 3 * (8 + APRON * u + APRON * APRON * v);
-        own[i + 1] = own[i + 2] = UNKNOWN;
-      }
-      if (next.y) {
-        int i = 3 * (u + APRON * 8 + APRON * APRON * v);
-        own[i] = own[i + 2] = UNKNOWN;
-      }
-      if (next.z) {
-        int i = 3 * (u + APRON * v + APRON * APRON * 8);
-        own[i] = own[i + 1] = UNKNOWN;
-      }
-    }
+  int4 ob = (o - hash_origin) >> 3;
+  record_upper_faces(o, cell_max, key_origin, (uint3)((uint)ob.x, (uint)ob.y, (uint)ob.z), blocks, hash_mask,
+                     table_hashes, table_vertices, table_keys, nseams, starts, shift, first, own);
   // (1) The brick's own vertices, cell by cell in edge order, into positions[first + w]. A cell
   // inside the frame owns just its x, y and z edges at corner 0: it writes all three without
   // branches, each advancing the count only when crossed (the next write overwrites an uncrossed
@@ -364,7 +386,7 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
         vstore3(ax * px + ay * py + az * pz + at, w, pos);
         if (write_keys) {
           uint h;
-          keys[first + w] = cell_edge(g, e, key_origin, blocks, hash_mask, &h);
+          keys[first + w] = cell_edge(g, e, key_origin, hash_origin, blocks, hash_mask, &h);
         }
         own[base + edge_slot[e]] = w++;
       }
@@ -372,7 +394,7 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
   }
   // (2) The triangles. Cells write their first 6 corners (2 triangles, the most common case)
   // without a loop, when the brick's triangles leave room: a cell with fewer writes its padding
-  // corners (map slot 0 of the cell, a value never used) where its successor's then go.
+  // corners (map slot 0 of the cell) where its successor's then go.
   __global uint* out = triangles + 3 * (size_t)triangle_offsets[b];
   __global const uint* end = triangles + 3 * (size_t)(b + 1 < nbricks ? triangle_offsets[b + 1] : ntriangles);
   for (int row = 0; row < 64; ++row) {
@@ -380,25 +402,12 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
       int z = (int)lowest_bit(cells), y = row & 7, x = row >> 3;
       uint index = bc[8 * row + z];
       int n = 3 * tri_count[index];
-      int base = 3 * (x + APRON * y + APRON * APRON * z);
+      const uint* map = own + 3 * (x + APRON * y + APRON * APRON * z);
       __global const ushort* ts = case_slots + index * 16;
       int k = 0;
       if (out + 6 <= end)
-        for (; k < 6; ++k) {
-          int slot = base + ts[k];
-          uint v = own[slot];
-          if (k < n && v == UNKNOWN) v = own[slot] = seam_vertex(slot, o, key_origin, blocks, hash_mask, table_hashes,
-                                                                 table_vertices, table_keys, nseams, starts, shift,
-                                                                 first);
-          out[k] = v + first;
-        }
-      for (; k < n; ++k) {
-        int slot = base + ts[k];
-        uint v = own[slot];
-        if (v == UNKNOWN) v = own[slot] = seam_vertex(slot, o, key_origin, blocks, hash_mask, table_hashes,
-                                                      table_vertices, table_keys, nseams, starts, shift, first);
-        out[k] = v + first;
-      }
+        for (; k < 6; ++k) out[k] = map[ts[k]] + first;
+      for (; k < n; ++k) out[k] = map[ts[k]] + first;
       out += n;
     }
   }
