@@ -22,8 +22,8 @@ inline void advise_huge_pages(void* data, std::size_t bytes) {
 }
 
 /// v.resize(n) for an empty vector, its new storage advised into huge pages before it is filled.
-template <typename T>
-void resize_in_huge_pages(std::vector<T>& v, std::size_t n) {
+template <typename T, typename A>
+void resize_in_huge_pages(std::vector<T, A>& v, std::size_t n) {
   if (v.capacity() < n) {
     v.reserve(n);
     advise_huge_pages(v.data(), n * sizeof(T));

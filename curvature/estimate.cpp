@@ -102,8 +102,8 @@ Session& session_for(Device& device) {
 
 constexpr std::size_t kGroup = 64;  // work-group size of every launch (core/cl_launch.h)
 
-template <class T>
-void upload(cl::CommandQueue& q, cl::Context& ctx, Buffer& b, const std::vector<T>& v) {
+template <class T, class A>
+void upload(cl::CommandQueue& q, cl::Context& ctx, Buffer& b, const std::vector<T, A>& v) {
   b.reserve(ctx, v.size() * sizeof(T));
   if (!v.empty()) q.enqueueWriteBuffer(b.buffer, CL_FALSE, 0, v.size() * sizeof(T), v.data());
 }

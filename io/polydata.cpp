@@ -23,8 +23,8 @@ namespace {
 template <class Element>
 using ScalarOf = std::conditional_t<std::is_same_v<Element, std::uint8_t>, std::uint8_t, float>;
 
-template <class Element>
-vtkSmartPointer<vtkDataArray> make_array(const char* name, const std::vector<Element>& values) {
+template <class Element, class Alloc>
+vtkSmartPointer<vtkDataArray> make_array(const char* name, const std::vector<Element, Alloc>& values) {
   using Scalar = ScalarOf<Element>;
   using VtkArray = std::conditional_t<std::is_same_v<Scalar, float>, vtkFloatArray, vtkUnsignedCharArray>;
   constexpr int nc = components_of<Element>();
@@ -38,7 +38,7 @@ vtkSmartPointer<vtkDataArray> make_array(const char* name, const std::vector<Ele
 }
 
 template <class IndexArray>
-vtkSmartPointer<vtkCellArray> make_triangles(const std::vector<Tri>& triangles) {
+vtkSmartPointer<vtkCellArray> make_triangles(const Triangles& triangles) {
   using Value = typename IndexArray::ValueType;
   auto offsets = vtkSmartPointer<IndexArray>::New();
   auto connectivity = vtkSmartPointer<IndexArray>::New();

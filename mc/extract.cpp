@@ -49,7 +49,8 @@ void drain(cl::CommandQueue& q) {
 template <class T>
 class OutputArray {
  public:
-  OutputArray(Device& device, std::vector<T>& v, std::size_t scratch_slot)
+  template <class A>
+  OutputArray(Device& device, std::vector<T, A>& v, std::size_t scratch_slot)
       : data_(v.data()), bytes_(v.size() * sizeof(T)) {
     if (bytes_ > 0 && device.info().type == "CPU") {
       own_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, bytes_, data_);
@@ -78,6 +79,9 @@ class OutputArray {
   cl::Buffer own_;
   cl::Buffer* buffer_ = nullptr;
 };
+
+template <class T, class A>
+OutputArray(Device&, std::vector<T, A>&, std::size_t) -> OutputArray<T>;
 
 }  // namespace
 

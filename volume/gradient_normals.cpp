@@ -53,7 +53,7 @@ struct GradientSampler {
 
 }  // namespace
 
-std::vector<Vec3f> gradient_normals(const Volume& volume, const std::vector<Vec3f>& world_positions) {
+std::vector<Vec3f> gradient_normals(const Volume& volume, const Positions& world_positions) {
   std::vector<Vec3f> normals(world_positions.size(), Vec3f{0, 0, 0});
   if (!volume.grid || world_positions.empty()) return normals;
   const openvdb::FloatGrid& grid = *volume.grid;

@@ -12,6 +12,6 @@ namespace isocurv::volume {
 /// trilinearly and carried to world space through the transform's inverse-transpose Jacobian;
 /// outward is the direction of decreasing "insideness": -gradient for Inside::Above, +gradient for
 /// Inside::Below. A zero gradient gives a zero vector. Parallel (TBB), deterministic.
-std::vector<Vec3f> gradient_normals(const Volume& volume, const std::vector<Vec3f>& world_positions);
+std::vector<Vec3f> gradient_normals(const Volume& volume, const Positions& world_positions);
 
 }  // namespace isocurv::volume

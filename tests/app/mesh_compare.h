@@ -13,14 +13,14 @@ namespace isocurv::test {
 
 /// True when the two arrays have the same length and the same bytes (so NaNs compare equal and
 /// -0 differs from +0: "intact" means exactly what was written).
-template <typename T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+template <typename T, typename A>
+bool same_bits(const std::vector<T, A>& a, const std::vector<T, A>& b) {
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
 /// Index of the first element whose bytes differ, or -1.
-template <typename T>
-long first_difference(const std::vector<T>& a, const std::vector<T>& b) {
+template <typename T, typename A>
+long first_difference(const std::vector<T, A>& a, const std::vector<T, A>& b) {
   const std::size_t n = std::min(a.size(), b.size());
   for (std::size_t i = 0; i < n; ++i)
     if (std::memcmp(&a[i], &b[i], sizeof(T)) != 0) return long(i);

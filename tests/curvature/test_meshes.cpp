@@ -12,7 +12,7 @@ Mesh icosphere(int level, float radius) {
   std::vector<Eigen::Vector3d> p = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
                                     {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
                                     {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-  std::vector<Tri> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+  Triangles f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
                         {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
                         {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
                         {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
@@ -26,7 +26,7 @@ Mesh icosphere(int level, float radius) {
       p.push_back((p[a] + p[b]).normalized());
       return mid[key] = std::uint32_t(p.size() - 1);
     };
-    std::vector<Tri> g;
+    Triangles g;
     for (const Tri& q : f) {
       const std::uint32_t ab = midpoint(q[0], q[1]), bc = midpoint(q[1], q[2]);
       const std::uint32_t ca = midpoint(q[2], q[0]);

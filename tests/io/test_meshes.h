@@ -58,8 +58,8 @@ inline curvature::CurvatureField random_field(std::size_t n, unsigned seed = 7) 
 }
 
 /// Bit-for-bit equality of two vectors of plain values.
-template <class T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+template <class T, class A>
+bool same_bits(const std::vector<T, A>& a, const std::vector<T, A>& b) {
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 

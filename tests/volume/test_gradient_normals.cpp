@@ -31,7 +31,7 @@ Volume sphere_field(Inside inside, double spacing, openvdb::Vec3d origin, openvd
 double worst_angle_deg(const Volume& v, openvdb::Vec3d centre, double radius) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<Vec3f> points;
+  Positions points;
   std::vector<openvdb::Vec3d> truth;
   while (points.size() < 2000) {
     openvdb::Vec3d d(u(rng), u(rng), u(rng));
