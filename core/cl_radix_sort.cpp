@@ -19,7 +19,7 @@ constexpr std::size_t kChunkGroup = 1;  // a chunk per work group: PoCL runs a g
 constexpr int kMaxRadixBits = 11;       // widest digit, radix_sort.cl's MAX_RADIX_BITS
 }  // namespace
 
-void radix_sort_pairs(Device& dev, cl::Buffer& keys, cl::Buffer& values, std::uint32_t n, int key_bits) {
+void enqueue_radix_sort_pairs(Device& dev, cl::Buffer& keys, cl::Buffer& values, std::uint32_t n, int key_bits) {
   if (key_bits < 1 || key_bits > 32) throw Error("radix sort: key_bits must be 1..32");
   if (n < 2) return;
   cl::Program& prog =
@@ -51,7 +51,6 @@ void radix_sort_pairs(Device& dev, cl::Buffer& keys, cl::Buffer& values, std::ui
     dev.queue().enqueueCopyBuffer(*src_k, keys, 0, 0, sizeof(std::uint32_t) * n);
     dev.queue().enqueueCopyBuffer(*src_v, values, 0, 0, sizeof(std::uint32_t) * n);
   }
-  dev.queue().finish();
 }
 
 }  // namespace isocurv

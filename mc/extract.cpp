@@ -211,7 +211,7 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           const std::uint64_t hash_range = std::min(nblocks * kEdgeSlotsPerBlock, std::uint64_t(mask) + 1);
           int range_bits = 1, table_bits = 1;
           while (range_bits < 32 && (std::uint64_t(1) << range_bits) < hash_range) ++range_bits;
-          radix_sort_pairs(st.device, d_hash, d_order, nseam, range_bits);
+          enqueue_radix_sort_pairs(st.device, d_hash, d_order, nseam, range_bits);
           mark(&ExtractTimings::sort);
 
           // The lookup table, with a bucket index over the top bits of the hashes' range (about

@@ -63,7 +63,7 @@ TEST_P(ScanSortSizes, RadixSortIsAStableSortByTheKey) {
     std::vector<std::uint32_t> want_keys(n);
     for (std::size_t i = 0; i < n; ++i) want_keys[i] = keys[order[i]];
     cl::Buffer k = upload(dev, keys), v = upload(dev, values);
-    radix_sort_pairs(dev, k, v, static_cast<std::uint32_t>(n), bits);
+    enqueue_radix_sort_pairs(dev, k, v, static_cast<std::uint32_t>(n), bits);
     EXPECT_EQ(download(dev, k, n), want_keys) << bits << " bits";
     EXPECT_EQ(download(dev, v, n), order) << bits << " bits";
   }
@@ -111,8 +111,8 @@ TEST(ExclusiveScan, EnqueuedScansOfDifferentSizesLeaveTheirTotalsInOneBuffer) {
 TEST(RadixSort, RejectsKeyWidthsOutside1To32) {
   Device& dev = Device::default_device();
   cl::Buffer k = upload(dev, {3, 1, 2}), v = upload(dev, {0, 1, 2});
-  EXPECT_ANY_THROW(radix_sort_pairs(dev, k, v, 3, 0));
-  EXPECT_ANY_THROW(radix_sort_pairs(dev, k, v, 3, 33));
+  EXPECT_ANY_THROW(enqueue_radix_sort_pairs(dev, k, v, 3, 0));
+  EXPECT_ANY_THROW(enqueue_radix_sort_pairs(dev, k, v, 3, 33));
 }
 
 }  // namespace
