@@ -61,6 +61,22 @@ inline uint row_cells(__global const uchar* row_cases) {
 #endif
 }
 
+// A row's 8 case bytes as one number, cell z's case in byte z (bits 8 z .. 8 z + 7).
+inline ulong row_cases(__global const uchar* row_cases) {
+#ifdef __ENDIAN_LITTLE__
+  return *(__global const ulong*)row_cases;  // 8-byte aligned: rows start at multiples of 8
+#else
+  ulong r = 0;
+  for (int z = 0; z < 8; ++z) r |= (ulong)row_cases[z] << (8 * z);
+  return r;
+#endif
+}
+
+// Bit z set when bit k of byte z of r is set (corner k of cell z, for a row's cases).
+inline uint byte_bits(ulong r, int k) {
+  return (uint)((((r >> k) & 0x0101010101010101UL) * 0x0102040810204080UL) >> 56);
+}
+
 // Byte z of the result holds bit z of m (bits 0-7), each nibble spread by one multiplication
 // (the partial products land on distinct bits, so nothing carries).
 inline ulong spread8(uint m) {
@@ -197,11 +213,52 @@ __kernel void mc_seams(__global const int4* origins, uint nbricks, int4 cell_max
   int4 o = origins[b];
   o.w = 0;
   uint first = vertex_offsets[b], j = seam_offsets[b];
+  int4 ob = (o - hash_origin) >> 3, kc = o - key_origin;  // the brick's hash block; key of its origin
+  uint block_hash = ((uint)ob.z + blocks.x * ((uint)ob.y + blocks.y * (uint)ob.x)) * 1536u;
+  bool zlast = cell_max.z - o.z <= 7;  // the frame's last cells along z lie in this brick
   for (int row = 0; row < 64; ++row) {
     int y = row & 7, x = row >> 3;
     // Every cell of a row on a lower face (x = 0 or y = 0), else only the first (z = 0).
-    uint cells = row_cells(bc + 8 * row) & (x == 0 || y == 0 ? 0xffu : 1u);
+    uint first_case = bc[8 * row];
+    uint cells = x == 0 || y == 0 ? row_cells(bc + 8 * row) : (uint)(first_case != 0u && first_case != 255u);
+    if (!cells) continue;
     uint v = first + ranks[row];
+    if (!zlast && o.x + x != cell_max.x && o.y + y != cell_max.y) {
+      // No cell of the row is the frame's last: each owns its x, y and z edges at corner 0 (as in
+      // mc_classify), crossed where corner 0's bit differs from corner 1's, 3's or 4's, and the
+      // seam ones among them depend on the row and on z == 0 (seam_table). Vertex numbers count
+      // the row's owned crossed edges before each.
+      ulong r = row_cases(bc + 8 * row);
+      uint c0 = byte_bits(r, 0), ex = c0 ^ byte_bits(r, 1), ey = c0 ^ byte_bits(r, 3), ez = c0 ^ byte_bits(r, 4);
+      uint sx = ex & (y == 0 ? 0xffu : 1u), sy = ey & (x == 0 ? 0xffu : 1u), sz = x == 0 || y == 0 ? ez : 0u;
+      for (uint rest = sx | sy | sz; rest; rest &= rest - 1u) {
+        int z = (int)lowest_bit(rest);
+        uint below = (1u << z) - 1u;
+        uint w = v + popcount(ex & below) + popcount(ey & below) + popcount(ez & below);
+        uint h = block_hash + block_point((uint)x, (uint)y, (uint)z) * 3u;
+        ulong key = edge_key((uint)(kc.x + x), (uint)(kc.y + y), (uint)(kc.z + z), 0u);
+        uint in_x = (ex >> z) & 1u, in_y = (ey >> z) & 1u;
+        if ((sx >> z) & 1u) {
+          hashes[j] = h & hash_mask;
+          order[j] = j;
+          seam_vertex[j] = w;
+          seam_keys[j++] = key;
+        }
+        if ((sy >> z) & 1u) {
+          hashes[j] = (h + 1u) & hash_mask;
+          order[j] = j;
+          seam_vertex[j] = w + in_x;
+          seam_keys[j++] = key | 1u;
+        }
+        if ((sz >> z) & 1u) {
+          hashes[j] = (h + 2u) & hash_mask;
+          order[j] = j;
+          seam_vertex[j] = w + in_x + in_y;
+          seam_keys[j++] = key | 2u;
+        }
+      }
+      continue;
+    }
     for (; cells; cells &= cells - 1u) {
       int z = (int)lowest_bit(cells);
       uint index = bc[8 * row + z];
