@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 
@@ -26,30 +27,41 @@ int floor_div8(int v) { return v >= 0 ? v / 8 : -((-v + 7) / 8); }
 // A brick's gather from its eight blocks' values (leaf buffers, or leaf-sized buffers of a tile's
 // value), before any clipping to the domain. Column (x, y): z = 0..7 straight from one block
 // (VDB's order is z fastest too), z = 8 from the block after it along z. Writes the 729 signed
-// values to `out`; true when some are inside and some are not.
+// values to `out`; true when some are inside and some are not. A column's first 8 values are
+// converted as one 8-lane vector (GCC/Clang vector extensions: AVX2 in the AVX2 build), branch-free.
+typedef float Float8 __attribute__((vector_size(32)));
+typedef std::int32_t Int8 __attribute__((vector_size(32)));
+
 ISOCURV_VECTOR_CLONES bool gather_leaves(const float* const* data, float sign, float iso, float outside_value,
                                          float* out) {
-  auto signed_value = [&](float value) {
-    return std::fabs(value) <= std::numeric_limits<float>::max() ? sign * (value - iso) : outside_value;
-  };
-  unsigned any_in = 0, any_out = 0;
+  constexpr std::int32_t kAbs = 0x7fffffff, kInf = 0x7f800000;  // |bits| < kInf: finite
+  const Float8 zero = {}, sign8 = zero + sign, iso8 = zero + iso;
+  const Int8 outside8 = (Int8)(zero + outside_value);
+  Int8 in8 = {}, out8 = {};
+  bool any_in = false, any_out = false;
   for (int x = 0; x < kApron; ++x)
     for (int y = 0; y < kApron; ++y) {
       const int k = (x >> 3) | ((y >> 3) << 1);
       const int offset = ((x & 7) << 6) | ((y & 7) << 3);
-      const float* column = data[k] + offset;
-      for (int z = 0; z < kBrick; ++z) {
-        const float sv = signed_value(column[z]);
-        out[z] = sv;
-        any_in |= sv > 0;
-        any_out |= !(sv > 0);
-      }
-      const float sv = signed_value(data[k | 4][offset]);
-      out[kBrick] = sv;
-      any_in |= sv > 0;
-      any_out |= !(sv > 0);
+      Float8 v;
+      std::memcpy(&v, data[k] + offset, sizeof v);
+      const Int8 finite = ((Int8)v & kAbs) < kInf;  // lanes all ones where finite
+      const Float8 sv = (Float8)(((Int8)(sign8 * (v - iso8)) & finite) | (outside8 & ~finite));
+      std::memcpy(out, &sv, sizeof sv);
+      const Int8 inside = sv > zero;
+      in8 |= inside;
+      out8 |= ~inside;
+      const float last = data[k | 4][offset];  // z = 8
+      const float s = std::fabs(last) <= std::numeric_limits<float>::max() ? sign * (last - iso) : outside_value;
+      out[kBrick] = s;
+      any_in |= s > 0;
+      any_out |= !(s > 0);
       out += kApron;
     }
+  for (int j = 0; j < 8; ++j) {
+    any_in |= in8[j] != 0;
+    any_out |= out8[j] != 0;
+  }
   return any_in && any_out;
 }
 
