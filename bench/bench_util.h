@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <fstream>
 #include <functional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -34,7 +35,9 @@ struct Timed {
 /// Median wall time in ms of each method's timed calls. Each first gets untimed warm-up calls
 /// (at least 2, then until half a second has passed or 10 were made: the first calls pay for first
 /// touches of memory, JIT compiles and the like); then the methods are timed in turns, one call
-/// each a round, so a shared machine slowing down or speeding up weighs on all of them alike.
+/// each a round, so a shared machine slowing down or speeding up weighs on all of them alike. Each
+/// round takes them in a fresh random order (fixed seed), so each follows every other about equally
+/// often: a call runs slower after a heavy one (caches emptied, its idle threads still spinning).
 inline std::vector<double> medians_ms(const std::vector<Timed>& methods) {
   for (const Timed& m : methods) {
     const auto warm_start = std::chrono::steady_clock::now();
@@ -44,9 +47,13 @@ inline std::vector<double> medians_ms(const std::vector<Timed>& methods) {
     }
   }
   std::vector<std::vector<double>> t(methods.size());
+  std::vector<std::size_t> order(methods.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::mt19937 rng(20261201);
   for (bool more = true; more;) {
     more = false;
-    for (std::size_t i = 0; i < methods.size(); ++i) {
+    std::shuffle(order.begin(), order.end(), rng);
+    for (const std::size_t i : order) {
       if (int(t[i].size()) >= std::max(1, methods[i].runs)) continue;
       const auto t0 = std::chrono::steady_clock::now();
       methods[i].f();

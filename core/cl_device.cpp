@@ -118,6 +118,13 @@ cl::Program& Device::program(const std::string& name, const char* source, const 
   return programs_.emplace(key, prog).first->second;
 }
 
+cl::Kernel& Device::kernel(cl::Program& program, const char* name) {
+  const auto key = std::make_pair(static_cast<const cl::Program*>(&program), std::string(name));
+  auto it = kernels_.find(key);
+  if (it != kernels_.end()) return it->second;
+  return kernels_.emplace(key, cl::Kernel(program, name)).first->second;
+}
+
 Device::Device() = default;
 Device::~Device() = default;
 

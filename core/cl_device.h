@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace isocurv {
@@ -47,6 +48,11 @@ class Device {
   /// throws Error carrying the compiler's log.
   cl::Program& program(const std::string& name, const char* source, const std::string& options = "");
 
+  /// Kernel `name` of `program` (one of this device's), created once and cached: creating kernels
+  /// per call costs PoCL a reload of their compiled code. Callers set every argument before each
+  /// launch (an enqueue keeps the values it was given). Like the queue, for one thread at a time.
+  cl::Kernel& kernel(cl::Program& program, const char* name);
+
   /// The device's reusable scratch buffers (core/cl_scratch.h). Like the queue, for one thread at
   /// a time.
   ScratchBuffers& scratch();
@@ -60,6 +66,7 @@ class Device {
   cl::Context context_;
   cl::CommandQueue queue_;
   std::map<std::string, cl::Program> programs_;
+  std::map<std::pair<const cl::Program*, std::string>, cl::Kernel> kernels_;
   std::unique_ptr<ScratchBuffers> scratch_;
 };
 

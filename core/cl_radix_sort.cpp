@@ -34,7 +34,7 @@ void enqueue_radix_sort_pairs(Device& dev, cl::Buffer& keys, cl::Buffer& values,
   cl::Buffer& hist = dev.scratch().get(kRadixHistogram, sizeof(std::uint32_t) * radix * p);
   cl::Buffer& keys2 = dev.scratch().get(kRadixKeys, sizeof(std::uint32_t) * n);
   cl::Buffer& values2 = dev.scratch().get(kRadixValues, sizeof(std::uint32_t) * n);
-  cl::Kernel kh(prog, "radix_histogram"), ks(prog, "radix_scatter");
+  cl::Kernel &kh = dev.kernel(prog, "radix_histogram"), &ks = dev.kernel(prog, "radix_scatter");
   cl::Buffer *src_k = &keys, *src_v = &values, *dst_k = &keys2, *dst_v = &values2;
   const cl_uint bits = static_cast<cl_uint>(digit_bits);
   for (int pass = 0; pass < passes; ++pass) {

@@ -26,7 +26,8 @@ void enqueue_exclusive_scan(Device& dev, const cl::Buffer& in, const cl::Buffer&
   const std::uint32_t p = std::clamp<std::uint32_t>(n / 512, 1, 4096);
   const std::uint32_t chunk = (n + p - 1) / p;
   cl::Buffer& totals = dev.scratch().get(kScanTotals, sizeof(std::uint32_t) * (p + 1));
-  cl::Kernel k1(prog, "scan_chunk_totals"), k2(prog, "scan_totals"), k3(prog, "scan_chunks");
+  cl::Kernel &k1 = dev.kernel(prog, "scan_chunk_totals"), &k2 = dev.kernel(prog, "scan_totals"),
+             &k3 = dev.kernel(prog, "scan_chunks");
   set_args(k1, in, n, chunk, p, totals);
   set_args(k2, totals, p, total ? *total : totals, total ? index : p);
   set_args(k3, in, out, n, chunk, p, totals);

@@ -106,7 +106,7 @@ Mesher::Mesher(const volume::Volume& v, Device& device) : state_(std::make_uniqu
                          static_cast<void*>(const_cast<std::uint16_t*>(t.crossed.data())));
   s.case_slots = cl::Buffer(device.context(), CL_MEM_READ_WRITE, 256 * 16 * sizeof(cl_ushort));
   try {
-    cl::Kernel slots(*s.program, "mc_case_slots");
+    cl::Kernel& slots = device.kernel(*s.program, "mc_case_slots");
     set_args(slots, s.tri_edges, s.case_slots);
     launch(device.queue(), slots, 256, kTableGroup);
   } catch (const cl::Error& e) {
@@ -172,7 +172,7 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
         cl::Buffer& d_seam_offsets = scratch.get(kMcSeamOffsets, nbricks * sizeof(std::uint32_t));
         const cl_int4 cmin = to_int4(f.cells.min()), cmax = to_int4(f.cells.max()), korg = to_int4(f.key_origin);
 
-        cl::Kernel classify(*st.program, "mc_classify");
+        cl::Kernel& classify = st.device.kernel(*st.program, "mc_classify");
         set_args(classify, d_samples, d_origins, nbricks, cmin, cmax, st.tri_count, st.crossed, d_cases,
                  d_row_ranks, d_tri_offsets, d_vert_offsets, d_seam_offsets);
         launch(q, classify, nbricks, kBricksPerGroup);
@@ -200,7 +200,7 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           cl::Buffer& d_order = scratch.get(kMcOrder, nseam1 * sizeof(std::uint32_t));
           cl::Buffer& d_seam_vertex = scratch.get(kMcSeamVertices, nseam1 * sizeof(std::uint32_t));
           cl::Buffer& d_seam_keys = scratch.get(kMcSeamKeys, nseam1 * sizeof(cl_ulong));
-          cl::Kernel seams(*st.program, "mc_seams");
+          cl::Kernel& seams = st.device.kernel(*st.program, "mc_seams");
           set_args(seams, d_origins, nbricks, cmax, korg, horg, blocks, mask, st.crossed, d_cases, d_row_ranks,
                    d_vert_offsets, d_seam_offsets, d_hash, d_order, d_seam_vertex, d_seam_keys);
           launch(q, seams, nbricks, kBricksPerGroup);
@@ -235,13 +235,13 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           OutputArray out_keys(st.device, mesh.edge_keys, kMcKeys);
           mark(&ExtractTimings::read);
 
-          cl::Kernel table(*st.program, "mc_table");
+          cl::Kernel& table = st.device.kernel(*st.program, "mc_table");
           set_args(table, d_hash, d_order, d_seam_vertex, d_seam_keys, nseam, shift, nbuckets, d_table_hashes,
                    d_table_vertices, d_table_keys, d_starts);
           launch(q, table, std::size_t(nseam) + 1, kTableGroup);
           cl_float16 world{};
           for (int i = 0; i < 12; ++i) world.s[i] = f.world[i];
-          cl::Kernel emit(*st.program, "mc_emit");
+          cl::Kernel& emit = st.device.kernel(*st.program, "mc_emit");
           set_args(emit, d_samples, d_origins, nbricks, cmax, korg, horg, blocks, mask, kMinEdgeFraction, world,
                    st.case_slots, st.tri_count, st.crossed, d_cases, d_tri_offsets, ntri, d_vert_offsets, nvert,
                    d_table_hashes, d_table_vertices, d_table_keys, nseam, d_starts, shift, out_pos.buffer(),
