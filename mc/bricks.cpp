@@ -24,14 +24,15 @@ namespace {
 
 int floor_div8(int v) { return v >= 0 ? v / 8 : -((-v + 7) / 8); }
 
+// 8-lane vectors (GCC/Clang vector extensions): AVX2 registers in the AVX2 builds.
+typedef float Float8 __attribute__((vector_size(32)));
+typedef std::int32_t Int8 __attribute__((vector_size(32)));
+
 // A brick's gather from its eight blocks' values (leaf buffers, or leaf-sized buffers of a tile's
 // value), before any clipping to the domain. Column (x, y): z = 0..7 straight from one block
 // (VDB's order is z fastest too), z = 8 from the block after it along z. Writes the 729 signed
 // values to `out`; true when some are inside and some are not. A column's first 8 values are
-// converted as one 8-lane vector (GCC/Clang vector extensions: AVX2 in the AVX2 build), branch-free.
-typedef float Float8 __attribute__((vector_size(32)));
-typedef std::int32_t Int8 __attribute__((vector_size(32)));
-
+// converted as one 8-lane vector, branch-free.
 ISOCURV_VECTOR_CLONES bool gather_leaves(const float* const* data, float sign, float iso, float outside_value,
                                          float* out) {
   constexpr std::int32_t kAbs = 0x7fffffff, kInf = 0x7f800000;  // |bits| < kInf: finite
@@ -83,10 +84,71 @@ bool clip_to_domain(const Frame& f, const openvdb::Coord& o, float* out) {
 
 // The finite value ranges of a leaf's 512 values (VDB order: 64 x + 8 y + z) and of the parts of
 // it a lower neighbour's apron reads (Block::part), and whether any value is NaN or infinite.
-// Written as 16 independent lanes so the compiler vectorizes it (a NaN never wins a comparison,
-// so it falls out of the ranges by itself; infinities are masked to the start values), and built
-// twice, for AVX2 and for any x86-64, the loader picking one for the CPU at hand.
+// The common case, every value finite, takes plain minima and maxima 16 values a step (8-lane
+// vectors; a NaN never wins a comparison and is counted apart), built twice, for AVX2 and for any
+// x86-64, the loader picking one for the CPU at hand; a leaf holding a NaN, or whose range
+// reaches an infinity, is redone by leaf_block_nonfinite.
 ISOCURV_VECTOR_CLONES BrickIndex::Block BrickIndex::leaf_block(const float* d) {
+  constexpr float kMax = std::numeric_limits<float>::max(), kLowest = std::numeric_limits<float>::lowest();
+  const Float8 zero = {}, inf = zero + std::numeric_limits<float>::infinity();
+  // 16 values a step, y = 2 c (lanes of a) and 2 c + 1 (lanes of b); y = 0 is the a of c = 0.
+  Float8 lo = inf, hi = -inf, lo_b = inf, hi_b = -inf, ylo = inf, yhi = -inf;
+  Int8 nan = {};
+  float zlo = std::numeric_limits<float>::infinity(), zhi = -zlo;  // z = 0: lane 0 of a and of b
+  auto range = [](Float8 l, Float8 h) {
+    Range r{l[0], h[0]};
+    for (int j = 1; j < 8; ++j) {
+      r.min = l[j] < r.min ? l[j] : r.min;
+      r.max = h[j] > r.max ? h[j] : r.max;
+    }
+    return r;
+  };
+  Block b{};
+  for (int x = 0; x < 8; ++x) {
+    for (int c = 0; c < 4; ++c) {
+      Float8 va, vb;
+      std::memcpy(&va, d + 64 * x + 16 * c, sizeof va);
+      std::memcpy(&vb, d + 64 * x + 16 * c + 8, sizeof vb);
+      lo = va < lo ? va : lo;
+      hi = va > hi ? va : hi;
+      lo_b = vb < lo_b ? vb : lo_b;
+      hi_b = vb > hi_b ? vb : hi_b;
+      nan |= (va != va) | (vb != vb);
+      if (c == 0) {
+        ylo = va < ylo ? va : ylo;
+        yhi = va > yhi ? va : yhi;
+      }
+      zlo = std::min({zlo, va[0], vb[0]});
+      zhi = std::max({zhi, va[0], vb[0]});
+    }
+    if (x == 0) b.part[1] = range(lo < lo_b ? lo : lo_b, hi > hi_b ? hi : hi_b);
+  }
+  b.part[0] = range(lo < lo_b ? lo : lo_b, hi > hi_b ? hi : hi_b);
+  bool any_nan = false;
+  for (int j = 0; j < 8; ++j) any_nan |= nan[j] != 0;
+  if (any_nan || !(b.part[0].min >= kLowest && b.part[0].max <= kMax)) return leaf_block_nonfinite(d);
+  b.part[2] = range(ylo, yhi);
+  b.part[4] = Range{zlo, zhi};
+  auto line = [&](int step) {  // the 8 values from the corner along one axis
+    Range r{d[0], d[0]};
+    for (int i = 1; i < 8; ++i) {
+      r.min = std::min(r.min, d[i * step]);
+      r.max = std::max(r.max, d[i * step]);
+    }
+    return r;
+  };
+  b.part[3] = line(1);   // x = y = 0, along z
+  b.part[5] = line(8);   // x = z = 0, along y
+  b.part[6] = line(64);  // y = z = 0, along x
+  b.part[7] = Range{d[0], d[0]};
+  b.leaf = d;
+  return b;
+}
+
+// leaf_block for a leaf that holds NaN or infinite values: the ranges of its finite values (a NaN
+// never wins a comparison, so it falls out of the ranges by itself; infinities are masked to the
+// start values), flagged nonfinite.
+BrickIndex::Block BrickIndex::leaf_block_nonfinite(const float* d) {
   constexpr int kLanes = 16;
   constexpr float kMax = std::numeric_limits<float>::max(), kLowest = std::numeric_limits<float>::lowest();
   float lo[kLanes], hi[kLanes], ylo[8], yhi[8], zlo = kMax, zhi = kLowest;

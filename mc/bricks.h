@@ -48,7 +48,8 @@ class BrickIndex {
     const float* leaf;  ///< the leaf's 512 values (VDB order, z fastest), or null for a tile
     float tile;       ///< the constant value of a block without a leaf
   };
-  static Block leaf_block(const float* values);  ///< ranges of a leaf's 512 values
+  static Block leaf_block(const float* values);            ///< ranges of a leaf's 512 values
+  static Block leaf_block_nonfinite(const float* values);  ///< the same, for leaves with NaN/Inf
   std::size_t block_at(int bx, int by, int bz) const {  ///< z fastest, the bricks' order
     return (std::size_t(bx) * ny_ + by) * nz_ + bz;
   }
