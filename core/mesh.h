@@ -14,7 +14,8 @@ using Tri = std::array<std::uint32_t, 3>;
 
 /// std::allocator whose resize() leaves new elements default-initialised (for these trivial types:
 /// not zeroed), so an array its producer then writes whole (a kernel writing the mesh) is not
-/// written twice. Elements added with values (push_back, assign, copies) are unaffected.
+/// written twice. Elements added with values (push_back, assign, copies) are unaffected; after
+/// resize(n), vector(n) or emplace_back() the new elements hold garbage until written.
 template <class T>
 struct NoZeroAllocator : std::allocator<T> {
   template <class U>

@@ -62,12 +62,12 @@ inline uint row_cells(__global const uchar* row_cases) {
 }
 
 // A row's 8 case bytes as one number, cell z's case in byte z (bits 8 z .. 8 z + 7).
-inline ulong row_cases(__global const uchar* row_cases) {
+inline ulong row_cases(__global const uchar* bytes) {
 #ifdef __ENDIAN_LITTLE__
-  return *(__global const ulong*)row_cases;  // 8-byte aligned: rows start at multiples of 8
+  return *(__global const ulong*)bytes;  // 8-byte aligned: rows start at multiples of 8
 #else
   ulong r = 0;
-  for (int z = 0; z < 8; ++z) r |= (ulong)row_cases[z] << (8 * z);
+  for (int z = 0; z < 8; ++z) r |= (ulong)bytes[z] << (8 * z);
   return r;
 #endif
 }
@@ -359,9 +359,9 @@ inline void record_upper_faces(int4 o, int4 cell_max, int4 key_origin, uint3 bb,
       if (begin == end) break;
       uint lo = block * 1536u + 3u * begin, len = 3u * (end - begin);
       ulong full = (ulong)mask + 1;
-      if (len >= full) {  // a hash narrower than the run: every entry
+      if (len >= full) {  // a hash narrower than the run: every entry (the second run too)
         record_run(0, full, o, key_origin, hashes, vertices, keys, n, starts, shift, first, own);
-        continue;
+        break;
       }
       uint a = lo & mask;
       ulong b = (ulong)a + len;
@@ -450,8 +450,9 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
     }
   }
   // (2) The triangles. Cells write their first 6 corners (2 triangles, the most common case)
-  // without a loop, when the brick's triangles leave room: a cell with fewer writes its padding
-  // corners (map slot 0 of the cell) where its successor's then go.
+  // without a loop, when the brick's triangles leave room: a cell with fewer writes padding
+  // corners (from map slot 0 of the cell, which may never have been written) where its
+  // successor's corners then go.
   __global uint* out = triangles + 3 * (size_t)triangle_offsets[b];
   __global const uint* end = triangles + 3 * (size_t)(b + 1 < nbricks ? triangle_offsets[b + 1] : ntriangles);
   for (int row = 0; row < 64; ++row) {
