@@ -95,7 +95,9 @@ ISOCURV_VECTOR_CLONES BrickIndex::Block BrickIndex::leaf_block(const float* d) {
   Float8 lo = inf, hi = -inf, lo_b = inf, hi_b = -inf, ylo = inf, yhi = -inf;
   Int8 nan = {};
   float zlo = std::numeric_limits<float>::infinity(), zhi = -zlo;  // z = 0: lane 0 of a and of b
-  auto range = [](Float8 l, Float8 h) {
+  // Vectors pass by reference: by value they would cross from the AVX2 build into a lambda built
+  // for the baseline ABI wherever the compiler does not inline it (-O2), and arrive garbled.
+  auto range = [](const Float8& l, const Float8& h) {
     Range r{l[0], h[0]};
     for (int j = 1; j < 8; ++j) {
       r.min = l[j] < r.min ? l[j] : r.min;
