@@ -175,13 +175,16 @@ inline uint block_point(uint x, uint y, uint z) {
   return 169 + ((x - 1) * 7 + (y - 1)) * 7 + (z - 1);
 }
 
+// Number of hash block (bx, by, bz): z fastest, blocks = (blocks a column, columns a layer).
+inline uint hash_block(uint bx, uint by, uint bz, uint2 blocks) { return bz + blocks.x * (by + blocks.y * bx); }
+
 // 32-bit hash of an edge starting at hash coordinates (x, y, z) (index space from a brick-aligned
 // origin) along `axis`, spatially coherent: the bricks' 8^3 blocks in order, z fastest like the
 // bricks (blocks = (blocks a column, columns a layer)), 1536 edge slots each (block_point order,
 // so each lower face is one or two runs of hashes), wrapping past 2^32 (over 2.8 million blocks),
 // then masked.
 inline uint edge_hash(uint x, uint y, uint z, uint axis, uint2 blocks, uint mask) {
-  uint block = (z >> 3) + blocks.x * ((y >> 3) + blocks.y * (x >> 3));
+  uint block = hash_block(x >> 3, y >> 3, z >> 3, blocks);
   return (block * 1536u + block_point(x & 7u, y & 7u, z & 7u) * 3u + axis) & mask;
 }
 
@@ -214,7 +217,7 @@ __kernel void mc_seams(__global const int4* origins, uint nbricks, int4 cell_max
   o.w = 0;
   uint first = vertex_offsets[b], j = seam_offsets[b];
   int4 ob = (o - hash_origin) >> 3, kc = o - key_origin;  // the brick's hash block; key of its origin
-  uint block_hash = ((uint)ob.z + blocks.x * ((uint)ob.y + blocks.y * (uint)ob.x)) * 1536u;
+  uint block_hash = hash_block((uint)ob.x, (uint)ob.y, (uint)ob.z, blocks) * 1536u;
   bool zlast = cell_max.z - o.z <= 7;  // the frame's last cells along z lie in this brick
   for (int row = 0; row < 64; ++row) {
     int y = row & 7, x = row >> 3;
@@ -353,7 +356,7 @@ inline void record_upper_faces(int4 o, int4 cell_max, int4 key_origin, uint3 bb,
   for (int d = 1; d < 8; ++d) {
     int dx = d & 1, dy = (d >> 1) & 1, dz = d >> 2;
     if ((dx && !reach.x) || (dy && !reach.y) || (dz && !reach.z)) continue;
-    uint block = (bb.z + dz) + blocks.x * ((bb.y + dy) + blocks.y * (bb.x + dx));
+    uint block = hash_block(bb.x + dx, bb.y + dy, bb.z + dz, blocks);
     for (int r = 0; r < 4; r += 2) {
       uint begin = face_runs[d][r], end = face_runs[d][r + 1];
       if (begin == end) break;

@@ -72,7 +72,8 @@ TEST_P(LoneVoxel, SelectsAndGathersExactlyTheStraddlingBricks) {
   for (const openvdb::Coord& c : origins) {
     if (!wanted.count(c)) {
       bool near_nonfinite = false;
-      for (const auto& block : nonfinite_blocks) near_nonfinite |= openvdb::CoordBBox(c, c + openvdb::Coord(8)).hasOverlap(block);
+      for (const auto& block : nonfinite_blocks)
+        near_nonfinite |= openvdb::CoordBBox(c, c + openvdb::Coord(8)).hasOverlap(block);
       EXPECT_TRUE(near_nonfinite) << "extra candidate " << c;
     }
   }
