@@ -14,7 +14,8 @@ enum ScratchSlot : std::size_t {
   kScanTotals, kScanTotal, kRadixHistogram, kRadixKeys, kRadixValues,
   kMcSamples, kMcCounts, kMcOrigins, kMcCases, kMcRowRanks, kMcTriangleOffsets, kMcVertexOffsets,
   kMcSeamOffsets, kMcPositions, kMcKeys, kMcHashes, kMcOrder, kMcSeamVertices, kMcSeamKeys,
-  kMcTableHashes, kMcTableVertices, kMcTableKeys, kMcBucketStarts, kMcTriangles,
+  kMcTableHashes, kMcTableVertices, kMcTableKeys, kMcBucketStarts, kMcTriangles, kMcSnapCount,
+  kMcSnapEdges, kMcSnapVertices,
   kScratchSlots
 };
 

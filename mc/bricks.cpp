@@ -73,7 +73,7 @@ bool clip_to_domain(const Frame& f, const openvdb::Coord& o, float* out) {
   for (int x = 0; x < kApron; ++x)
     for (int y = 0; y < kApron; ++y)
       for (int z = 0; z < kApron; ++z, ++out) {
-        if (!f.domain.isInside(o + openvdb::Coord(x, y, z))) *out = f.outside;
+        if (!f.domain.isInside(o + openvdb::Coord(x, y, z))) *out = f.clipped;
         in |= *out > 0;
         outside |= !(*out > 0);
       }

@@ -14,6 +14,7 @@
 #include "mc/case_table.h"
 #include "mc/edge_key.h"
 #include "mc/frame.h"
+#include "mc/snap_vertices.h"
 
 namespace isocurv::kernels {
 extern const char* const marching_cubes_cl;
@@ -241,19 +242,46 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
           launch(q, table, std::size_t(nseam) + 1, kTableGroup);
           cl_float16 world{};
           for (int i = 0; i < 12; ++i) world.s[i] = f.world[i];
+          // The vertices near a voxel (Options::snap), listed in any order: at most one entry each.
+          const bool snapping = options.snap > 0;
+          const std::size_t snap_room = snapping ? nvert : 1;
+          cl::Buffer& d_snap_count = scratch.get(kMcSnapCount, sizeof(cl_uint));
+          cl::Buffer& d_snap_edges = scratch.get(kMcSnapEdges, snap_room * sizeof(cl_ulong));
+          cl::Buffer& d_snap_vertices = scratch.get(kMcSnapVertices, snap_room * sizeof(cl_uint));
+          const cl_uint zero = 0;
+          if (snapping) q.enqueueWriteBuffer(d_snap_count, CL_FALSE, 0, sizeof zero, &zero);
           cl::Kernel& emit = st.device.kernel(*st.program, "mc_emit");
           set_args(emit, d_samples, d_origins, nbricks, cmax, korg, horg, blocks, mask, kMinEdgeFraction, world,
                    st.case_slots, st.tri_count, st.crossed, d_cases, d_tri_offsets, ntri, d_vert_offsets, nvert,
                    d_table_hashes, d_table_vertices, d_table_keys, nseam, d_starts, shift, out_pos.buffer(),
-                   out_tris.buffer(), write_keys, out_keys.buffer());
+                   out_tris.buffer(), write_keys, out_keys.buffer(), options.snap, d_snap_count,
+                   static_cast<cl_uint>(snap_room), d_snap_edges, d_snap_vertices);
           launch(q, emit, nbricks, kBricksPerGroup);
           mark(&ExtractTimings::emit);
 
           out_pos.fetch(q);
           out_tris.fetch(q);
           out_keys.fetch(q);
+          cl_uint nsnap = 0;
+          if (snapping) q.enqueueReadBuffer(d_snap_count, CL_FALSE, 0, sizeof nsnap, &nsnap);
           q.finish();
           mark(&ExtractTimings::read);
+          if (nsnap > 0) {
+            nsnap = std::min<cl_uint>(nsnap, static_cast<cl_uint>(nvert));
+            std::vector<cl_ulong> edges(nsnap);
+            std::vector<cl_uint> vertices(nsnap);
+            q.enqueueReadBuffer(d_snap_edges, CL_FALSE, 0, nsnap * sizeof(cl_ulong), edges.data());
+            q.enqueueReadBuffer(d_snap_vertices, CL_TRUE, 0, nsnap * sizeof(cl_uint), vertices.data());
+            std::vector<SnapCandidate> candidates(nsnap);
+            for (std::size_t i = 0; i < nsnap; ++i) candidates[i] = {edges[i], vertices[i]};
+            const SnapReport r = snap_vertices(mesh, std::move(candidates), f, kSnapMinArea * voxel_face_area(f));
+            tm.snapped = r.moved;
+            tm.merged = r.merged;
+            if (timings) {
+              tm.snap += ms_since(step);
+              step = Clock::now();
+            }
+          }
         }
       }
     } catch (const cl::Error& e) {

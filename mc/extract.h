@@ -21,9 +21,12 @@ struct ExtractTimings {
   double sort = 0;      ///< radix sort of their (hash, j) pairs
   double emit = 0;      ///< lookup table; positions; every triangle corner's vertex (mc_emit)
   double read = 0;      ///< the mesh's arrays: allocated, and read back from non-CPU devices
+  double snap = 0;      ///< moving vertices onto nearby voxels and merging them (host)
   double total = 0;
   std::size_t bricks = 0;         ///< bricks processed
   std::size_t seam_vertices = 0;  ///< vertices other bricks look up (hashed, sorted, searched)
+  std::size_t snapped = 0;        ///< vertices moved onto a voxel (Options::snap)
+  std::size_t merged = 0;         ///< vertices merged into another there
 };
 
 /// A volume prepared for repeated extraction (the explorer's slider): the per-block value ranges

@@ -5,6 +5,7 @@
 #include "mc/case_table.h"
 #include "mc/edge_key.h"
 #include "mc/frame.h"
+#include "mc/snap_vertices.h"
 
 namespace isocurv::mc {
 
@@ -15,6 +16,7 @@ Mesh extract_reference(const volume::Volume& v, float isovalue, const Options& o
   if (f.cells.empty()) return mesh;
   auto acc = v.grid->getConstAccessor();
   std::map<std::uint64_t, std::uint32_t> vertex_of_edge;
+  std::vector<SnapCandidate> snaps;
 
   auto vertex = [&](const openvdb::Coord& cell, int edge, const float s[8]) -> std::uint32_t {
     const int lo = kEdgeLow[edge], axis = kEdgeAxis[edge];
@@ -31,6 +33,8 @@ Mesh extract_reference(const volume::Volume& v, float isovalue, const Options& o
       w[r] = static_cast<float>(f.world[r * 4 + 0] * p[0] + f.world[r * 4 + 1] * p[1] +
                                 f.world[r * 4 + 2] * p[2] + f.world[r * 4 + 3]);
     const auto index = static_cast<std::uint32_t>(mesh.positions.size());
+    if (t < options.snap) snaps.push_back({key, index});
+    if (t > 1.0f - options.snap) snaps.push_back({key | kSnapUpper, index});
     mesh.positions.push_back(w);
     if (options.keep_edge_keys) mesh.edge_keys.push_back(key);
     vertex_of_edge.emplace(key, index);
@@ -54,6 +58,7 @@ Mesh extract_reference(const volume::Volume& v, float isovalue, const Options& o
           mesh.triangles.push_back(tri);
         }
       }
+  snap_vertices(mesh, std::move(snaps), f, kSnapMinArea * voxel_face_area(f));
   return mesh;
 }
 

@@ -11,6 +11,8 @@ Frame make_frame(const volume::Volume& v, float iso, const Options& options) {
   if (!v.grid) throw Error(v.path, "volume has no grid");
   if (options.hash_bits < 1 || options.hash_bits > 32)
     throw Error("hash width must be 1..32 bits, not " + std::to_string(options.hash_bits));
+  if (!(options.snap >= 0 && options.snap <= 0.5f))
+    throw Error("snap distance must be 0..0.5 voxel, not " + std::to_string(options.snap));
   Frame f;
   f.isovalue = iso;
   f.sign = v.inside == volume::Inside::Above ? 1.0f : -1.0f;

@@ -374,6 +374,19 @@ inline void record_upper_faces(int4 o, int4 cell_max, int4 key_origin, uint3 bb,
   }
 }
 
+// Vertex snapping (mc/snap_vertices.h): a vertex at fraction f of its edge, within `snap` of one
+// end, is listed for the host with its edge's key, SNAP_UPPER set when it lies near the upper end.
+// The list's order depends on the work items' timing; the host sorts it by key.
+#define SNAP_UPPER 0x8000000000000000UL
+inline void note_snap(float f, float snap, ulong edge, uint vertex, __global uint* count, uint capacity,
+                      __global ulong* edges, __global uint* vertices) {
+  if (!(f < snap || f > 1.0f - snap)) return;
+  uint slot = atomic_inc(count);
+  if (slot >= capacity) return;  // cannot happen: one entry a vertex at most
+  edges[slot] = edge | (f > 0.5f ? SNAP_UPPER : 0UL);
+  vertices[slot] = vertex;
+}
+
 // Per brick, the vertices (positions, and edge keys when write_keys) from vertex_offsets[b] on and
 // the triangles from triangle_offsets[b] on, with the brick's vertex map `own` (by edge_slot): (0)
 // the vertices of the edges on its upper faces that other bricks own, from the seam table
@@ -387,7 +400,8 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
                       uint nvertices, __global const uint* table_hashes, __global const uint* table_vertices,
                       __global const ulong* table_keys, uint nseams, __global const uint* starts, uint shift,
                       __global float* positions, __global uint* triangles, uint write_keys,
-                      __global ulong* keys) {
+                      __global ulong* keys, float snap, __global uint* snap_count, uint snap_capacity,
+                      __global ulong* snap_edges, __global uint* snap_vertices) {
   uint b = get_global_id(0);
   if (b >= nbricks) return;
   __global const float* brick = samples + (size_t)b * BRICK_SAMPLES;
@@ -423,15 +437,25 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
         float3 f = (float3)(s0) / ((float3)(s0) - (float3)(s[APRON * APRON], s[APRON], s[1]));  // one division
         f = fmin(fmax(f, (float3)(min_fraction)), (float3)(1.0f - min_fraction));
         float3 c = convert_float3(g.xyz), p = c + f;  // world map of (x + fx, y, z), ...
+        uint wx = w, wy, wz;
         if (w < nv) vstore3(ax * p.x + ay * c.y + az * c.z + at, w, pos);
         own[base] = w;
         w += cross & 1u;
+        wy = w;
         if (w < nv) vstore3(ax * c.x + ay * p.y + az * c.z + at, w, pos);
         own[base + 1] = w;
         w += (cross >> 3) & 1u;
+        wz = w;
         if (w < nv) vstore3(ax * c.x + ay * c.y + az * p.z + at, w, pos);
         own[base + 2] = w;
         w += (cross >> 8) & 1u;
+        if (snap > 0.0f) {  // edges 0, 3 and 8 start at corner 0, along x, y and z
+          int4 k = g - key_origin;
+          ulong key = edge_key((uint)k.x, (uint)k.y, (uint)k.z, 0u);
+          if (cross & 1u) note_snap(f.x, snap, key, first + wx, snap_count, snap_capacity, snap_edges, snap_vertices);
+          if (cross & 8u) note_snap(f.y, snap, key | 1u, first + wy, snap_count, snap_capacity, snap_edges, snap_vertices);
+          if (cross & 256u) note_snap(f.z, snap, key | 2u, first + wz, snap_count, snap_capacity, snap_edges, snap_vertices);
+        }
         continue;
       }
       for (uint rest = cross & owned_edges(g, cell_max); rest; rest &= rest - 1u) {
@@ -444,9 +468,11 @@ __kernel void mc_emit(__global const float* samples, __global const int4* origin
         float py = (float)(g.y + corner_y[lo]) + (axis == 1 ? f : 0.0f);
         float pz = (float)(g.z + corner_z[lo]) + (axis == 2 ? f : 0.0f);
         vstore3(ax * px + ay * py + az * pz + at, w, pos);
-        if (write_keys) {
+        if (write_keys || snap > 0.0f) {
           uint h;
-          keys[first + w] = cell_edge(g, e, key_origin, hash_origin, blocks, hash_mask, &h);
+          ulong key = cell_edge(g, e, key_origin, hash_origin, blocks, hash_mask, &h);
+          if (write_keys) keys[first + w] = key;
+          if (snap > 0.0f) note_snap(f, snap, key, first + w, snap_count, snap_capacity, snap_edges, snap_vertices);
         }
         own[base + edge_slot[e]] = w++;
       }

@@ -3,6 +3,9 @@
 
 namespace isocurv::mc {
 
+/// Default snap distance (Options::snap), a fraction of a voxel edge.
+constexpr float kDefaultSnap = 0.05f;
+
 struct Options {
   /// Width of the per-vertex edge hash used for fusion, 1..32 bits. Narrow hashes collide often
   /// (tests use that); the output is the same for every width, only slower when narrow.
@@ -12,6 +15,12 @@ struct Options {
   bool cap = false;
   /// Fill Mesh::edge_keys (the cube edge of each vertex), for tests and fusion checks.
   bool keep_edge_keys = false;
+  /// Vertices closer than this fraction of a voxel edge to a voxel are moved onto it and merged
+  /// with the others that meet there, wherever the mesh stays a consistently wound 2-manifold
+  /// (mc/snap_vertices.h, after SnapMC). Removes the clusters of nearly coincident vertices and the
+  /// slivers that voxels equal to the isovalue (integer CT and MR data) otherwise leave. Snapped
+  /// vertices leave the isosurface by up to this distance. 0 turns snapping off; at most 0.5.
+  float snap = kDefaultSnap;
 };
 
 /// Vertices never sit closer than this fraction of a voxel edge to a voxel, so voxels exactly at

@@ -167,6 +167,28 @@ TEST(Extract, CappedGyroidIsClosedAndMatchesReference) {
   EXPECT_EQ(c.euler % 2, 0);
 }
 
+TEST(Extract, CapsLieOnTheVolumesBox) {
+  // A ball cut by every face of its box: without snapping, cap vertices sit a 1/1024 voxel off the
+  // box at most (they once sat up to half a voxel outside it), and on it with snapping.
+  auto v = test::ball(16, 9.5, 7.5);
+  for (float snap : {0.0f, mc::kDefaultSnap}) {
+    mc::Options o;
+    o.cap = true;
+    o.snap = snap;
+    const Mesh m = mc::extract(v, 0.0f, dev(), o);
+    expect_closed(m, 2);
+    const float slack = snap > 0 ? 0.0f : mc::kMinEdgeFraction * 1.0001f;
+    std::size_t on_box = 0;
+    for (const Vec3f& p : m.positions)
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_GE(p[k], -slack) << snap;
+        ASSERT_LE(p[k], 15 + slack) << snap;
+        on_box += p[k] <= slack || p[k] >= 15 - slack;
+      }
+    EXPECT_GT(on_box, 100u);
+  }
+}
+
 TEST(Extract, RandomNoiseMatchesReferenceWithEveryCase) {
   auto v = noise_volume(7);
   mc::Options o = keys();

@@ -1,0 +1,447 @@
+#include "mc/snap_vertices.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+
+namespace isocurv::mc {
+namespace {
+
+constexpr std::uint32_t kNone = 0xffffffffu;
+constexpr std::uint64_t kField = 0xfffff;  // one coordinate of an edge key (20 bits)
+
+using Vec3d = std::array<double, 3>;
+
+Vec3d to_d(const Vec3f& v) { return {v[0], v[1], v[2]}; }
+Vec3d sub(const Vec3d& a, const Vec3d& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec3d cross(const Vec3d& a, const Vec3d& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double dot(const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// Twice the area vector of the triangle (a, b, c).
+Vec3d area_vector(const Vec3d& a, const Vec3d& b, const Vec3d& c) { return cross(sub(b, a), sub(c, a)); }
+
+// The key-space coordinates of the voxel a candidate snaps to, as one sortable number (an edge
+// key's layout with the axis bits clear).
+std::uint64_t point_key(std::uint64_t edge) {
+  std::uint64_t x = (edge >> 42) & kField, y = (edge >> 22) & kField, z = (edge >> 2) & kField;
+  if (edge & kSnapUpper) {
+    const int axis = static_cast<int>(edge & 3u);
+    (axis == 0 ? x : axis == 1 ? y : z) += 1;
+  }
+  return (x << 42) | (y << 22) | (z << 2);
+}
+
+// World position of the voxel with point key `p`, computed as the reference mesher places
+// vertices (double sums of the float map).
+Vec3d voxel_position(std::uint64_t p, const Frame& f) {
+  const double i[3] = {double(((p >> 42) & kField) + f.key_origin.x()),
+                       double(((p >> 22) & kField) + f.key_origin.y()),
+                       double(((p >> 2) & kField) + f.key_origin.z())};
+  Vec3d w;
+  for (int r = 0; r < 3; ++r)
+    w[r] = f.world[r * 4 + 0] * i[0] + f.world[r * 4 + 1] * i[1] + f.world[r * 4 + 2] * i[2] +
+           f.world[r * 4 + 3];
+  return w;
+}
+
+double abs_det(const Frame& f) {
+  const auto& w = f.world;
+  return std::fabs(double(w[0]) * (double(w[5]) * w[10] - double(w[6]) * w[9]) -
+                   double(w[1]) * (double(w[4]) * w[10] - double(w[6]) * w[8]) +
+                   double(w[2]) * (double(w[4]) * w[9] - double(w[5]) * w[8]));
+}
+
+// Where a voxel's surface splits into several fans (sheets touching there, or a tunnel pinched
+// to a point), each fan's vertex sits this far (in voxels) from the voxel towards its own fan,
+// so no two vertices coincide.
+constexpr double kFanOffset = 2.0 / 1024.0;
+
+// Passes over the voxels refused in the previous pass.
+constexpr int kSnapRounds = 3;
+
+int find_root(std::vector<int>& parent, int i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+// A triangle of a group's star that keeps one member: (m, a, b) in winding order.
+struct Kept {
+  std::uint32_t tri, m, a, b;
+  int partner_a = -1, partner_b = -1;  // the kept triangle across spoke (voxel, a) / (voxel, b)
+  int twin = -1;  // the kept triangle it cancels with (the same two outer vertices, other winding)
+};
+
+// The pass's working state: the mesh being edited, the candidates sorted by voxel and edge, and
+// for each candidate the triangles using it.
+class Snapper {
+ public:
+  Snapper(Mesh& mesh, const std::vector<SnapCandidate>& c, const Frame& frame, double min_area)
+      : mesh_(mesh), cand_(c), frame_(frame), min_area_(min_area),
+        offset_(kFanOffset * std::cbrt(abs_det(frame))) {
+    slot_.assign(mesh.positions.size(), kNone);
+    for (std::uint32_t i = 0; i < cand_.size(); ++i) slot_[cand_[i].vertex] = i;
+    first_.assign(cand_.size() + 1, 0);  // incidence lists (compressed rows), one triangle scan
+    for (const Tri& t : mesh_.triangles)
+      for (std::uint32_t v : t)
+        if (slot_[v] != kNone) ++first_[slot_[v] + 1];
+    std::partial_sum(first_.begin(), first_.end(), first_.begin());
+    incident_.resize(first_.back());
+    std::vector<std::uint32_t> fill(first_.begin(), first_.end() - 1);
+    for (std::uint32_t t = 0; t < mesh_.triangles.size(); ++t)
+      for (std::uint32_t v : mesh_.triangles[t])
+        if (slot_[v] != kNone) incident_[fill[slot_[v]]++] = t;
+    removed_.assign(cand_.size(), 0);
+    group_.assign(cand_.size(), kNone);
+  }
+
+  // Snaps the candidates [b, e), which all lie near the voxel `point`: every triangle with two or
+  // more of them collapses; the others form fans around the voxel (triangles joined across each
+  // spoke as they were joined around its outer vertex, through the collapsed ones); one fan puts
+  // its vertex on the voxel, several each put theirs a little towards their own fan.
+  void snap_group(std::uint32_t b, std::uint32_t e, std::uint64_t point) {
+    for (std::uint32_t i = b; i < e; ++i) group_[i] = b;
+    auto member = [&](std::uint32_t v) { return slot_[v] != kNone && group_[slot_[v]] == b; };
+    std::vector<std::uint32_t> tris;
+    for (std::uint32_t i = b; i < e; ++i)
+      for (std::uint32_t k = first_[i]; k < first_[i + 1]; ++k)
+        if (mesh_.triangles[incident_[k]][0] != kNone) tris.push_back(incident_[k]);
+    std::sort(tris.begin(), tris.end());
+    tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
+
+    std::vector<Kept> kept;
+    std::vector<std::uint32_t> dropped;
+    for (std::uint32_t t : tris) {
+      const Tri& tri = mesh_.triangles[t];
+      int n = 0, r = 0;
+      for (int k = 0; k < 3; ++k)
+        if (member(tri[k])) {
+          ++n;
+          r = k;
+        }
+      if (n > 1) {
+        dropped.push_back(t);
+      } else {
+        kept.push_back({t, tri[r], tri[(r + 1) % 3], tri[(r + 2) % 3]});
+      }
+    }
+    const std::uint32_t members = e - b;
+    if (!cancel_folds(kept)) return reject(members);
+    const bool none_left =
+        std::all_of(kept.begin(), kept.end(), [](const Kept& k) { return k.twin >= 0; });
+    if (none_left) {  // a closed speck around the voxel: it vanishes
+      for (const Kept& k : kept) dropped.push_back(k.tri);
+      for (std::uint32_t i = b; i < e; ++i) removed_[i] = 1;
+      for (std::uint32_t t : dropped) mesh_.triangles[t] = {kNone, kNone, kNone};
+      report.merged += members;
+      report.dropped += dropped.size();
+      return;
+    }
+    if (!pair_spokes(kept, member, tris)) return reject(members);
+
+    // Fans: kept triangles joined across spokes.
+    const int nk = static_cast<int>(kept.size());
+    std::vector<int> parent(nk);
+    std::iota(parent.begin(), parent.end(), 0);
+    for (int i = 0; i < nk; ++i)
+      for (int p : {kept[i].partner_a, kept[i].partner_b})
+        if (p >= 0) parent[find_root(parent, i)] = find_root(parent, p);
+    std::vector<int> fan_of(nk, -1), root_fan(nk, -1);
+    int nfans = 0;
+    for (int i = 0; i < nk; ++i) {
+      if (kept[i].twin >= 0) continue;
+      int& f = root_fan[find_root(parent, i)];
+      if (f < 0) f = nfans++;
+      fan_of[i] = f;
+    }
+    if (!fans_are_discs(kept, fan_of, nfans)) return reject(members);
+
+    // Each fan's vertex: on the voxel, or beside it towards the fan's outer vertices.
+    const Vec3d at = voxel_position(point, frame_);
+    std::vector<Vec3d> where(nfans, at);
+    if (nfans > 1) {
+      std::vector<Vec3d> sum(nfans, Vec3d{0, 0, 0});
+      for (int i = 0; i < nk; ++i)
+        if (fan_of[i] >= 0)
+          for (std::uint32_t v : {kept[i].a, kept[i].b})
+            for (int c = 0; c < 3; ++c) sum[fan_of[i]][c] += mesh_.positions[v][c];
+      for (int f = 0; f < nfans; ++f) {
+        const double count = 2.0 * double(std::count(fan_of.begin(), fan_of.end(), f));
+        const Vec3d d = {sum[f][0] / count - at[0], sum[f][1] / count - at[1], sum[f][2] / count - at[2]};
+        const double len = std::sqrt(dot(d, d));
+        if (!(len > 0)) return reject(members);
+        for (int c = 0; c < 3; ++c) where[f][c] = at[c] + offset_ * d[c] / len;
+      }
+    }
+    std::vector<Vec3f> where_f(nfans);
+    for (int f = 0; f < nfans; ++f)
+      where_f[f] = {float(where[f][0]), float(where[f][1]), float(where[f][2])};
+    for (int f = 0; f < nfans; ++f)  // fans facing the same way (symmetric sheets) would coincide
+      for (int g = 0; g < f; ++g) {
+        const Vec3d d = sub(where[f], where[g]);
+        if (dot(d, d) < 0.25 * offset_ * offset_) return reject(members);
+      }
+
+    // Sound geometry: no triangle too small or turned over. A lone fan whose voxel lies in line
+    // with two of its outer vertices (an edge crossed midway between two snapped voxels) takes the
+    // centroid of its vertices instead, still merging them.
+    auto sound = [&] {
+      for (int i = 0; i < nk; ++i) {
+        const Kept& k = kept[i];
+        if (fan_of[i] < 0) continue;
+        const Vec3d p = to_d(where_f[fan_of[i]]);
+        const Vec3d after = area_vector(p, to_d(mesh_.positions[k.a]), to_d(mesh_.positions[k.b]));
+        const Vec3d before = area_vector(to_d(mesh_.positions[k.m]), to_d(mesh_.positions[k.a]),
+                                         to_d(mesh_.positions[k.b]));
+        if (0.5 * std::sqrt(dot(after, after)) < min_area_ || dot(after, before) < 0) return false;
+      }
+      return true;
+    };
+    if (!sound()) {
+      if (nfans > 1) return reject(members);
+      Vec3d sum{0, 0, 0};
+      for (std::uint32_t i = b; i < e; ++i)
+        for (int c = 0; c < 3; ++c) sum[c] += mesh_.positions[cand_[i].vertex][c];
+      where_f[0] = {float(sum[0] / members), float(sum[1] / members), float(sum[2] / members)};
+      if (!sound()) return reject(members);
+    }
+
+    // Each fan keeps one member's vertex (and edge key): fans in the order of their smallest outer
+    // vertex position, each taking its smallest-key member not yet taken (members are sorted by
+    // key), so the choice does not depend on vertex numbering.
+    std::vector<std::uint32_t> order(nfans);
+    std::iota(order.begin(), order.end(), 0);
+    std::vector<Vec3f> lowest(nfans, Vec3f{INFINITY, INFINITY, INFINITY});
+    for (int i = 0; i < nk; ++i)
+      if (fan_of[i] >= 0)
+        for (std::uint32_t v : {kept[i].a, kept[i].b})
+          lowest[fan_of[i]] = std::min(lowest[fan_of[i]], mesh_.positions[v]);
+    std::sort(order.begin(), order.end(),
+              [&](std::uint32_t x, std::uint32_t y) { return lowest[x] < lowest[y]; });
+    std::vector<std::uint32_t> vertex_of_fan(nfans, kNone);
+    std::vector<char> taken(members, 0);
+    for (std::uint32_t f : order) {
+      std::uint32_t best = kNone;
+      for (int i = 0; i < nk; ++i)
+        if (fan_of[i] == int(f) && !taken[slot_[kept[i].m] - b]) best = std::min(best, slot_[kept[i].m]);
+      for (std::uint32_t i = b; best == kNone && i < e; ++i)
+        if (!taken[i - b]) best = i;
+      if (best == kNone) return reject(members);
+      taken[best - b] = 1;
+      vertex_of_fan[f] = cand_[best].vertex;
+    }
+
+    // Apply.
+    for (std::uint32_t i = b; i < e; ++i) removed_[i] = !taken[i - b];
+    for (int f = 0; f < nfans; ++f) mesh_.positions[vertex_of_fan[f]] = where_f[f];
+    for (const Kept& k : kept)
+      if (k.twin >= 0) dropped.push_back(k.tri);
+    for (std::uint32_t t : dropped) mesh_.triangles[t] = {kNone, kNone, kNone};
+    for (int i = 0; i < nk; ++i)
+      if (fan_of[i] >= 0) mesh_.triangles[kept[i].tri] = {vertex_of_fan[fan_of[i]], kept[i].a, kept[i].b};
+    report.moved += static_cast<std::size_t>(nfans);
+    report.merged += members - static_cast<std::size_t>(nfans);
+    report.dropped += dropped.size();
+    report.split += nfans > 1;
+  }
+
+  // Removes merged vertices, vertices left without triangles and collapsed triangles, keeping
+  // the order of the rest.
+  void compact() {
+    Triangles& tris = mesh_.triangles;
+    if (report.dropped == 0 && report.merged == 0) return;
+    tris.erase(std::remove_if(tris.begin(), tris.end(), [](const Tri& t) { return t[0] == kNone; }),
+               tris.end());
+    const std::size_t nv = mesh_.positions.size();
+    std::vector<std::uint32_t> index(nv, kNone);
+    for (const Tri& t : tris)
+      for (std::uint32_t v : t) index[v] = 0;
+    std::uint32_t next = 0;
+    const bool keys = mesh_.edge_keys.size() == nv;
+    for (std::size_t v = 0; v < nv; ++v) {
+      if (index[v] == kNone) continue;
+      index[v] = next;
+      mesh_.positions[next] = mesh_.positions[v];
+      if (keys) mesh_.edge_keys[next] = mesh_.edge_keys[v];
+      ++next;
+    }
+    report.vanished = nv - next - (report.merged);
+    mesh_.positions.resize(next);
+    if (keys) mesh_.edge_keys.resize(next);
+    for (Tri& t : tris)
+      for (std::uint32_t& v : t) v = index[v];
+  }
+
+  SnapReport report;
+
+ private:
+  void reject(std::uint32_t members) { report.kept += members; }
+
+  // Pairs the kept triangles that would become one triangle wound both ways (two vertices near the
+  // voxel joined to the same two outer vertices from either side): such a fold cancels out. False
+  // when two would become the same triangle, or three share their outer vertices.
+  static bool cancel_folds(std::vector<Kept>& kept) {
+    std::vector<std::uint32_t> order(kept.size());
+    std::iota(order.begin(), order.end(), 0);
+    auto pair_of = [&](std::uint32_t i) {
+      return std::make_pair(std::min(kept[i].a, kept[i].b), std::max(kept[i].a, kept[i].b));
+    };
+    std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return pair_of(x) < pair_of(y); });
+    for (std::size_t i = 0; i < order.size();) {
+      std::size_t j = i + 1;
+      while (j < order.size() && pair_of(order[j]) == pair_of(order[i])) ++j;
+      if (j - i > 2) return false;
+      if (j - i == 2) {
+        Kept &x = kept[order[i]], &y = kept[order[i + 1]];
+        if (x.a != y.b) return false;  // the same winding: a duplicate, not a fold
+        x.twin = int(order[i + 1]);
+        y.twin = int(order[i]);
+      }
+      i = j;
+    }
+    return true;
+  }
+
+  // Finds each kept triangle's partner across its two spokes: walking around the outer vertex a
+  // from (m, a), across collapsing triangles (their spokes to other members), to the next kept
+  // triangle. False when a walk does not end (a broken mesh).
+  template <class Member>
+  bool pair_spokes(std::vector<Kept>& kept, const Member& member, const std::vector<std::uint32_t>& tris) {
+    std::vector<std::uint32_t> kept_tris(kept.size());
+    for (std::size_t i = 0; i < kept.size(); ++i) kept_tris[i] = kept[i].tri;
+    auto kept_index = [&](std::uint32_t t) {  // tris and kept are both in triangle order
+      auto it = std::lower_bound(kept_tris.begin(), kept_tris.end(), t);
+      return it != kept_tris.end() && *it == t ? int(it - kept_tris.begin()) : -1;
+    };
+    // The other triangle on edge (outer, m), not `from`, or kNone at a boundary.
+    auto across = [&](std::uint32_t outer, std::uint32_t m, std::uint32_t from) {
+      const std::uint32_t s = slot_[m];
+      for (std::uint32_t k = first_[s]; k < first_[s + 1]; ++k) {
+        const std::uint32_t t = incident_[k];
+        const Tri& tri = mesh_.triangles[t];
+        if (t != from && tri[0] != kNone && (tri[0] == outer || tri[1] == outer || tri[2] == outer)) return t;
+      }
+      return kNone;
+    };
+    for (std::size_t i = 0; i < kept.size(); ++i)
+      for (int side = 0; side < 2 && kept[i].twin < 0; ++side) {
+        const std::uint32_t outer = side == 0 ? kept[i].a : kept[i].b;
+        std::uint32_t from = kept[i].tri, m = kept[i].m;
+        int partner = -1;
+        for (std::size_t steps = 0; steps <= tris.size(); ++steps) {
+          const std::uint32_t t = across(outer, m, from);
+          if (t == kNone) break;  // boundary spoke
+          const int k = kept_index(t);
+          if (k >= 0 && kept[k].twin < 0) {
+            partner = k;
+            break;
+          }
+          if (k >= 0) {  // a cancelled fold: on through its twin, across the twin's spoke
+            const Kept& w = kept[kept[k].twin];
+            from = w.tri;
+            m = w.m;
+            continue;
+          }
+          // A collapsing triangle (outer, m, m2): carry on across (outer, m2).
+          const Tri& tri = mesh_.triangles[t];
+          std::uint32_t m2 = kNone;
+          for (std::uint32_t v : tri)
+            if (v != m && v != outer && member(v)) m2 = v;
+          if (m2 == kNone) return false;
+          from = t;
+          m = m2;
+          if (steps == tris.size()) return false;
+        }
+        (side == 0 ? kept[i].partner_a : kept[i].partner_b) = partner;
+      }
+    return true;
+  }
+
+  // Each fan must be one disc around its vertex: partners agree (across spoke (v, a) of one
+  // triangle lies the triangle with a as its b, and that one's partner is the first), a closed fan
+  // has at least three triangles, and no outer vertex is met twice in a fan (as a twice, as b
+  // twice, or as a and b of two triangles that do not join there).
+  static bool fans_are_discs(const std::vector<Kept>& kept, const std::vector<int>& fan_of, int nfans) {
+    std::vector<int> size(nfans, 0), open(nfans, 0);
+    std::vector<std::array<std::uint32_t, 4>> uses;  // (fan, vertex, 0 as a / 1 as b, triangle)
+    for (std::size_t i = 0; i < kept.size(); ++i) {
+      const Kept& k = kept[i];
+      if (fan_of[i] < 0) continue;
+      if (k.partner_a >= 0 && (kept[k.partner_a].b != k.a || kept[k.partner_a].partner_b != int(i))) return false;
+      if (k.partner_b >= 0 && (kept[k.partner_b].a != k.b || kept[k.partner_b].partner_a != int(i))) return false;
+      ++size[fan_of[i]];
+      open[fan_of[i]] += (k.partner_a < 0) + (k.partner_b < 0);
+      uses.push_back({std::uint32_t(fan_of[i]), k.a, 0, std::uint32_t(i)});
+      uses.push_back({std::uint32_t(fan_of[i]), k.b, 1, std::uint32_t(i)});
+    }
+    for (int f = 0; f < nfans; ++f)
+      if ((open[f] != 0 && open[f] != 2) || (open[f] == 0 && size[f] < 3)) return false;
+    std::sort(uses.begin(), uses.end());
+    for (std::size_t i = 0; i + 1 < uses.size(); ++i) {
+      const auto &u = uses[i], &w = uses[i + 1];
+      if (u[0] != w[0] || u[1] != w[1]) continue;
+      if (u[2] == w[2]) return false;                            // the same role twice
+      if (kept[u[3]].partner_a != int(w[3])) return false;       // a and b, not joined there
+    }
+    return true;
+  }
+
+  Mesh& mesh_;
+  const std::vector<SnapCandidate>& cand_;
+  const Frame& frame_;
+  double min_area_;
+  double offset_;                        // kFanOffset in world units
+  std::vector<std::uint32_t> slot_;      // per vertex: its candidate, or kNone
+  std::vector<std::uint32_t> first_;     // per candidate: where its triangles start in incident_
+  std::vector<std::uint32_t> incident_;  // triangles using each candidate
+  std::vector<char> removed_;            // per candidate: merged into another
+  std::vector<std::uint32_t> group_;     // per candidate: its group's first candidate
+};
+
+}  // namespace
+
+SnapReport snap_vertices(Mesh& mesh, std::vector<SnapCandidate> candidates, const Frame& frame,
+                         double min_area) {
+  SnapReport report;
+  report.candidates = candidates.size();
+  if (candidates.empty()) return report;
+  // Voxel by voxel, members by edge key: an order that does not depend on vertex numbering.
+  std::vector<std::pair<std::uint64_t, SnapCandidate>> sorted(candidates.size());
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    sorted[i] = {point_key(candidates[i].edge), candidates[i]};
+  std::sort(sorted.begin(), sorted.end(), [](const auto& x, const auto& y) {
+    return x.first != y.first ? x.first < y.first : x.second.edge < y.second.edge;
+  });
+  for (std::size_t i = 0; i < sorted.size(); ++i) candidates[i] = sorted[i].second;
+  Snapper s(mesh, candidates, frame, min_area);
+  std::vector<std::uint32_t> groups;  // each voxel's first candidate, and the end
+  for (std::uint32_t b = 0; b < sorted.size(); ++b)
+    if (b == 0 || sorted[b].first != sorted[b - 1].first) groups.push_back(b);
+  groups.push_back(static_cast<std::uint32_t>(sorted.size()));
+  // A voxel refused because of a neighbour's vertices not yet snapped (a triangle to two vertices
+  // that later merge looks degenerate) is tried again once the others are done.
+  std::vector<std::uint32_t> todo(groups.size() - 1);
+  std::iota(todo.begin(), todo.end(), 0);
+  for (int round = 0; round < kSnapRounds && !todo.empty(); ++round) {
+    std::vector<std::uint32_t> refused;
+    for (std::uint32_t g : todo) {
+      const std::size_t before = s.report.kept;
+      s.snap_group(groups[g], groups[g + 1], sorted[groups[g]].first);
+      if (s.report.kept != before) {
+        refused.push_back(g);
+        if (round + 1 < kSnapRounds) s.report.kept = before;
+      }
+    }
+    if (refused.size() == todo.size()) break;
+    todo.swap(refused);
+  }
+  s.compact();
+  s.report.candidates = candidates.size();
+  return s.report;
+}
+
+double voxel_face_area(const Frame& frame) { return std::pow(abs_det(frame), 2.0 / 3.0); }
+
+}  // namespace isocurv::mc
