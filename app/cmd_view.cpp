@@ -40,6 +40,7 @@ void register_view(CLI::App& app) {
       const auto t0 = std::chrono::steady_clock::now();
       mc::Options mo;
       mo.cap = o.cap;
+      mo.snap = o.snap;
       mc::ExtractTimings et;
       viz::Surface out;
       out.mesh = mesher->extract(value, mo, &et);

@@ -25,6 +25,11 @@ void add_common_options(CLI::App& cmd, CommonOptions& o, bool with_iso) {
     cmd.add_option("--iso", o.iso, "Isovalue (default: the volume's suggested isovalue, see isocurv info)");
   cmd.add_option("--device", o.device, "OpenCL device number from isocurv devices (default: a GPU, else PoCL's CPU device)");
   cmd.add_flag("--cap", o.cap, "Close surfaces cut by the volume's bounding box (default: leave them open)");
+  cmd.add_option("--snap", o.snap,
+                 "Move vertices closer than this fraction of a voxel to a voxel onto it and merge them "
+                 "there (0..0.5; 0: off). Removes the slivers voxels equal to the isovalue leave; "
+                 "snapped vertices leave the isosurface by up to this distance")
+      ->check(CLI::Range(0.0, 0.5))->capture_default_str();
   cmd.add_flag("--json", o.json, "Print a JSON summary with timings_ms per stage on stdout");
   cmd.add_flag("--quiet", o.quiet, "No progress bars or messages on stderr");
   add_volume_options(cmd, o.volume);
@@ -105,6 +110,7 @@ Surface load_surface(const std::string& path, const CommonOptions& o, StageTimer
   timer.start("extract");
   mc::Options mo;
   mo.cap = o.cap;
+  mo.snap = o.snap;
   s.mesh = mc::extract(*s.volume, s.isovalue, dev, mo);
   timer.stop();
   return s;

@@ -23,13 +23,14 @@ struct CommonOptions {
   std::optional<float> iso;       ///< --iso; default: the volume's suggested isovalue
   int device = -1;                ///< --device; -1: default device
   bool cap = false;               ///< --cap
+  float snap = mc::kDefaultSnap;  ///< --snap (mc::Options::snap)
   bool json = false;              ///< --json
   bool quiet = false;             ///< --quiet
   std::string normals = "mesh";   ///< --normals mesh|volume
   float ao_scale = 0;             ///< --ao-scale; 0: 4 x the mean edge length
 };
 
-/// Adds --iso --device --cap --json --quiet and the volume options.
+/// Adds --iso --device --cap --snap --json --quiet and the volume options.
 void add_common_options(CLI::App& cmd, CommonOptions& o, bool with_iso = true);
 /// Adds --normals and --ao-scale.
 void add_curvature_options(CLI::App& cmd, CommonOptions& o);

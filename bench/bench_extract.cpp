@@ -38,6 +38,9 @@ void run_case(const Case& c, int runs) {
   std::size_t ours_tris = 0;
   mc::ExtractTimings steps;
   auto ours = [&] { ours_tris = mc::extract(v, c.iso, dev).triangles.size(); };
+  mc::Options no_snap;  // plain marching cubes, as the peers
+  no_snap.snap = 0;
+  auto ours_plain = [&] { mc::extract(v, c.iso, dev, no_snap); };
   auto image = bench::to_image(v);
   std::size_t fe_tris = 0;
   auto fe = [&] {
@@ -57,7 +60,8 @@ void run_case(const Case& c, int runs) {
     openvdb::tools::volumeToMesh(*v.grid, pts, tris, quads, double(c.iso));
     vdb_tris = tris.size() + 2 * quads.size();
   };
-  const std::vector<double> t = bench::medians_ms({{ours, runs}, {fe, runs}, {vdb, std::max(1, runs / 2)}});
+  const std::vector<double> t =
+      bench::medians_ms({{ours, runs}, {fe, runs}, {vdb, std::max(1, runs / 2)}, {ours_plain, runs}});
   const double t_ours = t[0], t_fe = t[1], t_vdb = t[2];
   const double m_ours = bench::peak_extra_mib(ours), m_fe = bench::peak_extra_mib(fe), m_vdb = bench::peak_extra_mib(vdb);
   std::printf("%-26s %10zu %9.1f %8.1f %7.2f %9.1f %7.2f %8.1f %8.1f %8.1f %8.1f\n", c.name.c_str(), ours_tris, t_ours,
@@ -73,11 +77,13 @@ void run_case(const Case& c, int runs) {
   };
   steps = per_run.front();
   std::printf("%-26s   ours, %zu bricks, %zu seam vertices: prepare %.1f, select %.1f, gather %.1f, classify+scan "
-              "%.1f, seams %.1f, sort %.1f, emit %.1f, read %.1f ms\n", "", steps.bricks, steps.seam_vertices,
+              "%.1f, seams %.1f, sort %.1f, emit %.1f, read %.1f, snap %.1f ms (%zu vertices snapped, %zu merged; "
+              "without snapping %.1f ms)\n", "", steps.bricks, steps.seam_vertices,
               median(&mc::ExtractTimings::prepare),
               median(&mc::ExtractTimings::select), median(&mc::ExtractTimings::gather),
               median(&mc::ExtractTimings::classify), median(&mc::ExtractTimings::seams),
-              median(&mc::ExtractTimings::sort), median(&mc::ExtractTimings::emit), median(&mc::ExtractTimings::read));
+              median(&mc::ExtractTimings::sort), median(&mc::ExtractTimings::emit), median(&mc::ExtractTimings::read),
+              median(&mc::ExtractTimings::snap), steps.snapped, steps.merged, t[3]);
   (void)fe_tris;
   (void)vdb_tris;
   std::fflush(stdout);

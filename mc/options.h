@@ -4,7 +4,7 @@
 namespace isocurv::mc {
 
 /// Default snap distance (Options::snap), a fraction of a voxel edge.
-constexpr float kDefaultSnap = 0.05f;
+constexpr float kDefaultSnap = 0.01f;
 
 struct Options {
   /// Width of the per-vertex edge hash used for fusion, 1..32 bits. Narrow hashes collide often
@@ -15,11 +15,12 @@ struct Options {
   bool cap = false;
   /// Fill Mesh::edge_keys (the cube edge of each vertex), for tests and fusion checks.
   bool keep_edge_keys = false;
-  /// Vertices closer than this fraction of a voxel edge to a voxel are moved onto it and merged
-  /// with the others that meet there, wherever the mesh stays a consistently wound 2-manifold
-  /// (mc/snap_vertices.h, after SnapMC). Removes the clusters of nearly coincident vertices and the
-  /// slivers that voxels equal to the isovalue (integer CT and MR data) otherwise leave. Snapped
-  /// vertices leave the isosurface by up to this distance. 0 turns snapping off; at most 0.5.
+  /// Vertices closer than this fraction of a voxel edge to a voxel are merged with the others
+  /// near it into one vertex at their centroid (on the voxel where the centroid would leave a bad
+  /// triangle), wherever the mesh stays a consistently wound 2-manifold (mc/snap_vertices.h, after
+  /// SnapMC). Removes the clusters of nearly coincident vertices and the slivers that voxels equal
+  /// to the isovalue (integer CT and MR data) otherwise leave. A merged vertex moves by at most
+  /// twice this distance and stays within it of the voxel. 0 turns snapping off; at most 0.5.
   float snap = kDefaultSnap;
 };
 

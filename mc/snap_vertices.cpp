@@ -104,15 +104,18 @@ class Snapper {
   void snap_group(std::uint32_t b, std::uint32_t e, std::uint64_t point) {
     for (std::uint32_t i = b; i < e; ++i) group_[i] = b;
     auto member = [&](std::uint32_t v) { return slot_[v] != kNone && group_[slot_[v]] == b; };
-    std::vector<std::uint32_t> tris;
+    std::vector<std::uint32_t>& tris = tmp_.tris;
+    tris.clear();
     for (std::uint32_t i = b; i < e; ++i)
       for (std::uint32_t k = first_[i]; k < first_[i + 1]; ++k)
         if (mesh_.triangles[incident_[k]][0] != kNone) tris.push_back(incident_[k]);
     std::sort(tris.begin(), tris.end());
     tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
 
-    std::vector<Kept> kept;
-    std::vector<std::uint32_t> dropped;
+    std::vector<Kept>& kept = tmp_.kept;
+    std::vector<std::uint32_t>& dropped = tmp_.dropped;
+    kept.clear();
+    dropped.clear();
     for (std::uint32_t t : tris) {
       const Tri& tri = mesh_.triangles[t];
       int n = 0, r = 0;
@@ -143,12 +146,16 @@ class Snapper {
 
     // Fans: kept triangles joined across spokes.
     const int nk = static_cast<int>(kept.size());
-    std::vector<int> parent(nk);
+    std::vector<int>& parent = tmp_.parent;
+    parent.resize(nk);
     std::iota(parent.begin(), parent.end(), 0);
     for (int i = 0; i < nk; ++i)
       for (int p : {kept[i].partner_a, kept[i].partner_b})
         if (p >= 0) parent[find_root(parent, i)] = find_root(parent, p);
-    std::vector<int> fan_of(nk, -1), root_fan(nk, -1);
+    std::vector<int>& fan_of = tmp_.fan_of;
+    std::vector<int>& root_fan = tmp_.root_fan;
+    fan_of.assign(nk, -1);
+    root_fan.assign(nk, -1);
     int nfans = 0;
     for (int i = 0; i < nk; ++i) {
       if (kept[i].twin >= 0) continue;
@@ -175,7 +182,8 @@ class Snapper {
         for (int c = 0; c < 3; ++c) where[f][c] = at[c] + offset_ * d[c] / len;
       }
     }
-    std::vector<Vec3f> where_f(nfans);
+    std::vector<Vec3f>& where_f = tmp_.where_f;
+    where_f.resize(nfans);
     for (int f = 0; f < nfans; ++f)
       where_f[f] = {float(where[f][0]), float(where[f][1]), float(where[f][2])};
     for (int f = 0; f < nfans; ++f)  // fans facing the same way (symmetric sheets) would coincide
@@ -184,9 +192,7 @@ class Snapper {
         if (dot(d, d) < 0.25 * offset_ * offset_) return reject(members);
       }
 
-    // Sound geometry: no triangle too small or turned over. A lone fan whose voxel lies in line
-    // with two of its outer vertices (an edge crossed midway between two snapped voxels) takes the
-    // centroid of its vertices instead, still merging them.
+    // Sound geometry: no triangle too small or turned over.
     auto sound = [&] {
       for (int i = 0; i < nk; ++i) {
         const Kept& k = kept[i];
@@ -199,14 +205,18 @@ class Snapper {
       }
       return true;
     };
-    if (!sound()) {
-      if (nfans > 1) return reject(members);
+    if (nfans == 1) {
+      // A lone fan merges its vertices at their centroid: near the isosurface they all lie on,
+      // where the voxel itself may lie up to the snap distance off it. On the voxel instead when
+      // the centroid would leave a bad triangle.
       Vec3d sum{0, 0, 0};
       for (std::uint32_t i = b; i < e; ++i)
         for (int c = 0; c < 3; ++c) sum[c] += mesh_.positions[cand_[i].vertex][c];
+      const Vec3f on_voxel = where_f[0];
       where_f[0] = {float(sum[0] / members), float(sum[1] / members), float(sum[2] / members)};
-      if (!sound()) return reject(members);
+      if (!sound()) where_f[0] = on_voxel;
     }
+    if (!sound()) return reject(members);
 
     // Each fan keeps one member's vertex (and edge key): fans in the order of their smallest outer
     // vertex position, each taking its smallest-key member not yet taken (members are sorted by
@@ -282,8 +292,9 @@ class Snapper {
   // Pairs the kept triangles that would become one triangle wound both ways (two vertices near the
   // voxel joined to the same two outer vertices from either side): such a fold cancels out. False
   // when two would become the same triangle, or three share their outer vertices.
-  static bool cancel_folds(std::vector<Kept>& kept) {
-    std::vector<std::uint32_t> order(kept.size());
+  bool cancel_folds(std::vector<Kept>& kept) {
+    std::vector<std::uint32_t>& order = tmp_.order;
+    order.resize(kept.size());
     std::iota(order.begin(), order.end(), 0);
     auto pair_of = [&](std::uint32_t i) {
       return std::make_pair(std::min(kept[i].a, kept[i].b), std::max(kept[i].a, kept[i].b));
@@ -309,7 +320,8 @@ class Snapper {
   // triangle. False when a walk does not end (a broken mesh).
   template <class Member>
   bool pair_spokes(std::vector<Kept>& kept, const Member& member, const std::vector<std::uint32_t>& tris) {
-    std::vector<std::uint32_t> kept_tris(kept.size());
+    std::vector<std::uint32_t>& kept_tris = tmp_.kept_tris;
+    kept_tris.resize(kept.size());
     for (std::size_t i = 0; i < kept.size(); ++i) kept_tris[i] = kept[i].tri;
     auto kept_index = [&](std::uint32_t t) {  // tris and kept are both in triangle order
       auto it = std::lower_bound(kept_tris.begin(), kept_tris.end(), t);
@@ -363,9 +375,13 @@ class Snapper {
   // triangle lies the triangle with a as its b, and that one's partner is the first), a closed fan
   // has at least three triangles, and no outer vertex is met twice in a fan (as a twice, as b
   // twice, or as a and b of two triangles that do not join there).
-  static bool fans_are_discs(const std::vector<Kept>& kept, const std::vector<int>& fan_of, int nfans) {
-    std::vector<int> size(nfans, 0), open(nfans, 0);
-    std::vector<std::array<std::uint32_t, 4>> uses;  // (fan, vertex, 0 as a / 1 as b, triangle)
+  bool fans_are_discs(const std::vector<Kept>& kept, const std::vector<int>& fan_of, int nfans) {
+    std::vector<int>& size = tmp_.size;
+    std::vector<int>& open = tmp_.open;
+    size.assign(nfans, 0);
+    open.assign(nfans, 0);
+    auto& uses = tmp_.uses;  // (fan, vertex, 0 as a / 1 as b, triangle)
+    uses.clear();
     for (std::size_t i = 0; i < kept.size(); ++i) {
       const Kept& k = kept[i];
       if (fan_of[i] < 0) continue;
@@ -398,6 +414,13 @@ class Snapper {
   std::vector<std::uint32_t> incident_;  // triangles using each candidate
   std::vector<char> removed_;            // per candidate: merged into another
   std::vector<std::uint32_t> group_;     // per candidate: its group's first candidate
+  struct {  // per-voxel working arrays, kept between voxels
+    std::vector<std::uint32_t> tris, dropped, kept_tris, order;
+    std::vector<Kept> kept;
+    std::vector<int> parent, fan_of, root_fan, size, open;
+    std::vector<Vec3f> where_f;
+    std::vector<std::array<std::uint32_t, 4>> uses;
+  } tmp_;
 };
 
 }  // namespace
@@ -414,6 +437,17 @@ SnapReport snap_vertices(Mesh& mesh, std::vector<SnapCandidate> candidates, cons
   std::sort(sorted.begin(), sorted.end(), [](const auto& x, const auto& y) {
     return x.first != y.first ? x.first < y.first : x.second.edge < y.second.edge;
   });
+  // A voxel with one candidate changes nothing (a lone fan's vertex goes to its vertices'
+  // centroid, here the vertex itself): only voxels with two or more take part.
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    const bool alone = (i == 0 || sorted[i - 1].first != sorted[i].first) &&
+                       (i + 1 == sorted.size() || sorted[i + 1].first != sorted[i].first);
+    if (!alone) sorted[kept++] = sorted[i];
+  }
+  sorted.resize(kept);
+  candidates.resize(kept);
+  if (sorted.empty()) return report;
   for (std::size_t i = 0; i < sorted.size(); ++i) candidates[i] = sorted[i].second;
   Snapper s(mesh, candidates, frame, min_area);
   std::vector<std::uint32_t> groups;  // each voxel's first candidate, and the end
@@ -438,7 +472,7 @@ SnapReport snap_vertices(Mesh& mesh, std::vector<SnapCandidate> candidates, cons
     todo.swap(refused);
   }
   s.compact();
-  s.report.candidates = candidates.size();
+  s.report.candidates = report.candidates;
   return s.report;
 }
 

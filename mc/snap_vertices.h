@@ -1,7 +1,9 @@
 #pragma once
-// Vertex snapping (after SnapMC, Raman and Wenger 2008): marching-cubes vertices close to a voxel
-// are moved onto it, and the vertices that meet there are merged, so voxels at (or very near) the
-// isovalue leave no clusters of nearly coincident vertices and no sliver triangles.
+// Vertex snapping (after SnapMC, Raman and Wenger 2008): marching-cubes vertices close to one voxel
+// are merged into one, so voxels at (or very near) the isovalue leave no clusters of nearly
+// coincident vertices and no sliver triangles. Where SnapMC puts the vertex on the voxel (up to
+// the snap distance off the isosurface), a lone group here takes its vertices' centroid, which
+// stays near the isosurface they all lie on: curvature from the mesh keeps its accuracy.
 //
 // Where SnapMC extends the case table to 3^8 configurations, this pass works on the fused mesh the
 // mesher already made: the vertices listed as near one voxel are collapsed onto it, a connected
@@ -31,8 +33,8 @@ struct SnapCandidate {
 
 /// What a snapping pass did.
 struct SnapReport {
-  std::size_t candidates = 0;  ///< vertices listed as near a voxel
-  std::size_t moved = 0;       ///< vertices now on (or beside) a voxel
+  std::size_t candidates = 0;  ///< vertices listed as near a voxel (alone at theirs: left as they are)
+  std::size_t moved = 0;       ///< merged vertices placed (one a fan)
   std::size_t merged = 0;      ///< vertices removed by merging into another
   std::size_t vanished = 0;    ///< other vertices removed: every triangle of theirs collapsed
   std::size_t dropped = 0;     ///< triangles removed (collapsed to an edge or a point)
@@ -43,7 +45,8 @@ struct SnapReport {
 /// Snaps the listed vertices of `mesh` (a marching-cubes mesh from `frame`) onto their voxels,
 /// voxel by voxel. The triangles with two or more of a voxel's vertices collapse; the others form
 /// fans around the voxel, joined across each spoke as they were joined around its outer vertex.
-/// One fan (the usual case) puts its vertex on the voxel; several (sheets of the surface touching
+/// One fan (the usual case) puts its vertex at the centroid of the voxel's vertices (on the voxel
+/// where the centroid would leave a bad triangle); several (sheets of the surface touching
 /// there, or a tunnel narrower than the snap distance pinched to a point) each get a vertex of
 /// their own, 2/1024 voxel from it towards the fan, so no two vertices coincide and no edge or
 /// vertex becomes non-manifold. Where a fan would not be a disc, or a triangle would fall below

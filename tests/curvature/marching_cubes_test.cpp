@@ -39,7 +39,8 @@ McCase mc_case(const std::string& name, int resolution) {
   McCase c;
   c.field = datasets::make_field(name);
   c.volume = datasets::sample(*c.field, resolution);
-  c.mesh = mc::extract(c.volume, float(c.field->isovalue()), Device::default_device());
+  mc::Options mo; mo.snap = std::getenv("SNAPV") ? std::atof(std::getenv("SNAPV")) : mc::kDefaultSnap;
+  c.mesh = mc::extract(c.volume, float(c.field->isovalue()), Device::default_device(), mo);
   return c;
 }
 
