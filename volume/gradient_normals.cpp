@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/mesh_measures.h"
+
 namespace isocurv::volume {
 namespace {
 
@@ -51,11 +53,10 @@ struct GradientSampler {
   }
 };
 
-}  // namespace
-
-std::vector<Vec3f> gradient_normals(const Volume& volume, const Positions& world_positions) {
-  std::vector<Vec3f> normals(world_positions.size(), Vec3f{0, 0, 0});
-  if (!volume.grid || world_positions.empty()) return normals;
+// Outward gradients (world space, not normalised; the sign applied) at world positions.
+std::vector<Vec3f> outward_gradients(const Volume& volume, const Positions& world_positions) {
+  std::vector<Vec3f> out(world_positions.size(), Vec3f{0, 0, 0});
+  if (!volume.grid || world_positions.empty()) return out;
   const openvdb::FloatGrid& grid = *volume.grid;
   const openvdb::math::Transform& xform = grid.transform();
   const openvdb::math::MapBase::ConstPtr map = xform.baseMap();
@@ -64,17 +65,71 @@ std::vector<Vec3f> gradient_normals(const Volume& volume, const Positions& world
 
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, world_positions.size(), 512),
                     [&](const tbb::blocked_range<std::size_t>& r) {
-                      GradientSampler s{grid.getConstAccessor(), clamp, volume.domain.min(), volume.domain.max()};
+                      GradientSampler s{grid.getConstAccessor(), clamp, volume.domain.min(),
+                                        volume.domain.max()};
                       for (std::size_t i = r.begin(); i != r.end(); ++i) {
                         const Vec3f& p = world_positions[i];
-                        const openvdb::Vec3d q = xform.worldToIndex(openvdb::Vec3d(p[0], p[1], p[2]));
-                        const openvdb::Vec3d g = map->applyIJT(s.interpolate(q), q);
-                        const double len = g.length();
-                        if (!(len > 0) || !std::isfinite(len)) continue;
-                        normals[i] = {float(sign * g.x() / len), float(sign * g.y() / len), float(sign * g.z() / len)};
+                        const openvdb::Vec3d q =
+                            xform.worldToIndex(openvdb::Vec3d(p[0], p[1], p[2]));
+                        const openvdb::Vec3d g = sign * map->applyIJT(s.interpolate(q), q);
+                        if (!std::isfinite(g.length())) continue;
+                        out[i] = {float(g.x()), float(g.y()), float(g.z())};
                       }
                     });
+  return out;
+}
+
+double length(const Vec3f& v) {
+  return std::sqrt(double(v[0]) * v[0] + double(v[1]) * v[1] + double(v[2]) * v[2]);
+}
+
+Vec3f scaled(const Vec3f& v, double s) {
+  return {float(v[0] * s), float(v[1] * s), float(v[2] * s)};
+}
+
+}  // namespace
+
+std::vector<Vec3f> gradient_normals(const Volume& volume, const Positions& world_positions) {
+  std::vector<Vec3f> normals = outward_gradients(volume, world_positions);
+  for (Vec3f& n : normals) {
+    const double len = length(n);
+    n = len > 0 ? scaled(n, 1.0 / len) : Vec3f{0, 0, 0};
+  }
   return normals;
+}
+
+MeshNormals gradient_normals_for_mesh(const Volume& volume, const Mesh& mesh) {
+  MeshNormals r;
+  r.normals = outward_gradients(volume, mesh.positions);
+  const std::vector<Vec3f> faces = area_weighted_normals(mesh);
+  std::vector<double> lengths(r.normals.size());
+  std::vector<double> positive;
+  positive.reserve(lengths.size());
+  for (std::size_t i = 0; i < lengths.size(); ++i) {
+    lengths[i] = length(r.normals[i]);
+    if (lengths[i] > 0) positive.push_back(lengths[i]);
+  }
+  double weak_below = 0;
+  if (!positive.empty()) {
+    auto mid = positive.begin() + positive.size() / 2;
+    std::nth_element(positive.begin(), mid, positive.end());
+    weak_below = kWeakGradientFraction * *mid;
+  }
+  for (std::size_t i = 0; i < r.normals.size(); ++i) {
+    Vec3f& n = r.normals[i];
+    const Vec3f& a = faces[i];
+    const double alen = length(a);
+    const bool weak = !(lengths[i] > weak_below);
+    const bool opposed =
+        !weak && double(n[0]) * a[0] + double(n[1]) * a[1] + double(n[2]) * a[2] <= 0;
+    if (alen > 0 && (weak || opposed)) {
+      n = scaled(a, 1.0 / alen);
+      ++(weak ? r.weak : r.opposed);
+    } else {
+      n = lengths[i] > 0 ? scaled(n, 1.0 / lengths[i]) : Vec3f{0, 0, 0};
+    }
+  }
+  return r;
 }
 
 }  // namespace isocurv::volume
