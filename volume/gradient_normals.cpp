@@ -53,9 +53,10 @@ struct GradientSampler {
   }
 };
 
-// Outward gradients (world space, not normalised; the sign applied) at world positions.
-std::vector<Vec3f> outward_gradients(const Volume& volume, const Positions& world_positions) {
-  std::vector<Vec3f> out(world_positions.size(), Vec3f{0, 0, 0});
+// Outward gradients (world space, not normalised; the sign applied) at world positions; zero
+// where not finite.
+std::vector<openvdb::Vec3d> outward_gradients(const Volume& volume, const Positions& world_positions) {
+  std::vector<openvdb::Vec3d> out(world_positions.size(), openvdb::Vec3d(0.0));
   if (!volume.grid || world_positions.empty()) return out;
   const openvdb::FloatGrid& grid = *volume.grid;
   const openvdb::math::Transform& xform = grid.transform();
@@ -72,61 +73,52 @@ std::vector<Vec3f> outward_gradients(const Volume& volume, const Positions& worl
                         const openvdb::Vec3d q =
                             xform.worldToIndex(openvdb::Vec3d(p[0], p[1], p[2]));
                         const openvdb::Vec3d g = sign * map->applyIJT(s.interpolate(q), q);
-                        if (!std::isfinite(g.length())) continue;
-                        out[i] = {float(g.x()), float(g.y()), float(g.z())};
+                        if (std::isfinite(g.length())) out[i] = g;
                       }
                     });
   return out;
 }
 
-double length(const Vec3f& v) {
-  return std::sqrt(double(v[0]) * v[0] + double(v[1]) * v[1] + double(v[2]) * v[2]);
-}
-
-Vec3f scaled(const Vec3f& v, double s) {
-  return {float(v[0] * s), float(v[1] * s), float(v[2] * s)};
+// g / |g| as floats; zero for a zero vector.
+Vec3f unit(const openvdb::Vec3d& g) {
+  const double len = g.length();
+  if (!(len > 0)) return {0, 0, 0};
+  return {float(g.x() / len), float(g.y() / len), float(g.z() / len)};
 }
 
 }  // namespace
 
 std::vector<Vec3f> gradient_normals(const Volume& volume, const Positions& world_positions) {
-  std::vector<Vec3f> normals = outward_gradients(volume, world_positions);
-  for (Vec3f& n : normals) {
-    const double len = length(n);
-    n = len > 0 ? scaled(n, 1.0 / len) : Vec3f{0, 0, 0};
-  }
+  const std::vector<openvdb::Vec3d> g = outward_gradients(volume, world_positions);
+  std::vector<Vec3f> normals(g.size());
+  for (std::size_t i = 0; i < g.size(); ++i) normals[i] = unit(g[i]);
   return normals;
 }
 
 MeshNormals gradient_normals_for_mesh(const Volume& volume, const Mesh& mesh) {
   MeshNormals r;
-  r.normals = outward_gradients(volume, mesh.positions);
+  const std::vector<openvdb::Vec3d> g = outward_gradients(volume, mesh.positions);
   const std::vector<Vec3f> faces = area_weighted_normals(mesh);
-  std::vector<double> lengths(r.normals.size());
-  std::vector<double> positive;
-  positive.reserve(lengths.size());
-  for (std::size_t i = 0; i < lengths.size(); ++i) {
-    lengths[i] = length(r.normals[i]);
-    if (lengths[i] > 0) positive.push_back(lengths[i]);
-  }
+  std::vector<double> lengths;
+  lengths.reserve(g.size());
+  for (const openvdb::Vec3d& v : g)
+    if (v.length() > 0) lengths.push_back(v.length());
   double weak_below = 0;
-  if (!positive.empty()) {
-    auto mid = positive.begin() + positive.size() / 2;
-    std::nth_element(positive.begin(), mid, positive.end());
+  if (!lengths.empty()) {
+    auto mid = lengths.begin() + lengths.size() / 2;
+    std::nth_element(lengths.begin(), mid, lengths.end());
     weak_below = kWeakGradientFraction * *mid;
   }
-  for (std::size_t i = 0; i < r.normals.size(); ++i) {
-    Vec3f& n = r.normals[i];
-    const Vec3f& a = faces[i];
-    const double alen = length(a);
-    const bool weak = !(lengths[i] > weak_below);
-    const bool opposed =
-        !weak && double(n[0]) * a[0] + double(n[1]) * a[1] + double(n[2]) * a[2] <= 0;
-    if (alen > 0 && (weak || opposed)) {
-      n = scaled(a, 1.0 / alen);
+  r.normals.resize(g.size());
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    const openvdb::Vec3d a(faces[i][0], faces[i][1], faces[i][2]);
+    const bool weak = !(g[i].length() > weak_below);
+    const bool opposed = !weak && g[i].dot(a) <= 0;
+    if (a.length() > 0 && (weak || opposed)) {
+      r.normals[i] = unit(a);
       ++(weak ? r.weak : r.opposed);
     } else {
-      n = lengths[i] > 0 ? scaled(n, 1.0 / lengths[i]) : Vec3f{0, 0, 0};
+      r.normals[i] = unit(g[i]);
     }
   }
   return r;
