@@ -13,8 +13,9 @@ namespace isocurv::app {
 
 void register_run(CLI::App& app) {
   auto* cmd = app.add_subcommand("run", "Volume -> isosurface -> curvature -> DIR/<name>.vtp, DIR/<name>.png and DIR/stats.json");
-  cmd->footer("Example: isocurv run lobster.vol --iso 40 -o out/ --normals volume\n"
-              "stats.json holds counts, timings_ms per stage, the device, and min/max/mean/percentiles of H and K.");
+  cmd->footer("Example: isocurv run lobster.vol --iso 40 -o out/\n"
+              "stats.json holds counts, timings_ms per stage, the device, the normals (and their face-normal\n"
+              "fallbacks), and area-weighted min/max/mean/percentiles of H, K, k1, k2 without the unreliable vertices.");
   static CommonOptions o;
   static viz::RenderOptions ro;
   static std::string in, dir, format = "vtp";
