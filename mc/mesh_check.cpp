@@ -26,7 +26,8 @@ struct PositionHash {
   std::size_t operator()(const Vec3f& p) const {
     std::uint32_t b[3];
     std::memcpy(b, p.data(), sizeof b);
-    return (std::size_t(b[0]) * 73856093u) ^ (std::size_t(b[1]) * 19349663u) ^ (std::size_t(b[2]) * 83492791u);
+    return (std::size_t(b[0]) * 73856093u) ^ (std::size_t(b[1]) * 19349663u) ^
+           (std::size_t(b[2]) * 83492791u);
   }
 };
 
@@ -38,8 +39,9 @@ std::size_t MeshCheck::closed_components() const {
 }
 
 std::size_t MeshCheck::inward_components() const {
-  return std::size_t(std::count_if(component_list.begin(), component_list.end(),
-                                   [](const ComponentCheck& c) { return c.closed && c.signed_volume < 0; }));
+  return std::size_t(
+      std::count_if(component_list.begin(), component_list.end(),
+                    [](const ComponentCheck& c) { return c.closed && c.signed_volume < 0; }));
 }
 
 double MeshCheck::closed_signed_volume() const {
@@ -80,8 +82,12 @@ MeshCheck check_mesh(const Mesh& mesh) {
     valid[f] = 1;
     const Vec3f &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
     double u[3], v[3];
-    for (int k = 0; k < 3; ++k) { u[k] = double(b[k]) - a[k]; v[k] = double(c[k]) - a[k]; }
-    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    for (int k = 0; k < 3; ++k) {
+      u[k] = double(b[k]) - a[k];
+      v[k] = double(c[k]) - a[k];
+    }
+    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                         u[0] * v[1] - u[1] * v[0]};
     const double area = 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     if (area == 0 && !(t[0] == t[1] || t[1] == t[2] || t[0] == t[2])) ++r.degenerate_triangles;
     r.area += area;
@@ -119,7 +125,10 @@ MeshCheck check_mesh(const Mesh& mesh) {
   std::size_t referenced = 0;
   std::vector<std::uint32_t> component_of(nv, ~0u);  // indexed by root
   for (std::uint32_t i = 0; i < nv; ++i) {
-    if (!used[i]) { ++r.unreferenced_vertices; continue; }
+    if (!used[i]) {
+      ++r.unreferenced_vertices;
+      continue;
+    }
     ++referenced;
     const std::uint32_t root = uf.find(i);
     if (component_of[root] == ~0u) {
@@ -144,7 +153,8 @@ MeshCheck check_mesh(const Mesh& mesh) {
       for (int k = 0; k < 3; ++k) p[j][k] = double(mesh.positions[t[j]][k]) - o[k];
     c.signed_volume += (p[0][0] * (p[1][1] * p[2][2] - p[1][2] * p[2][1]) -
                         p[0][1] * (p[1][0] * p[2][2] - p[1][2] * p[2][0]) +
-                        p[0][2] * (p[1][0] * p[2][1] - p[1][1] * p[2][0])) / 6.0;
+                        p[0][2] * (p[1][0] * p[2][1] - p[1][1] * p[2][0])) /
+                       6.0;
   }
   r.euler = (long long)referenced - (long long)r.edges + (long long)r.triangles;
   return r;

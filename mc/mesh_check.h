@@ -32,9 +32,9 @@ struct MeshCheck {
   /// triangles traversing it the same way, or an odd number of uses above one. Non-manifold
   /// edges are judged too. Boundary edges are not counted.
   std::size_t misoriented_edges = 0;
-  std::size_t components = 0;             ///< connected components (over triangles)
-  long long euler = 0;                    ///< V - E + F over referenced vertices
-  double area = 0;                        ///< total surface area (world units^2)
+  std::size_t components = 0;  ///< connected components (over triangles)
+  long long euler = 0;         ///< V - E + F over referenced vertices
+  double area = 0;             ///< total surface area (world units^2)
 
   /// The offenders, in increasing id order: (vertex, the earlier vertex at its position) for each
   /// duplicate; edges as (lower, higher) vertex id.
@@ -45,7 +45,9 @@ struct MeshCheck {
   bool watertight() const { return boundary_edges == 0 && non_manifold_edges == 0; }
   bool oriented() const { return misoriented_edges == 0; }
   /// Total genus when closed and oriented: components - euler / 2; -1 otherwise.
-  long long genus() const { return watertight() && oriented() ? (long long)components - euler / 2 : -1; }
+  long long genus() const {
+    return watertight() && oriented() ? (long long)components - euler / 2 : -1;
+  }
   std::size_t closed_components() const;
   std::size_t inward_components() const;  ///< closed components with a negative signed volume
   /// Sum of the closed components' signed volumes: negative when the closed part of the mesh is

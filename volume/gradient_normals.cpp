@@ -29,7 +29,8 @@ struct GradientSampler {
       p[a] = cx(c[a] + 1, a);
       m[a] = cx(c[a] - 1, a);
       const int span = p[a] - m[a];
-      g[a] = span == 0 ? 0.0 : (double(value(p[0], p[1], p[2])) - double(value(m[0], m[1], m[2]))) / span;
+      g[a] = span == 0 ? 0.0
+                       : (double(value(p[0], p[1], p[2])) - double(value(m[0], m[1], m[2]))) / span;
     }
     return g;
   }
@@ -55,7 +56,8 @@ struct GradientSampler {
 
 // Outward gradients (world space, not normalised; the sign applied) at world positions; zero
 // where not finite.
-std::vector<openvdb::Vec3d> outward_gradients(const Volume& volume, const Positions& world_positions) {
+std::vector<openvdb::Vec3d> outward_gradients(const Volume& volume,
+                                              const Positions& world_positions) {
   std::vector<openvdb::Vec3d> out(world_positions.size(), openvdb::Vec3d(0.0));
   if (!volume.grid || world_positions.empty()) return out;
   const openvdb::FloatGrid& grid = *volume.grid;
@@ -64,18 +66,17 @@ std::vector<openvdb::Vec3d> outward_gradients(const Volume& volume, const Positi
   const double sign = volume.inside == Inside::Above ? -1.0 : 1.0;
   const bool clamp = volume.dense && !volume.domain.empty();
 
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, world_positions.size(), 512),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      GradientSampler s{grid.getConstAccessor(), clamp, volume.domain.min(),
-                                        volume.domain.max()};
-                      for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                        const Vec3f& p = world_positions[i];
-                        const openvdb::Vec3d q =
-                            xform.worldToIndex(openvdb::Vec3d(p[0], p[1], p[2]));
-                        const openvdb::Vec3d g = sign * map->applyIJT(s.interpolate(q), q);
-                        if (std::isfinite(g.length())) out[i] = g;
-                      }
-                    });
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, world_positions.size(), 512),
+      [&](const tbb::blocked_range<std::size_t>& r) {
+        GradientSampler s{grid.getConstAccessor(), clamp, volume.domain.min(), volume.domain.max()};
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+          const Vec3f& p = world_positions[i];
+          const openvdb::Vec3d q = xform.worldToIndex(openvdb::Vec3d(p[0], p[1], p[2]));
+          const openvdb::Vec3d g = sign * map->applyIJT(s.interpolate(q), q);
+          if (std::isfinite(g.length())) out[i] = g;
+        }
+      });
   return out;
 }
 

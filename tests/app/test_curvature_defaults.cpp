@@ -44,7 +44,8 @@ TEST(CurvatureDefaults, CtLikeVolumeGivesPlausibleStatistics) {
   const double R = 14;
   const std::string ball = write_ct_ball(dir, 40, R);
   // 120 is a voxel value (integer isovalue on integer data, as CT users choose).
-  const auto r = run_isocurv({"run", ball, "--iso", "120", "-o", dir / "out", "--size", "160x120", "--json"});
+  const auto r =
+      run_isocurv({"run", ball, "--iso", "120", "-o", dir / "out", "--size", "160x120", "--json"});
   ASSERT_TRUE(r.ok()) << r.describe();
   const json s = parse_json(r.out, "run --json");
   EXPECT_EQ(s.value("normals", ""), "volume") << "the default on volume input";
@@ -56,7 +57,8 @@ TEST(CurvatureDefaults, CtLikeVolumeGivesPlausibleStatistics) {
   EXPECT_NEAR(c["K"]["mean"].get<double>(), 1 / (R * R), 0.25 / (R * R)) << c.dump(2);
   EXPECT_GT(c["H"]["p5"].get<double>(), 0.0) << "a ball is convex everywhere: " << c.dump(2);
   EXPECT_LT(c["H"]["p95"].get<double>(), 2 / R) << c.dump(2);
-  EXPECT_LT(c["unreliable_vertices"].get<double>(), 0.01 * s["vertices"].get<double>()) << c.dump(2);
+  EXPECT_LT(c["unreliable_vertices"].get<double>(), 0.01 * s["vertices"].get<double>())
+      << c.dump(2);
   EXPECT_EQ(c["vertices_counted"].get<std::size_t>() + c["unreliable_vertices"].get<std::size_t>() +
                 c["non_finite_vertices"].get<std::size_t>(),
             s["vertices"].get<std::size_t>());
@@ -72,7 +74,9 @@ TEST(CurvatureDefaults, ThinPlateFallbacksAreCounted) {
   for (int z = 0; z < n; ++z)
     for (int y = 4; y < 20; ++y)
       for (int x = 4; x < 20; ++x)
-        bytes[(std::size_t(z) * n + y) * n + x] = z == 8 ? char(128) : (z >= 10 && z <= 15) ? char(255) : 0;
+        bytes[(std::size_t(z) * n + y) * n + x] = z == 8                 ? char(128)
+                                                  : (z >= 10 && z <= 15) ? char(255)
+                                                                         : 0;
   const std::string path = dir / "plate_24x24x24_uint8.raw";
   write_file(path, bytes);
   const auto r = run_isocurv({"curvature", path, "--iso", "40", "-o", dir / "p.vtp", "--json"});
@@ -82,12 +86,14 @@ TEST(CurvatureDefaults, ThinPlateFallbacksAreCounted) {
   ASSERT_TRUE(j.contains("normal_fallbacks")) << j.dump(2);
   EXPECT_GE(j["normal_fallbacks"]["opposed"].get<int>(), 16 * 16 - 4 * 16) << j.dump(2);
   EXPECT_EQ(j["normal_fallbacks"]["count"].get<int>(),
-            j["normal_fallbacks"]["opposed"].get<int>() + j["normal_fallbacks"]["weak_gradient"].get<int>());
+            j["normal_fallbacks"]["opposed"].get<int>() +
+                j["normal_fallbacks"]["weak_gradient"].get<int>());
   // The flat tops and bottoms have no curvature, so the median |H| is small.
   EXPECT_LT(std::fabs(j["curvature"]["H"]["p50"].get<double>()), 0.05) << j.dump(2);
 
   // Mesh normals stay available on request, and report no fallbacks.
-  const auto m = run_isocurv({"curvature", path, "--iso", "40", "--normals", "mesh", "-o", dir / "m.vtp", "--json"});
+  const auto m = run_isocurv(
+      {"curvature", path, "--iso", "40", "--normals", "mesh", "-o", dir / "m.vtp", "--json"});
   ASSERT_TRUE(m.ok()) << m.describe();
   const json mj = parse_json(m.out, "curvature --json");
   EXPECT_EQ(mj.value("normals", ""), "mesh");

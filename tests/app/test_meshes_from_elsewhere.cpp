@@ -46,7 +46,8 @@ TEST(MeshesFromElsewhere, CurvatureWeldsAnUnweldedMesh) {
   const auto r = run_isocurv({"curvature", dir / "u.ply", "-o", dir / "c.vtp", "--json"});
   ASSERT_TRUE(r.ok()) << r.describe();
   const json j = parse_json(r.out, "curvature --json");
-  EXPECT_EQ(j["welded_vertices"].get<std::size_t>(), 3 * sphere.triangles.size() - sphere.positions.size());
+  EXPECT_EQ(j["welded_vertices"].get<std::size_t>(),
+            3 * sphere.triangles.size() - sphere.positions.size());
   EXPECT_EQ(j["vertices"].get<std::size_t>(), sphere.positions.size());
   EXPECT_NEAR(j["curvature"]["H"]["p50"].get<double>(), 1.25, 0.2) << "not all zero: " << j.dump(2);
   const auto lines = r.err_lines();
@@ -72,7 +73,8 @@ TEST(MeshesFromElsewhere, InwardClosedMeshWarnsAndFlipFixesIt) {
   EXPECT_NE(lines[0].find("--flip"), std::string::npos) << lines[0];
   EXPECT_LT(parse_json(r.out, "curvature --json")["curvature"]["H"]["p50"].get<double>(), 0.0);
 
-  const auto f = run_isocurv({"curvature", dir / "in.ply", "--flip", "-o", dir / "f.vtp", "--json"});
+  const auto f =
+      run_isocurv({"curvature", dir / "in.ply", "--flip", "-o", dir / "f.vtp", "--json"});
   ASSERT_TRUE(f.ok()) << f.describe();
   EXPECT_TRUE(f.err.empty()) << f.err;
   const json fj = parse_json(f.out, "curvature --flip --json");
@@ -83,7 +85,8 @@ TEST(MeshesFromElsewhere, InwardClosedMeshWarnsAndFlipFixesIt) {
   const auto out = run_isocurv({"curvature", dir / "sphere.ply", "-o", dir / "o.vtp", "--quiet"});
   ASSERT_TRUE(out.ok()) << out.describe();
   EXPECT_TRUE(out.err.empty()) << out.err;
-  expect_clean_failure(run_isocurv({"curvature", dataset("sphere"), "--flip", "-o", dir / "v.vtp"}), "--flip");
+  expect_clean_failure(run_isocurv({"curvature", dataset("sphere"), "--flip", "-o", dir / "v.vtp"}),
+                       "--flip");
   EXPECT_FALSE(fs::exists(dir / "v.vtp"));
 }
 
@@ -107,7 +110,8 @@ TEST(MeshesFromElsewhere, CheckReportsOrientationOfClosedComponents) {
 
   const auto good = run_isocurv({"check", dataset("sphere"), "--json"});
   ASSERT_TRUE(good.ok()) << good.describe();
-  EXPECT_EQ(parse_json(good.out, "check --json")["orientation"], "outward") << "the mesher's own output";
+  EXPECT_EQ(parse_json(good.out, "check --json")["orientation"], "outward")
+      << "the mesher's own output";
 }
 
 TEST(MeshesFromElsewhere, CheckListsOffendingVerticesAndEdges) {
@@ -122,7 +126,8 @@ TEST(MeshesFromElsewhere, CheckListsOffendingVerticesAndEdges) {
   const json j = parse_json(r.out, "check --json");
   EXPECT_EQ(j["non_manifold_edges"].get<int>(), 1);
   EXPECT_EQ(j["non_manifold_edge_ids"], json::parse("[[0, 1]]"));
-  EXPECT_EQ(j["misoriented_edges"].get<int>(), 1) << "two same-direction uses on a non-manifold edge";
+  EXPECT_EQ(j["misoriented_edges"].get<int>(), 1)
+      << "two same-direction uses on a non-manifold edge";
   EXPECT_EQ(j["misoriented_edge_ids"], json::parse("[[0, 1]]"));
   EXPECT_FALSE(j["consistently_oriented"].get<bool>());
   EXPECT_EQ(j["duplicate_vertex_ids"], json::parse("[[6, 3]]"));
@@ -138,7 +143,8 @@ TEST(MeshesFromElsewhere, CheckListsOffendingVerticesAndEdges) {
   const auto u = run_isocurv({"check", dir / "u.ply", "--json"});
   ASSERT_TRUE(u.ok()) << u.describe();
   const json uj = parse_json(u.out, "check --json");
-  EXPECT_EQ(uj["duplicate_vertex_ids"].size(), 3 * sphere.triangles.size() - sphere.positions.size());
+  EXPECT_EQ(uj["duplicate_vertex_ids"].size(),
+            3 * sphere.triangles.size() - sphere.positions.size());
   const auto ut = run_isocurv({"check", dir / "u.ply"});
   EXPECT_NE(ut.out.find(", ...)"), std::string::npos) << ut.out;
 }
@@ -146,7 +152,8 @@ TEST(MeshesFromElsewhere, CheckListsOffendingVerticesAndEdges) {
 TEST(MeshesFromElsewhere, CheckReportsTriangleQuality) {
   TempDir dir("check_quality");
   // A unit right triangle and a sliver of height 1e-4 on the same base: mean edge length ~1.
-  write_file(dir / "sliver.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 0.5 0.0001 1\nf 1 2 3\nf 4 5 6\n");
+  write_file(dir / "sliver.obj",
+             "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 0.5 0.0001 1\nf 1 2 3\nf 4 5 6\n");
   const auto r = run_isocurv({"check", dir / "sliver.obj", "--json"});
   ASSERT_TRUE(r.ok()) << r.describe();
   const json q = parse_json(r.out, "check --json")["triangle_quality"];
@@ -154,7 +161,8 @@ TEST(MeshesFromElsewhere, CheckReportsTriangleQuality) {
   EXPECT_NEAR(q["min_area"].get<double>(), 5e-5, 1e-7);
   EXPECT_NEAR(q["min_angle_degrees"].get<double>(), 0.01146, 1e-4);
   EXPECT_EQ(q["thin_triangles"].get<int>(), 1);
-  EXPECT_EQ(q["small_area_triangles"].get<int>(), 1) << "5e-5 is under 1e-4 mean-edge-length^2 (0.902^2)";
+  EXPECT_EQ(q["small_area_triangles"].get<int>(), 1)
+      << "5e-5 is under 1e-4 mean-edge-length^2 (0.902^2)";
   EXPECT_NEAR(q["small_area_below"].get<double>(), 1e-4 * 0.9024 * 0.9024, 1e-7);
   EXPECT_EQ(q["area_unit"], "mean-edge-length^2");
   const auto t = run_isocurv({"check", dir / "sliver.obj"});

@@ -1,10 +1,10 @@
 // curvature::field_stats: area weights, percentiles, and unreliable vertices left out.
+#include "curvature/field_stats.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
-
-#include "curvature/field_stats.h"
 
 namespace isocurv::curvature {
 namespace {

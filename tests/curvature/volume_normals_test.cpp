@@ -23,12 +23,14 @@ double dot(const Vec3f& a, const Vec3f& b) {
 // (z = 10..15), both over x, y in [4, 19]; 0 elsewhere. At isovalue 40 the central differences
 // on the plate's upper face see the slab across the gap: the gradient points down there.
 volume::Volume plate_beside_slab() {
-  return sampled([](double x, double y, double z) {
-    if (x < 4 || x > 19 || y < 4 || y > 19) return 0.0f;
-    if (z == 8) return 128.0f;
-    if (z >= 10 && z <= 15) return 255.0f;
-    return 0.0f;
-  }, {24, 24, 24});
+  return sampled(
+      [](double x, double y, double z) {
+        if (x < 4 || x > 19 || y < 4 || y > 19) return 0.0f;
+        if (z == 8) return 128.0f;
+        if (z >= 10 && z <= 15) return 255.0f;
+        return 0.0f;
+      },
+      {24, 24, 24});
 }
 
 TEST(VolumeNormals, ThinPlateFallsBackToFaceNormals) {
@@ -49,7 +51,8 @@ TEST(VolumeNormals, ThinPlateFallsBackToFaceNormals) {
   EXPECT_GE(checked.fallbacks(), against);
   EXPECT_GT(checked.opposed, 50u);
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-    ASSERT_GT(dot(checked.normals[i], faces[i]), 0.0) << "vertex " << i << " disagrees with its faces";
+    ASSERT_GT(dot(checked.normals[i], faces[i]), 0.0)
+        << "vertex " << i << " disagrees with its faces";
     ASSERT_NEAR(dot(checked.normals[i], checked.normals[i]), 1.0, 1e-5) << "vertex " << i;
   }
   // Elsewhere the gradient is kept: on the slab's upper face (z = 15.84) the normals are the
@@ -82,10 +85,12 @@ TEST(VolumeNormals, ZeroGradientIsWeak) {
   // Two plates of 255 one voxel thick with a one-voxel gap: in the gap the central differences
   // of the two plates cancel, so the faces facing the gap get no gradient at all.
   openvdb::initialize();
-  const volume::Volume v = sampled([](double x, double y, double z) {
-    if (x < 4 || x > 19 || y < 4 || y > 19) return 0.0f;
-    return (z == 8 || z == 10) ? 255.0f : 0.0f;
-  }, {24, 24, 24});
+  const volume::Volume v = sampled(
+      [](double x, double y, double z) {
+        if (x < 4 || x > 19 || y < 4 || y > 19) return 0.0f;
+        return (z == 8 || z == 10) ? 255.0f : 0.0f;
+      },
+      {24, 24, 24});
   const Mesh mesh = mc::extract(v, 127.5f, Device::default_device());
   const volume::MeshNormals checked = volume::gradient_normals_for_mesh(v, mesh);
   EXPECT_GT(checked.weak, 100u) << "both faces of the gap";

@@ -1,12 +1,13 @@
 // curvature::weld_duplicates: a mesh stored triangle by triangle (each with its own corners)
 // estimates like the indexed one once welded; unwelded it has no curvature at all.
+#include "curvature/weld.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "core/cl_device.h"
 #include "curvature/estimate.h"
-#include "curvature/weld.h"
 #include "test_meshes.h"
 
 namespace isocurv::test {

@@ -1,9 +1,10 @@
 // mc::check_mesh on hand-made meshes (orientation, offender lists) and mc::triangle_quality.
+#include "mc/mesh_check.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "mc/mesh_check.h"
 #include "mc/triangle_quality.h"
 #include "volumes.h"
 
@@ -130,6 +131,7 @@ TEST(TriangleQuality, AreasAnglesAndCounts) {
 }
 
 TEST(TriangleQuality, VoxelFaceAreaIsTheGeometricMean) {
-  const volume::Volume v = test::sampled([](double, double, double) { return 0.f; }, {4, 4, 4}, {1, 2, 4});
+  const volume::Volume v =
+      test::sampled([](double, double, double) { return 0.f; }, {4, 4, 4}, {1, 2, 4});
   EXPECT_NEAR(mc::voxel_face_area(v), 4.0, 1e-9) << "(1*2*4)^(2/3)";
 }
