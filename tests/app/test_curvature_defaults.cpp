@@ -109,3 +109,25 @@ TEST(CurvatureDefaults, MeshInputKeepsMeshNormals) {
   EXPECT_EQ(j.value("normals", ""), "mesh");
   EXPECT_FALSE(j["timings_ms"].contains("normals"));
 }
+
+TEST(CurvatureDefaults, LobsterAtAVoxelValue) {
+  // The case: with mesh normals and plain statistics, iso 40 gave H min -1024, K max
+  // 1,048,576 and mean K 955. Loose bounds: the mesher may change (vertex snapping).
+  const std::string lobster = std::string(ISOCURV_SHARED_DATASETS) + "/lobster/lobster.vol";
+  if (!fs::exists(lobster)) GTEST_SKIP() << "no " << lobster;
+  TempDir dir("lobster");
+  const auto r =
+      run_isocurv({"curvature", lobster, "--iso", "40", "-o", dir / "l.ply", "--json"}, 300);
+  ASSERT_TRUE(r.ok()) << r.describe();
+  const json j = parse_json(r.out, "curvature --json");
+  EXPECT_EQ(j.value("normals", ""), "volume");
+  const double vertices = j["vertices"].get<double>();
+  const double fallbacks = j["normal_fallbacks"]["count"].get<double>();
+  EXPECT_GT(fallbacks, 0.002 * vertices) << "thin structures: about 1% of the vertices";
+  EXPECT_LT(fallbacks, 0.03 * vertices);
+  const json& c = j["curvature"];
+  EXPECT_LT(c["unreliable_vertices"].get<double>(), 0.03 * vertices) << c.dump(2);
+  EXPECT_LT(std::fabs(c["K"]["mean"].get<double>()), 0.1) << c.dump(2);
+  EXPECT_GT(c["H"]["min"].get<double>(), -10.0) << c.dump(2);
+  EXPECT_LT(c["K"]["max"].get<double>(), 100.0) << c.dump(2);
+}
