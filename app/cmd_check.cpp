@@ -126,8 +126,9 @@ void register_check(CLI::App& app) {
     else
       std::printf(
           "  closed components     %zu: %zu outward, %zu inward by signed volume; overall %s "
-          "(volume %.6g)\n",
-          closed, closed - inward, inward, inward_overall ? "INWARD" : "outward", volume);
+          "(volume %.6g)%s\n",
+          closed, closed - inward, inward, inward_overall ? "INWARD" : "outward", volume,
+          inward_overall ? "; isocurv curvature --flip reverses the triangles" : "");
     std::printf("  components            %zu\n  Euler characteristic  %lld\n", c.components,
                 c.euler);
     if (c.genus() >= 0)

@@ -106,6 +106,7 @@ TEST(MeshesFromElsewhere, CheckReportsOrientationOfClosedComponents) {
   const auto t = run_isocurv({"check", dir / "in.ply"});
   ASSERT_TRUE(t.ok()) << t.describe();
   EXPECT_NE(t.out.find("overall INWARD"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("--flip"), std::string::npos) << t.out;
   EXPECT_NE(t.out.find("PROBLEMS FOUND, watertight"), std::string::npos) << t.out;
 
   const auto good = run_isocurv({"check", dataset("sphere"), "--json"});
