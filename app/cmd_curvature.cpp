@@ -17,11 +17,12 @@ void register_curvature(CLI::App& app) {
   cmd->add_option("VOLUME_OR_MESH", in, "Volume or mesh file")->required();
   cmd->add_option("-o,--output", out, std::string("Mesh file to write (") + io::mesh_extensions() + ")")->required();
   add_common_options(*cmd, o);
-  add_curvature_options(*cmd, o);
+  add_curvature_options(*cmd, o, true);
   cmd->callback([] {
     StageTimer timer;
     Surface s = load_surface(in, o, timer);
-    s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, o, timer);
+    prepare_mesh_for_curvature(s, in, o);
+    s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, o, timer, &s.normals);
     timer.start("write");
     io::write_mesh(out, s.mesh, &*s.field);
     timer.stop();
@@ -30,7 +31,6 @@ void register_curvature(CLI::App& app) {
       r["input"] = in;
       r["output"] = out;
       r["device"] = device_for(o).info().name;
-      r["normals"] = o.normals;
       r["timings_ms"] = timer.json();
       std::cout << r.dump(2) << "\n";
     } else if (!o.quiet) {

@@ -18,12 +18,15 @@ void register_render(CLI::App& app) {
   cmd->add_option("VOLUME_OR_MESH", in, "Volume or mesh file")->required();
   cmd->add_option("-o,--output", out, "PNG file to write")->required();
   add_common_options(*cmd, o);
-  add_curvature_options(*cmd, o);
+  add_curvature_options(*cmd, o, true);
   add_render_options(*cmd, ro);
   cmd->callback([] {
     StageTimer timer;
     Surface s = load_surface(in, o, timer);
-    if (!s.field || s.field->H.size() != s.mesh.positions.size()) s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, o, timer);
+    if (o.flip || !s.field || s.field->H.size() != s.mesh.positions.size()) {
+      prepare_mesh_for_curvature(s, in, o);
+      s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, o, timer, &s.normals);
+    }
     timer.start("render");
     viz::RenderOptions opts = ro;
     if (opts.title.empty()) opts.title = in;

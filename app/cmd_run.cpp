@@ -13,8 +13,9 @@ namespace isocurv::app {
 
 void register_run(CLI::App& app) {
   auto* cmd = app.add_subcommand("run", "Volume -> isosurface -> curvature -> DIR/<name>.vtp, DIR/<name>.png and DIR/stats.json");
-  cmd->footer("Example: isocurv run lobster.vol --iso 40 -o out/ --normals volume\n"
-              "stats.json holds counts, timings_ms per stage, the device, and min/max/mean/percentiles of H and K.");
+  cmd->footer("Example: isocurv run lobster.vol --iso 40 -o out/\n"
+              "stats.json holds counts, timings_ms per stage, the device, the normals (and their face-normal\n"
+              "fallbacks), and area-weighted min/max/mean/percentiles of H, K, k1, k2 without the unreliable vertices.");
   static CommonOptions o;
   static viz::RenderOptions ro;
   static std::string in, dir, format = "vtp";
@@ -31,7 +32,7 @@ void register_run(CLI::App& app) {
     Surface s = load_surface(in, o, timer);  // fails before any output folder is made
     if (s.mesh.triangles.empty())
       throw Error(in, "no surface at isovalue " + format_number(s.isovalue) + " (see isocurv info for the value range)");
-    s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, o, timer);
+    s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, o, timer, &s.normals);
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec || !fs::is_directory(dir)) throw Error(dir, "cannot create the output folder: " + ec.message());
@@ -52,7 +53,6 @@ void register_run(CLI::App& app) {
     r["mesh"] = mesh_path;
     r["png"] = png_path;
     r["device"] = device_for(o).info().name;
-    r["normals"] = o.normals;
     r["timings_ms"] = timer.json();
     write_text_file(stats_path, r.dump(2) + "\n");
     if (o.json) {

@@ -9,9 +9,12 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/mesh_measures.h"
 #include "core/progress.h"
 #include "curvature/ao_scale.h"
 #include "curvature/estimate.h"
+#include "curvature/field_stats.h"
+#include "curvature/weld.h"
 #include "io/mesh_file.h"
 #include "mc/extract.h"
 #include "mc/mesh_check.h"
@@ -36,11 +39,15 @@ void add_common_options(CLI::App& cmd, CommonOptions& o, bool with_iso) {
   cmd.parse_complete_callback([&o] { set_progress_enabled(!o.quiet); });
 }
 
-void add_curvature_options(CLI::App& cmd, CommonOptions& o) {
+void add_curvature_options(CLI::App& cmd, CommonOptions& o, bool mesh_input) {
   cmd.add_option("--normals", o.normals,
-                 "Vertex normals: mesh (from the faces, as Rusinkiewicz) or volume (from the volume's gradient; "
-                 "more accurate on marching-cubes meshes)")
-      ->check(CLI::IsMember({"mesh", "volume"}))->capture_default_str();
+                 "Vertex normals: volume (from the volume's gradient, face normals where it points against the "
+                 "faces or vanishes; the default for volume input) or mesh (from the faces, as Rusinkiewicz; "
+                 "the default for mesh files)")
+      ->check(CLI::IsMember({"mesh", "volume"}));
+  if (mesh_input)
+    cmd.add_flag("--flip", o.flip,
+                 "Reverse the triangles of a mesh file before estimating (for a closed mesh oriented inward)");
   cmd.add_option("--ao-scale", o.ao_scale,
                  "Ambient-occlusion radius in world units (default: 4 x the mean edge length)")
       ->check(CLI::NonNegativeNumber);
@@ -116,17 +123,48 @@ Surface load_surface(const std::string& path, const CommonOptions& o, StageTimer
   return s;
 }
 
+void prepare_mesh_for_curvature(Surface& s, const std::string& path, const CommonOptions& o) {
+  if (s.volume) {
+    if (o.flip) throw Error(path, "--flip applies to mesh files only (an isosurface is always oriented outward)");
+    return;
+  }
+  s.welded = curvature::weld_duplicates(s.mesh);
+  if (s.welded > 0) s.field.reset();  // arrays carried by the file no longer match the vertices
+  if (s.welded > 0 && !o.quiet)
+    std::fprintf(stderr, "isocurv: note: %s: welded %zu duplicate vertices (exact copies) into %zu\n",
+                 path.c_str(), s.welded, s.mesh.positions.size());
+  if (o.flip) {
+    for (Tri& t : s.mesh.triangles) std::swap(t[1], t[2]);
+    s.flipped = true;
+    s.field.reset();
+  }
+  const mc::MeshCheck c = mc::check_mesh(s.mesh);
+  const double volume = c.closed_signed_volume();
+  if (c.closed_components() > 0 && volume < 0)
+    std::fprintf(stderr,
+                 "isocurv: warning: %s: the closed mesh is oriented inward (signed volume %s), so H, k1 and k2 "
+                 "come out with the wrong sign; %s\n",
+                 path.c_str(), format_number(volume).c_str(),
+                 o.flip ? "--flip made it so: drop --flip" : "--flip reverses its triangles");
+}
+
 curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Volume* volume,
-                                             const CommonOptions& o, StageTimer& timer) {
+                                             const CommonOptions& o, StageTimer& timer,
+                                             NormalsUsed* used) {
   curvature::Options co;
-  std::vector<Vec3f> normals;
-  if (o.normals == "volume") {
+  NormalsUsed chosen;
+  chosen.source = o.normals.empty() ? (volume ? "volume" : "mesh") : o.normals;
+  volume::MeshNormals normals;
+  if (chosen.source == "volume") {
     if (!volume) throw Error("--normals volume needs a volume input, not a mesh file");
     timer.start("normals");
-    normals = volume::gradient_normals(*volume, mesh.positions);
+    normals = volume::gradient_normals_for_mesh(*volume, mesh);
     timer.stop();
-    co.vertex_normals = &normals;
+    chosen.opposed = normals.opposed;
+    chosen.weak = normals.weak;
+    co.vertex_normals = &normals.normals;
   }
+  if (used) *used = chosen;
   if (o.ao_scale > 0) {
     co.ao_scale = o.ao_scale;
   } else {
@@ -141,19 +179,30 @@ curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Vol
 
 namespace {
 
-nlohmann::json distribution(const std::vector<float>& values) {
-  std::vector<float> v;
-  v.reserve(values.size());
-  for (float x : values)
-    if (std::isfinite(x)) v.push_back(x);
-  if (v.empty()) return nullptr;
-  std::sort(v.begin(), v.end());
-  double sum = 0;
-  for (float x : v) sum += x;
-  auto pct = [&v](double p) { return double(v[std::min(v.size() - 1, std::size_t(p / 100.0 * (v.size() - 1) + 0.5))]); };
-  return {{"min", v.front()}, {"max", v.back()}, {"mean", sum / v.size()},
-          {"p1", pct(1)}, {"p5", pct(5)}, {"p25", pct(25)}, {"p50", pct(50)}, {"p75", pct(75)},
-          {"p95", pct(95)}, {"p99", pct(99)}};
+nlohmann::json distribution_json(const curvature::Distribution& d) {
+  if (d.empty) return nullptr;
+  nlohmann::json j = {{"min", d.min}, {"max", d.max}, {"mean", d.mean}};
+  for (std::size_t p = 0; p < curvature::kStatPercentiles.size(); ++p)
+    j["p" + format_number(curvature::kStatPercentiles[p])] = d.percentiles[p];
+  return j;
+}
+
+nlohmann::json field_stats_json(const curvature::CurvatureField& field, const Mesh& mesh) {
+  const curvature::FieldStats st = curvature::field_stats(field, mean_edge_length(mesh));
+  nlohmann::json cs;
+  cs["H"] = distribution_json(st.H);
+  cs["K"] = distribution_json(st.K);
+  cs["k1"] = distribution_json(st.k1);
+  cs["k2"] = distribution_json(st.k2);
+  cs["weights"] = st.area_weighted ? "Area (per-vertex mixed area)" : "none (the field has no Area array)";
+  cs["vertices_counted"] = st.counted;
+  cs["unreliable_vertices"] = st.unreliable;
+  cs["unreliable_above"] = st.unreliable_above;
+  cs["unreliable_rule"] = "max(|k1|, |k2|) > 1 / (half the mean edge length)";
+  cs["non_finite_vertices"] = st.non_finite;
+  cs["excluded_from_statistics"] = "unreliable and non-finite vertices: left out of min, max, mean and "
+                                   "every percentile of H, K, k1, k2";
+  return cs;
 }
 
 }  // namespace
@@ -165,14 +214,23 @@ nlohmann::json surface_report(const Surface& s) {
                       {"boundary_edges", c.boundary_edges}, {"watertight", c.watertight()}};
   if (c.genus() >= 0) r["genus"] = c.genus();
   if (s.volume) r["isovalue"] = s.isovalue;
-  if (s.field && s.field->size() == s.mesh.positions.size()) {
-    nlohmann::json cs;
-    cs["H"] = distribution(s.field->H);
-    cs["K"] = distribution(s.field->K);
-    cs["k1"] = distribution(s.field->k1);
-    cs["k2"] = distribution(s.field->k2);
-    r["curvature"] = cs;
+  if (!s.volume) {
+    r["welded_vertices"] = s.welded;
+    r["flipped"] = s.flipped;
   }
+  if (!s.normals.source.empty()) {
+    r["normals"] = s.normals.source;
+    if (s.normals.source == "volume")
+      r["normal_fallbacks"] = {{"count", s.normals.opposed + s.normals.weak},
+                               {"opposed", s.normals.opposed},
+                               {"weak_gradient", s.normals.weak},
+                               {"rule", "face normal where the gradient normal points against the faces "
+                                        "(dot <= 0) or the gradient is at most " +
+                                        format_number(100 * volume::kWeakGradientFraction) +
+                                        "% of its median over the vertices"}};
+  }
+  if (s.field && s.field->size() == s.mesh.positions.size())
+    r["curvature"] = field_stats_json(*s.field, s.mesh);
   return r;
 }
 

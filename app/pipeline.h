@@ -26,14 +26,15 @@ struct CommonOptions {
   float snap = mc::kDefaultSnap;  ///< --snap (mc::Options::snap)
   bool json = false;              ///< --json
   bool quiet = false;             ///< --quiet
-  std::string normals = "mesh";   ///< --normals mesh|volume
+  std::string normals;            ///< --normals mesh|volume; empty: volume for volume input
+  bool flip = false;              ///< --flip: reverse a mesh file's triangles
   float ao_scale = 0;             ///< --ao-scale; 0: 4 x the mean edge length
 };
 
 /// Adds --iso --device --cap --snap --json --quiet and the volume options.
 void add_common_options(CLI::App& cmd, CommonOptions& o, bool with_iso = true);
-/// Adds --normals and --ao-scale.
-void add_curvature_options(CLI::App& cmd, CommonOptions& o);
+/// Adds --normals and --ao-scale, and --flip when the command takes mesh files.
+void add_curvature_options(CLI::App& cmd, CommonOptions& o, bool mesh_input = false);
 
 /// Wall-clock timings of the stages of one command, reported as "timings_ms".
 class StageTimer {
@@ -52,12 +53,22 @@ class StageTimer {
 /// True for a mesh file extension (.vtp .ply .obj .stl), false for anything else (a volume).
 bool is_mesh_path(const std::string& path);
 
+/// Which normals the curvature estimate used, and how many vertices fell back to face normals.
+struct NormalsUsed {
+  std::string source;           ///< "mesh" or "volume"; empty before any estimate
+  std::size_t opposed = 0;      ///< volume: gradient normal against the faces (face normal used)
+  std::size_t weak = 0;         ///< volume: gradient near zero (face normal used)
+};
+
 /// A loaded input: a volume (then `mesh` is extracted from it) or a mesh file.
 struct Surface {
   std::optional<volume::Volume> volume;
   float isovalue = 0;
   Mesh mesh;
   std::optional<curvature::CurvatureField> field;  ///< carried by a mesh file, or estimated
+  NormalsUsed normals;       ///< set by estimate_curvature
+  std::size_t welded = 0;    ///< duplicate vertices merged by prepare_mesh_for_curvature
+  bool flipped = false;      ///< triangles reversed by --flip
 };
 
 /// The device chosen by --device (opened once per process).
@@ -70,13 +81,22 @@ volume::Volume load_volume(const std::string& path, const CommonOptions& o, Stag
 /// Volume path -> load + extract; mesh path -> read (stage "load").
 Surface load_surface(const std::string& path, const CommonOptions& o, StageTimer& timer);
 
-/// Estimates the curvature of `mesh` (stage "curvature"), with normals from the gradient of
-/// `volume` when --normals volume (an Error when volume is null, i.e. the input was a mesh).
+/// Readies a mesh file's mesh for curvature (nothing for a volume's isosurface): welds exact
+/// duplicate vertices (a note on stderr unless --quiet), applies --flip (an Error on volume
+/// input), and warns (one line on stderr) when the closed part of the mesh is oriented inward.
+void prepare_mesh_for_curvature(Surface& s, const std::string& path, const CommonOptions& o);
+
+/// Estimates the curvature of `mesh` (stage "curvature"). Normals: --normals, by default volume
+/// when `volume` is given, else mesh; volume normals come from volume::gradient_normals_for_mesh
+/// (face normals where the gradient disagrees or vanishes). --normals volume without a volume
+/// (a mesh file) is an Error. `used`, when given, receives what was used.
 curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Volume* volume,
-                                             const CommonOptions& o, StageTimer& timer);
+                                             const CommonOptions& o, StageTimer& timer,
+                                             NormalsUsed* used = nullptr);
 
 /// Mesh and curvature statistics for --json and stats.json: counts, area, Euler characteristic,
-/// genus, and min/max/mean/percentiles of H, K, k1, k2 when a field is present.
+/// genus, the normals used and their fallbacks, and, when a field is present, the area-weighted
+/// min/max/mean/percentiles of H, K, k1, k2 over the reliable vertices (curvature::field_stats).
 nlohmann::json surface_report(const Surface& s);
 
 /// A number as %g (for messages).

@@ -1,5 +1,7 @@
 #pragma once
 // Simple measures of a Mesh shared by several stages.
+#include <vector>
+
 #include "core/mesh.h"
 
 namespace isocurv {
@@ -7,5 +9,11 @@ namespace isocurv {
 /// The mean length of the mesh's triangle edges (shared edges counted once per triangle), in
 /// world units; 0 for a mesh without triangles.
 double mean_edge_length(const Mesh& mesh);
+
+/// Per vertex, the sum of (b - a) x (c - a) over the triangles (a, b, c) using it: the
+/// area-weighted face normal (twice the area), pointing out of the object for the winding Mesh
+/// documents. Not normalised; zero for a vertex no triangle with a non-zero area uses. Triangles
+/// with an index out of range are skipped.
+std::vector<Vec3f> area_weighted_normals(const Mesh& mesh);
 
 }  // namespace isocurv

@@ -1,8 +1,8 @@
 #include "mc/mesh_check.h"
 
 #include <algorithm>
-#include <cstring>
 #include <cmath>
+#include <cstring>
 #include <numeric>
 #include <unordered_map>
 
@@ -19,15 +19,37 @@ struct UnionFind {
   void unite(std::uint32_t a, std::uint32_t b) { parent[find(a)] = find(b); }
 };
 
+// Adding +0 turns -0 into +0, so equal positions have equal bits.
+Vec3f canonical(const Vec3f& p) { return {p[0] + 0.0f, p[1] + 0.0f, p[2] + 0.0f}; }
+
 struct PositionHash {
   std::size_t operator()(const Vec3f& p) const {
     std::uint32_t b[3];
     std::memcpy(b, p.data(), sizeof b);
-    return (std::size_t(b[0]) * 73856093u) ^ (std::size_t(b[1]) * 19349663u) ^ (std::size_t(b[2]) * 83492791u);
+    return (std::size_t(b[0]) * 73856093u) ^ (std::size_t(b[1]) * 19349663u) ^
+           (std::size_t(b[2]) * 83492791u);
   }
 };
 
 }  // namespace
+
+std::size_t MeshCheck::closed_components() const {
+  return std::size_t(std::count_if(component_list.begin(), component_list.end(),
+                                   [](const ComponentCheck& c) { return c.closed; }));
+}
+
+std::size_t MeshCheck::inward_components() const {
+  return std::size_t(
+      std::count_if(component_list.begin(), component_list.end(),
+                    [](const ComponentCheck& c) { return c.closed && c.signed_volume < 0; }));
+}
+
+double MeshCheck::closed_signed_volume() const {
+  double v = 0;
+  for (const ComponentCheck& c : component_list)
+    if (c.closed) v += c.signed_volume;
+  return v;
+}
 
 MeshCheck check_mesh(const Mesh& mesh) {
   MeshCheck r;
@@ -37,25 +59,35 @@ MeshCheck check_mesh(const Mesh& mesh) {
 
   std::unordered_map<Vec3f, std::uint32_t, PositionHash> seen;
   seen.reserve(nv);
-  for (std::uint32_t i = 0; i < nv; ++i)
-    if (!seen.emplace(mesh.positions[i], i).second) ++r.duplicate_vertices;
+  for (std::uint32_t i = 0; i < nv; ++i) {
+    const auto [it, fresh] = seen.emplace(canonical(mesh.positions[i]), i);
+    if (!fresh) r.duplicates.push_back({i, it->second});
+  }
+  r.duplicate_vertices = r.duplicates.size();
 
   std::vector<char> used(nv, 0);
   // Directed edge records: (min, max) packed, and +1 when traversed min->max, -1 otherwise.
   std::vector<std::pair<std::uint64_t, int>> half;
   half.reserve(mesh.triangles.size() * 3);
   UnionFind uf(nv);
-  for (const Tri& t : mesh.triangles) {
+  std::vector<char> valid(mesh.triangles.size(), 0);
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Tri& t = mesh.triangles[f];
     bool bad_index = false;
     for (auto i : t) bad_index |= i >= nv;
     if (bad_index || t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
       ++r.degenerate_triangles;
       if (bad_index) continue;
     }
+    valid[f] = 1;
     const Vec3f &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
     double u[3], v[3];
-    for (int k = 0; k < 3; ++k) { u[k] = double(b[k]) - a[k]; v[k] = double(c[k]) - a[k]; }
-    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    for (int k = 0; k < 3; ++k) {
+      u[k] = double(b[k]) - a[k];
+      v[k] = double(c[k]) - a[k];
+    }
+    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                         u[0] * v[1] - u[1] * v[0]};
     const double area = 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     if (area == 0 && !(t[0] == t[1] || t[1] == t[2] || t[0] == t[2])) ++r.degenerate_triangles;
     r.area += area;
@@ -69,22 +101,60 @@ MeshCheck check_mesh(const Mesh& mesh) {
     }
   }
   std::sort(half.begin(), half.end());
+  // Vertices (by their union-find root) of components with an unpaired edge.
+  std::vector<char> unpaired(nv, 0);
   for (std::size_t i = 0; i < half.size();) {
     std::size_t j = i;
     int sum = 0;
     while (j < half.size() && half[j].first == half[i].first) sum += half[j++].second;
     const std::size_t count = j - i;
+    const VertexPair edge = {std::uint32_t(half[i].first >> 32), std::uint32_t(half[i].first)};
     ++r.edges;
-    if (count == 1) ++r.boundary_edges;
-    else if (count > 2) ++r.non_manifold_edges;
-    else if (sum != 0) ++r.misoriented_edges;
+    if (count == 1) {
+      ++r.boundary_edges;
+    } else {
+      if (count > 2) r.non_manifold.push_back(edge);
+      if (sum != 0) r.misoriented.push_back(edge);
+    }
+    if (sum != 0) unpaired[uf.find(edge[0])] = 1;
     i = j;
   }
+  r.non_manifold_edges = r.non_manifold.size();
+  r.misoriented_edges = r.misoriented.size();
+
   std::size_t referenced = 0;
+  std::vector<std::uint32_t> component_of(nv, ~0u);  // indexed by root
   for (std::uint32_t i = 0; i < nv; ++i) {
-    if (!used[i]) { ++r.unreferenced_vertices; continue; }
+    if (!used[i]) {
+      ++r.unreferenced_vertices;
+      continue;
+    }
     ++referenced;
-    if (uf.find(i) == i) ++r.components;
+    const std::uint32_t root = uf.find(i);
+    if (component_of[root] == ~0u) {
+      component_of[root] = std::uint32_t(r.component_list.size());
+      ComponentCheck c;
+      c.first_vertex = i;
+      c.closed = !unpaired[root];
+      r.component_list.push_back(c);
+    }
+  }
+  r.components = r.component_list.size();
+  // Signed volumes relative to each component's first vertex (exact for closed components
+  // whatever the origin; the offset keeps far-from-origin meshes precise).
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    if (!valid[f]) continue;
+    const Tri& t = mesh.triangles[f];
+    ComponentCheck& c = r.component_list[component_of[uf.find(t[0])]];
+    ++c.triangles;
+    const Vec3f& o = mesh.positions[c.first_vertex];
+    double p[3][3];
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) p[j][k] = double(mesh.positions[t[j]][k]) - o[k];
+    c.signed_volume += (p[0][0] * (p[1][1] * p[2][2] - p[1][2] * p[2][1]) -
+                        p[0][1] * (p[1][0] * p[2][2] - p[1][2] * p[2][0]) +
+                        p[0][2] * (p[1][0] * p[2][1] - p[1][1] * p[2][0])) /
+                       6.0;
   }
   r.euler = (long long)referenced - (long long)r.edges + (long long)r.triangles;
   return r;

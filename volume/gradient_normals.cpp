@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/mesh_measures.h"
+
 namespace isocurv::volume {
 namespace {
 
@@ -27,7 +29,8 @@ struct GradientSampler {
       p[a] = cx(c[a] + 1, a);
       m[a] = cx(c[a] - 1, a);
       const int span = p[a] - m[a];
-      g[a] = span == 0 ? 0.0 : (double(value(p[0], p[1], p[2])) - double(value(m[0], m[1], m[2]))) / span;
+      g[a] = span == 0 ? 0.0
+                       : (double(value(p[0], p[1], p[2])) - double(value(m[0], m[1], m[2]))) / span;
     }
     return g;
   }
@@ -51,30 +54,75 @@ struct GradientSampler {
   }
 };
 
-}  // namespace
-
-std::vector<Vec3f> gradient_normals(const Volume& volume, const Positions& world_positions) {
-  std::vector<Vec3f> normals(world_positions.size(), Vec3f{0, 0, 0});
-  if (!volume.grid || world_positions.empty()) return normals;
+// Outward gradients (world space, not normalised; the sign applied) at world positions; zero
+// where not finite.
+std::vector<openvdb::Vec3d> outward_gradients(const Volume& volume,
+                                              const Positions& world_positions) {
+  std::vector<openvdb::Vec3d> out(world_positions.size(), openvdb::Vec3d(0.0));
+  if (!volume.grid || world_positions.empty()) return out;
   const openvdb::FloatGrid& grid = *volume.grid;
   const openvdb::math::Transform& xform = grid.transform();
   const openvdb::math::MapBase::ConstPtr map = xform.baseMap();
   const double sign = volume.inside == Inside::Above ? -1.0 : 1.0;
   const bool clamp = volume.dense && !volume.domain.empty();
 
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, world_positions.size(), 512),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      GradientSampler s{grid.getConstAccessor(), clamp, volume.domain.min(), volume.domain.max()};
-                      for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                        const Vec3f& p = world_positions[i];
-                        const openvdb::Vec3d q = xform.worldToIndex(openvdb::Vec3d(p[0], p[1], p[2]));
-                        const openvdb::Vec3d g = map->applyIJT(s.interpolate(q), q);
-                        const double len = g.length();
-                        if (!(len > 0) || !std::isfinite(len)) continue;
-                        normals[i] = {float(sign * g.x() / len), float(sign * g.y() / len), float(sign * g.z() / len)};
-                      }
-                    });
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, world_positions.size(), 512),
+      [&](const tbb::blocked_range<std::size_t>& r) {
+        GradientSampler s{grid.getConstAccessor(), clamp, volume.domain.min(), volume.domain.max()};
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+          const Vec3f& p = world_positions[i];
+          const openvdb::Vec3d q = xform.worldToIndex(openvdb::Vec3d(p[0], p[1], p[2]));
+          const openvdb::Vec3d g = sign * map->applyIJT(s.interpolate(q), q);
+          if (std::isfinite(g.length())) out[i] = g;
+        }
+      });
+  return out;
+}
+
+// g / |g| as floats; zero for a zero vector.
+Vec3f unit(const openvdb::Vec3d& g) {
+  const double len = g.length();
+  if (!(len > 0)) return {0, 0, 0};
+  return {float(g.x() / len), float(g.y() / len), float(g.z() / len)};
+}
+
+}  // namespace
+
+std::vector<Vec3f> gradient_normals(const Volume& volume, const Positions& world_positions) {
+  const std::vector<openvdb::Vec3d> g = outward_gradients(volume, world_positions);
+  std::vector<Vec3f> normals(g.size());
+  for (std::size_t i = 0; i < g.size(); ++i) normals[i] = unit(g[i]);
   return normals;
+}
+
+MeshNormals gradient_normals_for_mesh(const Volume& volume, const Mesh& mesh) {
+  MeshNormals r;
+  const std::vector<openvdb::Vec3d> g = outward_gradients(volume, mesh.positions);
+  const std::vector<Vec3f> faces = area_weighted_normals(mesh);
+  std::vector<double> lengths;
+  lengths.reserve(g.size());
+  for (const openvdb::Vec3d& v : g)
+    if (v.length() > 0) lengths.push_back(v.length());
+  double weak_below = 0;
+  if (!lengths.empty()) {
+    auto mid = lengths.begin() + lengths.size() / 2;
+    std::nth_element(lengths.begin(), mid, lengths.end());
+    weak_below = kWeakGradientFraction * *mid;
+  }
+  r.normals.resize(g.size());
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    const openvdb::Vec3d a(faces[i][0], faces[i][1], faces[i][2]);
+    const bool weak = !(g[i].length() > weak_below);
+    const bool opposed = !weak && g[i].dot(a) <= 0;
+    if (a.length() > 0 && (weak || opposed)) {
+      r.normals[i] = unit(a);
+      ++(weak ? r.weak : r.opposed);
+    } else {
+      r.normals[i] = unit(g[i]);
+    }
+  }
+  return r;
 }
 
 }  // namespace isocurv::volume

@@ -1,0 +1,73 @@
+#include "curvature/field_stats.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace isocurv::curvature {
+namespace {
+
+// The weighted distribution of values[i] over the listed vertices.
+Distribution distribution(const std::vector<float>& values, const std::vector<std::size_t>& used,
+                          const std::vector<double>& weights) {
+  Distribution d;
+  std::vector<std::pair<float, double>> v;  // (value, weight)
+  v.reserve(used.size());
+  for (std::size_t i : used) v.emplace_back(values[i], weights[i]);
+  if (v.empty()) return d;
+  std::sort(v.begin(), v.end());
+  double total = 0, sum = 0;
+  for (const auto& [x, w] : v) {
+    total += w;
+    sum += w * x;
+  }
+  d.empty = false;
+  d.min = v.front().first;
+  d.max = v.back().first;
+  d.mean = total > 0 ? sum / total : 0;
+  std::size_t at = 0;
+  double below = v[0].second;  // weight of v[0..at]
+  for (std::size_t p = 0; p < kStatPercentiles.size(); ++p) {
+    const double want = kStatPercentiles[p] / 100.0 * total;
+    while (at + 1 < v.size() && below < want) below += v[++at].second;
+    d.percentiles[p] = v[at].first;
+  }
+  return d;
+}
+
+}  // namespace
+
+FieldStats field_stats(const CurvatureField& field, double mean_edge_length) {
+  FieldStats s;
+  const std::size_t n = field.size();
+  s.unreliable_above = mean_edge_length > 0 ? 2.0 / mean_edge_length : 0;
+  s.area_weighted = field.area.size() == n;
+  std::vector<double> weights(n, 1.0);
+  std::vector<std::size_t> used;
+  used.reserve(n);
+  const bool complete = field.k2.size() == n && field.H.size() == n && field.K.size() == n;
+  for (std::size_t i = 0; i < n && complete; ++i) {
+    if (s.area_weighted) weights[i] = std::isfinite(field.area[i]) ? field.area[i] : 0.0;
+    if (!std::isfinite(field.k1[i]) || !std::isfinite(field.k2[i]) || !std::isfinite(field.H[i]) ||
+        !std::isfinite(field.K[i])) {
+      ++s.non_finite;
+      continue;
+    }
+    const double k = std::max(std::fabs(field.k1[i]), std::fabs(field.k2[i]));
+    if (s.unreliable_above > 0 && k > s.unreliable_above) {
+      ++s.unreliable;
+      continue;
+    }
+    used.push_back(i);
+    s.weight += weights[i];
+  }
+  s.counted = used.size();
+  if (!complete) return s;
+  s.H = distribution(field.H, used, weights);
+  s.K = distribution(field.K, used, weights);
+  s.k1 = distribution(field.k1, used, weights);
+  s.k2 = distribution(field.k2, used, weights);
+  return s;
+}
+
+}  // namespace isocurv::curvature

@@ -1,0 +1,42 @@
+#pragma once
+// Summary statistics of a CurvatureField (stats.json and --json of the isocurv commands).
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "curvature/curvature_field.h"
+
+namespace isocurv::curvature {
+
+/// The percentiles every Distribution reports.
+inline constexpr std::array<double, 7> kStatPercentiles = {1, 5, 25, 50, 75, 95, 99};
+
+/// Area-weighted summary of one per-vertex quantity.
+struct Distribution {
+  bool empty = true;  ///< no vertex counted: every other member is 0
+  double min = 0, max = 0;
+  double mean = 0;  ///< sum(w x) / sum(w)
+  /// Per kStatPercentiles entry p: the smallest value v such that the vertices with values <= v
+  /// carry at least p% of the total weight.
+  std::array<double, kStatPercentiles.size()> percentiles{};
+};
+
+/// Statistics of H, K, k1 and k2 over the reliable vertices of a field.
+struct FieldStats {
+  /// A vertex is unreliable when max(|k1|, |k2|) exceeds this: 1 / (half the mean edge length),
+  /// a curvature radius under half an edge, which the mesh cannot resolve (slivers, noise). 0
+  /// when no mean edge length was given (then no vertex is unreliable).
+  double unreliable_above = 0;
+  std::size_t unreliable = 0;  ///< unreliable vertices, left out of every Distribution
+  std::size_t non_finite = 0;  ///< vertices with a non-finite k1, k2, H or K, also left out
+  std::size_t counted = 0;     ///< vertices in the Distributions
+  bool area_weighted = false;  ///< weights are the Area array (else 1 per vertex: no Area array)
+  double weight = 0;           ///< total weight of the counted vertices (their area)
+  Distribution H, K, k1, k2;
+};
+
+/// The statistics of `field` (arrays of equal length; Area used as the weight when it has one
+/// entry per vertex) with the reliability threshold from `mean_edge_length` (world units).
+FieldStats field_stats(const CurvatureField& field, double mean_edge_length);
+
+}  // namespace isocurv::curvature

@@ -1,0 +1,61 @@
+// curvature::field_stats: area weights, percentiles, and unreliable vertices left out.
+#include "curvature/field_stats.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace isocurv::curvature {
+namespace {
+
+CurvatureField field(const std::vector<float>& k, const std::vector<float>& area) {
+  CurvatureField f;
+  f.k1 = f.k2 = f.H = k;
+  for (float x : k) f.K.push_back(x * x);
+  f.area = area;
+  return f;
+}
+
+TEST(FieldStats, AreaWeightedMeanAndPercentiles) {
+  // Values 1, 2, 3 with areas 1, 1, 8: the area-weighted mean is 2.7 (the plain one 2), and the
+  // median by area is 3.
+  const FieldStats s = field_stats(field({2, 1, 3}, {1, 1, 8}), 0.1);
+  EXPECT_TRUE(s.area_weighted);
+  EXPECT_EQ(s.counted, 3u);
+  EXPECT_DOUBLE_EQ(s.weight, 10);
+  EXPECT_NEAR(s.H.mean, 2.7, 1e-12);
+  EXPECT_EQ(s.H.min, 1);
+  EXPECT_EQ(s.H.max, 3);
+  ASSERT_EQ(kStatPercentiles[0], 1);
+  EXPECT_EQ(s.H.percentiles[0], 1) << "p1: the first 10% of the area has value 1";
+  EXPECT_EQ(s.H.percentiles[3], 3) << "p50";
+  EXPECT_NEAR(s.K.mean, (4 + 1 + 72) / 10.0, 1e-12);
+}
+
+TEST(FieldStats, UnreliableVerticesAreCountedAndLeftOut) {
+  // Mean edge 0.5: unreliable above 1 / 0.25 = 4. One vertex at -1024 (a sliver's spike) and one
+  // NaN are left out of every statistic.
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const FieldStats s = field_stats(field({1, -1024, 2, nan, 3}, {1, 100, 1, 1, 1}), 0.5);
+  EXPECT_DOUBLE_EQ(s.unreliable_above, 4);
+  EXPECT_EQ(s.unreliable, 1u);
+  EXPECT_EQ(s.non_finite, 1u);
+  EXPECT_EQ(s.counted, 3u);
+  EXPECT_EQ(s.H.min, 1);
+  EXPECT_NEAR(s.H.mean, 2, 1e-12);
+  EXPECT_EQ(s.H.percentiles[0], 1);
+  // The rule takes max(|k1|, |k2|): a large k2 alone makes a vertex unreliable.
+  CurvatureField f = field({1, 1}, {1, 1});
+  f.k2[1] = -5;
+  EXPECT_EQ(field_stats(f, 0.5).unreliable, 1u);
+  // Without an Area array every vertex weighs 1.
+  const FieldStats u = field_stats(field({1, 2, 6}, {}), 0);
+  EXPECT_FALSE(u.area_weighted);
+  EXPECT_EQ(u.unreliable, 0u) << "no threshold without an edge length";
+  EXPECT_NEAR(u.H.mean, 3, 1e-12);
+  EXPECT_TRUE(field_stats(CurvatureField{}, 1).H.empty);
+}
+
+}  // namespace
+}  // namespace isocurv::curvature
