@@ -34,7 +34,7 @@ int main(int argc, char** argv) {
   isocurv::retain_freed_memory();  // the explorer re-extracts on every slider move
   isocurv::io::silence_vtk_output();  // VTK's messages reach the user only as our one-line errors
   CLI::App app{"isocurv: isosurfaces and their curvature from volumes (OpenVDB, OpenCL, VTK)"};
-  app.require_subcommand(1);
+  app.require_subcommand(0, 1);  // none given is handled below, after CLI11 named any stray option
   app.set_version_flag("--version", "isocurv 0.1.0");
   app.footer("Run isocurv COMMAND --help for a command's options and an example.\n"
              "Exit status: 0 success, 1 bad input or a failure (one line on stderr), 2 a usage error.\n"
@@ -53,6 +53,10 @@ int main(int argc, char** argv) {
   }
   try {
     app.parse(argc, argv);
+    if (app.get_subcommands().empty()) {  // only top-level options: still no command
+      std::cout << app.help();
+      return kUsageError;
+    }
   } catch (const CLI::Success& e) {
     return app.exit(e);  // --help, --help-all, --version: printed on stdout, status 0
   } catch (const CLI::ParseError& e) {

@@ -14,6 +14,7 @@
 #include <array>
 #include <cerrno>
 #include <chrono>
+#include <cstdlib>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -53,7 +54,12 @@ struct CliResult {
 };
 
 inline std::string build_dir() { return ISOCURV_BUILD_DIR; }
-inline std::string isocurv_exe() { return build_dir() + "/app/isocurv"; }
+/// The executable under test: this build's, or ISOCURV_TEST_EXE (e.g. an older build, to see
+/// which tests fail without a fix).
+inline std::string isocurv_exe() {
+  const char* other = std::getenv("ISOCURV_TEST_EXE");
+  return other && *other ? std::string(other) : build_dir() + "/app/isocurv";
+}
 /// A bundled dataset generated at build time (64^3 by default).
 inline std::string dataset(const std::string& name) { return build_dir() + "/datasets/" + name + ".vdb"; }
 

@@ -85,21 +85,22 @@ TEST(ReferenceDevice, ExtractEqualsTheOpenClDevice) {
 
 TEST(ReferenceDevice, CurvatureAgreesWithTheOpenClDevice) {
   TempDir dir("curvature");
-  const auto a = run_isocurv({"curvature", dataset("sphere"), "-o", dir / "cl.vtp", "--quiet"});
-  const auto b = run_isocurv({"curvature", dataset("sphere"), "-o", dir / "ref.vtp", "--device", "reference", "--json"});
+  // One mesh for both, so only the curvature stage differs (each device's own extraction rounds
+  // positions its own way, which slivers amplify).
+  ASSERT_TRUE(run_isocurv({"extract", dataset("sphere"), "-o", dir / "m.ply", "--quiet"}).ok());
+  const auto a = run_isocurv({"curvature", dir / "m.ply", "-o", dir / "cl.vtp", "--quiet"});
+  const auto b = run_isocurv({"curvature", dir / "m.ply", "-o", dir / "ref.vtp", "--device", "reference", "--json"});
   ASSERT_TRUE(a.ok()) << a.describe();
   ASSERT_TRUE(b.ok()) << b.describe();
   EXPECT_NE(parse_json(b.out, "curvature --json").value("device", "").find("reference"), std::string::npos) << b.out;
   const auto cl = isocurv::io::read_mesh(dir / "cl.vtp"), ref = isocurv::io::read_mesh(dir / "ref.vtp");
-  std::vector<std::uint32_t> map;
-  expect_same_surface(ref.mesh, cl.mesh, &map);
-  ASSERT_FALSE(map.empty());
+  ASSERT_EQ(cl.mesh.positions.size(), ref.mesh.positions.size());
   ASSERT_TRUE(cl.field && ref.field);
   // Float kernels against the double reference: the RMS of the differences of H and K relative
-  // to their RMS (the kernel tests' measure) within 1e-4, and no vertex far off.
+  // to their RMS (the kernel tests' measure) and of the worst vertex.
   double dh = 0, h = 0, dk = 0, k = 0, worst = 0;
-  for (std::size_t i = 0; i < map.size(); ++i) {
-    const double hr = ref.field->H[i], hc = cl.field->H[map[i]], kr = ref.field->K[i], kc = cl.field->K[map[i]];
+  for (std::size_t i = 0; i < cl.mesh.positions.size(); ++i) {
+    const double hr = ref.field->H[i], hc = cl.field->H[i], kr = ref.field->K[i], kc = cl.field->K[i];
     dh += (hr - hc) * (hr - hc);
     h += hr * hr;
     dk += (kr - kc) * (kr - kc);
