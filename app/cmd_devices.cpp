@@ -2,6 +2,8 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
+#include <cstdlib>
+#include <string>
 #include <iostream>
 
 #include "app/commands.h"
@@ -18,9 +20,11 @@ void register_devices(CLI::App& app) {
   cmd->callback([] {
     std::vector<DeviceInfo> devices;
     int def = -1;
+    const char* env = std::getenv("ISOCURV_DEVICE");
+    const bool reference = env && std::string(env) == "reference";  // then no OpenCL device is the default
     try {
       devices = list_devices();
-      def = Device::default_device().info().index;
+      if (!reference) def = Device::default_device().info().index;
     } catch (const NoOpenCL& e) {
       throw Error(std::string(e.what()) + "; without one, the compute commands run with --device reference (slow)");
     }
@@ -37,6 +41,7 @@ void register_devices(CLI::App& app) {
       std::printf("%c %d  %-4s %s (%s; %s; %u compute units, %.1f GiB)\n", d.index == def ? '*' : ' ',
                   d.index, d.type.c_str(), d.name.c_str(), d.platform.c_str(), d.version.c_str(),
                   d.compute_units, d.global_memory / 1073741824.0);
+    if (reference) std::printf("  (ISOCURV_DEVICE=reference: the default is the C++ reference)\n");
     std::printf("(* = default; choose another with --device N or ISOCURV_DEVICE=N; --device reference runs the\n"
                 " C++ references instead of OpenCL: slow, single-threaded, always available)\n");
   });

@@ -136,6 +136,16 @@ TEST(ReferenceDevice, EveryComputeCommandTakesIt) {
   EXPECT_NE(parse_json(env.out, "extract --json").value("device", "").find("reference"), std::string::npos);
 }
 
+TEST(ReferenceDevice, DevicesShowsItAsTheDefaultFromTheEnvironment) {
+  // Device::open rejected ISOCURV_DEVICE=reference as "not a device number".
+  const auto r = run_isocurv({"devices", "--json"}, 60, {"ISOCURV_DEVICE=reference"});
+  ASSERT_TRUE(r.ok()) << r.describe();
+  for (const auto& d : parse_json(r.out, "devices --json")) EXPECT_FALSE(d["default"].get<bool>()) << d.dump();
+  const auto text = run_isocurv({"devices"}, 60, {"ISOCURV_DEVICE=reference"});
+  ASSERT_TRUE(text.ok()) << text.describe();
+  EXPECT_NE(text.out.find("the default is the C++ reference"), std::string::npos) << text.out;
+}
+
 TEST(NoOpenCl, TheMessageNamesThePackagesAndTheReference) {
   TempDir dir("noopencl");
   // ocl-icd reads its driver list from OCL_ICD_VENDORS: a folder that does not exist has none.
