@@ -15,7 +15,9 @@ void register_curvature(CLI::App& app) {
   static CommonOptions o;
   static std::string in, out;
   cmd->add_option("VOLUME_OR_MESH", in, "Volume or mesh file")->required();
-  cmd->add_option("-o,--output", out, "Mesh file to write (.vtp or .ply: the formats that carry the curvature arrays)")->required();
+  cmd->add_option("-o,--output", out,
+                  "Mesh file to write (.vtp or .ply: the formats that carry the curvature arrays)")
+      ->required();
   add_common_options(*cmd, o);
   add_curvature_options(*cmd, o);
   cmd->callback([] {

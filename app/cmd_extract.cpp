@@ -9,10 +9,11 @@ namespace isocurv::app {
 
 void register_extract(CLI::App& app) {
   auto* cmd = app.add_subcommand("extract", "Extract the isosurface of a volume as a fused, indexed triangle mesh");
-  cmd->footer("Example: isocurv extract lobster.vol --iso 40 -o lobster.ply --json\n"
-              "The object is where values are above the isovalue (below for level sets, or with --inside below);\n"
-              "triangles are wound so their normals point out of it. An isovalue that gives no surface writes an\n"
-              "empty mesh after a warning (the other commands refuse it).");
+  cmd->footer(
+      "Example: isocurv extract lobster.vol --iso 40 -o lobster.ply --json\n"
+      "The object is where values are above the isovalue (below for level sets, or with\n"
+      "--inside below); triangles are wound so their normals point out of it. An isovalue that\n"
+      "gives no surface writes an empty mesh after a warning (the other commands refuse it).");
   static CommonOptions o;
   static std::string in, out;
   cmd->add_option("VOLUME", in, "Volume file")->required();

@@ -21,8 +21,10 @@ void register_run(CLI::App& app) {
   static std::string in, dir, format = "vtp";
   cmd->add_option("VOLUME", in, "Volume file")->required();
   cmd->add_option("-o,--output", dir, "Output folder (created if missing)")->required();
-  cmd->add_option("--format", format, "Mesh format (vtp or ply: the formats that carry the curvature arrays)")
-      ->check(CLI::IsMember({"vtp", "ply"}))->capture_default_str();
+  cmd->add_option("--format", format,
+                  "Mesh format (vtp or ply: the formats that carry the curvature arrays)")
+      ->check(CLI::IsMember({"vtp", "ply"}))
+      ->capture_default_str();
   add_common_options(*cmd, o);
   add_curvature_options(*cmd, o);
   add_render_options(*cmd, ro);
@@ -30,7 +32,8 @@ void register_run(CLI::App& app) {
     namespace fs = std::filesystem;
     if (is_mesh_path(in)) throw Error(in, "isocurv run takes a volume; use isocurv curvature or render for meshes");
     StageTimer timer;
-    Surface s = load_surface(in, o, timer);  // fails (no surface, ...) before any output folder is made
+    Surface s =
+        load_surface(in, o, timer);  // fails (no surface, ...) before any output folder is made
     s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, o, timer);
     // The folder is made now, and removed again if it was new and the outputs fail; the outputs
     // appear together or not at all.
@@ -52,11 +55,13 @@ void register_run(CLI::App& app) {
     const std::string stats_path = (fs::path(dir) / "stats.json").string();
     AtomicFileSet outputs;
     timer.start("write");
-    outputs.write(mesh_path, [&](const std::string& tmp) { io::write_mesh(tmp, s.mesh, &*s.field); });
+    outputs.write(mesh_path,
+                  [&](const std::string& tmp) { io::write_mesh(tmp, s.mesh, &*s.field); });
     timer.start("render");
     viz::RenderOptions opts = ro;
     if (opts.title.empty()) opts.title = fs::path(in).filename().string() + "  (" + opts.color + ")";
-    outputs.write(png_path, [&](const std::string& tmp) { viz::render_png(tmp, s.mesh, *s.field, opts); });
+    outputs.write(png_path,
+                  [&](const std::string& tmp) { viz::render_png(tmp, s.mesh, *s.field, opts); });
     timer.stop();
     nlohmann::json r = surface_report(s);
     r["input"] = in;
@@ -65,7 +70,8 @@ void register_run(CLI::App& app) {
     r["device"] = device_name(o);
     r["normals"] = o.normals;
     r["timings_ms"] = timer.json();
-    outputs.write(stats_path, [&](const std::string& tmp) { write_text_file(tmp, r.dump(2) + "\n"); });
+    outputs.write(stats_path,
+                  [&](const std::string& tmp) { write_text_file(tmp, r.dump(2) + "\n"); });
     outputs.commit();
     cleanup.armed = false;
     if (o.json) {

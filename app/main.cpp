@@ -1,7 +1,6 @@
 // isocurv: the command line. Each subcommand lives in its own cmd_*.cpp and only composes stages.
 // Exit status: 0 success, 1 bad input or a failure, 2 a usage error (bad or missing arguments).
 #include <CLI/CLI.hpp>
-
 #include <cstdio>
 #include <exception>
 #include <iostream>
@@ -36,9 +35,10 @@ int main(int argc, char** argv) {
   CLI::App app{"isocurv: isosurfaces and their curvature from volumes (OpenVDB, OpenCL, VTK)"};
   app.require_subcommand(0, 1);  // none given is handled below, after CLI11 named any stray option
   app.set_version_flag("--version", "isocurv 0.1.0");
-  app.footer("Run isocurv COMMAND --help for a command's options and an example.\n"
-             "Exit status: 0 success, 1 bad input or a failure (one line on stderr), 2 a usage error.\n"
-             "isocurv without arguments prints this list and exits with status 2.");
+  app.footer(
+      "Run isocurv COMMAND --help for a command's options and an example.\n"
+      "Exit status: 0 success, 1 bad input or a failure (one line on stderr), 2 a usage error.\n"
+      "isocurv without arguments prints this list and exits with status 2.");
   isocurv::app::register_commands(app);
   if (argc <= 1) {
     std::cout << app.help();
@@ -61,7 +61,8 @@ int main(int argc, char** argv) {
     return app.exit(e);  // --help, --help-all, --version: printed on stdout, status 0
   } catch (const CLI::ParseError& e) {
     const std::string where = known.empty() ? "isocurv" : "isocurv " + known.front()->get_name();
-    std::fprintf(stderr, "isocurv: %s (see %s --help)\n", one_line(e.what()).c_str(), where.c_str());
+    std::fprintf(stderr, "isocurv: %s (see %s --help)\n", one_line(e.what()).c_str(),
+                 where.c_str());
     return kUsageError;
   } catch (const isocurv::Error& e) {
     std::fprintf(stderr, "isocurv: %s\n", one_line(e.what()).c_str());

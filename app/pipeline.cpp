@@ -1,8 +1,8 @@
 #include "app/pipeline.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <map>
@@ -26,11 +26,15 @@ namespace isocurv::app {
 void add_common_options(CLI::App& cmd, CommonOptions& o, bool with_iso) {
   if (with_iso)
     cmd.add_option("--iso", o.iso, "Isovalue (default: the volume's suggested isovalue, see isocurv info)");
-  cmd.add_option("--device", o.device,
-                 "OpenCL device number from isocurv devices (default: a GPU, else PoCL's CPU device), or "
-                 "'reference': the plain C++ mesher and double-precision curvature, slow but needing no OpenCL")
+  cmd.add_option(
+         "--device", o.device,
+         "OpenCL device number from isocurv devices (default: a GPU, else PoCL's CPU device), or "
+         "'reference': the plain C++ mesher and double-precision curvature, slow but needing "
+         "no OpenCL")
       ->check([](const std::string& v) -> std::string {
-        if (v == "reference" || (!v.empty() && v.find_first_not_of("0123456789") == std::string::npos)) return "";
+        if (v == "reference" ||
+            (!v.empty() && v.find_first_not_of("0123456789") == std::string::npos))
+          return "";
         return "expected a device number (see isocurv devices) or 'reference', not '" + v + "'";
       });
   cmd.add_flag("--cap", o.cap, "Close surfaces cut by the volume's bounding box (default: leave them open)");
@@ -93,14 +97,16 @@ Device& device_for(const CommonOptions& o) {
     if (!d) d = Device::open(index);
     return *d;
   } catch (const NoOpenCL& e) {
-    throw Error(std::string(e.what()) + "; or run with --device reference (the C++ references: slow, no OpenCL)");
+    throw Error(std::string(e.what()) +
+                "; or run with --device reference (the C++ references: slow, no OpenCL)");
   } catch (const std::out_of_range&) {
     throw Error("no OpenCL device number " + o.device + " (see isocurv devices)");
   }
 }
 
 std::string device_name(const CommonOptions& o) {
-  return reference_device(o) ? "reference (C++ mesher, double-precision curvature)" : device_for(o).info().name;
+  return reference_device(o) ? "reference (C++ mesher, double-precision curvature)"
+                             : device_for(o).info().name;
 }
 
 Mesh extract_surface(const volume::Volume& v, float isovalue, const CommonOptions& o) {
@@ -124,10 +130,12 @@ volume::Volume load_volume(const std::string& path, const CommonOptions& o, Stag
   // when the object is below the isovalue) no voxel is inside and there is no surface.
   const bool above = v.inside == volume::Inside::Above;
   if (value == static_cast<float>(above ? v.stats.max : v.stats.min))
-    throw Error(path, "isovalue " + format_number(value) + " equals the " + (above ? "maximum" : "minimum") +
-                          " value, so there is no surface: a voxel equal to the isovalue counts as outside, and none "
-                          "is " + (above ? "above" : "below") + " it (the range is [" + format_number(v.stats.min) +
-                          ", " + format_number(v.stats.max) + "])");
+    throw Error(path, "isovalue " + format_number(value) + " equals the " +
+                          (above ? "maximum" : "minimum") +
+                          " value, so there is no surface: a voxel equal to the isovalue counts as "
+                          "outside, and none is " + (above ? "above" : "below") +
+                          " it (the range is [" + format_number(v.stats.min) + ", " +
+                          format_number(v.stats.max) + "])");
   if (iso) *iso = value;
   return v;
 }
@@ -139,22 +147,28 @@ void reject_volume_options(const std::string& path, const CommonOptions& o) {
   std::vector<std::string> given = o.volume.given();
   if (o.iso) given.insert(given.begin(), "--iso");
   if (o.cap) given.push_back("--cap");
-  if (!given.empty()) throw Error(path, given.front() + " applies to volumes only, and this is a mesh file");
+  if (!given.empty())
+    throw Error(path, given.front() + " applies to volumes only, and this is a mesh file");
 }
 
 /// The one rule for an isosurface without triangles (see EmptySurface).
-void handle_empty_surface(const Surface& s, const std::string& path, const CommonOptions& o, EmptySurface empty) {
+void handle_empty_surface(const Surface& s, const std::string& path, const CommonOptions& o,
+                          EmptySurface empty) {
   if (!s.mesh.triangles.empty()) return;
-  const std::string problem = "isovalue " + format_number(s.isovalue) + " gives no surface (the values range over [" +
-                              format_number(s.volume->stats.min) + ", " + format_number(s.volume->stats.max) +
-                              "]; see isocurv info)";
+  const std::string problem = "isovalue " + format_number(s.isovalue) +
+                              " gives no surface (the values range over [" +
+                              format_number(s.volume->stats.min) + ", " +
+                              format_number(s.volume->stats.max) + "]; see isocurv info)";
   if (empty == EmptySurface::error) throw Error(path, problem);
-  if (!o.quiet) std::fprintf(stderr, "isocurv: warning: %s: %s; writing an empty mesh\n", path.c_str(), problem.c_str());
+  if (!o.quiet)
+    std::fprintf(stderr, "isocurv: warning: %s: %s; writing an empty mesh\n", path.c_str(),
+                 problem.c_str());
 }
 
 }  // namespace
 
-Surface load_surface(const std::string& path, const CommonOptions& o, StageTimer& timer, EmptySurface empty) {
+Surface load_surface(const std::string& path, const CommonOptions& o, StageTimer& timer,
+                     EmptySurface empty) {
   Surface s;
   if (is_mesh_path(path)) {
     reject_volume_options(path, o);
@@ -176,11 +190,14 @@ Surface load_surface(const std::string& path, const CommonOptions& o, StageTimer
 
 void require_curvature_format(const std::string& path) {
   std::string lower = path;
-  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   for (const char* ext : {".vtp", ".ply"})
     if (lower.size() > 4 && lower.compare(lower.size() - 4, 4, ext) == 0) return;
   if (is_mesh_path(path))
-    throw Error(path, "this format cannot hold the curvature arrays: write .vtp or .ply (extract writes .obj and .stl)");
+    throw Error(path,
+                "this format cannot hold the curvature arrays: write .vtp or .ply (extract writes "
+                ".obj and .stl)");
   throw Error(path, "unknown mesh extension: write .vtp or .ply (they carry the curvature arrays)");
 }
 
@@ -202,8 +219,9 @@ curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Vol
   }
   if (!reference_device(o)) device_for(o);  // open the device (and fail on it) before timing
   timer.start("curvature");
-  curvature::CurvatureField field =
-      reference_device(o) ? curvature::estimate_reference(mesh, co) : curvature::estimate(mesh, device_for(o), co);
+  curvature::CurvatureField field = reference_device(o)
+                                        ? curvature::estimate_reference(mesh, co)
+                                        : curvature::estimate(mesh, device_for(o), co);
   timer.stop();
   return field;
 }

@@ -42,7 +42,9 @@ extern "C" void remove_temporaries_and_reraise(int sig) {
 void install_handlers() {
   for (int sig : kSignals) {
     struct sigaction old {};
-    if (sigaction(sig, nullptr, &old) != 0 || old.sa_handler != SIG_DFL || (old.sa_flags & SA_SIGINFO)) continue;
+    if (sigaction(sig, nullptr, &old) != 0 || old.sa_handler != SIG_DFL ||
+        (old.sa_flags & SA_SIGINFO))
+      continue;
     struct sigaction action {};
     action.sa_handler = remove_temporaries_and_reraise;
     sigemptyset(&action.sa_mask);
@@ -74,7 +76,8 @@ void release_temporary(int& slot) {
 
 /// `text` with every occurrence of `from` replaced by `to`.
 std::string replace_all(std::string text, const std::string& from, const std::string& to) {
-  for (std::size_t at = text.find(from); !from.empty() && at != std::string::npos; at = text.find(from, at + to.size()))
+  for (std::size_t at = text.find(from); !from.empty() && at != std::string::npos;
+       at = text.find(from, at + to.size()))
     text.replace(at, from.size(), to);
   return text;
 }
@@ -82,7 +85,8 @@ std::string replace_all(std::string text, const std::string& from, const std::st
 /// The name under which commit() keeps a file it replaces until the whole set is in place.
 std::string backup_path_for(const std::string& path) {
   fs::path p(path);
-  return (p.parent_path() / ("." + p.stem().string() + ".old" + std::to_string(getpid()) + p.extension().string()))
+  return (p.parent_path() /
+          ("." + p.stem().string() + ".old" + std::to_string(getpid()) + p.extension().string()))
       .string();
 }
 
@@ -108,7 +112,8 @@ AtomicFileSet::~AtomicFileSet() {
   }
 }
 
-void AtomicFileSet::write(const std::string& path, const std::function<void(const std::string&)>& write) {
+void AtomicFileSet::write(const std::string& path,
+                          const std::function<void(const std::string&)>& write) {
   fs::path parent = fs::path(path).parent_path();
   if (!parent.empty() && !fs::is_directory(parent))
     throw Error(path, "cannot write: folder " + parent.string() + " does not exist");
@@ -162,8 +167,10 @@ void AtomicFileSet::commit() {
     // has its old contents.
     std::error_code ec;
     for (std::size_t j = 0; j < done; ++j) {
-      if (!backups[j].empty()) std::rename(backups[j].c_str(), entries_[j].path.c_str());
-      else if (!existed[j]) fs::remove(entries_[j].path, ec);
+      if (!backups[j].empty())
+        std::rename(backups[j].c_str(), entries_[j].path.c_str());
+      else if (!existed[j])
+        fs::remove(entries_[j].path, ec);
     }
     if (done < n && !backups[done].empty()) fs::remove(backups[done], ec);
     for (int& slot : backup_slots) release_temporary(slot);

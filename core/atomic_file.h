@@ -28,7 +28,8 @@ std::string temporary_path_for(const std::string& path);
 /// While a temporary exists (here or in write_atomically) it is registered, and a handler for
 /// SIGINT, SIGTERM, SIGHUP and SIGQUIT (installed on first use, only for signals whose action is
 /// still the default) removes the registered temporaries with unlink() and re-raises the signal.
-/// Up to 64 temporaries are registered at once; more are still written, just not removed on a signal.
+/// Up to 64 temporaries are registered at once; more are still written, just not removed on a
+/// signal.
 class AtomicFileSet {
  public:
   AtomicFileSet() = default;

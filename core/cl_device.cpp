@@ -24,8 +24,9 @@ std::vector<Found> enumerate() {
     platforms.clear();
   }
   if (platforms.empty())
-    throw NoOpenCL("no OpenCL platform found: the OpenCL loader (ocl-icd-libopencl1) finds no driver; install one, "
-                   "e.g. apt-get install pocl-opencl-icd (CPU) or your GPU vendor's OpenCL ICD");
+    throw NoOpenCL(
+        "no OpenCL platform found: the OpenCL loader (ocl-icd-libopencl1) finds no driver; "
+        "install one, e.g. apt-get install pocl-opencl-icd (CPU) or your GPU vendor's OpenCL ICD");
   std::vector<Found> out;
   for (auto& p : platforms) {
     std::vector<cl::Device> devs;
@@ -50,7 +51,9 @@ std::vector<Found> enumerate() {
     }
   }
   if (out.empty())
-    throw NoOpenCL("OpenCL platforms exist but offer no device: apt-get install pocl-opencl-icd for a CPU device");
+    throw NoOpenCL(
+        "OpenCL platforms exist but offer no device: apt-get install pocl-opencl-icd for a "
+        "CPU device");
   return out;
 }
 

@@ -133,12 +133,14 @@ void ensure_display(DisplayUse use) {
   if (!display.empty()) {
     if (display_opens(display.c_str())) return;
     if (use == DisplayUse::interactive)
-      throw Error("cannot open X display '" + display + "' (is the X server running, and may we connect?)");
+      throw Error("cannot open X display '" + display +
+                  "' (is the X server running, and may we connect?)");
   }
   const int number = server().start();
   if (number < 0)
     throw Error(display.empty() ? std::string(kFailure)
-                                : "cannot open X display '" + display + "' and Xvfb could not be started: apt-get install xvfb");
+                                : "cannot open X display '" + display +
+                                      "' and Xvfb could not be started: apt-get install xvfb");
   setenv("DISPLAY", (":" + std::to_string(number)).c_str(), 1);
 }
 

@@ -103,8 +103,10 @@ Volume finish_dense(DenseImage&& image, const std::string& path, const std::stri
   auto xform = make_transform(image.spacing, image.origin, image.axes);
   Volume v = !image.u8.empty() ? from_dense_u8(image.u8.data(), image.dims, xform, source)
                                : from_dense(image.values.data(), image.dims, xform, source);
-  if (options.spacing) v.file_spacing = openvdb::Vec3d(file_spacing[0], file_spacing[1], file_spacing[2]);
-  if (options.origin) v.file_origin = openvdb::Vec3d(file_origin[0], file_origin[1], file_origin[2]);
+  if (options.spacing)
+    v.file_spacing = openvdb::Vec3d(file_spacing[0], file_spacing[1], file_spacing[2]);
+  if (options.origin)
+    v.file_origin = openvdb::Vec3d(file_origin[0], file_origin[1], file_origin[2]);
   return v;
 }
 

@@ -28,7 +28,8 @@ Format format_of(const std::string& path) {
   if (ends_with(name, ".nrrd") || ends_with(name, ".nhdr")) return Format::nrrd;
   if (ends_with(name, ".mhd") || ends_with(name, ".mha")) return Format::metaimage;
   if (ends_with(name, ".nii") || ends_with(name, ".nii.gz")) return Format::nifti;
-  if (ends_with(name, ".vti") || ends_with(name, ".vtk") || ends_with(name, ".slc")) return Format::vtk_image;
+  if (ends_with(name, ".vti") || ends_with(name, ".vtk") || ends_with(name, ".slc"))
+    return Format::vtk_image;
   if (ends_with(name, ".vol")) return Format::dgtal_vol;
   if (ends_with(name, ".raw") || ends_with(name, ".raw.gz") || ends_with(name, ".bin-gz") ||
       ends_with(name, ".bin.gz") || ends_with(name, ".bin"))
@@ -44,14 +45,17 @@ void check_options_apply(const std::string& path, Format format, const LoadOptio
                         : o.raw.big_endian                        ? "--endian"
                                                                   : nullptr;
     if (given)
-      throw Error(path, std::string(given) + " applies to headerless .raw files only; this file's header gives its layout");
+      throw Error(
+          path, std::string(given) +
+                    " applies to headerless .raw files only; this file's header gives its layout");
   }
   if (format != Format::vdb && !o.grid.empty())
     throw Error(path, "--grid applies to .vdb files only (this format holds one volume)");
   for (int i = 0; i < 3; ++i) {
     if (o.spacing && (!std::isfinite((*o.spacing)[i]) || (*o.spacing)[i] <= 0))
       throw Error(path, "--spacing needs three positive finite numbers");
-    if (o.origin && !std::isfinite((*o.origin)[i])) throw Error(path, "--origin needs three finite numbers");
+    if (o.origin && !std::isfinite((*o.origin)[i]))
+      throw Error(path, "--origin needs three finite numbers");
   }
 }
 
@@ -60,7 +64,8 @@ void check_options_apply(const std::string& path, Format format, const LoadOptio
 void override_vdb_geometry(Volume& v, const LoadOptions& o) {
   if (!o.spacing && !o.origin) return;
   const openvdb::math::Transform& xform = v.grid->transform();
-  if (!xform.isLinear()) throw Error(v.path, "--spacing and --origin cannot replace a non-linear (frustum) transform");
+  if (!xform.isLinear())
+    throw Error(v.path, "--spacing and --origin cannot replace a non-linear (frustum) transform");
   // OpenVDB matrices act on row vectors: row i is index axis i in world space, row 3 the origin.
   const openvdb::Mat4d m = xform.baseMap()->getAffineMap()->getMat4();
   std::array<double, 3> spacing{}, origin{};
@@ -68,12 +73,14 @@ void override_vdb_geometry(Volume& v, const LoadOptions& o) {
   for (int i = 0; i < 3; ++i) {
     const openvdb::Vec3d row(m(i, 0), m(i, 1), m(i, 2));
     spacing[std::size_t(i)] = row.length();
-    for (int j = 0; j < 3; ++j) axes[std::size_t(i)][std::size_t(j)] = row[j] / spacing[std::size_t(i)];
+    for (int j = 0; j < 3; ++j)
+      axes[std::size_t(i)][std::size_t(j)] = row[j] / spacing[std::size_t(i)];
     origin[std::size_t(i)] = m(3, i);
   }
   if (o.spacing) v.file_spacing = openvdb::Vec3d(spacing[0], spacing[1], spacing[2]);
   if (o.origin) v.file_origin = openvdb::Vec3d(origin[0], origin[1], origin[2]);
-  v.grid->setTransform(make_transform(o.spacing.value_or(spacing), o.origin.value_or(origin), axes));
+  v.grid->setTransform(
+      make_transform(o.spacing.value_or(spacing), o.origin.value_or(origin), axes));
 }
 
 }  // namespace
@@ -83,8 +90,8 @@ Volume load(const std::string& path, const LoadOptions& options) {
   const Format format = format_of(path);
   if (format == Format::unknown)
     throw Error(path,
-                "unknown volume file extension (supported: .vdb .nrrd .nhdr .mhd .mha .nii .nii.gz .vti .vtk .slc "
-                ".vol .raw .raw.gz .bin-gz)");
+                "unknown volume file extension (supported: .vdb .nrrd .nhdr .mhd .mha .nii .nii.gz "
+                ".vti .vtk .slc .vol .raw .raw.gz .bin-gz)");
   check_options_apply(path, format, options);
   try {
     switch (format) {
@@ -94,13 +101,20 @@ Volume load(const std::string& path, const LoadOptions& options) {
         override_vdb_geometry(v, options);
         return v;
       }
-      case Format::nrrd: return load_nrrd(path, options);
-      case Format::metaimage: return load_metaimage(path, options);
-      case Format::nifti: return load_nifti(path, options);
-      case Format::vtk_image: return load_vtk_image(path, options);
-      case Format::dgtal_vol: return load_dgtal_vol(path, options);
-      case Format::raw: return load_raw(path, options);
-      case Format::unknown: break;
+      case Format::nrrd:
+        return load_nrrd(path, options);
+      case Format::metaimage:
+        return load_metaimage(path, options);
+      case Format::nifti:
+        return load_nifti(path, options);
+      case Format::vtk_image:
+        return load_vtk_image(path, options);
+      case Format::dgtal_vol:
+        return load_dgtal_vol(path, options);
+      case Format::raw:
+        return load_raw(path, options);
+      case Format::unknown:
+        break;
     }
   } catch (const Error&) {
     throw;

@@ -43,7 +43,7 @@ Volume load_raw(const std::string& path, const LoadOptions& options) {
   const std::string type_name = raw.type.empty() ? named.type : raw.type;
   // An explicit byte order always wins; the file name's only counts when the layout comes from
   // the name too.
-  const bool big_endian = raw.big_endian ? *raw.big_endian
+  const bool big_endian = raw.big_endian                                         ? *raw.big_endian
                           : (!have_dims && raw.type.empty() && named.big_endian) ? *named.big_endian
                                                                                  : false;
 

@@ -51,8 +51,10 @@ nlohmann::json summary_json(const Volume& v) {
     j["spacing"] = {sp.x(), sp.y(), sp.z()};
     j["origin"] = {o.x(), o.y(), o.z()};
     // Present when --spacing / --origin replaced the file's values: what the file said.
-    if (v.file_spacing) j["file_spacing"] = {v.file_spacing->x(), v.file_spacing->y(), v.file_spacing->z()};
-    if (v.file_origin) j["file_origin"] = {v.file_origin->x(), v.file_origin->y(), v.file_origin->z()};
+    if (v.file_spacing)
+      j["file_spacing"] = {v.file_spacing->x(), v.file_spacing->y(), v.file_spacing->z()};
+    if (v.file_origin)
+      j["file_origin"] = {v.file_origin->x(), v.file_origin->y(), v.file_origin->z()};
     j["active_voxels"] = v.grid->activeVoxelCount();
     j["background"] = v.grid->background();
   }

@@ -2,22 +2,21 @@
 // Running the real `isocurv` executable as a subprocess for the end-to-end tests: stdout, stderr
 // and exit status captured, a timeout, DISPLAY unset (rendering must start its own Xvfb).
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <poll.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <array>
 #include <cerrno>
 #include <chrono>
-#include <cstdlib>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -224,7 +223,9 @@ inline void expect_one_error_line(const CliResult& r, const std::string& mention
   const auto lines = r.err_lines();
   ASSERT_EQ(lines.size(), 1u) << "want exactly one line on stderr\n" << r.describe();
   EXPECT_EQ(lines[0].rfind("isocurv:", 0), 0u) << r.describe();
-  EXPECT_NE(lines[0].find(mention), std::string::npos) << "stderr should mention '" << mention << "'\n" << r.describe();
+  EXPECT_NE(lines[0].find(mention), std::string::npos)
+      << "stderr should mention '" << mention << "'\n"
+      << r.describe();
 }
 
 /// A usage error (README, "Exit status"): status 2, one line on stderr starting with "isocurv:"
@@ -238,7 +239,8 @@ inline void expect_usage_error(const CliResult& r, const std::string& mention) {
 }
 
 /// A failure as DESIGN.md wants it: no crash or hang, exit status 1 (bad input or a failure),
-/// exactly one line on stderr starting with "isocurv:" and containing `mention` (e.g. the file name).
+/// exactly one line on stderr starting with "isocurv:" and containing `mention` (e.g. the file
+/// name).
 inline void expect_clean_failure(const CliResult& r, const std::string& mention) {
   EXPECT_FALSE(r.timed_out) << r.describe();
   EXPECT_EQ(r.signal, 0) << "crashed\n" << r.describe();

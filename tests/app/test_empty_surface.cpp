@@ -33,7 +33,8 @@ TEST(EmptySurface, ExtractWarnsAndWritesTheEmptyMesh) {
     ASSERT_EQ(lines.size(), 1u) << r.describe();
     EXPECT_EQ(lines[0].rfind("isocurv: warning:", 0), 0u) << r.describe();
     EXPECT_NE(lines[0].find("gives no surface"), std::string::npos) << r.describe();
-    EXPECT_NE(lines[0].find("[0, 63]"), std::string::npos) << "gives the value range\n" << r.describe();
+    EXPECT_NE(lines[0].find("[0, 63]"), std::string::npos) << "gives the value range\n"
+                                                           << r.describe();
     ASSERT_TRUE(fs::exists(out)) << ext;
     EXPECT_TRUE(isocurv::io::read_mesh(out).mesh.triangles.empty()) << ext;
   }
@@ -45,9 +46,12 @@ TEST(EmptySurface, ExtractWarnsAndWritesTheEmptyMesh) {
 TEST(EmptySurface, CommandsThatNeedTrianglesRefuseIt) {
   TempDir dir("refuse");
   const std::string slice = write_slice(dir);
-  expect_clean_failure(run_isocurv({"curvature", slice, "--iso", "10", "-o", dir / "c.vtp"}), "gives no surface");
-  expect_clean_failure(run_isocurv({"run", slice, "--iso", "10", "-o", dir / "out"}), "gives no surface");
-  expect_clean_failure(run_isocurv({"render", slice, "--iso", "10", "-o", dir / "r.png"}), "gives no surface");
+  expect_clean_failure(run_isocurv({"curvature", slice, "--iso", "10", "-o", dir / "c.vtp"}),
+                       "gives no surface");
+  expect_clean_failure(run_isocurv({"run", slice, "--iso", "10", "-o", dir / "out"}),
+                       "gives no surface");
+  expect_clean_failure(run_isocurv({"render", slice, "--iso", "10", "-o", dir / "r.png"}),
+                       "gives no surface");
   const auto check = run_isocurv({"check", slice, "--iso", "10", "--json"});
   expect_clean_failure(check, "gives no surface");
   EXPECT_NE(check.err.find("[0, 63]"), std::string::npos) << check.describe();
@@ -66,13 +70,16 @@ TEST(EmptySurface, IsovalueAtTheMaximumSaysWhy) {
     expect_clean_failure(r, "equals the maximum");
     EXPECT_NE(r.err.find("counts as outside"), std::string::npos) << r.describe();
   }
-  expect_clean_failure(run_isocurv({"check", dataset("torus"), "--iso", max}), "equals the maximum");
+  expect_clean_failure(run_isocurv({"check", dataset("torus"), "--iso", max}),
+                       "equals the maximum");
   // A level set's object is below the isovalue: there the minimum is the end with nothing inside.
   const auto sphere = run_isocurv({"info", dataset("sphere"), "--json"});
   ASSERT_TRUE(sphere.ok()) << sphere.describe();
   char min[64];
-  std::snprintf(min, sizeof min, "%.9g", parse_json(sphere.out, "info --json")["min"].get<double>());
-  expect_clean_failure(run_isocurv({"extract", dataset("sphere"), "--iso", min, "-o", dir / "o.ply"}),
-                       "equals the minimum");
+  std::snprintf(min, sizeof min, "%.9g",
+                parse_json(sphere.out, "info --json")["min"].get<double>());
+  expect_clean_failure(
+      run_isocurv({"extract", dataset("sphere"), "--iso", min, "-o", dir / "o.ply"}),
+      "equals the minimum");
   EXPECT_TRUE(dir.entries().empty()) << ::testing::PrintToString(dir.entries());
 }

@@ -203,7 +203,8 @@ class CliFormats : public ::testing::Test {
       results_.push_back(r);
     }
     // .obj cannot hold the curvature arrays, so curvature refuses it; extract writes the geometry.
-    results_.push_back(run_isocurv({"extract", dataset("torus"), "-o", *dir_ / "a.obj", "--quiet"}));
+    results_.push_back(
+        run_isocurv({"extract", dataset("torus"), "-o", *dir_ / "a.obj", "--quiet"}));
   }
   static void TearDownTestSuite() {
     delete dir_;

@@ -21,7 +21,8 @@ namespace {
 std::vector<std::uint32_t> match_vertices(const Mesh& a, const Mesh& b, float tol) {
   std::vector<std::uint32_t> by_x(b.positions.size());
   std::iota(by_x.begin(), by_x.end(), 0u);
-  std::sort(by_x.begin(), by_x.end(), [&](auto i, auto j) { return b.positions[i][0] < b.positions[j][0]; });
+  std::sort(by_x.begin(), by_x.end(),
+            [&](auto i, auto j) { return b.positions[i][0] < b.positions[j][0]; });
   std::vector<std::uint32_t> map(a.positions.size());
   for (std::size_t i = 0; i < a.positions.size(); ++i) {
     const auto& p = a.positions[i];
@@ -45,12 +46,14 @@ std::vector<std::uint32_t> match_vertices(const Mesh& a, const Mesh& b, float to
 }
 
 /// The same surface: same vertices (up to order) and the same triangles with the same winding.
-void expect_same_surface(const Mesh& a, const Mesh& b, std::vector<std::uint32_t>* map_out = nullptr) {
+void expect_same_surface(const Mesh& a, const Mesh& b,
+                         std::vector<std::uint32_t>* map_out = nullptr) {
   ASSERT_EQ(a.positions.size(), b.positions.size());
   ASSERT_EQ(a.triangles.size(), b.triangles.size());
   ASSERT_FALSE(a.triangles.empty());
   float scale = 1;  // float rounding grows with the coordinates' size
-  for (const auto& p : b.positions) scale = std::max({scale, std::fabs(p[0]), std::fabs(p[1]), std::fabs(p[2])});
+  for (const auto& p : b.positions)
+    scale = std::max({scale, std::fabs(p[0]), std::fabs(p[1]), std::fabs(p[2])});
   const auto map = match_vertices(a, b, 1e-6f * scale);
   ASSERT_EQ(map.size(), a.positions.size());
   auto canon = [](Tri t) {  // the smallest index first, keeping the winding
@@ -79,7 +82,8 @@ TEST(ReferenceDevice, ExtractEqualsTheOpenClDevice) {
     const auto a = run_isocurv(cl), b = run_isocurv(ref);
     ASSERT_TRUE(a.ok()) << a.describe();
     ASSERT_TRUE(b.ok()) << b.describe();
-    expect_same_surface(isocurv::io::read_mesh(dir / "ref.ply").mesh, isocurv::io::read_mesh(dir / "cl.ply").mesh);
+    expect_same_surface(isocurv::io::read_mesh(dir / "ref.ply").mesh,
+                        isocurv::io::read_mesh(dir / "cl.ply").mesh);
   }
 }
 
@@ -89,18 +93,23 @@ TEST(ReferenceDevice, CurvatureAgreesWithTheOpenClDevice) {
   // positions its own way, which slivers amplify).
   ASSERT_TRUE(run_isocurv({"extract", dataset("sphere"), "-o", dir / "m.ply", "--quiet"}).ok());
   const auto a = run_isocurv({"curvature", dir / "m.ply", "-o", dir / "cl.vtp", "--quiet"});
-  const auto b = run_isocurv({"curvature", dir / "m.ply", "-o", dir / "ref.vtp", "--device", "reference", "--json"});
+  const auto b = run_isocurv(
+      {"curvature", dir / "m.ply", "-o", dir / "ref.vtp", "--device", "reference", "--json"});
   ASSERT_TRUE(a.ok()) << a.describe();
   ASSERT_TRUE(b.ok()) << b.describe();
-  EXPECT_NE(parse_json(b.out, "curvature --json").value("device", "").find("reference"), std::string::npos) << b.out;
-  const auto cl = isocurv::io::read_mesh(dir / "cl.vtp"), ref = isocurv::io::read_mesh(dir / "ref.vtp");
+  EXPECT_NE(parse_json(b.out, "curvature --json").value("device", "").find("reference"),
+            std::string::npos)
+      << b.out;
+  const auto cl = isocurv::io::read_mesh(dir / "cl.vtp"),
+             ref = isocurv::io::read_mesh(dir / "ref.vtp");
   ASSERT_EQ(cl.mesh.positions.size(), ref.mesh.positions.size());
   ASSERT_TRUE(cl.field && ref.field);
   // Float kernels against the double reference: the RMS of the differences of H and K relative
   // to their RMS (the kernel tests' measure) and of the worst vertex.
   double dh = 0, h = 0, dk = 0, k = 0, worst = 0;
   for (std::size_t i = 0; i < cl.mesh.positions.size(); ++i) {
-    const double hr = ref.field->H[i], hc = cl.field->H[i], kr = ref.field->K[i], kc = cl.field->K[i];
+    const double hr = ref.field->H[i], hc = cl.field->H[i], kr = ref.field->K[i],
+                 kc = cl.field->K[i];
     dh += (hr - hc) * (hr - hc);
     h += hr * hr;
     dk += (kr - kc) * (kr - kc);
@@ -119,11 +128,13 @@ TEST(ReferenceDevice, EveryComputeCommandTakesIt) {
     a.insert(a.end(), ref.begin(), ref.end());
     return a;
   };
-  const auto run = run_isocurv(with({"run", dataset("torus"), "--size", "64x64", "-o", dir / "out", "--quiet"}), 120);
+  const auto run = run_isocurv(
+      with({"run", dataset("torus"), "--size", "64x64", "-o", dir / "out", "--quiet"}), 120);
   ASSERT_TRUE(run.ok()) << run.describe();
   const auto stats = parse_json(read_file(dir / "out/stats.json"), "stats.json");
   EXPECT_NE(stats.value("device", "").find("reference"), std::string::npos) << stats.dump();
-  const auto render = run_isocurv(with({"render", dataset("torus"), "--size", "64x64", "-o", dir / "t.png"}), 120);
+  const auto render =
+      run_isocurv(with({"render", dataset("torus"), "--size", "64x64", "-o", dir / "t.png"}), 120);
   ASSERT_TRUE(render.ok()) << render.describe();
   EXPECT_EQ(png_size(dir / "t.png"), (std::array<std::uint32_t, 2>{64, 64}));
   const auto check = run_isocurv(with({"check", dataset("torus"), "--json"}));
@@ -133,14 +144,16 @@ TEST(ReferenceDevice, EveryComputeCommandTakesIt) {
   const auto env = run_isocurv({"extract", dataset("torus"), "-o", dir / "e.ply", "--json"}, 60,
                                {"ISOCURV_DEVICE=reference"});
   ASSERT_TRUE(env.ok()) << env.describe();
-  EXPECT_NE(parse_json(env.out, "extract --json").value("device", "").find("reference"), std::string::npos);
+  EXPECT_NE(parse_json(env.out, "extract --json").value("device", "").find("reference"),
+            std::string::npos);
 }
 
 TEST(ReferenceDevice, DevicesShowsItAsTheDefaultFromTheEnvironment) {
   // Device::open rejected ISOCURV_DEVICE=reference as "not a device number".
   const auto r = run_isocurv({"devices", "--json"}, 60, {"ISOCURV_DEVICE=reference"});
   ASSERT_TRUE(r.ok()) << r.describe();
-  for (const auto& d : parse_json(r.out, "devices --json")) EXPECT_FALSE(d["default"].get<bool>()) << d.dump();
+  for (const auto& d : parse_json(r.out, "devices --json"))
+    EXPECT_FALSE(d["default"].get<bool>()) << d.dump();
   const auto text = run_isocurv({"devices"}, 60, {"ISOCURV_DEVICE=reference"});
   ASSERT_TRUE(text.ok()) << text.describe();
   EXPECT_NE(text.out.find("the default is the C++ reference"), std::string::npos) << text.out;
@@ -158,8 +171,9 @@ TEST(NoOpenCl, TheMessageNamesThePackagesAndTheReference) {
   }
   expect_clean_failure(run_isocurv({"devices"}, 60, none), "pocl-opencl-icd");
   // ... and the reference works there.
-  const auto ok = run_isocurv({"curvature", dataset("sphere"), "--device", "reference", "-o", dir / "o.ply", "--quiet"},
-                              60, none);
+  const auto ok = run_isocurv(
+      {"curvature", dataset("sphere"), "--device", "reference", "-o", dir / "o.ply", "--quiet"}, 60,
+      none);
   ASSERT_TRUE(ok.ok()) << ok.describe();
   EXPECT_FALSE(isocurv::io::read_mesh(dir / "o.ply").mesh.triangles.empty());
 }

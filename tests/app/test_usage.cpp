@@ -7,19 +7,23 @@
 using namespace isocurv::test;
 
 namespace {
-const char* const kCommands[] = {"info", "extract", "curvature", "run", "render", "view", "check", "devices"};
+const char* const kCommands[] = {"info",   "extract", "curvature", "run",
+                                 "render", "view",    "check",     "devices"};
 }  // namespace
 
 TEST(CliUsage, ParseErrorsAreOnePrefixedLineWithStatus2) {
   TempDir dir("usage");
   // CLI11's own messages were two lines without the prefix and exited with 104-114.
-  expect_usage_error(run_isocurv({"extract", dataset("sphere"), "-o", dir / "o.vtp", "--bogus"}), "--bogus");
+  expect_usage_error(run_isocurv({"extract", dataset("sphere"), "-o", dir / "o.vtp", "--bogus"}),
+                     "--bogus");
   expect_usage_error(run_isocurv({"extract", dataset("sphere")}), "--output");
-  expect_usage_error(run_isocurv({"extract", dataset("sphere"), "-o", dir / "o.vtp", "--iso", "abc"}), "--iso");
+  expect_usage_error(
+      run_isocurv({"extract", dataset("sphere"), "-o", dir / "o.vtp", "--iso", "abc"}), "--iso");
   expect_usage_error(run_isocurv({"info"}), "VOLUME");
   expect_usage_error(run_isocurv({"info", dataset("sphere"), "--dims", "1", "2"}), "--dims");
-  expect_usage_error(run_isocurv({"extract", dataset("sphere"), "-o", dir / "o.vtp", "--device", "gpu"}),
-                     "--device");
+  expect_usage_error(
+      run_isocurv({"extract", dataset("sphere"), "-o", dir / "o.vtp", "--device", "gpu"}),
+      "--device");
   expect_usage_error(run_isocurv({"--bogus"}), "--bogus");
   // The message says where to look.
   const auto r = run_isocurv({"render", dataset("sphere"), "-o", dir / "o.png", "--color", "Z"});
@@ -29,7 +33,8 @@ TEST(CliUsage, ParseErrorsAreOnePrefixedLineWithStatus2) {
 }
 
 TEST(CliUsage, UnknownCommandIsAUsageError) {
-  expect_usage_error(run_isocurv({"extrct", dataset("sphere"), "-o", "/nonexistent/o.vtp"}), "extrct");
+  expect_usage_error(run_isocurv({"extrct", dataset("sphere"), "-o", "/nonexistent/o.vtp"}),
+                     "extrct");
 }
 
 TEST(CliUsage, BadInputIsStatus1) {
@@ -41,7 +46,8 @@ TEST(CliUsage, NoArgumentsListsTheCommandsWithStatus2) {
   const auto r = run_isocurv({}, 20);
   EXPECT_EQ(r.exit_code, 2) << r.describe();
   EXPECT_TRUE(r.err.empty()) << r.describe();
-  for (const char* cmd : kCommands) EXPECT_NE(r.out.find(cmd), std::string::npos) << cmd << "\n" << r.out;
+  for (const char* cmd : kCommands)
+    EXPECT_NE(r.out.find(cmd), std::string::npos) << cmd << "\n" << r.out;
 }
 
 TEST(CliUsage, HelpStatesTheExitStatuses) {

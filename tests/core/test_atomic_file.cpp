@@ -1,7 +1,6 @@
 // core/atomic_file: single files and sets of files appear whole or not at all, and a temporary
 // being written when SIGTERM or SIGINT arrives is removed.
 #include <gtest/gtest.h>
-
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -24,8 +23,9 @@ namespace {
 class AtomicFile : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("isocurv_atomic_" + std::to_string(getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = fs::temp_directory_path() /
+           ("isocurv_atomic_" + std::to_string(getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -36,14 +36,17 @@ class AtomicFile : public ::testing::Test {
   std::string at(const std::string& name) const { return (dir_ / name).string(); }
   std::vector<std::string> entries() const {
     std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(dir_)) names.push_back(e.path().filename().string());
+    for (const auto& e : fs::directory_iterator(dir_))
+      names.push_back(e.path().filename().string());
     std::sort(names.begin(), names.end());
     return names;
   }
   fs::path dir_;
 };
 
-void put(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+void put(const std::string& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
 std::string get(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
@@ -74,8 +77,11 @@ int kill_during_write(const std::string& target, int sig, bool as_set) {
   // The child's temporary: temporary_path_for's name, with the child's process id.
   const fs::path t(target);
   const std::string tmp_in_child =
-      (t.parent_path() / ("." + t.stem().string() + ".tmp" + std::to_string(pid) + t.extension().string())).string();
-  for (int i = 0; i < 500 && !fs::exists(tmp_in_child); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      (t.parent_path() /
+       ("." + t.stem().string() + ".tmp" + std::to_string(pid) + t.extension().string()))
+          .string();
+  for (int i = 0; i < 500 && !fs::exists(tmp_in_child); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
   EXPECT_TRUE(fs::exists(tmp_in_child)) << "the child never started writing";
   kill(pid, sig);
   int status = 0;
@@ -101,7 +107,8 @@ TEST_F(AtomicFile, WritesAndReplacesWhole) {
 
 TEST_F(AtomicFile, AnErrorNamingTheTemporaryNamesTheTarget) {
   try {
-    isocurv::write_atomically(at("b.png"), [](const std::string& tmp) { throw isocurv::Error(tmp, "cannot write"); });
+    isocurv::write_atomically(
+        at("b.png"), [](const std::string& tmp) { throw isocurv::Error(tmp, "cannot write"); });
     FAIL() << "no exception";
   } catch (const isocurv::Error& e) {
     EXPECT_EQ(std::string(e.what()), at("b.png") + ": cannot write");
@@ -142,12 +149,14 @@ TEST_F(AtomicFile, AFailedRenameRollsTheSetBack) {
     EXPECT_THROW(set.commit(), isocurv::Error);
   }
   EXPECT_EQ(get(at("a.txt")), "old a") << "the replaced file is restored";
-  EXPECT_EQ(entries(), (std::vector<std::string>{"a.txt", "b"})) << "new files removed, no temporaries left";
+  EXPECT_EQ(entries(), (std::vector<std::string>{"a.txt", "b"}))
+      << "new files removed, no temporaries left";
 }
 
 TEST_F(AtomicFile, SigtermDuringAWriteRemovesTheTemporary) {
   const int status = kill_during_write(at("big.vtp"), SIGTERM, false);
-  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << "the signal still ends the process";
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM)
+      << "the signal still ends the process";
   EXPECT_TRUE(entries().empty()) << ::testing::PrintToString(entries());
 }
 

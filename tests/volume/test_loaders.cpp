@@ -350,17 +350,21 @@ TEST(VolumeLoadVdb, LevelSetFogAndDoubleGrids) {
 TEST(VolumeLoadOverrides, SpacingAndOriginReplaceTheHeaderAlongTheFilesAxes) {
   TempDir dir;
   write_file(dir.file("ramp.data"), to_bytes(ramp_values<std::uint16_t>(), true));
-  write_file(dir.file("ramp.nhdr"),
-             "NRRD0005\ntype: unsigned short\ndimension: 3\nsizes: 5 4 3\nendian: big\nencoding: raw\n"
-             "space directions: (0,0.25,0) (0.5,0,0) (0,0,2)\nspace origin: (1,2,3)\ndata file: ramp.data\n");
+  write_file(
+      dir.file("ramp.nhdr"),
+      "NRRD0005\ntype: unsigned short\ndimension: 3\nsizes: 5 4 3\nendian: big\nencoding: raw\n"
+      "space directions: (0,0.25,0) (0.5,0,0) (0,0,2)\nspace origin: (1,2,3)\n"
+      "data file: ramp.data\n");
   LoadOptions o;
   o.spacing = std::array<double, 3>{1, 2, 3};
   o.origin = std::array<double, 3>{10, 20, 30};
   // The header's axes stay (index x along world y, a left-handed frame the loader reorders), the
   // spacing is along them and the origin is where the file's first voxel goes.
   const Volume v = load(dir.file("ramp.nhdr"), o);
-  expect_ramp(v, [](int x, int y, int z) { return openvdb::Vec3d(10 + 2.0 * y, 20 + 1.0 * x, 30 + 3.0 * z); }, "nrrd",
-              "uint16");
+  expect_ramp(
+      v,
+      [](int x, int y, int z) { return openvdb::Vec3d(10 + 2.0 * y, 20 + 1.0 * x, 30 + 3.0 * z); },
+      "nrrd", "uint16");
   ASSERT_TRUE(v.file_spacing && v.file_origin);
   EXPECT_EQ(*v.file_spacing, openvdb::Vec3d(0.25, 0.5, 2));
   EXPECT_EQ(*v.file_origin, openvdb::Vec3d(1, 2, 3));
@@ -368,17 +372,20 @@ TEST(VolumeLoadOverrides, SpacingAndOriginReplaceTheHeaderAlongTheFilesAxes) {
 
   write_file(dir.file("r.raw"), to_bytes(ramp_values<std::int16_t>(), true));
   write_file(dir.file("r.mhd"),
-             "ObjectType = Image\nNDims = 3\nDimSize = 5 4 3\nElementType = MET_SHORT\nElementSpacing = 0.5 0.25 2\n"
-             "Offset = 1 2 3\nElementByteOrderMSB = True\nElementDataFile = r.raw\n");
+             "ObjectType = Image\nNDims = 3\nDimSize = 5 4 3\nElementType = MET_SHORT\n"
+             "ElementSpacing = 0.5 0.25 2\nOffset = 1 2 3\nElementByteOrderMSB = True\n"
+             "ElementDataFile = r.raw\n");
   LoadOptions s;
   s.spacing = std::array<double, 3>{1, 1, 1.4};
-  expect_ramp(load(dir.file("r.mhd"), s), axis_aligned({1, 1, 1.4}, {1, 2, 3}), "metaimage", "int16");
+  expect_ramp(load(dir.file("r.mhd"), s), axis_aligned({1, 1, 1.4}, {1, 2, 3}), "metaimage",
+              "int16");
 }
 
 TEST(VolumeLoadOverrides, SpacingAndOriginReplaceAVdbTransform) {
   TempDir dir;
   openvdb::initialize();
-  auto grid = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(4.0f, openvdb::Vec3f(0, 0, 0), 0.5f);
+  auto grid =
+      openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(4.0f, openvdb::Vec3f(0, 0, 0), 0.5f);
   openvdb::io::File file(dir.file("ball.vdb"));
   file.write(openvdb::GridPtrVec{grid});
   file.close();
