@@ -15,10 +15,13 @@ void register_curvature(CLI::App& app) {
   static CommonOptions o;
   static std::string in, out;
   cmd->add_option("VOLUME_OR_MESH", in, "Volume or mesh file")->required();
-  cmd->add_option("-o,--output", out, std::string("Mesh file to write (") + io::mesh_extensions() + ")")->required();
+  cmd->add_option("-o,--output", out,
+                  "Mesh file to write (.vtp or .ply: the formats that carry the curvature arrays)")
+      ->required();
   add_common_options(*cmd, o);
   add_curvature_options(*cmd, o, true);
   cmd->callback([] {
+    require_curvature_format(out);  // before any work: .obj and .stl would drop the arrays
     StageTimer timer;
     Surface s = load_surface(in, o, timer);
     prepare_mesh_for_curvature(s, in, o);
@@ -30,7 +33,7 @@ void register_curvature(CLI::App& app) {
     if (o.json) {
       r["input"] = in;
       r["output"] = out;
-      r["device"] = device_for(o).info().name;
+      r["device"] = device_name(o);
       r["timings_ms"] = timer.json();
       std::cout << r.dump(2) << "\n";
     } else if (!o.quiet) {

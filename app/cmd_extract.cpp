@@ -9,9 +9,11 @@ namespace isocurv::app {
 
 void register_extract(CLI::App& app) {
   auto* cmd = app.add_subcommand("extract", "Extract the isosurface of a volume as a fused, indexed triangle mesh");
-  cmd->footer("Example: isocurv extract lobster.vol --iso 40 -o lobster.ply --json\n"
-              "The object is where values are above the isovalue (below for level sets, or with --inside below);\n"
-              "triangles are wound so their normals point out of it.");
+  cmd->footer(
+      "Example: isocurv extract lobster.vol --iso 40 -o lobster.ply --json\n"
+      "The object is where values are above the isovalue (below for level sets, or with\n"
+      "--inside below); triangles are wound so their normals point out of it. An isovalue that\n"
+      "gives no surface writes an empty mesh after a warning (the other commands refuse it).");
   static CommonOptions o;
   static std::string in, out;
   cmd->add_option("VOLUME", in, "Volume file")->required();
@@ -19,7 +21,7 @@ void register_extract(CLI::App& app) {
   add_common_options(*cmd, o);
   cmd->callback([] {
     StageTimer timer;
-    Surface s = load_surface(in, o, timer);
+    Surface s = load_surface(in, o, timer, EmptySurface::warn);
     timer.start("write");
     io::write_mesh(out, s.mesh);
     timer.stop();
@@ -27,7 +29,7 @@ void register_extract(CLI::App& app) {
     if (o.json) {
       r["input"] = in;
       r["output"] = out;
-      r["device"] = device_for(o).info().name;
+      r["device"] = device_name(o);
       r["timings_ms"] = timer.json();
       std::cout << r.dump(2) << "\n";
     } else if (!o.quiet) {

@@ -5,6 +5,7 @@
 #include "app/commands.h"
 #include "app/pipeline.h"
 #include "app/render_options_cli.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "io/mesh_file.h"
 #include "viz/render.h"
@@ -21,7 +22,10 @@ void register_run(CLI::App& app) {
   static std::string in, dir, format = "vtp";
   cmd->add_option("VOLUME", in, "Volume file")->required();
   cmd->add_option("-o,--output", dir, "Output folder (created if missing)")->required();
-  cmd->add_option("--format", format, "Mesh format")->check(CLI::IsMember({"vtp", "ply", "obj"}))->capture_default_str();
+  cmd->add_option("--format", format,
+                  "Mesh format (vtp or ply: the formats that carry the curvature arrays)")
+      ->check(CLI::IsMember({"vtp", "ply"}))
+      ->capture_default_str();
   add_common_options(*cmd, o);
   add_curvature_options(*cmd, o);
   add_render_options(*cmd, ro);
@@ -29,32 +33,47 @@ void register_run(CLI::App& app) {
     namespace fs = std::filesystem;
     if (is_mesh_path(in)) throw Error(in, "isocurv run takes a volume; use isocurv curvature or render for meshes");
     StageTimer timer;
-    Surface s = load_surface(in, o, timer);  // fails before any output folder is made
-    if (s.mesh.triangles.empty())
-      throw Error(in, "no surface at isovalue " + format_number(s.isovalue) + " (see isocurv info for the value range)");
+    Surface s =
+        load_surface(in, o, timer);  // fails (no surface, ...) before any output folder is made
     s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, o, timer, &s.normals);
+    // The folder is made now, and removed again if it was new and the outputs fail; the outputs
+    // appear together or not at all.
+    const bool new_folder = !fs::exists(dir);
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec || !fs::is_directory(dir)) throw Error(dir, "cannot create the output folder: " + ec.message());
+    struct RemoveIfNew {
+      bool armed;
+      ~RemoveIfNew() {
+        std::error_code ignored;
+        if (armed) fs::remove(dir, ignored);  // only when still empty
+      }
+    } cleanup{new_folder};
     std::string stem = fs::path(in).filename().string();
     stem = stem.substr(0, stem.find('.'));
     const std::string mesh_path = (fs::path(dir) / (stem + "." + format)).string();
     const std::string png_path = (fs::path(dir) / (stem + ".png")).string();
     const std::string stats_path = (fs::path(dir) / "stats.json").string();
+    AtomicFileSet outputs;
     timer.start("write");
-    io::write_mesh(mesh_path, s.mesh, &*s.field);
+    outputs.write(mesh_path,
+                  [&](const std::string& tmp) { io::write_mesh(tmp, s.mesh, &*s.field); });
     timer.start("render");
     viz::RenderOptions opts = ro;
     if (opts.title.empty()) opts.title = fs::path(in).filename().string() + "  (" + opts.color + ")";
-    viz::render_png(png_path, s.mesh, *s.field, opts);
+    outputs.write(png_path,
+                  [&](const std::string& tmp) { viz::render_png(tmp, s.mesh, *s.field, opts); });
     timer.stop();
     nlohmann::json r = surface_report(s);
     r["input"] = in;
     r["mesh"] = mesh_path;
     r["png"] = png_path;
-    r["device"] = device_for(o).info().name;
+    r["device"] = device_name(o);
     r["timings_ms"] = timer.json();
-    write_text_file(stats_path, r.dump(2) + "\n");
+    outputs.write(stats_path,
+                  [&](const std::string& tmp) { write_text_file(tmp, r.dump(2) + "\n"); });
+    outputs.commit();
+    cleanup.armed = false;
     if (o.json) {
       std::cout << r.dump(2) << "\n";
     } else if (!o.quiet) {

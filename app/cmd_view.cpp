@@ -28,22 +28,24 @@ void register_view(CLI::App& app) {
     StageTimer timer;
     float iso = 0;
     auto vol = std::make_shared<volume::Volume>(load_volume(in, o, timer, &iso));
-    Device& dev = device_for(o);
-    auto mesher = std::make_shared<mc::Mesher>(*vol, dev);
+    // The OpenCL mesher keeps its per-block ranges between slider moves; the reference re-reads
+    // the whole volume each time (slow, but it needs no OpenCL).
+    std::shared_ptr<mc::Mesher> mesher;
+    if (!reference_device(o)) mesher = std::make_shared<mc::Mesher>(*vol, device_for(o));
     viz::ExplorerSetup setup;
     setup.isovalue = iso;
     setup.min_value = static_cast<float>(vol->stats.min);
     setup.max_value = static_cast<float>(vol->stats.max);
     setup.view = ro;
     if (setup.view.title.empty()) setup.view.title = in;
-    setup.surface = [vol, mesher, &dev](float value) {
+    setup.surface = [vol, mesher](float value) {
       const auto t0 = std::chrono::steady_clock::now();
       mc::Options mo;
       mo.cap = o.cap;
       mo.snap = o.snap;
       mc::ExtractTimings et;
       viz::Surface out;
-      out.mesh = mesher->extract(value, mo, &et);
+      out.mesh = mesher ? mesher->extract(value, mo, &et) : extract_surface(*vol, value, o);
       const auto t1 = std::chrono::steady_clock::now();
       StageTimer ignored;  // the explorer shows its own timings
       out.field = estimate_curvature(out.mesh, vol.get(), o, ignored);

@@ -1,36 +1,75 @@
 // isocurv: the command line. Each subcommand lives in its own cmd_*.cpp and only composes stages.
+// Exit status: 0 success, 1 bad input or a failure, 2 a usage error (bad or missing arguments).
 #include <CLI/CLI.hpp>
-
 #include <cstdio>
 #include <exception>
+#include <iostream>
+#include <string>
 
 #include "app/commands.h"
 #include "core/error.h"
 #include "core/huge_pages.h"
+#include "io/vtk_errors.h"
+
+namespace {
+
+constexpr int kUsageError = 2;
+constexpr int kFailure = 1;
+
+/// `text` on one line: newlines and runs of blanks become single spaces.
+std::string one_line(const std::string& text) {
+  std::string line;
+  for (char c : text) {
+    const char d = (c == '\n' || c == '\r' || c == '\t') ? ' ' : c;
+    if (!(d == ' ' && (line.empty() || line.back() == ' '))) line.push_back(d);
+  }
+  while (!line.empty() && line.back() == ' ') line.pop_back();
+  return line;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   isocurv::retain_freed_memory();  // the explorer re-extracts on every slider move
+  isocurv::io::silence_vtk_output();  // VTK's messages reach the user only as our one-line errors
   CLI::App app{"isocurv: isosurfaces and their curvature from volumes (OpenVDB, OpenCL, VTK)"};
-  app.require_subcommand(1);
+  app.require_subcommand(0, 1);  // none given is handled below, after CLI11 named any stray option
   app.set_version_flag("--version", "isocurv 0.1.0");
+  app.footer(
+      "Run isocurv COMMAND --help for a command's options and an example.\n"
+      "Exit status: 0 success, 1 bad input or a failure (one line on stderr), 2 a usage error.\n"
+      "isocurv without arguments prints this list and exits with status 2.");
   isocurv::app::register_commands(app);
+  if (argc <= 1) {
+    std::cout << app.help();
+    return kUsageError;
+  }
   // Name a mistyped command (CLI11 would only say that a subcommand is required).
-  const auto known = app.get_subcommands([&](const CLI::App* c) { return argc > 1 && c->check_name(argv[1]); });
-  if (argc > 1 && argv[1][0] != '-' && known.empty()) {
+  const auto known = app.get_subcommands([&](const CLI::App* c) { return c->check_name(argv[1]); });
+  if (argv[1][0] != '-' && known.empty()) {
     std::fprintf(stderr, "isocurv: unknown command '%s' (commands: info extract curvature run render view check devices; "
                          "see isocurv --help)\n", argv[1]);
-    return 1;
+    return kUsageError;
   }
   try {
     app.parse(argc, argv);
+    if (app.get_subcommands().empty()) {  // only top-level options: still no command
+      std::cout << app.help();
+      return kUsageError;
+    }
+  } catch (const CLI::Success& e) {
+    return app.exit(e);  // --help, --help-all, --version: printed on stdout, status 0
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    const std::string where = known.empty() ? "isocurv" : "isocurv " + known.front()->get_name();
+    std::fprintf(stderr, "isocurv: %s (see %s --help)\n", one_line(e.what()).c_str(),
+                 where.c_str());
+    return kUsageError;
   } catch (const isocurv::Error& e) {
-    std::fprintf(stderr, "isocurv: %s\n", e.what());
-    return 1;
+    std::fprintf(stderr, "isocurv: %s\n", one_line(e.what()).c_str());
+    return kFailure;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "isocurv: error: %s\n", e.what());
-    return 1;
+    std::fprintf(stderr, "isocurv: error: %s\n", one_line(e.what()).c_str());
+    return kFailure;
   }
   return 0;
 }

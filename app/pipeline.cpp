@@ -1,8 +1,9 @@
 #include "app/pipeline.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -15,8 +16,10 @@
 #include "curvature/estimate.h"
 #include "curvature/field_stats.h"
 #include "curvature/weld.h"
+#include "curvature/reference.h"
 #include "io/mesh_file.h"
 #include "mc/extract.h"
+#include "mc/extract_reference.h"
 #include "mc/mesh_check.h"
 #include "volume/gradient_normals.h"
 #include "volume/load.h"
@@ -26,7 +29,17 @@ namespace isocurv::app {
 void add_common_options(CLI::App& cmd, CommonOptions& o, bool with_iso) {
   if (with_iso)
     cmd.add_option("--iso", o.iso, "Isovalue (default: the volume's suggested isovalue, see isocurv info)");
-  cmd.add_option("--device", o.device, "OpenCL device number from isocurv devices (default: a GPU, else PoCL's CPU device)");
+  cmd.add_option(
+         "--device", o.device,
+         "OpenCL device number from isocurv devices (default: a GPU, else PoCL's CPU device), or "
+         "'reference': the plain C++ mesher and double-precision curvature, slow but needing "
+         "no OpenCL")
+      ->check([](const std::string& v) -> std::string {
+        if (v == "reference" ||
+            (!v.empty() && v.find_first_not_of("0123456789") == std::string::npos))
+          return "";
+        return "expected a device number (see isocurv devices) or 'reference', not '" + v + "'";
+      });
   cmd.add_flag("--cap", o.cap, "Close surfaces cut by the volume's bounding box (default: leave them open)");
   cmd.add_option("--snap", o.snap,
                  "Move vertices closer than this fraction of a voxel to a voxel onto it and merge them "
@@ -80,12 +93,40 @@ std::string format_number(double x) {
   return buf;
 }
 
+bool reference_device(const CommonOptions& o) {
+  if (!o.device.empty()) return o.device == "reference";
+  const char* env = std::getenv("ISOCURV_DEVICE");
+  return env && std::string(env) == "reference";
+}
+
 Device& device_for(const CommonOptions& o) {
+  if (reference_device(o)) throw Error("internal: device_for called for --device reference");
   static std::map<int, std::shared_ptr<Device>> opened;
-  if (o.device < 0) return Device::default_device();
-  auto& d = opened[o.device];
-  if (!d) d = Device::open(o.device);
-  return *d;
+  try {
+    if (o.device.empty()) return Device::default_device();
+    const int index = std::stoi(o.device);
+    auto& d = opened[index];
+    if (!d) d = Device::open(index);
+    return *d;
+  } catch (const NoOpenCL& e) {
+    throw Error(std::string(e.what()) +
+                "; or run with --device reference (the C++ references: slow, no OpenCL)");
+  } catch (const std::out_of_range&) {
+    throw Error("no OpenCL device number " + o.device + " (see isocurv devices)");
+  }
+}
+
+std::string device_name(const CommonOptions& o) {
+  return reference_device(o) ? "reference (C++ mesher, double-precision curvature)"
+                             : device_for(o).info().name;
+}
+
+Mesh extract_surface(const volume::Volume& v, float isovalue, const CommonOptions& o) {
+  mc::Options mo;
+  mo.cap = o.cap;
+  mo.snap = o.snap;
+  if (reference_device(o)) return mc::extract_reference(v, isovalue, mo);
+  return mc::extract(v, isovalue, device_for(o), mo);
 }
 
 volume::Volume load_volume(const std::string& path, const CommonOptions& o, StageTimer& timer, float* iso) {
@@ -98,13 +139,52 @@ volume::Volume load_volume(const std::string& path, const CommonOptions& o, Stag
   if (o.iso && (value < v.stats.min || value > v.stats.max))
     throw Error(path, "isovalue " + format_number(value) + " is outside the value range [" +
                           format_number(v.stats.min) + ", " + format_number(v.stats.max) + "]");
+  // The tie rule: a voxel equal to the isovalue is outside, so at the top of the range (bottom
+  // when the object is below the isovalue) no voxel is inside and there is no surface.
+  const bool above = v.inside == volume::Inside::Above;
+  if (value == static_cast<float>(above ? v.stats.max : v.stats.min))
+    throw Error(path, "isovalue " + format_number(value) + " equals the " +
+                          (above ? "maximum" : "minimum") +
+                          " value, so there is no surface: a voxel equal to the isovalue counts as "
+                          "outside, and none is " + (above ? "above" : "below") +
+                          " it (the range is [" + format_number(v.stats.min) + ", " +
+                          format_number(v.stats.max) + "])");
   if (iso) *iso = value;
   return v;
 }
 
-Surface load_surface(const std::string& path, const CommonOptions& o, StageTimer& timer) {
+namespace {
+
+/// Volume options that cannot apply to a mesh file are errors, not silently ignored.
+void reject_volume_options(const std::string& path, const CommonOptions& o) {
+  std::vector<std::string> given = o.volume.given();
+  if (o.iso) given.insert(given.begin(), "--iso");
+  if (o.cap) given.push_back("--cap");
+  if (!given.empty())
+    throw Error(path, given.front() + " applies to volumes only, and this is a mesh file");
+}
+
+/// The one rule for an isosurface without triangles (see EmptySurface).
+void handle_empty_surface(const Surface& s, const std::string& path, const CommonOptions& o,
+                          EmptySurface empty) {
+  if (!s.mesh.triangles.empty()) return;
+  const std::string problem = "isovalue " + format_number(s.isovalue) +
+                              " gives no surface (the values range over [" +
+                              format_number(s.volume->stats.min) + ", " +
+                              format_number(s.volume->stats.max) + "]; see isocurv info)";
+  if (empty == EmptySurface::error) throw Error(path, problem);
+  if (!o.quiet)
+    std::fprintf(stderr, "isocurv: warning: %s: %s; writing an empty mesh\n", path.c_str(),
+                 problem.c_str());
+}
+
+}  // namespace
+
+Surface load_surface(const std::string& path, const CommonOptions& o, StageTimer& timer,
+                     EmptySurface empty) {
   Surface s;
   if (is_mesh_path(path)) {
+    reject_volume_options(path, o);
     timer.start("load");
     io::MeshFile f = io::read_mesh(path);
     timer.stop();
@@ -113,13 +193,11 @@ Surface load_surface(const std::string& path, const CommonOptions& o, StageTimer
     return s;
   }
   s.volume = load_volume(path, o, timer, &s.isovalue);
-  Device& dev = device_for(o);
+  if (!reference_device(o)) device_for(o);  // open the device (and fail on it) before timing
   timer.start("extract");
-  mc::Options mo;
-  mo.cap = o.cap;
-  mo.snap = o.snap;
-  s.mesh = mc::extract(*s.volume, s.isovalue, dev, mo);
+  s.mesh = extract_surface(*s.volume, s.isovalue, o);
   timer.stop();
+  handle_empty_surface(s, path, o, empty);
   return s;
 }
 
@@ -148,6 +226,19 @@ void prepare_mesh_for_curvature(Surface& s, const std::string& path, const Commo
                  o.flip ? "--flip made it so: drop --flip" : "--flip reverses its triangles");
 }
 
+void require_curvature_format(const std::string& path) {
+  std::string lower = path;
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  for (const char* ext : {".vtp", ".ply"})
+    if (lower.size() > 4 && lower.compare(lower.size() - 4, 4, ext) == 0) return;
+  if (is_mesh_path(path))
+    throw Error(path,
+                "this format cannot hold the curvature arrays: write .vtp or .ply (extract writes "
+                ".obj and .stl)");
+  throw Error(path, "unknown mesh extension: write .vtp or .ply (they carry the curvature arrays)");
+}
+
 curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Volume* volume,
                                              const CommonOptions& o, StageTimer& timer,
                                              NormalsUsed* used) {
@@ -170,9 +261,11 @@ curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Vol
   } else {
     co.ao_scale = curvature::default_ao_scale(mesh);
   }
-  Device& dev = device_for(o);
+  if (!reference_device(o)) device_for(o);  // open the device (and fail on it) before timing
   timer.start("curvature");
-  curvature::CurvatureField field = curvature::estimate(mesh, dev, co);
+  curvature::CurvatureField field = reference_device(o)
+                                        ? curvature::estimate_reference(mesh, co)
+                                        : curvature::estimate(mesh, device_for(o), co);
   timer.stop();
   return field;
 }

@@ -21,7 +21,7 @@ namespace isocurv::app {
 struct CommonOptions {
   VolumeOptions volume;
   std::optional<float> iso;       ///< --iso; default: the volume's suggested isovalue
-  int device = -1;                ///< --device; -1: default device
+  std::string device;             ///< --device: "" the default, an OpenCL device number, or "reference"
   bool cap = false;               ///< --cap
   float snap = mc::kDefaultSnap;  ///< --snap (mc::Options::snap)
   bool json = false;              ///< --json
@@ -71,22 +71,47 @@ struct Surface {
   bool flipped = false;      ///< triangles reversed by --flip
 };
 
-/// The device chosen by --device (opened once per process).
+/// True for --device reference: the C++ references (mc::extract_reference, the double-precision
+/// curvature::estimate_reference) instead of OpenCL. Slow, single-threaded, needs no driver.
+bool reference_device(const CommonOptions& o);
+
+/// The OpenCL device chosen by --device (opened once per process). With no OpenCL platform the
+/// Error names the packages to install and suggests --device reference. Not for the reference.
 Device& device_for(const CommonOptions& o);
 
-/// Loads a volume (stage "load") and checks --iso against its value range (an isovalue outside
-/// [min, max] is an Error naming the file).
+/// The name of the device --device chose, for reports ("reference (C++)" for the reference).
+std::string device_name(const CommonOptions& o);
+
+/// The isosurface of `v` at `isovalue` on the chosen device (OpenCL or the reference).
+Mesh extract_surface(const volume::Volume& v, float isovalue, const CommonOptions& o);
+
+/// Loads a volume (stage "load") and checks --iso against its value range: an isovalue outside
+/// [min, max], or at the end of the range where no voxel can be inside (a voxel equal to the
+/// isovalue is outside: the maximum for --inside above, the minimum for below), is an Error
+/// naming the file.
 volume::Volume load_volume(const std::string& path, const CommonOptions& o, StageTimer& timer, float* iso);
 
-/// Volume path -> load + extract; mesh path -> read (stage "load").
-Surface load_surface(const std::string& path, const CommonOptions& o, StageTimer& timer);
+/// What a command does when the isosurface has no triangles (README, "The empty surface"):
+/// `error` for the commands that need triangles (curvature, run, render, check), `warn` for
+/// extract, which writes the empty mesh after one warning line on stderr (unless --quiet).
+enum class EmptySurface { error, warn };
+
+/// Volume path -> load + extract (stage "extract"), the empty surface handled per `empty`; mesh
+/// path -> read (stage "load"), an Error when volume-only options (--iso --cap --grid --inside
+/// --dims --type --endian --spacing --origin) were given, since they cannot apply.
+Surface load_surface(const std::string& path, const CommonOptions& o, StageTimer& timer,
+                     EmptySurface empty = EmptySurface::error);
+
+/// Throws Error(path, ...) unless `path` is a mesh format that carries curvature arrays (.vtp,
+/// .ply): .obj and .stl would silently drop them.
+void require_curvature_format(const std::string& path);
 
 /// Readies a mesh file's mesh for curvature (nothing for a volume's isosurface): welds exact
 /// duplicate vertices (a note on stderr unless --quiet), applies --flip (an Error on volume
 /// input), and warns (one line on stderr) when the closed part of the mesh is oriented inward.
 void prepare_mesh_for_curvature(Surface& s, const std::string& path, const CommonOptions& o);
 
-/// Estimates the curvature of `mesh` (stage "curvature"). Normals: --normals, by default volume
+/// Estimates the curvature of `mesh` (stage "curvature") on the chosen device. Normals: --normals, by default volume
 /// when `volume` is given, else mesh; volume normals come from volume::gradient_normals_for_mesh
 /// (face normals where the gradient disagrees or vanishes). --normals volume without a volume
 /// (a mesh file) is an Error. `used`, when given, receives what was used.

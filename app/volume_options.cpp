@@ -1,7 +1,5 @@
 #include "app/volume_options.h"
 
-#include "core/error.h"
-
 namespace isocurv::app {
 
 void add_volume_options(CLI::App& cmd, VolumeOptions& o) {
@@ -10,14 +8,38 @@ void add_volume_options(CLI::App& cmd, VolumeOptions& o) {
                  "Which side of the isovalue is the object: above (densities, CT; the default) or "
                  "below (level sets, the default for VDB level sets). Normals point out of the object.")
       ->check(CLI::IsMember({"above", "below"}))->group("Volume");
-  cmd.add_option("--dims", o.dims, ".raw: X Y Z voxel counts (X fastest)")->expected(3)->group("Volume");
-  cmd.add_option("--type", o.type, ".raw: voxel type")
-      ->check(CLI::IsMember({"uint8", "int8", "uint16", "int16", "uint32", "int32", "float", "double"}))
+  cmd.add_option("--dims", o.dims, ".raw: X Y Z voxel counts (X fastest; wins over the file name)")
+      ->expected(3)
       ->group("Volume");
-  cmd.add_option("--endian", o.endian, ".raw: byte order")->check(CLI::IsMember({"little", "big"}))
-      ->capture_default_str()->group("Volume");
-  cmd.add_option("--spacing", o.spacing, ".raw: voxel spacing X Y Z")->expected(3)->capture_default_str()->group("Volume");
-  cmd.add_option("--origin", o.origin, ".raw: world origin X Y Z")->expected(3)->capture_default_str()->group("Volume");
+  cmd.add_option("--type", o.type, ".raw: voxel type (wins over the file name)")
+      ->check(
+          CLI::IsMember({"uint8", "int8", "uint16", "int16", "uint32", "int32", "float", "double"}))
+      ->group("Volume");
+  cmd.add_option("--endian", o.endian,
+                 ".raw: byte order (default: the file name's le/be, else little)")
+      ->check(CLI::IsMember({"little", "big"}))
+      ->group("Volume");
+  cmd.add_option("--spacing", o.spacing,
+                 "Voxel spacing X Y Z, replacing the file's (any format; raw default 1 1 1)")
+      ->expected(3)
+      ->group("Volume");
+  cmd.add_option("--origin", o.origin,
+                 "World position X Y Z of the first voxel, replacing the file's (any format; raw "
+                 "default 0 0 0)")
+      ->expected(3)
+      ->group("Volume");
+}
+
+std::vector<std::string> VolumeOptions::given() const {
+  std::vector<std::string> out;
+  if (!grid.empty()) out.push_back("--grid");
+  if (!inside.empty()) out.push_back("--inside");
+  if (!dims.empty()) out.push_back("--dims");
+  if (!type.empty()) out.push_back("--type");
+  if (!endian.empty()) out.push_back("--endian");
+  if (!spacing.empty()) out.push_back("--spacing");
+  if (!origin.empty()) out.push_back("--origin");
+  return out;
 }
 
 volume::LoadOptions to_load_options(const VolumeOptions& o) {
@@ -27,9 +49,10 @@ volume::LoadOptions to_load_options(const VolumeOptions& o) {
   if (o.inside == "below") l.inside = volume::Inside::Below;
   if (o.dims.size() == 3) l.raw.dims = {o.dims[0], o.dims[1], o.dims[2]};
   l.raw.type = o.type;
-  l.raw.big_endian = o.endian == "big";
-  if (o.spacing.size() == 3) l.raw.spacing = {o.spacing[0], o.spacing[1], o.spacing[2]};
-  if (o.origin.size() == 3) l.raw.origin = {o.origin[0], o.origin[1], o.origin[2]};
+  if (!o.endian.empty()) l.raw.big_endian = o.endian == "big";
+  if (o.spacing.size() == 3)
+    l.spacing = std::array<double, 3>{o.spacing[0], o.spacing[1], o.spacing[2]};
+  if (o.origin.size() == 3) l.origin = std::array<double, 3>{o.origin[0], o.origin[1], o.origin[2]};
   return l;
 }
 

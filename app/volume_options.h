@@ -1,5 +1,6 @@
 #pragma once
-// The options every command that reads a volume shares (--grid, --inside, raw-file layout).
+// The options every command that reads a volume shares (--grid, --inside, raw-file layout,
+// --spacing and --origin overrides).
 #include <CLI/CLI.hpp>
 
 #include <string>
@@ -9,19 +10,24 @@
 
 namespace isocurv::app {
 
+/// Each field is empty when the option was not given, so "not given" never looks like a value.
 struct VolumeOptions {
-  std::string grid;
-  std::string inside;                       // "", "above" or "below"
-  std::vector<int> dims;                    // raw: X Y Z
-  std::string type;                         // raw voxel type
-  std::string endian = "little";            // raw byte order
-  std::vector<double> spacing{1, 1, 1};     // raw spacing
-  std::vector<double> origin{0, 0, 0};      // raw origin
+  std::string grid;             // .vdb grid name
+  std::string inside;           // "above" or "below"
+  std::vector<int> dims;        // raw: X Y Z
+  std::string type;             // raw voxel type
+  std::string endian;           // raw byte order: "little" or "big"
+  std::vector<double> spacing;  // any format: overrides the header
+  std::vector<double> origin;   // any format: overrides the header
+
+  /// The options given, as they are spelled on the command line ("--grid", "--dims", ...).
+  std::vector<std::string> given() const;
 };
 
 /// Adds --grid, --inside, --dims, --type, --endian, --spacing, --origin to `cmd`.
 void add_volume_options(CLI::App& cmd, VolumeOptions& o);
-/// Converts parsed options to volume::LoadOptions.
+/// Converts parsed options to volume::LoadOptions (volume::load rejects those that cannot apply
+/// to the file's format).
 volume::LoadOptions to_load_options(const VolumeOptions& o);
 
 }  // namespace isocurv::app

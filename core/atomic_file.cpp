@@ -1,39 +1,188 @@
 #include "core/atomic_file.h"
 
+#include <signal.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
 
 #include "core/error.h"
 
 namespace isocurv {
+namespace {
+
+namespace fs = std::filesystem;
+
+// ---- The registry of live temporaries, read by the signal handler ----
+// A slot is free (0), being filled (1) or live (2); the handler only reads live slots, and only
+// with async-signal-safe calls (unlink, raise).
+constexpr int kSlots = 64;
+constexpr std::size_t kPathBytes = 4096;
+struct Slot {
+  std::atomic<int> state{0};
+  char path[kPathBytes];
+};
+Slot g_slots[kSlots];
+static_assert(std::atomic<int>::is_always_lock_free, "the signal handler needs lock-free atomics");
+
+constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
+
+extern "C" void remove_temporaries_and_reraise(int sig) {
+  for (Slot& s : g_slots)
+    if (s.state.load() == 2) unlink(s.path);
+  // SA_RESETHAND restored the default action; the signal is blocked until this handler returns,
+  // then it is delivered again and ends the process as it would have without us.
+  raise(sig);
+}
+
+void install_handlers() {
+  for (int sig : kSignals) {
+    struct sigaction old {};
+    if (sigaction(sig, nullptr, &old) != 0 || old.sa_handler != SIG_DFL ||
+        (old.sa_flags & SA_SIGINFO))
+      continue;
+    struct sigaction action {};
+    action.sa_handler = remove_temporaries_and_reraise;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESETHAND;
+    sigaction(sig, &action, nullptr);
+  }
+}
+
+/// Registers `path` for removal on a fatal signal; returns its slot, or -1 when none is free.
+int register_temporary(const std::string& path) {
+  static std::once_flag once;
+  std::call_once(once, install_handlers);
+  if (path.size() >= kPathBytes) return -1;
+  for (int i = 0; i < kSlots; ++i) {
+    int expected = 0;
+    if (g_slots[i].state.compare_exchange_strong(expected, 1)) {
+      std::memcpy(g_slots[i].path, path.c_str(), path.size() + 1);
+      g_slots[i].state.store(2);
+      return i;
+    }
+  }
+  return -1;
+}
+
+void release_temporary(int& slot) {
+  if (slot >= 0) g_slots[slot].state.store(0);
+  slot = -1;
+}
+
+/// `text` with every occurrence of `from` replaced by `to`.
+std::string replace_all(std::string text, const std::string& from, const std::string& to) {
+  for (std::size_t at = text.find(from); !from.empty() && at != std::string::npos;
+       at = text.find(from, at + to.size()))
+    text.replace(at, from.size(), to);
+  return text;
+}
+
+/// The name under which commit() keeps a file it replaces until the whole set is in place.
+std::string backup_path_for(const std::string& path) {
+  fs::path p(path);
+  return (p.parent_path() /
+          ("." + p.stem().string() + ".old" + std::to_string(getpid()) + p.extension().string()))
+      .string();
+}
+
+}  // namespace
 
 std::string temporary_path_for(const std::string& path) {
-  namespace fs = std::filesystem;
   fs::path p(path);
   std::string name = "." + p.stem().string() + ".tmp" + std::to_string(getpid()) + p.extension().string();
   return (p.parent_path() / name).string();
 }
 
 void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write) {
-  namespace fs = std::filesystem;
+  AtomicFileSet set;
+  set.write(path, write);
+  set.commit();
+}
+
+AtomicFileSet::~AtomicFileSet() {
+  for (Entry& e : entries_) {
+    std::error_code ec;
+    fs::remove(e.tmp, ec);
+    release_temporary(e.slot);
+  }
+}
+
+void AtomicFileSet::write(const std::string& path,
+                          const std::function<void(const std::string&)>& write) {
   fs::path parent = fs::path(path).parent_path();
   if (!parent.empty() && !fs::is_directory(parent))
     throw Error(path, "cannot write: folder " + parent.string() + " does not exist");
-  const std::string tmp = temporary_path_for(path);
+  Entry e;
+  e.path = path;
+  e.tmp = temporary_path_for(path);
+  e.slot = register_temporary(e.tmp);
   try {
-    write(tmp);
-    if (!fs::exists(tmp)) throw Error(path, "writer produced no file");
-    if (std::rename(tmp.c_str(), path.c_str()) != 0)
-      throw Error(path, std::string("cannot write: ") + std::strerror(errno));
+    write(e.tmp);
+  } catch (const Error& error) {
+    std::error_code ec;
+    fs::remove(e.tmp, ec);
+    release_temporary(e.slot);
+    throw Error(replace_all(error.what(), e.tmp, path));
   } catch (...) {
     std::error_code ec;
-    fs::remove(tmp, ec);
+    fs::remove(e.tmp, ec);
+    release_temporary(e.slot);
     throw;
   }
+  entries_.push_back(std::move(e));
+}
+
+void AtomicFileSet::commit() {
+  for (const Entry& e : entries_)
+    if (!fs::exists(e.tmp)) throw Error(e.path, "writer produced no file");
+  // One file needs no backup: rename() replaces it atomically or not at all.
+  const bool several = entries_.size() > 1;
+  const std::size_t n = entries_.size();
+  std::vector<std::string> backups(n);
+  std::vector<int> backup_slots(n, -1);
+  std::vector<char> existed(n, 0);
+  std::size_t done = 0;
+  try {
+    for (; done < n; ++done) {
+      Entry& e = entries_[done];
+      existed[done] = several && fs::exists(e.path);
+      if (existed[done]) {
+        const std::string b = backup_path_for(e.path);
+        std::error_code ec;
+        fs::remove(b, ec);
+        backup_slots[done] = register_temporary(b);
+        if (link(e.path.c_str(), b.c_str()) == 0) backups[done] = b;
+      }
+      if (std::rename(e.tmp.c_str(), e.path.c_str()) != 0)
+        throw Error(e.path, std::string("cannot write: ") + std::strerror(errno));
+      release_temporary(e.slot);
+    }
+  } catch (...) {
+    // Put back what the renames so far replaced, remove what they added; the failing file still
+    // has its old contents.
+    std::error_code ec;
+    for (std::size_t j = 0; j < done; ++j) {
+      if (!backups[j].empty())
+        std::rename(backups[j].c_str(), entries_[j].path.c_str());
+      else if (!existed[j])
+        fs::remove(entries_[j].path, ec);
+    }
+    if (done < n && !backups[done].empty()) fs::remove(backups[done], ec);
+    for (int& slot : backup_slots) release_temporary(slot);
+    entries_.erase(entries_.begin(), entries_.begin() + static_cast<std::ptrdiff_t>(done));
+    throw;  // the destructor removes the temporaries not yet renamed
+  }
+  for (std::size_t j = 0; j < n; ++j) {
+    std::error_code ec;
+    if (!backups[j].empty()) fs::remove(backups[j], ec);
+    release_temporary(backup_slots[j]);
+  }
+  entries_.clear();
 }
 
 }  // namespace isocurv

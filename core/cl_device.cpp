@@ -15,12 +15,18 @@ struct Found {
 };
 
 std::vector<Found> enumerate() {
+  // The ICD loader (libOpenCL.so.1, Debian's ocl-icd-libopencl1) answers CL_PLATFORM_NOT_FOUND_KHR
+  // (an exception here) when no driver is registered in /etc/OpenCL/vendors.
   std::vector<cl::Platform> platforms;
-  cl_int err = cl::Platform::get(&platforms);
-  (void)err;
+  try {
+    cl::Platform::get(&platforms);
+  } catch (const cl::Error&) {
+    platforms.clear();
+  }
   if (platforms.empty())
-    throw Error("no OpenCL platform found: install an OpenCL driver, e.g. apt-get install pocl-opencl-icd "
-                "(CPU) or your GPU vendor's OpenCL ICD");
+    throw NoOpenCL(
+        "no OpenCL platform found: the OpenCL loader (ocl-icd-libopencl1) finds no driver; "
+        "install one, e.g. apt-get install pocl-opencl-icd (CPU) or your GPU vendor's OpenCL ICD");
   std::vector<Found> out;
   for (auto& p : platforms) {
     std::vector<cl::Device> devs;
@@ -45,7 +51,9 @@ std::vector<Found> enumerate() {
     }
   }
   if (out.empty())
-    throw Error("OpenCL platforms exist but offer no device: install pocl-opencl-icd for a CPU device");
+    throw NoOpenCL(
+        "OpenCL platforms exist but offer no device: apt-get install pocl-opencl-icd for a "
+        "CPU device");
   return out;
 }
 

@@ -11,9 +11,18 @@
 #include <utility>
 #include <vector>
 
+#include "core/error.h"
+
 namespace isocurv {
 
 class ScratchBuffers;
+
+/// The Error list_devices() and Device::open() throw when there is no OpenCL platform or device
+/// at all (no driver installed); its message names the Debian packages that provide one.
+class NoOpenCL : public Error {
+ public:
+  using Error::Error;
+};
 
 /// One OpenCL device as `isocurv devices` lists it.
 struct DeviceInfo {
@@ -26,8 +35,8 @@ struct DeviceInfo {
   std::uint32_t compute_units = 0;
 };
 
-/// Every device on every platform, in a stable order. Throws Error naming the packages to install
-/// when no OpenCL platform exists.
+/// Every device on every platform, in a stable order. Throws NoOpenCL, naming the packages to
+/// install, when no OpenCL platform or device exists.
 std::vector<DeviceInfo> list_devices();
 
 /// An opened device with its context and in-order queue. Programs are built once and cached.

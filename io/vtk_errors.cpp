@@ -4,7 +4,9 @@
 #include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
 #include <vtkExecutive.h>
+#include <vtkLogger.h>
 #include <vtkObject.h>
+#include <vtkOutputWindow.h>
 #include <vtkXMLReader.h>
 
 namespace isocurv::io {
@@ -29,6 +31,11 @@ std::string clean(std::string text) {
 }
 
 }  // namespace
+
+void silence_vtk_output() {
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  vtkOutputWindow::GetInstance()->SetDisplayModeToNever();
+}
 
 VtkErrorCapture::VtkErrorCapture(vtkObject* object) : command_(vtkSmartPointer<vtkCallbackCommand>::New()) {
   command_->SetCallback(&VtkErrorCapture::on_event);

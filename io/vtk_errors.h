@@ -10,6 +10,12 @@ class vtkCallbackCommand;
 
 namespace isocurv::io {
 
+/// Stops VTK from printing anything itself, for the whole process: its logger's stderr output
+/// (vtkLogger, with colour codes) and its output window (where errors go that no observer takes).
+/// VTK errors still reach VtkErrorCapture observers, which turn them into one-line exceptions.
+/// Call once, early in main().
+void silence_vtk_output();
+
 /// For its lifetime, observes the ErrorEvent of a VTK object and keeps the first message instead
 /// of letting VTK print it. For an algorithm it also observes the algorithm's executive (which
 /// reports "returned failure for request"), and for an XML reader its internal parser. Typical

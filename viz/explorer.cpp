@@ -300,7 +300,7 @@ void run_explorer(const ExplorerSetup& setup) {
   const char* display = std::getenv("DISPLAY");
   if (setup.script.empty() && !(display && *display))
     throw Error("no X display (DISPLAY is unset): the interactive explorer needs one; render PNGs headless instead");
-  ensure_display();
+  ensure_display(setup.script.empty() ? DisplayUse::interactive : DisplayUse::offscreen);
   Explorer explorer(setup);
   explorer.run();
 }

@@ -16,6 +16,9 @@
 
 #include "core/error.h"
 
+// Last: Xlib defines macros (Bool, Status, None, Success) that other headers would trip over.
+#include <X11/Xlib.h>
+
 namespace isocurv::viz {
 namespace {
 
@@ -111,14 +114,33 @@ Xvfb& server() {
   return instance;
 }
 
+/// True when an X client can connect to `name` (XOpenDisplay: the socket, the server's
+/// handshake and authorisation).
+bool display_opens(const char* name) {
+  Display* d = XOpenDisplay(name);
+  if (!d) return false;
+  XCloseDisplay(d);
+  return true;
+}
+
 }  // namespace
 
-void ensure_display() {
+void ensure_display(DisplayUse use) {
   std::lock_guard<std::mutex> lock(g_mutex);
-  const char* display = std::getenv("DISPLAY");
-  if (display && *display) return;
+  if (server().running()) return;
+  const char* env = std::getenv("DISPLAY");
+  const std::string display = env ? env : "";
+  if (!display.empty()) {
+    if (display_opens(display.c_str())) return;
+    if (use == DisplayUse::interactive)
+      throw Error("cannot open X display '" + display +
+                  "' (is the X server running, and may we connect?)");
+  }
   const int number = server().start();
-  if (number < 0) throw Error(kFailure);
+  if (number < 0)
+    throw Error(display.empty() ? std::string(kFailure)
+                                : "cannot open X display '" + display +
+                                      "' and Xvfb could not be started: apt-get install xvfb");
   setenv("DISPLAY", (":" + std::to_string(number)).c_str(), 1);
 }
 

@@ -62,6 +62,10 @@ openvdb::math::Transform::Ptr make_transform(const std::array<double, 3>& spacin
 
 Volume finish_dense(DenseImage&& image, const std::string& path, const std::string& format,
                     const LoadOptions& options) {
+  // --spacing / --origin replace the header's values before anything uses them.
+  const auto file_spacing = image.spacing, file_origin = image.origin;
+  if (options.spacing) image.spacing = *options.spacing;
+  if (options.origin) image.origin = *options.origin;
   for (int i = 0; i < 3; ++i) {
     const double s = image.spacing[std::size_t(i)];
     if (!std::isfinite(s) || s <= 0) throw Error(path, "invalid voxel spacing " + std::to_string(s));
@@ -97,8 +101,13 @@ Volume finish_dense(DenseImage&& image, const std::string& path, const std::stri
   source.grid_name = image.array_name;
   source.inside = options.inside.value_or(Inside::Above);
   auto xform = make_transform(image.spacing, image.origin, image.axes);
-  if (!image.u8.empty()) return from_dense_u8(image.u8.data(), image.dims, xform, source);
-  return from_dense(image.values.data(), image.dims, xform, source);
+  Volume v = !image.u8.empty() ? from_dense_u8(image.u8.data(), image.dims, xform, source)
+                               : from_dense(image.values.data(), image.dims, xform, source);
+  if (options.spacing)
+    v.file_spacing = openvdb::Vec3d(file_spacing[0], file_spacing[1], file_spacing[2]);
+  if (options.origin)
+    v.file_origin = openvdb::Vec3d(file_origin[0], file_origin[1], file_origin[2]);
+  return v;
 }
 
 }  // namespace isocurv::volume

@@ -8,19 +8,27 @@
 
 namespace isocurv::volume {
 
-/// How to read a headerless .raw / .raw.gz file (ignored for other formats).
+/// How to read a headerless .raw / .raw.gz file. A raw file's name may carry its layout
+/// (`_<X>x<Y>x<Z>_<type>[le|be]`); a field set here always wins over the name. Giving any of
+/// dims, type or big_endian for another format is an error (its header gives the layout).
 struct RawOptions {
-  std::array<int, 3> dims{0, 0, 0};          ///< X Y Z voxel counts, X fastest in the file
-  std::string type;                          ///< uint8 int8 uint16 int16 uint32 int32 float double
-  bool big_endian = false;
-  std::array<double, 3> spacing{1, 1, 1};    ///< world units per voxel
-  std::array<double, 3> origin{0, 0, 0};     ///< world position of the first voxel
+  std::array<int, 3> dims{0, 0, 0};          ///< X Y Z voxel counts, X fastest; {0,0,0}: not given
+  std::string type;                          ///< uint8 int8 uint16 int16 uint32 int32 float double; "": not given
+  std::optional<bool> big_endian;            ///< byte order; unset: from the name, else little
+  std::array<double, 3> spacing{1, 1, 1};    ///< world units per voxel (what a header would say)
+  std::array<double, 3> origin{0, 0, 0};     ///< world position of the first voxel (likewise)
 };
 
 struct LoadOptions {
   std::string grid;               ///< .vdb: grid name; empty picks the first float/double/half grid
+                                  ///< (giving one for another format is an error)
   std::optional<Inside> inside;   ///< override which side is the object
   RawOptions raw;
+  /// Override the spacing / origin of every format (the header's, a .vdb's transform, or raw's
+  /// values above): spacing along the file's own axes, origin the world position of the file's
+  /// first voxel (index 0 0 0 for .vdb). The file's values are kept in Volume::file_spacing /
+  /// file_origin. Spacing must be positive and finite, the origin finite.
+  std::optional<std::array<double, 3>> spacing, origin;
 };
 
 /// Loads `path`, chosen by extension: .vdb, .nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, .vti, .vtk,

@@ -41,8 +41,11 @@ Volume load_raw(const std::string& path, const LoadOptions& options) {
   const bool have_dims = raw.dims[0] != 0 || raw.dims[1] != 0 || raw.dims[2] != 0;
   const std::array<int, 3> dims = have_dims ? raw.dims : named.dims;
   const std::string type_name = raw.type.empty() ? named.type : raw.type;
-  // The byte order comes from the file name only when the layout does too.
-  const bool big_endian = (!have_dims && raw.type.empty() && named.big_endian) ? *named.big_endian : raw.big_endian;
+  // An explicit byte order always wins; the file name's only counts when the layout comes from
+  // the name too.
+  const bool big_endian = raw.big_endian                                         ? *raw.big_endian
+                          : (!have_dims && raw.type.empty() && named.big_endian) ? *named.big_endian
+                                                                                 : false;
 
   if (dims[0] == 0 && dims[1] == 0 && dims[2] == 0)
     throw Error(path, "raw data needs its dimensions (--dims X Y Z); the file name does not carry _<X>x<Y>x<Z>_<type>");

@@ -50,6 +50,11 @@ nlohmann::json summary_json(const Volume& v) {
     const openvdb::Vec3d sp = v.spacing(), o = v.origin();
     j["spacing"] = {sp.x(), sp.y(), sp.z()};
     j["origin"] = {o.x(), o.y(), o.z()};
+    // Present when --spacing / --origin replaced the file's values: what the file said.
+    if (v.file_spacing)
+      j["file_spacing"] = {v.file_spacing->x(), v.file_spacing->y(), v.file_spacing->z()};
+    if (v.file_origin)
+      j["file_origin"] = {v.file_origin->x(), v.file_origin->y(), v.file_origin->z()};
     j["active_voxels"] = v.grid->activeVoxelCount();
     j["background"] = v.grid->background();
   }
@@ -89,8 +94,14 @@ std::string summary_text(const Volume& v) {
                                              std::to_string(v.domain.max().y()) + "," +
                                              std::to_string(v.domain.max().z()) + ")"));
   if (v.grid) {
-    line("spacing", vec3(v.spacing()));
-    line("origin", vec3(v.origin()));
+    // An override says so, with what the file said ("header" unless the file has none).
+    auto note = [&v](const char* option, const std::optional<openvdb::Vec3d>& file) {
+      if (!file) return std::string();
+      if (v.format == "raw") return std::string("  (from ") + option + ")";
+      return std::string("  (from ") + option + "; header says " + vec3(*file) + ")";
+    };
+    line("spacing", vec3(v.spacing()) + note("--spacing", v.file_spacing));
+    line("origin", vec3(v.origin()) + note("--origin", v.file_origin));
     if (!v.dense) line("active voxels", std::to_string(v.grid->activeVoxelCount()));
   }
   line("inside", v.inside == Inside::Above ? "above the isovalue" : "below the isovalue");

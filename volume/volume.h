@@ -3,6 +3,7 @@
 #include <openvdb/openvdb.h>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,8 @@ struct Volume {
   openvdb::CoordBBox domain;      ///< index-space data domain (inclusive)
   Inside inside = Inside::Above;  ///< which side is the object
   ValueStats stats;
+  /// What the file said, kept when LoadOptions::spacing / origin overrode it (else unset).
+  std::optional<openvdb::Vec3d> file_spacing, file_origin;
 
   /// Voxel spacing (world units per index step along each axis).
   openvdb::Vec3d spacing() const { return grid->transform().voxelSize(); }

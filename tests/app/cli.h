@@ -2,21 +2,21 @@
 // Running the real `isocurv` executable as a subprocess for the end-to-end tests: stdout, stderr
 // and exit status captured, a timeout, DISPLAY unset (rendering must start its own Xvfb).
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <poll.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
-
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cerrno>
 #include <chrono>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -53,13 +53,20 @@ struct CliResult {
 };
 
 inline std::string build_dir() { return ISOCURV_BUILD_DIR; }
-inline std::string isocurv_exe() { return build_dir() + "/app/isocurv"; }
+/// The executable under test: this build's, or ISOCURV_TEST_EXE (e.g. an older build, to see
+/// which tests fail without a fix).
+inline std::string isocurv_exe() {
+  const char* other = std::getenv("ISOCURV_TEST_EXE");
+  return other && *other ? std::string(other) : build_dir() + "/app/isocurv";
+}
 /// A bundled dataset generated at build time (64^3 by default).
 inline std::string dataset(const std::string& name) { return build_dir() + "/datasets/" + name + ".vdb"; }
 
-/// Runs `isocurv args...` with DISPLAY unset and stdin from /dev/null; kills its process group
-/// after timeout_s seconds.
-inline CliResult run_isocurv(const std::vector<std::string>& args, double timeout_s = 60) {
+/// Runs `isocurv args...` with DISPLAY unset and stdin from /dev/null, plus `env` ("NAME=VALUE"
+/// entries set in the child; "NAME=" sets it empty); kills its process group after timeout_s
+/// seconds.
+inline CliResult run_isocurv(const std::vector<std::string>& args, double timeout_s = 60,
+                             const std::vector<std::string>& env = {}) {
   CliResult r;
   r.command = "isocurv";
   for (const auto& a : args) r.command += " " + a;
@@ -82,6 +89,10 @@ inline CliResult run_isocurv(const std::vector<std::string>& args, double timeou
   if (pid == 0) {
     setpgid(0, 0);
     unsetenv("DISPLAY");
+    for (const auto& e : env) {
+      const auto eq = e.find('=');
+      if (eq != std::string::npos) setenv(e.substr(0, eq).c_str(), e.substr(eq + 1).c_str(), 1);
+    }
     const int devnull = open("/dev/null", O_RDONLY);
     if (devnull >= 0) dup2(devnull, STDIN_FILENO);
     dup2(out_pipe[1], STDOUT_FILENO);
@@ -207,13 +218,33 @@ inline std::array<std::uint32_t, 2> png_size(const std::string& path) {
   return {be32(16), be32(20)};
 }
 
-/// A failure as DESIGN.md wants it: no crash or hang, a non-zero exit, exactly one line on stderr
-/// starting with "isocurv:" and containing `mention` (e.g. the file name).
+/// Exactly one line on stderr, starting with "isocurv:" and containing `mention`.
+inline void expect_one_error_line(const CliResult& r, const std::string& mention) {
+  const auto lines = r.err_lines();
+  ASSERT_EQ(lines.size(), 1u) << "want exactly one line on stderr\n" << r.describe();
+  EXPECT_EQ(lines[0].rfind("isocurv:", 0), 0u) << r.describe();
+  EXPECT_NE(lines[0].find(mention), std::string::npos)
+      << "stderr should mention '" << mention << "'\n"
+      << r.describe();
+}
+
+/// A usage error (README, "Exit status"): status 2, one line on stderr starting with "isocurv:"
+/// and naming `mention` (the offending option or command), nothing on stdout.
+inline void expect_usage_error(const CliResult& r, const std::string& mention) {
+  EXPECT_FALSE(r.timed_out) << r.describe();
+  EXPECT_EQ(r.signal, 0) << "crashed\n" << r.describe();
+  EXPECT_EQ(r.exit_code, 2) << r.describe();
+  EXPECT_TRUE(r.out.empty()) << r.describe();
+  expect_one_error_line(r, mention);
+}
+
+/// A failure as DESIGN.md wants it: no crash or hang, exit status 1 (bad input or a failure),
+/// exactly one line on stderr starting with "isocurv:" and containing `mention` (e.g. the file
+/// name).
 inline void expect_clean_failure(const CliResult& r, const std::string& mention) {
   EXPECT_FALSE(r.timed_out) << r.describe();
   EXPECT_EQ(r.signal, 0) << "crashed\n" << r.describe();
-  EXPECT_NE(r.exit_code, 0) << r.describe();
-  EXPECT_GT(r.exit_code, 0) << r.describe();
+  EXPECT_EQ(r.exit_code, 1) << r.describe();
   const auto lines = r.err_lines();
   ASSERT_EQ(lines.size(), 1u) << "want exactly one line on stderr\n" << r.describe();
   EXPECT_EQ(lines[0].rfind("isocurv:", 0), 0u) << r.describe();

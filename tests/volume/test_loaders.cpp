@@ -346,3 +346,89 @@ TEST(VolumeLoadVdb, LevelSetFogAndDoubleGrids) {
   EXPECT_EQ(d.grid->tree().getValue(openvdb::Coord(20, 20, 20)), 2.5f);
   EXPECT_EQ(d.stats.voxels, 1u + 16 * 16 * 16);
 }
+
+TEST(VolumeLoadOverrides, SpacingAndOriginReplaceTheHeaderAlongTheFilesAxes) {
+  TempDir dir;
+  write_file(dir.file("ramp.data"), to_bytes(ramp_values<std::uint16_t>(), true));
+  write_file(
+      dir.file("ramp.nhdr"),
+      "NRRD0005\ntype: unsigned short\ndimension: 3\nsizes: 5 4 3\nendian: big\nencoding: raw\n"
+      "space directions: (0,0.25,0) (0.5,0,0) (0,0,2)\nspace origin: (1,2,3)\n"
+      "data file: ramp.data\n");
+  LoadOptions o;
+  o.spacing = std::array<double, 3>{1, 2, 3};
+  o.origin = std::array<double, 3>{10, 20, 30};
+  // The header's axes stay (index x along world y, a left-handed frame the loader reorders), the
+  // spacing is along them and the origin is where the file's first voxel goes.
+  const Volume v = load(dir.file("ramp.nhdr"), o);
+  expect_ramp(
+      v,
+      [](int x, int y, int z) { return openvdb::Vec3d(10 + 2.0 * y, 20 + 1.0 * x, 30 + 3.0 * z); },
+      "nrrd", "uint16");
+  ASSERT_TRUE(v.file_spacing && v.file_origin);
+  EXPECT_EQ(*v.file_spacing, openvdb::Vec3d(0.25, 0.5, 2));
+  EXPECT_EQ(*v.file_origin, openvdb::Vec3d(1, 2, 3));
+  EXPECT_FALSE(load(dir.file("ramp.nhdr")).file_spacing) << "no override, nothing recorded";
+
+  write_file(dir.file("r.raw"), to_bytes(ramp_values<std::int16_t>(), true));
+  write_file(dir.file("r.mhd"),
+             "ObjectType = Image\nNDims = 3\nDimSize = 5 4 3\nElementType = MET_SHORT\n"
+             "ElementSpacing = 0.5 0.25 2\nOffset = 1 2 3\nElementByteOrderMSB = True\n"
+             "ElementDataFile = r.raw\n");
+  LoadOptions s;
+  s.spacing = std::array<double, 3>{1, 1, 1.4};
+  expect_ramp(load(dir.file("r.mhd"), s), axis_aligned({1, 1, 1.4}, {1, 2, 3}), "metaimage",
+              "int16");
+}
+
+TEST(VolumeLoadOverrides, SpacingAndOriginReplaceAVdbTransform) {
+  TempDir dir;
+  openvdb::initialize();
+  auto grid =
+      openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(4.0f, openvdb::Vec3f(0, 0, 0), 0.5f);
+  openvdb::io::File file(dir.file("ball.vdb"));
+  file.write(openvdb::GridPtrVec{grid});
+  file.close();
+  LoadOptions o;
+  o.spacing = std::array<double, 3>{1, 2, 3};
+  o.origin = std::array<double, 3>{5, 6, 7};
+  const Volume v = load(dir.file("ball.vdb"), o);
+  EXPECT_EQ(v.spacing(), openvdb::Vec3d(1, 2, 3));
+  EXPECT_EQ(v.origin(), openvdb::Vec3d(5, 6, 7));
+  EXPECT_EQ(v.grid->transform().indexToWorld(openvdb::Vec3d(1, 1, 1)), openvdb::Vec3d(6, 8, 10));
+  ASSERT_TRUE(v.file_spacing);
+  EXPECT_EQ(*v.file_spacing, openvdb::Vec3d(0.5, 0.5, 0.5));
+}
+
+TEST(VolumeLoadOverrides, AnExplicitByteOrderWinsOverTheFileName) {
+  TempDir dir;
+  const std::string path = dir.file("ramp_5x4x3_uint16le.raw");
+  write_file(path, to_bytes(ramp_values<std::uint16_t>(), /*big_endian=*/true));
+  LoadOptions o;
+  o.raw.big_endian = true;
+  expect_ramp(load(path, o), axis_aligned({1, 1, 1}, {0, 0, 0}), "raw", "uint16");
+}
+
+TEST(VolumeLoadOverrides, OptionsForAnotherFormatAreErrors) {
+  TempDir dir;
+  const std::string path = dir.file("ramp.nrrd");
+  std::string nrrd = "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 5 4 3\nencoding: raw\n\n";
+  const auto bytes = to_bytes(ramp_values<std::uint8_t>());
+  nrrd.append(bytes.begin(), bytes.end());
+  write_file(path, nrrd);
+  LoadOptions dims;
+  dims.raw.dims = {5, 4, 3};
+  expect_error([&] { load(path, dims); }, path, "--dims");
+  LoadOptions type;
+  type.raw.type = "uint8";
+  expect_error([&] { load(path, type); }, path, "--type");
+  LoadOptions endian;
+  endian.raw.big_endian = false;
+  expect_error([&] { load(path, endian); }, path, "--endian");
+  LoadOptions grid;
+  grid.grid = "density";
+  expect_error([&] { load(path, grid); }, path, "--grid");
+  LoadOptions spacing;
+  spacing.spacing = std::array<double, 3>{1, -1, 1};
+  expect_error([&] { load(path, spacing); }, path, "--spacing");
+}

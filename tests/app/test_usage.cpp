@@ -1,0 +1,58 @@
+// Usage errors and exit statuses (README, "Exit status"): 2 and one prefixed line for bad or
+// missing arguments, 1 for bad input, the command list without arguments.
+#include <gtest/gtest.h>
+
+#include "cli.h"
+
+using namespace isocurv::test;
+
+namespace {
+const char* const kCommands[] = {"info",   "extract", "curvature", "run",
+                                 "render", "view",    "check",     "devices"};
+}  // namespace
+
+TEST(CliUsage, ParseErrorsAreOnePrefixedLineWithStatus2) {
+  TempDir dir("usage");
+  // CLI11's own messages were two lines without the prefix and exited with 104-114.
+  expect_usage_error(run_isocurv({"extract", dataset("sphere"), "-o", dir / "o.vtp", "--bogus"}),
+                     "--bogus");
+  expect_usage_error(run_isocurv({"extract", dataset("sphere")}), "--output");
+  expect_usage_error(
+      run_isocurv({"extract", dataset("sphere"), "-o", dir / "o.vtp", "--iso", "abc"}), "--iso");
+  expect_usage_error(run_isocurv({"info"}), "VOLUME");
+  expect_usage_error(run_isocurv({"info", dataset("sphere"), "--dims", "1", "2"}), "--dims");
+  expect_usage_error(
+      run_isocurv({"extract", dataset("sphere"), "-o", dir / "o.vtp", "--device", "gpu"}),
+      "--device");
+  expect_usage_error(run_isocurv({"--bogus"}), "--bogus");
+  // The message says where to look.
+  const auto r = run_isocurv({"render", dataset("sphere"), "-o", dir / "o.png", "--color", "Z"});
+  expect_usage_error(r, "--color");
+  EXPECT_NE(r.err.find("isocurv render --help"), std::string::npos) << r.describe();
+  EXPECT_TRUE(dir.entries().empty()) << ::testing::PrintToString(dir.entries());
+}
+
+TEST(CliUsage, UnknownCommandIsAUsageError) {
+  expect_usage_error(run_isocurv({"extrct", dataset("sphere"), "-o", "/nonexistent/o.vtp"}),
+                     "extrct");
+}
+
+TEST(CliUsage, BadInputIsStatus1) {
+  TempDir dir("input");
+  expect_clean_failure(run_isocurv({"info", dir / "missing.nrrd"}), "missing.nrrd");
+}
+
+TEST(CliUsage, NoArgumentsListsTheCommandsWithStatus2) {
+  const auto r = run_isocurv({}, 20);
+  EXPECT_EQ(r.exit_code, 2) << r.describe();
+  EXPECT_TRUE(r.err.empty()) << r.describe();
+  for (const char* cmd : kCommands)
+    EXPECT_NE(r.out.find(cmd), std::string::npos) << cmd << "\n" << r.out;
+}
+
+TEST(CliUsage, HelpStatesTheExitStatuses) {
+  const auto r = run_isocurv({"--help"}, 20);
+  EXPECT_EQ(r.exit_code, 0) << r.describe();
+  EXPECT_NE(r.out.find("1 bad input"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("2 a usage error"), std::string::npos) << r.out;
+}
