@@ -15,6 +15,7 @@
 #include "mc/edge_key.h"
 #include "mc/frame.h"
 #include "mc/snap_vertices.h"
+#include "mc/triangle_quality.h"
 
 namespace isocurv::kernels {
 extern const char* const marching_cubes_cl;
@@ -274,7 +275,7 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
             q.enqueueReadBuffer(d_snap_vertices, CL_TRUE, 0, nsnap * sizeof(cl_uint), vertices.data());
             std::vector<SnapCandidate> candidates(nsnap);
             for (std::size_t i = 0; i < nsnap; ++i) candidates[i] = {edges[i], vertices[i]};
-            const SnapReport r = snap_vertices(mesh, std::move(candidates), f, kSnapMinArea * voxel_face_area(f));
+            const SnapReport r = snap_vertices(mesh, std::move(candidates), f, kSnapMinArea * voxel_face_area(st.volume));
             tm.snapped = r.moved;
             tm.merged = r.merged;
             if (timings) {

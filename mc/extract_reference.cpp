@@ -6,6 +6,7 @@
 #include "mc/edge_key.h"
 #include "mc/frame.h"
 #include "mc/snap_vertices.h"
+#include "mc/triangle_quality.h"
 
 namespace isocurv::mc {
 
@@ -58,7 +59,7 @@ Mesh extract_reference(const volume::Volume& v, float isovalue, const Options& o
           mesh.triangles.push_back(tri);
         }
       }
-  snap_vertices(mesh, std::move(snaps), f, kSnapMinArea * voxel_face_area(f));
+  snap_vertices(mesh, std::move(snaps), f, kSnapMinArea * voxel_face_area(v));
   return mesh;
 }
 

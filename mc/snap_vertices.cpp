@@ -476,6 +476,4 @@ SnapReport snap_vertices(Mesh& mesh, std::vector<SnapCandidate> candidates, cons
   return s.report;
 }
 
-double voxel_face_area(const Frame& frame) { return std::pow(abs_det(frame), 2.0 / 3.0); }
-
 }  // namespace isocurv::mc

@@ -22,7 +22,7 @@ namespace isocurv::mc {
 /// Set in SnapCandidate::edge when the vertex lies near the edge's upper end (else its lower end).
 constexpr std::uint64_t kSnapUpper = std::uint64_t(1) << 63;
 
-/// Smallest triangle area a collapse may leave, in voxel faces (voxel_face_area).
+/// Smallest triangle area a collapse may leave, in voxel faces (mc::voxel_face_area).
 constexpr double kSnapMinArea = 1e-6;
 
 /// A vertex the mesher found within the snap distance of one end of its edge.
@@ -58,8 +58,5 @@ struct SnapReport {
 SnapReport snap_vertices(Mesh& mesh, std::vector<SnapCandidate> candidates, const Frame& frame,
                          double min_area);
 
-/// The area, in world units^2, of the voxel face `frame` maps the unit square to on average
-/// (|det A|^(2/3) for the index-to-world matrix A).
-double voxel_face_area(const Frame& frame);
 
 }  // namespace isocurv::mc

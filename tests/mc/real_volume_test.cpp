@@ -10,7 +10,7 @@
 #include "mc/extract.h"
 #include "mc/mesh_check.h"
 #include "tests/mc/flying_edges.h"
-#include "tests/mc/triangle_quality.h"
+#include "mc/triangle_quality.h"
 #include "volume/load.h"
 
 using namespace isocurv;
@@ -52,13 +52,16 @@ TEST_P(MesherOnRealVolume, CleanAtVoxelValuesAndAgreesWithFlyingEdgesBetweenThem
   const float between = GetParam().iso + 0.5f;  // no voxel holds it: both meshers see the same cases
   mc::Options plain;  // no snapping (as Flying Edges)
   plain.snap = 0;
-  const double voxel_area = std::pow(v.spacing()[0] * v.spacing()[1] * v.spacing()[2], 2.0 / 3.0);
-  const test::Quality q = test::quality(at, voxel_area), qb = test::quality(mc::extract(v, between, dev), voxel_area);
-  const test::Quality unsnapped = test::quality(mc::extract(v, GetParam().iso, dev, plain), voxel_area);
-  std::printf("slivers (< 1e-6 voxel^2) %zu, unsnapped %zu; under 1 degree %.4f%% (unsnapped %.4f%%), at iso + 0.5 "
-              "%.4f%%\n", q.slivers, unsnapped.slivers, 100 * q.thin_share, 100 * unsnapped.thin_share, 100 * qb.thin_share);
-  EXPECT_LE(q.thin_share, qb.thin_share);
-  EXPECT_LE(q.slivers * 10, unsnapped.slivers);  // at least 90% of them gone
+  const double voxel = mc::voxel_face_area(v);
+  const mc::TriangleQuality q = mc::triangle_quality(at, voxel);
+  const mc::TriangleQuality qb = mc::triangle_quality(mc::extract(v, between, dev), voxel);
+  const mc::TriangleQuality unsnapped = mc::triangle_quality(mc::extract(v, GetParam().iso, dev, plain), voxel);
+  auto thin = [](const mc::TriangleQuality& t) { return double(t.thin) / double(t.triangles); };
+  std::printf("under 1e-4 voxel^2: %zu (unsnapped %zu); under 1 degree %.4f%% (unsnapped %.4f%%), at iso + 0.5 "
+              "%.4f%%\n", q.small, unsnapped.small, 100 * thin(q), 100 * thin(unsnapped), 100 * thin(qb));
+  EXPECT_LE(thin(q), thin(qb));
+  EXPECT_LE(q.small * 10, unsnapped.small);  // at least 90% of the slivers gone
+
   const Mesh m = mc::extract(v, between, dev, plain);
   const mc::MeshCheck cb = mc::check_mesh(m);
   const test::FlyingEdgesSurface fe = test::flying_edges(v, between);

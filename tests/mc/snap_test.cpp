@@ -13,7 +13,7 @@
 #include "mc/extract.h"
 #include "mc/extract_reference.h"
 #include "mc/mesh_check.h"
-#include "tests/mc/triangle_quality.h"
+#include "mc/triangle_quality.h"
 #include "tests/mc/volumes.h"
 
 using namespace isocurv;
@@ -21,6 +21,9 @@ using namespace isocurv;
 namespace {
 
 Device& dev() { return Device::default_device(); }
+
+// The share of triangles with a smallest angle under one degree (unit spacing).
+double thin_share(const mc::TriangleQuality& q) { return q.triangles ? double(q.thin) / double(q.triangles) : 0.0; }
 
 void expect_sound(const Mesh& m, const std::string& what) {
   const mc::MeshCheck c = mc::check_mesh(m);
@@ -94,7 +97,7 @@ mc::Options capped(float snap, bool keys) {
 TEST(Snap, WithoutSnappingVoxelValuesLeaveSlivers) {
   // The situation snapping exists for: vertices 1/1024 voxel off each voxel equal to the isovalue.
   const volume::Volume v = ct_like(1);
-  const test::Quality q = test::quality(mc::extract(v, 128.0f, dev(), capped(0, false)));
+  const mc::TriangleQuality q = mc::triangle_quality(mc::extract(v, 128.0f, dev(), capped(0, false)), 1.0);
   EXPECT_LT(q.min_area, 1e-6);
 }
 
@@ -118,10 +121,11 @@ TEST(Snap, IntegerVolumesAtVoxelValuesHaveNoSliversAndStayManifold) {
       expect_sound(at, what);
       expect_same_mesh(at, mc::extract_reference(c.v, iso, capped(mc::kDefaultSnap, true)));
       if (!c.quality) continue;
-      const test::Quality q = test::quality(at);
-      const test::Quality between = test::quality(mc::extract(c.v, iso + 0.5f, dev(), capped(mc::kDefaultSnap, false)));
+      const mc::TriangleQuality q = mc::triangle_quality(at, 1.0);
+      const mc::TriangleQuality between =
+          mc::triangle_quality(mc::extract(c.v, iso + 0.5f, dev(), capped(mc::kDefaultSnap, false)), 1.0);
       EXPECT_GE(q.min_area, 1e-6) << what;
-      EXPECT_LE(q.thin_share, between.thin_share) << what;
+      EXPECT_LE(thin_share(q), thin_share(between)) << what;
     }
 }
 
