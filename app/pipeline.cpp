@@ -249,10 +249,11 @@ curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Vol
   if (chosen.source == "volume") {
     if (!volume) throw Error("--normals volume needs a volume input, not a mesh file");
     timer.start("normals");
-    normals = volume::gradient_normals_for_mesh(*volume, mesh);
+    normals = volume::gradient_normals_for_mesh(*volume, mesh, o.cap);
     timer.stop();
     chosen.opposed = normals.opposed;
     chosen.weak = normals.weak;
+    chosen.caps = normals.caps;
     co.vertex_normals = &normals.normals;
   }
   if (used) *used = chosen;
@@ -321,6 +322,7 @@ nlohmann::json surface_report(const Surface& s) {
                                         "(dot <= 0) or the gradient is at most " +
                                         format_number(100 * volume::kWeakGradientFraction) +
                                         "% of its median over the vertices"}};
+    if (s.normals.source == "volume" && s.normals.caps > 0) r["cap_vertices_with_box_normals"] = s.normals.caps;
   }
   if (s.field && s.field->size() == s.mesh.positions.size())
     r["curvature"] = field_stats_json(*s.field, s.mesh);

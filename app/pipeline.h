@@ -58,6 +58,7 @@ struct NormalsUsed {
   std::string source;           ///< "mesh" or "volume"; empty before any estimate
   std::size_t opposed = 0;      ///< volume: gradient normal against the faces (face normal used)
   std::size_t weak = 0;         ///< volume: gradient near zero (face normal used)
+  std::size_t caps = 0;         ///< volume with --cap: cap vertices given the box face's normal
 };
 
 /// A loaded input: a volume (then `mesh` is extracted from it) or a mesh file.

@@ -87,6 +87,34 @@ Vec3f unit(const openvdb::Vec3d& g) {
   return {float(g.x() / len), float(g.y() / len), float(g.z() / len)};
 }
 
+// Cap vertices lie outside the domain's box by a 1/1024 voxel (the mesher's smallest edge
+// fraction) or less; vertices of the surface itself lie inside it or on it. This tolerance, in
+// voxels, tells a vertex on the box face (rounding) from one beyond it.
+constexpr double kOnBox = 1e-4;
+constexpr double kCapDepth = 0.01;  // deeper than any cap vertex, far shallower than a voxel
+
+// Gives the cap vertices of `mesh` the outward normal of the box faces they lie beyond.
+void cap_normals(const Volume& volume, const Mesh& mesh, MeshNormals& r) {
+  const openvdb::math::Transform& xform = volume.grid->transform();
+  const openvdb::math::MapBase::ConstPtr map = xform.baseMap();
+  const openvdb::Coord lo = volume.domain.min(), hi = volume.domain.max();
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    const Vec3f& p = mesh.positions[i];
+    const openvdb::Vec3d q = xform.worldToIndex(openvdb::Vec3d(p[0], p[1], p[2]));
+    openvdb::Vec3d n(0.0);
+    bool inside_slab = true;
+    for (int k = 0; k < 3; ++k) {
+      const double below = lo[k] - q[k], above = q[k] - hi[k];
+      if (below > kOnBox) n[k] = -1;
+      if (above > kOnBox) n[k] = 1;
+      inside_slab = inside_slab && below < kCapDepth && above < kCapDepth;
+    }
+    if (n == openvdb::Vec3d(0.0) || !inside_slab) continue;
+    r.normals[i] = unit(map->applyIJT(n, q));  // index-space face normals to world space
+    ++r.caps;
+  }
+}
+
 }  // namespace
 
 std::vector<Vec3f> gradient_normals(const Volume& volume, const Positions& world_positions) {
@@ -96,7 +124,7 @@ std::vector<Vec3f> gradient_normals(const Volume& volume, const Positions& world
   return normals;
 }
 
-MeshNormals gradient_normals_for_mesh(const Volume& volume, const Mesh& mesh) {
+MeshNormals gradient_normals_for_mesh(const Volume& volume, const Mesh& mesh, bool caps) {
   MeshNormals r;
   const std::vector<openvdb::Vec3d> g = outward_gradients(volume, mesh.positions);
   const std::vector<Vec3f> faces = area_weighted_normals(mesh);
@@ -122,6 +150,7 @@ MeshNormals gradient_normals_for_mesh(const Volume& volume, const Mesh& mesh) {
       r.normals[i] = unit(g[i]);
     }
   }
+  if (caps && volume.dense && !volume.domain.empty() && volume.grid) cap_normals(volume, mesh, r);
   return r;
 }
 

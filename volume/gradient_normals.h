@@ -24,6 +24,7 @@ struct MeshNormals {
   std::vector<Vec3f> normals;  ///< one unit outward normal per vertex (zero where nothing is known)
   std::size_t opposed = 0;     ///< vertices whose gradient normal points against the faces
   std::size_t weak = 0;        ///< vertices whose gradient is near zero (kWeakGradientFraction)
+  std::size_t caps = 0;        ///< cap vertices given the box face's normal (`caps` set)
   std::size_t fallbacks() const { return opposed + weak; }
 };
 
@@ -32,6 +33,10 @@ struct MeshNormals {
 /// area-weighted face normal (area_weighted_normals; thin plates and gaps a voxel wide, where the
 /// central differences see the structure beyond). Those vertices take the unit face normal a
 /// instead and are counted; a vertex with a zero face normal keeps the gradient's.
-MeshNormals gradient_normals_for_mesh(const Volume& volume, const Mesh& mesh);
+/// With `caps` (a mesh extracted with mc::Options::cap from a dense volume), the vertices of the
+/// caps, which lie just outside the domain's box (by kMinEdgeFraction of a voxel or less), take
+/// the outward normal of the box face (or faces, at an edge or corner) they lie beyond: the
+/// gradient there belongs to the data, not to the cap.
+MeshNormals gradient_normals_for_mesh(const Volume& volume, const Mesh& mesh, bool caps = false);
 
 }  // namespace isocurv::volume

@@ -81,6 +81,38 @@ TEST(VolumeNormals, ThinPlateFallsBackToFaceNormals) {
   EXPECT_LT(worst, 1e-3) << "plate top interior";
 }
 
+TEST(VolumeNormals, CapVerticesTakeTheBoxFacesNormal) {
+  // A ball cut by all six faces of its box, capped: the gradient at the caps points along them
+  // (the data goes on beyond the box), so the cap vertices take the face's outward normal.
+  openvdb::initialize();
+  const volume::Volume v = ball(16, 9.5, 7.5);
+  mc::Options o;
+  o.cap = true;
+  const Mesh mesh = mc::extract(v, 0.0f, Device::default_device(), o);
+  const volume::MeshNormals plain = volume::gradient_normals_for_mesh(v, mesh);
+  const volume::MeshNormals capped = volume::gradient_normals_for_mesh(v, mesh, true);
+  EXPECT_EQ(plain.caps, 0u);
+  ASSERT_GT(capped.caps, 50u);
+  std::size_t checked = 0, off_before = 0;
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    const Vec3f& p = mesh.positions[i];
+    for (int k = 0; k < 3; ++k) {
+      const bool low = p[k] < -1e-4f, high = p[k] > 15 + 1e-4f;
+      if (!low && !high) continue;
+      const bool corner = (p[(k + 1) % 3] < -1e-4f || p[(k + 1) % 3] > 15 + 1e-4f) ||
+                          (p[(k + 2) % 3] < -1e-4f || p[(k + 2) % 3] > 15 + 1e-4f);
+      if (corner) continue;  // beyond two faces: the faces' mean normal
+      Vec3f face{0, 0, 0};
+      face[k] = low ? -1.0f : 1.0f;
+      EXPECT_GT(dot(capped.normals[i], face), 0.9999) << i;
+      off_before += dot(plain.normals[i], face) < 0.9;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 50u);
+  EXPECT_GT(off_before, checked / 2);  // the gradient normals were far off the cap's
+}
+
 TEST(VolumeNormals, ZeroGradientIsWeak) {
   // Two plates of 255 one voxel thick with a one-voxel gap: in the gap the central differences
   // of the two plates cancel, so the faces facing the gap get no gradient at all.
