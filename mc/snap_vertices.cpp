@@ -5,6 +5,10 @@
 #include <cmath>
 #include <numeric>
 
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
 namespace isocurv::mc {
 namespace {
 
@@ -62,6 +66,11 @@ constexpr double kFanOffset = 2.0 / 1024.0;
 // Passes over the voxels refused in the previous pass.
 constexpr int kSnapRounds = 3;
 
+// The parity class (x & 1, y & 1, z & 1) of a point key's voxel, 0..7.
+int parity(std::uint64_t p) {
+  return int(((p >> 42) & 1u) | (((p >> 22) & 1u) << 1) | (((p >> 2) & 1u) << 2));
+}
+
 int find_root(std::vector<int>& parent, int i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
   return i;
@@ -72,6 +81,16 @@ struct Kept {
   std::uint32_t tri, m, a, b;
   int partner_a = -1, partner_b = -1;  // the kept triangle across spoke (voxel, a) / (voxel, b)
   int twin = -1;  // the kept triangle it cancels with (the same two outer vertices, other winding)
+};
+
+// One thread's working arrays (kept between voxels) and its share of the report.
+struct Worker {
+  std::vector<std::uint32_t> vertices, tris, dropped, kept_tris, order;
+  std::vector<Kept> kept;
+  std::vector<int> parent, fan_of, root_fan, size, open;
+  std::vector<Vec3f> where_f;
+  std::vector<std::array<std::uint32_t, 4>> uses;
+  SnapReport report;
 };
 
 // The pass's working state: the mesh being edited, the candidates sorted by voxel and edge, and
@@ -94,17 +113,22 @@ class Snapper {
       for (std::uint32_t v : mesh_.triangles[t])
         if (slot_[v] != kNone) incident_[fill[slot_[v]]++] = t;
     removed_.assign(cand_.size(), 0);
-    group_.assign(cand_.size(), kNone);
   }
 
   // Snaps the candidates [b, e), which all lie near the voxel `point`: every triangle with two or
   // more of them collapses; the others form fans around the voxel (triangles joined across each
   // spoke as they were joined around its outer vertex, through the collapsed ones); one fan puts
   // its vertex on the voxel, several each put theirs a little towards their own fan.
-  void snap_group(std::uint32_t b, std::uint32_t e, std::uint64_t point) {
-    for (std::uint32_t i = b; i < e; ++i) group_[i] = b;
-    auto member = [&](std::uint32_t v) { return slot_[v] != kNone && group_[slot_[v]] == b; };
-    std::vector<std::uint32_t>& tris = tmp_.tris;
+  bool snap_group(std::uint32_t b, std::uint32_t e, std::uint64_t point, Worker& w) {
+    // Membership by the group's few vertex numbers (a scan of a handful, in cache; the per-vertex
+    // slot table is large and read at random).
+    std::vector<std::uint32_t>& vertices = w.vertices;
+    vertices.clear();
+    for (std::uint32_t i = b; i < e; ++i) vertices.push_back(cand_[i].vertex);
+    auto member = [&](std::uint32_t v) {
+      return std::find(vertices.begin(), vertices.end(), v) != vertices.end();
+    };
+    std::vector<std::uint32_t>& tris = w.tris;
     tris.clear();
     for (std::uint32_t i = b; i < e; ++i)
       for (std::uint32_t k = first_[i]; k < first_[i + 1]; ++k)
@@ -112,8 +136,8 @@ class Snapper {
     std::sort(tris.begin(), tris.end());
     tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
 
-    std::vector<Kept>& kept = tmp_.kept;
-    std::vector<std::uint32_t>& dropped = tmp_.dropped;
+    std::vector<Kept>& kept = w.kept;
+    std::vector<std::uint32_t>& dropped = w.dropped;
     kept.clear();
     dropped.clear();
     for (std::uint32_t t : tris) {
@@ -131,29 +155,29 @@ class Snapper {
       }
     }
     const std::uint32_t members = e - b;
-    if (!cancel_folds(kept)) return reject(members);
+    if (!cancel_folds(kept, w)) return false;
     const bool none_left =
         std::all_of(kept.begin(), kept.end(), [](const Kept& k) { return k.twin >= 0; });
     if (none_left) {  // a closed speck around the voxel: it vanishes
       for (const Kept& k : kept) dropped.push_back(k.tri);
       for (std::uint32_t i = b; i < e; ++i) removed_[i] = 1;
       for (std::uint32_t t : dropped) mesh_.triangles[t] = {kNone, kNone, kNone};
-      report.merged += members;
-      report.dropped += dropped.size();
-      return;
+      w.report.merged += members;
+      w.report.dropped += dropped.size();
+      return true;
     }
-    if (!pair_spokes(kept, member, tris)) return reject(members);
+    if (!pair_spokes(kept, member, tris, w)) return false;
 
     // Fans: kept triangles joined across spokes.
     const int nk = static_cast<int>(kept.size());
-    std::vector<int>& parent = tmp_.parent;
+    std::vector<int>& parent = w.parent;
     parent.resize(nk);
     std::iota(parent.begin(), parent.end(), 0);
     for (int i = 0; i < nk; ++i)
       for (int p : {kept[i].partner_a, kept[i].partner_b})
         if (p >= 0) parent[find_root(parent, i)] = find_root(parent, p);
-    std::vector<int>& fan_of = tmp_.fan_of;
-    std::vector<int>& root_fan = tmp_.root_fan;
+    std::vector<int>& fan_of = w.fan_of;
+    std::vector<int>& root_fan = w.root_fan;
     fan_of.assign(nk, -1);
     root_fan.assign(nk, -1);
     int nfans = 0;
@@ -163,7 +187,7 @@ class Snapper {
       if (f < 0) f = nfans++;
       fan_of[i] = f;
     }
-    if (!fans_are_discs(kept, fan_of, nfans)) return reject(members);
+    if (!fans_are_discs(kept, fan_of, nfans, w)) return false;
 
     // Each fan's vertex: on the voxel, or beside it towards the fan's outer vertices.
     const Vec3d at = voxel_position(point, frame_);
@@ -178,18 +202,18 @@ class Snapper {
         const double count = 2.0 * double(std::count(fan_of.begin(), fan_of.end(), f));
         const Vec3d d = {sum[f][0] / count - at[0], sum[f][1] / count - at[1], sum[f][2] / count - at[2]};
         const double len = std::sqrt(dot(d, d));
-        if (!(len > 0)) return reject(members);
+        if (!(len > 0)) return false;
         for (int c = 0; c < 3; ++c) where[f][c] = at[c] + offset_ * d[c] / len;
       }
     }
-    std::vector<Vec3f>& where_f = tmp_.where_f;
+    std::vector<Vec3f>& where_f = w.where_f;
     where_f.resize(nfans);
     for (int f = 0; f < nfans; ++f)
       where_f[f] = {float(where[f][0]), float(where[f][1]), float(where[f][2])};
     for (int f = 0; f < nfans; ++f)  // fans facing the same way (symmetric sheets) would coincide
       for (int g = 0; g < f; ++g) {
         const Vec3d d = sub(where[f], where[g]);
-        if (dot(d, d) < 0.25 * offset_ * offset_) return reject(members);
+        if (dot(d, d) < 0.25 * offset_ * offset_) return false;
       }
 
     // Sound geometry: no triangle too small or turned over.
@@ -216,7 +240,7 @@ class Snapper {
       where_f[0] = {float(sum[0] / members), float(sum[1] / members), float(sum[2] / members)};
       if (!sound()) where_f[0] = on_voxel;
     }
-    if (!sound()) return reject(members);
+    if (!sound()) return false;
 
     // Each fan keeps one member's vertex (and edge key): fans in the order of their smallest outer
     // vertex position, each taking its smallest-key member not yet taken (members are sorted by
@@ -238,7 +262,7 @@ class Snapper {
         if (fan_of[i] == int(f) && !taken[slot_[kept[i].m] - b]) best = std::min(best, slot_[kept[i].m]);
       for (std::uint32_t i = b; best == kNone && i < e; ++i)
         if (!taken[i - b]) best = i;
-      if (best == kNone) return reject(members);
+      if (best == kNone) return false;
       taken[best - b] = 1;
       vertex_of_fan[f] = cand_[best].vertex;
     }
@@ -251,15 +275,16 @@ class Snapper {
     for (std::uint32_t t : dropped) mesh_.triangles[t] = {kNone, kNone, kNone};
     for (int i = 0; i < nk; ++i)
       if (fan_of[i] >= 0) mesh_.triangles[kept[i].tri] = {vertex_of_fan[fan_of[i]], kept[i].a, kept[i].b};
-    report.moved += static_cast<std::size_t>(nfans);
-    report.merged += members - static_cast<std::size_t>(nfans);
-    report.dropped += dropped.size();
-    report.split += nfans > 1;
+    w.report.moved += static_cast<std::size_t>(nfans);
+    w.report.merged += members - static_cast<std::size_t>(nfans);
+    w.report.dropped += dropped.size();
+    w.report.split += nfans > 1;
+    return true;
   }
 
   // Removes merged vertices, vertices left without triangles and collapsed triangles, keeping
   // the order of the rest.
-  void compact() {
+  void compact(SnapReport& report) {
     Triangles& tris = mesh_.triangles;
     if (report.dropped == 0 && report.merged == 0) return;
     tris.erase(std::remove_if(tris.begin(), tris.end(), [](const Tri& t) { return t[0] == kNone; }),
@@ -284,16 +309,14 @@ class Snapper {
       for (std::uint32_t& v : t) v = index[v];
   }
 
-  SnapReport report;
 
  private:
-  void reject(std::uint32_t members) { report.kept += members; }
 
   // Pairs the kept triangles that would become one triangle wound both ways (two vertices near the
   // voxel joined to the same two outer vertices from either side): such a fold cancels out. False
   // when two would become the same triangle, or three share their outer vertices.
-  bool cancel_folds(std::vector<Kept>& kept) {
-    std::vector<std::uint32_t>& order = tmp_.order;
+  static bool cancel_folds(std::vector<Kept>& kept, Worker& w) {
+    std::vector<std::uint32_t>& order = w.order;
     order.resize(kept.size());
     std::iota(order.begin(), order.end(), 0);
     auto pair_of = [&](std::uint32_t i) {
@@ -319,8 +342,9 @@ class Snapper {
   // from (m, a), across collapsing triangles (their spokes to other members), to the next kept
   // triangle. False when a walk does not end (a broken mesh).
   template <class Member>
-  bool pair_spokes(std::vector<Kept>& kept, const Member& member, const std::vector<std::uint32_t>& tris) {
-    std::vector<std::uint32_t>& kept_tris = tmp_.kept_tris;
+  bool pair_spokes(std::vector<Kept>& kept, const Member& member, const std::vector<std::uint32_t>& tris,
+                   Worker& w) {
+    std::vector<std::uint32_t>& kept_tris = w.kept_tris;
     kept_tris.resize(kept.size());
     for (std::size_t i = 0; i < kept.size(); ++i) kept_tris[i] = kept[i].tri;
     auto kept_index = [&](std::uint32_t t) {  // tris and kept are both in triangle order
@@ -375,12 +399,13 @@ class Snapper {
   // triangle lies the triangle with a as its b, and that one's partner is the first), a closed fan
   // has at least three triangles, and no outer vertex is met twice in a fan (as a twice, as b
   // twice, or as a and b of two triangles that do not join there).
-  bool fans_are_discs(const std::vector<Kept>& kept, const std::vector<int>& fan_of, int nfans) {
-    std::vector<int>& size = tmp_.size;
-    std::vector<int>& open = tmp_.open;
+  static bool fans_are_discs(const std::vector<Kept>& kept, const std::vector<int>& fan_of, int nfans,
+                             Worker& w) {
+    std::vector<int>& size = w.size;
+    std::vector<int>& open = w.open;
     size.assign(nfans, 0);
     open.assign(nfans, 0);
-    auto& uses = tmp_.uses;  // (fan, vertex, 0 as a / 1 as b, triangle)
+    auto& uses = w.uses;  // (fan, vertex, 0 as a / 1 as b, triangle)
     uses.clear();
     for (std::size_t i = 0; i < kept.size(); ++i) {
       const Kept& k = kept[i];
@@ -413,14 +438,6 @@ class Snapper {
   std::vector<std::uint32_t> first_;     // per candidate: where its triangles start in incident_
   std::vector<std::uint32_t> incident_;  // triangles using each candidate
   std::vector<char> removed_;            // per candidate: merged into another
-  std::vector<std::uint32_t> group_;     // per candidate: its group's first candidate
-  struct {  // per-voxel working arrays, kept between voxels
-    std::vector<std::uint32_t> tris, dropped, kept_tris, order;
-    std::vector<Kept> kept;
-    std::vector<int> parent, fan_of, root_fan, size, open;
-    std::vector<Vec3f> where_f;
-    std::vector<std::array<std::uint32_t, 4>> uses;
-  } tmp_;
 };
 
 }  // namespace
@@ -454,26 +471,45 @@ SnapReport snap_vertices(Mesh& mesh, std::vector<SnapCandidate> candidates, cons
   for (std::uint32_t b = 0; b < sorted.size(); ++b)
     if (b == 0 || sorted[b].first != sorted[b - 1].first) groups.push_back(b);
   groups.push_back(static_cast<std::uint32_t>(sorted.size()));
-  // A voxel refused because of a neighbour's vertices not yet snapped (a triangle to two vertices
-  // that later merge looks degenerate) is tried again once the others are done.
-  std::vector<std::uint32_t> todo(groups.size() - 1);
-  std::iota(todo.begin(), todo.end(), 0);
-  for (int round = 0; round < kSnapRounds && !todo.empty(); ++round) {
-    std::vector<std::uint32_t> refused;
-    for (std::uint32_t g : todo) {
-      const std::size_t before = s.report.kept;
-      s.snap_group(groups[g], groups[g + 1], sorted[groups[g]].first);
-      if (s.report.kept != before) {
-        refused.push_back(g);
-        if (round + 1 < kSnapRounds) s.report.kept = before;
-      }
+  // Voxels by parity class (x, y, z mod 2): two voxels of one class lie two or more apart along
+  // some axis, so their stars (the 8 cells around each) share no triangle and no vertex that
+  // either moves: a class runs in parallel, and the result does not depend on the order within
+  // it. A voxel refused because of a neighbour's vertices not yet merged (a triangle to two
+  // vertices that later merge looks degenerate) is tried again once the others are done.
+  std::array<std::vector<std::uint32_t>, 8> todo;
+  for (std::uint32_t g = 0; g + 1 < groups.size(); ++g) todo[parity(sorted[groups[g]].first)].push_back(g);
+  tbb::enumerable_thread_specific<Worker> workers;
+  for (int round = 0; round < kSnapRounds; ++round) {
+    bool progress = false, left = false;
+    for (auto& cls : todo) {
+      std::vector<char> refused(cls.size(), 0);
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cls.size(), 64), [&](const auto& r) {
+        Worker& w = workers.local();
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+          const std::uint32_t g = cls[i];
+          refused[i] = !s.snap_group(groups[g], groups[g + 1], sorted[groups[g]].first, w);
+        }
+      });
+      std::size_t n = 0;
+      for (std::size_t i = 0; i < cls.size(); ++i)
+        if (refused[i]) cls[n++] = cls[i];
+      progress = progress || n < cls.size();
+      cls.resize(n);
+      left = left || n > 0;
     }
-    if (refused.size() == todo.size()) break;
-    todo.swap(refused);
+    if (!progress || !left) break;
   }
-  s.compact();
-  s.report.candidates = report.candidates;
-  return s.report;
+  for (const Worker& w : workers) {
+    report.moved += w.report.moved;
+    report.merged += w.report.merged;
+    report.dropped += w.report.dropped;
+    report.split += w.report.split;
+  }
+  for (const auto& cls : todo)
+    for (std::uint32_t g : cls) report.kept += groups[g + 1] - groups[g];
+  s.compact(report);
+  return report;
+
 }
 
 }  // namespace isocurv::mc
