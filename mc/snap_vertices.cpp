@@ -85,11 +85,11 @@ struct Kept {
 
 // One thread's working arrays (kept between voxels) and its share of the report.
 struct Worker {
-  std::vector<std::uint32_t> vertices, tris, dropped, kept_tris, order;
+  std::vector<std::uint32_t> vertices, tris, dropped, kept_tris, order, ends;
+  std::vector<std::uint32_t> vanished;  // vertices left without a triangle (note_vanishing)
   std::vector<Kept> kept;
   std::vector<int> parent, fan_of, root_fan, size, open;
   std::vector<Vec3f> where_f;
-  std::vector<std::array<std::uint32_t, 4>> uses;
   SnapReport report;
 };
 
@@ -102,15 +102,28 @@ class Snapper {
         offset_(kFanOffset * std::cbrt(abs_det(frame))) {
     slot_.assign(mesh.positions.size(), kNone);
     for (std::uint32_t i = 0; i < cand_.size(); ++i) slot_[cand_[i].vertex] = i;
-    first_.assign(cand_.size() + 1, 0);  // incidence lists (compressed rows), one triangle scan
-    for (const Tri& t : mesh_.triangles)
-      for (std::uint32_t v : t)
+    // The triangles with a candidate (one parallel scan in fixed chunks, joined in order), and
+    // their incidence lists (compressed rows).
+    const Triangles& all = mesh_.triangles;
+    constexpr std::size_t kChunk = 16384;
+    std::vector<std::vector<std::uint32_t>> found((all.size() + kChunk - 1) / kChunk);
+    tbb::parallel_for(std::size_t(0), found.size(), [&](std::size_t c) {
+      const std::size_t end = std::min(all.size(), (c + 1) * kChunk);
+      for (std::size_t t = c * kChunk; t < end; ++t)
+        if (slot_[all[t][0]] != kNone || slot_[all[t][1]] != kNone || slot_[all[t][2]] != kNone)
+          found[c].push_back(static_cast<std::uint32_t>(t));
+    });
+    std::vector<std::uint32_t> touching;
+    for (const auto& part : found) touching.insert(touching.end(), part.begin(), part.end());
+    first_.assign(cand_.size() + 1, 0);
+    for (std::uint32_t t : touching)
+      for (std::uint32_t v : all[t])
         if (slot_[v] != kNone) ++first_[slot_[v] + 1];
     std::partial_sum(first_.begin(), first_.end(), first_.begin());
     incident_.resize(first_.back());
     std::vector<std::uint32_t> fill(first_.begin(), first_.end() - 1);
-    for (std::uint32_t t = 0; t < mesh_.triangles.size(); ++t)
-      for (std::uint32_t v : mesh_.triangles[t])
+    for (std::uint32_t t : touching)
+      for (std::uint32_t v : all[t])
         if (slot_[v] != kNone) incident_[fill[slot_[v]]++] = t;
     removed_.assign(cand_.size(), 0);
   }
@@ -161,6 +174,7 @@ class Snapper {
     if (none_left) {  // a closed speck around the voxel: it vanishes
       for (const Kept& k : kept) dropped.push_back(k.tri);
       for (std::uint32_t i = b; i < e; ++i) removed_[i] = 1;
+      note_vanishing(kept, dropped, member, w);
       for (std::uint32_t t : dropped) mesh_.triangles[t] = {kNone, kNone, kNone};
       w.report.merged += members;
       w.report.dropped += dropped.size();
@@ -272,6 +286,7 @@ class Snapper {
     for (int f = 0; f < nfans; ++f) mesh_.positions[vertex_of_fan[f]] = where_f[f];
     for (const Kept& k : kept)
       if (k.twin >= 0) dropped.push_back(k.tri);
+    note_vanishing(kept, dropped, member, w);
     for (std::uint32_t t : dropped) mesh_.triangles[t] = {kNone, kNone, kNone};
     for (int i = 0; i < nk; ++i)
       if (fan_of[i] >= 0) mesh_.triangles[kept[i].tri] = {vertex_of_fan[fan_of[i]], kept[i].a, kept[i].b};
@@ -282,17 +297,16 @@ class Snapper {
     return true;
   }
 
-  // Removes merged vertices, vertices left without triangles and collapsed triangles, keeping
-  // the order of the rest.
-  void compact(SnapReport& report) {
+  // Removes merged vertices, vertices left without triangles (`vanished`) and collapsed
+  // triangles, keeping the order of the rest.
+  void compact(SnapReport& report, const std::vector<std::uint32_t>& vanished) {
     Triangles& tris = mesh_.triangles;
     if (report.dropped == 0 && report.merged == 0) return;
-    tris.erase(std::remove_if(tris.begin(), tris.end(), [](const Tri& t) { return t[0] == kNone; }),
-               tris.end());
     const std::size_t nv = mesh_.positions.size();
-    std::vector<std::uint32_t> index(nv, kNone);
-    for (const Tri& t : tris)
-      for (std::uint32_t v : t) index[v] = 0;
+    std::vector<std::uint32_t> index(nv);
+    for (std::size_t i = 0; i < cand_.size(); ++i)
+      if (removed_[i]) index[cand_[i].vertex] = kNone;
+    for (std::uint32_t v : vanished) index[v] = kNone;
     std::uint32_t next = 0;
     const bool keys = mesh_.edge_keys.size() == nv;
     for (std::size_t v = 0; v < nv; ++v) {
@@ -302,15 +316,49 @@ class Snapper {
       if (keys) mesh_.edge_keys[next] = mesh_.edge_keys[v];
       ++next;
     }
-    report.vanished = nv - next - (report.merged);
+    report.vanished = vanished.size();
     mesh_.positions.resize(next);
     if (keys) mesh_.edge_keys.resize(next);
-    for (Tri& t : tris)
-      for (std::uint32_t& v : t) v = index[v];
+    tris.erase(std::remove_if(tris.begin(), tris.end(), [](const Tri& t) { return t[0] == kNone; }),
+               tris.end());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tris.size(), 16384),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t t = r.begin(); t != r.end(); ++t)
+                          for (std::uint32_t& v : tris[t]) v = index[v];
+                      });
   }
 
-
  private:
+  // The outer vertices of the collapsing triangles that keep no triangle: those in no kept one
+  // whose every triangle is in the voxel's star (their triangles there close a fan around them),
+  // so none is left elsewhere either. Recorded for compact().
+  template <class Member>
+  void note_vanishing(const std::vector<Kept>& kept, const std::vector<std::uint32_t>& dropped,
+                      const Member& member, Worker& w) const {
+    for (std::uint32_t t : dropped)
+      for (std::uint32_t x : mesh_.triangles[t]) {
+        if (member(x)) continue;
+        bool in_kept = false;
+        for (const Kept& k : kept) in_kept = in_kept || (k.twin < 0 && (k.a == x || k.b == x));
+        if (in_kept || std::find(w.vanished.begin(), w.vanished.end(), x) != w.vanished.end()) continue;
+        // x's other corners over the star's triangles: each exactly twice when the star holds
+        // x's whole fan (a closed manifold vertex).
+        std::vector<std::uint32_t>& ends = w.ends;
+        ends.clear();
+        for (std::uint32_t u : w.tris)
+          for (int c = 0; c < 3; ++c)
+            if (mesh_.triangles[u][c] == x) {
+              ends.push_back(mesh_.triangles[u][(c + 1) % 3]);
+              ends.push_back(mesh_.triangles[u][(c + 2) % 3]);
+            }
+        std::sort(ends.begin(), ends.end());
+        bool closed = !ends.empty();
+        for (std::size_t i = 0; closed && i < ends.size(); i += 2)
+          closed = ends[i] == ends[i + 1] && (i + 2 == ends.size() || ends[i + 2] != ends[i]);
+        if (closed) w.vanished.push_back(x);
+      }
+  }
+
 
   // Pairs the kept triangles that would become one triangle wound both ways (two vertices near the
   // voxel joined to the same two outer vertices from either side): such a fold cancels out. False
@@ -322,7 +370,8 @@ class Snapper {
     auto pair_of = [&](std::uint32_t i) {
       return std::make_pair(std::min(kept[i].a, kept[i].b), std::max(kept[i].a, kept[i].b));
     };
-    std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return pair_of(x) < pair_of(y); });
+    std::sort(order.begin(), order.end(),
+              [&](std::uint32_t x, std::uint32_t y) { return pair_of(x) < pair_of(y); });
     for (std::size_t i = 0; i < order.size();) {
       std::size_t j = i + 1;
       while (j < order.size() && pair_of(order[j]) == pair_of(order[i])) ++j;
@@ -405,27 +454,26 @@ class Snapper {
     std::vector<int>& open = w.open;
     size.assign(nfans, 0);
     open.assign(nfans, 0);
-    auto& uses = w.uses;  // (fan, vertex, 0 as a / 1 as b, triangle)
-    uses.clear();
-    for (std::size_t i = 0; i < kept.size(); ++i) {
+    const int nk = static_cast<int>(kept.size());
+    for (int i = 0; i < nk; ++i) {
       const Kept& k = kept[i];
       if (fan_of[i] < 0) continue;
-      if (k.partner_a >= 0 && (kept[k.partner_a].b != k.a || kept[k.partner_a].partner_b != int(i))) return false;
-      if (k.partner_b >= 0 && (kept[k.partner_b].a != k.b || kept[k.partner_b].partner_a != int(i))) return false;
+      if (k.partner_a >= 0 && (kept[k.partner_a].b != k.a || kept[k.partner_a].partner_b != i)) return false;
+      if (k.partner_b >= 0 && (kept[k.partner_b].a != k.b || kept[k.partner_b].partner_a != i)) return false;
       ++size[fan_of[i]];
       open[fan_of[i]] += (k.partner_a < 0) + (k.partner_b < 0);
-      uses.push_back({std::uint32_t(fan_of[i]), k.a, 0, std::uint32_t(i)});
-      uses.push_back({std::uint32_t(fan_of[i]), k.b, 1, std::uint32_t(i)});
     }
     for (int f = 0; f < nfans; ++f)
       if ((open[f] != 0 && open[f] != 2) || (open[f] == 0 && size[f] < 3)) return false;
-    std::sort(uses.begin(), uses.end());
-    for (std::size_t i = 0; i + 1 < uses.size(); ++i) {
-      const auto &u = uses[i], &w = uses[i + 1];
-      if (u[0] != w[0] || u[1] != w[1]) continue;
-      if (u[2] == w[2]) return false;                            // the same role twice
-      if (kept[u[3]].partner_a != int(w[3])) return false;       // a and b, not joined there
-    }
+    // Pairs of one fan (a dozen triangles: a scan beats sorting).
+    for (int i = 0; i < nk; ++i)
+      for (int j = i + 1; j < nk; ++j) {
+        if (fan_of[i] < 0 || fan_of[i] != fan_of[j]) continue;
+        const Kept &x = kept[i], &y = kept[j];
+        if (x.a == y.a || x.b == y.b) return false;       // the same role twice
+        if (x.a == y.b && x.partner_a != j) return false;  // a and b, not joined there
+        if (x.b == y.a && y.partner_a != i) return false;
+      }
     return true;
   }
 
@@ -499,7 +547,9 @@ SnapReport snap_vertices(Mesh& mesh, std::vector<SnapCandidate> candidates, cons
     }
     if (!progress || !left) break;
   }
+  std::vector<std::uint32_t> vanished;
   for (const Worker& w : workers) {
+    vanished.insert(vanished.end(), w.vanished.begin(), w.vanished.end());
     report.moved += w.report.moved;
     report.merged += w.report.merged;
     report.dropped += w.report.dropped;
@@ -507,7 +557,7 @@ SnapReport snap_vertices(Mesh& mesh, std::vector<SnapCandidate> candidates, cons
   }
   for (const auto& cls : todo)
     for (std::uint32_t g : cls) report.kept += groups[g + 1] - groups[g];
-  s.compact(report);
+  s.compact(report, vanished);
   return report;
 
 }
