@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <memory>
 #include <cmath>
 #include <numeric>
 
@@ -41,9 +43,10 @@ std::uint64_t point_key(std::uint64_t edge) {
 // World position of the voxel with point key `p`, computed as the reference mesher places
 // vertices (double sums of the float map).
 Vec3d voxel_position(std::uint64_t p, const Frame& f) {
-  const double i[3] = {double(((p >> 42) & kField) + f.key_origin.x()),
-                       double(((p >> 22) & kField) + f.key_origin.y()),
-                       double(((p >> 2) & kField) + f.key_origin.z())};
+  // Signed sums: key origins, and so voxels, may lie at negative index coordinates.
+  const double i[3] = {double(std::int64_t((p >> 42) & kField) + f.key_origin.x()),
+                       double(std::int64_t((p >> 22) & kField) + f.key_origin.y()),
+                       double(std::int64_t((p >> 2) & kField) + f.key_origin.z())};
   Vec3d w;
   for (int r = 0; r < 3; ++r)
     w[r] = f.world[r * 4 + 0] * i[0] + f.world[r * 4 + 1] * i[1] + f.world[r * 4 + 2] * i[2] +
@@ -85,8 +88,8 @@ struct Kept {
 
 // One thread's working arrays (kept between voxels) and its share of the report.
 struct Worker {
-  std::vector<std::uint32_t> vertices, tris, dropped, kept_tris, order, ends;
-  std::vector<std::uint32_t> vanished;  // vertices left without a triangle (note_vanishing)
+  std::vector<std::uint32_t> vertices, tris, dropped, kept_tris, order;
+  std::vector<Vec3f> outer;
   std::vector<Kept> kept;
   std::vector<int> parent, fan_of, root_fan, size, open;
   std::vector<Vec3f> where_f;
@@ -125,7 +128,6 @@ class Snapper {
     for (std::uint32_t t : touching)
       for (std::uint32_t v : all[t])
         if (slot_[v] != kNone) incident_[fill[slot_[v]]++] = t;
-    removed_.assign(cand_.size(), 0);
   }
 
   // Snaps the candidates [b, e), which all lie near the voxel `point`: every triangle with two or
@@ -173,8 +175,6 @@ class Snapper {
         std::all_of(kept.begin(), kept.end(), [](const Kept& k) { return k.twin >= 0; });
     if (none_left) {  // a closed speck around the voxel: it vanishes
       for (const Kept& k : kept) dropped.push_back(k.tri);
-      for (std::uint32_t i = b; i < e; ++i) removed_[i] = 1;
-      note_vanishing(kept, dropped, member, w);
       for (std::uint32_t t : dropped) mesh_.triangles[t] = {kNone, kNone, kNone};
       w.report.merged += members;
       w.report.dropped += dropped.size();
@@ -207,14 +207,21 @@ class Snapper {
     const Vec3d at = voxel_position(point, frame_);
     std::vector<Vec3d> where(nfans, at);
     if (nfans > 1) {
-      std::vector<Vec3d> sum(nfans, Vec3d{0, 0, 0});
-      for (int i = 0; i < nk; ++i)
-        if (fan_of[i] >= 0)
-          for (std::uint32_t v : {kept[i].a, kept[i].b})
-            for (int c = 0; c < 3; ++c) sum[fan_of[i]][c] += mesh_.positions[v][c];
       for (int f = 0; f < nfans; ++f) {
-        const double count = 2.0 * double(std::count(fan_of.begin(), fan_of.end(), f));
-        const Vec3d d = {sum[f][0] / count - at[0], sum[f][1] / count - at[1], sum[f][2] / count - at[2]};
+        // The mean of the fan's outer vertices, summed in position order (not triangle order).
+        std::vector<Vec3f>& outer = w.outer;
+        outer.clear();
+        for (int i = 0; i < nk; ++i)
+          if (fan_of[i] == f) {
+            outer.push_back(mesh_.positions[kept[i].a]);
+            outer.push_back(mesh_.positions[kept[i].b]);
+          }
+        std::sort(outer.begin(), outer.end());
+        Vec3d sum{0, 0, 0};
+        for (const Vec3f& q : outer)
+          for (int c = 0; c < 3; ++c) sum[c] += q[c];
+        const double count = double(outer.size());
+        const Vec3d d = {sum[0] / count - at[0], sum[1] / count - at[1], sum[2] / count - at[2]};
         const double len = std::sqrt(dot(d, d));
         if (!(len > 0)) return false;
         for (int c = 0; c < 3; ++c) where[f][c] = at[c] + offset_ * d[c] / len;
@@ -226,8 +233,8 @@ class Snapper {
       where_f[f] = {float(where[f][0]), float(where[f][1]), float(where[f][2])};
     for (int f = 0; f < nfans; ++f)  // fans facing the same way (symmetric sheets) would coincide
       for (int g = 0; g < f; ++g) {
-        const Vec3d d = sub(where[f], where[g]);
-        if (dot(d, d) < 0.25 * offset_ * offset_) return false;
+        const Vec3d d = sub(to_d(where_f[f]), to_d(where_f[g]));
+        if (where_f[f] == where_f[g] || dot(d, d) < 0.25 * offset_ * offset_) return false;
       }
 
     // Sound geometry: no triangle too small or turned over.
@@ -256,37 +263,29 @@ class Snapper {
     }
     if (!sound()) return false;
 
-    // Each fan keeps one member's vertex (and edge key): fans in the order of their smallest outer
-    // vertex position, each taking its smallest-key member not yet taken (members are sorted by
-    // key), so the choice does not depend on vertex numbering.
+    // Each fan keeps one of its members' vertex (and edge key): fans in the order of their new
+    // positions (distinct), each taking its smallest-key member not yet taken (members are sorted
+    // by key), so the choice does not depend on vertex numbering. A fan left without a member of
+    // its own is refused.
     std::vector<std::uint32_t> order(nfans);
     std::iota(order.begin(), order.end(), 0);
-    std::vector<Vec3f> lowest(nfans, Vec3f{INFINITY, INFINITY, INFINITY});
-    for (int i = 0; i < nk; ++i)
-      if (fan_of[i] >= 0)
-        for (std::uint32_t v : {kept[i].a, kept[i].b})
-          lowest[fan_of[i]] = std::min(lowest[fan_of[i]], mesh_.positions[v]);
     std::sort(order.begin(), order.end(),
-              [&](std::uint32_t x, std::uint32_t y) { return lowest[x] < lowest[y]; });
+              [&](std::uint32_t x, std::uint32_t y) { return where_f[x] < where_f[y]; });
     std::vector<std::uint32_t> vertex_of_fan(nfans, kNone);
     std::vector<char> taken(members, 0);
     for (std::uint32_t f : order) {
       std::uint32_t best = kNone;
       for (int i = 0; i < nk; ++i)
         if (fan_of[i] == int(f) && !taken[slot_[kept[i].m] - b]) best = std::min(best, slot_[kept[i].m]);
-      for (std::uint32_t i = b; best == kNone && i < e; ++i)
-        if (!taken[i - b]) best = i;
       if (best == kNone) return false;
       taken[best - b] = 1;
       vertex_of_fan[f] = cand_[best].vertex;
     }
 
     // Apply.
-    for (std::uint32_t i = b; i < e; ++i) removed_[i] = !taken[i - b];
     for (int f = 0; f < nfans; ++f) mesh_.positions[vertex_of_fan[f]] = where_f[f];
     for (const Kept& k : kept)
       if (k.twin >= 0) dropped.push_back(k.tri);
-    note_vanishing(kept, dropped, member, w);
     for (std::uint32_t t : dropped) mesh_.triangles[t] = {kNone, kNone, kNone};
     for (int i = 0; i < nk; ++i)
       if (fan_of[i] >= 0) mesh_.triangles[kept[i].tri] = {vertex_of_fan[fan_of[i]], kept[i].a, kept[i].b};
@@ -297,30 +296,41 @@ class Snapper {
     return true;
   }
 
-  // Removes merged vertices, vertices left without triangles (`vanished`) and collapsed
-  // triangles, keeping the order of the rest.
-  void compact(SnapReport& report, const std::vector<std::uint32_t>& vanished) {
+  // Removes collapsed triangles, then every vertex no triangle uses any more (those merged
+  // away, and those whose every triangle collapsed), keeping the order of the rest.
+  void compact(SnapReport& report) {
     Triangles& tris = mesh_.triangles;
     if (report.dropped == 0 && report.merged == 0) return;
+    tris.erase(std::remove_if(tris.begin(), tris.end(), [](const Tri& t) { return t[0] == kNone; }),
+               tris.end());
     const std::size_t nv = mesh_.positions.size();
+    std::unique_ptr<std::atomic<std::uint8_t>[]> used(new std::atomic<std::uint8_t>[nv]);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 65536),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t v = r.begin(); v != r.end(); ++v)
+                          used[v].store(0, std::memory_order_relaxed);
+                      });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tris.size(), 16384),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t t = r.begin(); t != r.end(); ++t)
+                          for (std::uint32_t v : tris[t]) used[v].store(1, std::memory_order_relaxed);
+                      });
     std::vector<std::uint32_t> index(nv);
-    for (std::size_t i = 0; i < cand_.size(); ++i)
-      if (removed_[i]) index[cand_[i].vertex] = kNone;
-    for (std::uint32_t v : vanished) index[v] = kNone;
     std::uint32_t next = 0;
     const bool keys = mesh_.edge_keys.size() == nv;
     for (std::size_t v = 0; v < nv; ++v) {
-      if (index[v] == kNone) continue;
+      if (!used[v].load(std::memory_order_relaxed)) {
+        index[v] = kNone;
+        continue;
+      }
       index[v] = next;
       mesh_.positions[next] = mesh_.positions[v];
       if (keys) mesh_.edge_keys[next] = mesh_.edge_keys[v];
       ++next;
     }
-    report.vanished = vanished.size();
+    report.vanished = nv - next - report.merged;
     mesh_.positions.resize(next);
     if (keys) mesh_.edge_keys.resize(next);
-    tris.erase(std::remove_if(tris.begin(), tris.end(), [](const Tri& t) { return t[0] == kNone; }),
-               tris.end());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tris.size(), 16384),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         for (std::size_t t = r.begin(); t != r.end(); ++t)
@@ -329,37 +339,6 @@ class Snapper {
   }
 
  private:
-  // The outer vertices of the collapsing triangles that keep no triangle: those in no kept one
-  // whose every triangle is in the voxel's star (their triangles there close a fan around them),
-  // so none is left elsewhere either. Recorded for compact().
-  template <class Member>
-  void note_vanishing(const std::vector<Kept>& kept, const std::vector<std::uint32_t>& dropped,
-                      const Member& member, Worker& w) const {
-    for (std::uint32_t t : dropped)
-      for (std::uint32_t x : mesh_.triangles[t]) {
-        if (member(x)) continue;
-        bool in_kept = false;
-        for (const Kept& k : kept) in_kept = in_kept || (k.twin < 0 && (k.a == x || k.b == x));
-        if (in_kept || std::find(w.vanished.begin(), w.vanished.end(), x) != w.vanished.end()) continue;
-        // x's other corners over the star's triangles: each exactly twice when the star holds
-        // x's whole fan (a closed manifold vertex).
-        std::vector<std::uint32_t>& ends = w.ends;
-        ends.clear();
-        for (std::uint32_t u : w.tris)
-          for (int c = 0; c < 3; ++c)
-            if (mesh_.triangles[u][c] == x) {
-              ends.push_back(mesh_.triangles[u][(c + 1) % 3]);
-              ends.push_back(mesh_.triangles[u][(c + 2) % 3]);
-            }
-        std::sort(ends.begin(), ends.end());
-        bool closed = !ends.empty();
-        for (std::size_t i = 0; closed && i < ends.size(); i += 2)
-          closed = ends[i] == ends[i + 1] && (i + 2 == ends.size() || ends[i + 2] != ends[i]);
-        if (closed) w.vanished.push_back(x);
-      }
-  }
-
-
   // Pairs the kept triangles that would become one triangle wound both ways (two vertices near the
   // voxel joined to the same two outer vertices from either side): such a fold cancels out. False
   // when two would become the same triangle, or three share their outer vertices.
@@ -485,7 +464,6 @@ class Snapper {
   std::vector<std::uint32_t> slot_;      // per vertex: its candidate, or kNone
   std::vector<std::uint32_t> first_;     // per candidate: where its triangles start in incident_
   std::vector<std::uint32_t> incident_;  // triangles using each candidate
-  std::vector<char> removed_;            // per candidate: merged into another
 };
 
 }  // namespace
@@ -547,9 +525,7 @@ SnapReport snap_vertices(Mesh& mesh, std::vector<SnapCandidate> candidates, cons
     }
     if (!progress || !left) break;
   }
-  std::vector<std::uint32_t> vanished;
   for (const Worker& w : workers) {
-    vanished.insert(vanished.end(), w.vanished.begin(), w.vanished.end());
     report.moved += w.report.moved;
     report.merged += w.report.merged;
     report.dropped += w.report.dropped;
@@ -557,7 +533,7 @@ SnapReport snap_vertices(Mesh& mesh, std::vector<SnapCandidate> candidates, cons
   }
   for (const auto& cls : todo)
     for (std::uint32_t g : cls) report.kept += groups[g + 1] - groups[g];
-  s.compact(report, vanished);
+  s.compact(report);
   return report;
 
 }

@@ -3,6 +3,8 @@
 // equal to the reference, and every vertex within the snap distance of where it was.
 #include <gtest/gtest.h>
 
+#include <openvdb/tools/LevelSetSphere.h>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -169,4 +171,33 @@ TEST(Snap, DistanceOutsideItsRangeIsRefused) {
   const volume::Volume v = ct_like(5);
   EXPECT_THROW(mc::extract(v, 128.0f, dev(), capped(0.6f, false)), Error);
   EXPECT_THROW(mc::extract(v, 128.0f, dev(), capped(-0.1f, false)), Error);
+}
+
+TEST(Snap, NegativeIndexCoordinatesAndHeavySnapping) {
+  // A level-set sphere around the origin: half its voxels lie at negative index coordinates. With
+  // a large snap distance nearly every vertex takes part; the mesh stays sound, equal to the
+  // reference's, and near the sphere.
+  openvdb::initialize();
+  auto grid = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(6.3f, openvdb::Vec3f(0.2f, -0.1f, 0.3f), 0.5f);
+  volume::Volume v;
+  v.grid = grid;
+  v.path = "sphere";
+  v.inside = volume::Inside::Below;
+  v.dense = false;
+  v.domain = grid->evalActiveVoxelBoundingBox();
+  v.stats.min = -1.5;  // the narrow band's values
+  v.stats.max = 1.5;
+  ASSERT_LT(v.domain.min().x(), 0);
+  for (float snap : {0.1f, 0.3f}) {
+    mc::Options o;
+    o.snap = snap;
+    o.keep_edge_keys = true;
+    const Mesh m = mc::extract(v, 0.0f, dev(), o);
+    expect_sound(m, "snap " + std::to_string(snap));
+    expect_same_mesh(m, mc::extract_reference(v, 0.0f, o));
+    for (const Vec3f& p : m.positions) {
+      const double r = std::hypot(p[0] - 0.2, p[1] + 0.1, p[2] - 0.3);
+      ASSERT_NEAR(r, 6.3, 0.5 * 2 * snap + 0.05) << snap;  // within twice the snap distance
+    }
+  }
 }
