@@ -1,8 +1,13 @@
 // Every kind of bad input gives isocurv::Error naming the file, never a crash or a huge allocation.
 #include <gtest/gtest.h>
 #include <openvdb/io/File.h>
+#include <openvdb/tools/LevelSetSphere.h>
 
+#include <sys/resource.h>
+
+#include <cstdlib>
 #include <limits>
+#include <sstream>
 
 #include "test_files.h"
 #include "volume/load.h"
@@ -201,4 +206,80 @@ TEST(VolumeBadInput, NonFiniteVoxelsCountedReplacedOrRejected) {
   const Volume l = load(dir.file("nanls.vdb"));
   EXPECT_EQ(l.stats.nan_count, 1u);
   EXPECT_EQ(l.grid->tree().getValue(openvdb::Coord(2, 0, 0)), 2.0f);
+}
+
+namespace {
+std::string file_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+}  // namespace
+
+// A .vdb cut anywhere (or with bytes appended) is an error, never a grid with leaves missing: OpenVDB
+// hides short reads of leaf data, so the loader has to check the stream itself.
+TEST(VolumeBadInput, VdbCutAtAnyLengthFailsOrLoadsWhole) {
+  openvdb::initialize();
+  TempDir dir;
+  auto sphere = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(12.0f, openvdb::Vec3f(0), 1.0f);
+  sphere->setName("sphere");
+  auto other = openvdb::FloatGrid::create(0.0f);  // a second grid after the first in the file
+  other->setName("zz");
+  other->tree().setValue(openvdb::Coord(1, 2, 3), 1.0f);
+  openvdb::GridPtrVec grids{sphere, other};
+  const std::string full_path = dir.file("full.vdb");
+  openvdb::io::File(full_path).write(grids);
+  const std::string bytes = file_text(full_path);
+  const Volume whole = load(full_path);
+  ASSERT_EQ(whole.grid->activeVoxelCount(), sphere->activeVoxelCount());
+
+  std::vector<std::size_t> lengths{0, 1, 8, 16, 100, bytes.size() - 1, bytes.size() - 2, bytes.size() - 4,
+                                   bytes.size() - 16, bytes.size() - 100};
+  for (std::size_t l = 200; l < bytes.size(); l = l * 5 / 4) lengths.push_back(l);
+  const std::string cut = dir.file("cut.vdb");
+  for (std::size_t l : lengths) {
+    write_file(cut, bytes.substr(0, l));
+    SCOPED_TRACE("cut at " + std::to_string(l) + " of " + std::to_string(bytes.size()));
+    expect_error([&] { load(cut); }, "cut.vdb");
+  }
+  write_file(cut, bytes.substr(0, 5000));
+  expect_error([&] { load(cut); }, "cut.vdb", "truncated");  // not "out of memory"
+  // OpenVDB goes on after a short read with sizes it never read: a file cut in its header made
+  // it allocate and fill gigabytes. In a child process, so that its peak memory is its own.
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  EXPECT_EXIT(
+      {
+        for (std::size_t l = 150; l < 600; l += 10) {
+          write_file(cut, bytes.substr(0, l));
+          try {
+            load(cut);
+            std::_Exit(2);
+          } catch (const isocurv::Error&) {
+          }
+        }
+        rusage usage{};
+        getrusage(RUSAGE_SELF, &usage);
+        std::_Exit(usage.ru_maxrss < 1024 * 1024 ? 0 : 1);  // KiB: under 1 GiB
+      },
+      ::testing::ExitedWithCode(0), "");
+  write_file(cut, bytes + "extra");
+  expect_error([&] { load(cut); }, "cut.vdb", "grids end at byte");
+}
+
+// A topology that parses but is not what was written (here: stats metadata that disagree with
+// the tree, as a corrupt count would) is refused.
+TEST(VolumeBadInput, VdbWhoseTreeDisagreesWithItsStatsMetadata) {
+  openvdb::initialize();
+  TempDir dir;
+  auto g = openvdb::FloatGrid::create(0.0f);
+  g->setName("g");
+  g->tree().setValue(openvdb::Coord(0), 1.0f);
+  g->tree().setValue(openvdb::Coord(5), 2.0f);
+  g->insertMeta(openvdb::GridBase::META_FILE_VOXEL_COUNT, openvdb::Int64Metadata(3));
+  openvdb::GridPtrVec grids{g};
+  openvdb::io::File file(dir.file("count.vdb"));
+  file.setGridStatsMetadataEnabled(false);  // keep the wrong count
+  file.write(grids);
+  expect_error([&] { load(dir.file("count.vdb")); }, "count.vdb", "corrupt file");
 }
