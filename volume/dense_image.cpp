@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/error.h"
+#include "volume/file_bytes.h"
 #include "volume/from_dense.h"
 #include "volume/from_dense_u8.h"
 
@@ -19,6 +21,42 @@ std::uint64_t checked_voxel_count(const std::string& path, const std::array<long
   const long double count = (long double)dims[0] * dims[1] * dims[2];
   if (count > (long double)(1ULL << 40)) throw Error(path, "dimensions " + text + " are implausibly large");
   return std::uint64_t(dims[0]) * std::uint64_t(dims[1]) * std::uint64_t(dims[2]);
+}
+
+std::string bytes_text(long double bytes) {
+  if (bytes < 1e9L) return std::to_string(std::uint64_t(bytes)) + " bytes";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3Lg bytes", bytes);
+  return text;
+}
+
+std::uint64_t checked_payload(const std::string& path, const std::array<long long, 3>& dims, VoxelType type,
+                              const std::string& data_path, std::uint64_t available, Payload payload,
+                              const std::string& source) {
+  const std::string text = std::to_string(dims[0]) + " x " + std::to_string(dims[1]) + " x " + std::to_string(dims[2]);
+  for (long long d : dims)
+    if (d <= 0 || d > 0x7fffffffLL) throw Error(path, "invalid dimensions " + text);
+  const long double count = (long double)dims[0] * dims[1] * dims[2];
+  const long double needed = count * voxel_size(type);
+  const std::string claim = source + " claims " + text + " " + voxel_type_name(type) + " voxels (" + bytes_text(needed) + ")";
+  const std::string holds = data_path == path ? "the file holds" : "data file '" + data_path + "' holds";
+  switch (payload) {
+    case Payload::Raw:
+      if (needed > (long double)available)
+        throw Error(path, claim + " but " + holds + " " + bytes_text(available));
+      break;
+    case Payload::Compressed:
+      if (needed > (long double)max_inflated(available))
+        throw Error(path, claim + " but " + holds + " " + bytes_text(available) + " compressed, which inflate to " +
+                              "at most " + bytes_text((long double)max_inflated(available)));
+      break;
+    case Payload::Ascii:
+      if (count > (long double)available / 2 + 1)
+        throw Error(path, claim + " but " + holds + " " + bytes_text(available) + " of text, at most " +
+                              std::to_string(available / 2 + 1) + " numbers");
+      break;
+  }
+  return checked_voxel_count(path, dims);
 }
 
 void decode_into(DenseImage& image, Bytes&& bytes, std::uint64_t offset, std::uint64_t count, VoxelType type,

@@ -17,7 +17,11 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+#include <cctype>
 #include <mutex>
+#include <optional>
+#include <sstream>
 
 #include "core/error.h"
 #include "volume/dense_image.h"
@@ -125,14 +129,105 @@ void to_float(const T* src, std::size_t n, float* dst) {
   });
 }
 
+
+/// The voxel and component counts a VTK image header claims (0 when it does not say).
+struct Claim {
+  std::array<long long, 3> dims{0, 0, 0};
+  long long components = 1;
+};
+
+std::optional<std::vector<long long>> integers(const std::string& text, std::size_t n) {
+  std::istringstream in(text);
+  std::vector<long long> out(n);
+  for (auto& v : out)
+    if (!(in >> v) || v < -(1LL << 40) || v > (1LL << 40)) return std::nullopt;
+  return out;
+}
+
+/// The text after `key` and an `="` that follows it, up to the closing quote (at most 256 chars).
+std::optional<std::string> attribute(const std::string& head, const std::string& key, std::size_t& from) {
+  while ((from = head.find(key, from)) != std::string::npos) {
+    from += key.size();
+    std::size_t p = from;
+    while (p < head.size() && std::isspace(static_cast<unsigned char>(head[p]))) ++p;
+    if (p >= head.size() || head[p] != '=') continue;
+    const std::size_t open = head.find('"', p);
+    if (open == std::string::npos || open > p + 8) continue;
+    const std::size_t close = head.find('"', open + 1);
+    if (close == std::string::npos || close - open > 256) continue;
+    return head.substr(open + 1, close - open - 1);
+  }
+  return std::nullopt;
+}
+
+/// The rest of the first line starting with `keyword` (any case, after blanks), else empty.
+std::string line_after(const std::string& lower_head, const std::string& keyword) {
+  for (std::size_t p = 0; (p = lower_head.find(keyword, p)) != std::string::npos; p += keyword.size()) {
+    std::size_t q = p;
+    while (q > 0 && (lower_head[q - 1] == ' ' || lower_head[q - 1] == '\t')) --q;
+    if (q != 0 && lower_head[q - 1] != '\n') continue;
+    const std::size_t end = lower_head.find('\n', p);
+    return lower_head.substr(p + keyword.size(), (end == std::string::npos ? lower_head.size() : end) - p -
+                                                     keyword.size());
+  }
+  return {};
+}
+
+/// Reads the claim from the first 64 KiB: WholeExtent and NumberOfComponents (.vti), DIMENSIONS
+/// and the SCALARS component count (.vtk), the sizes after the magic number (.slc).
+Claim read_claim(const std::string& head, const std::string& format) {
+  Claim c;
+  if (format == "vti") {
+    std::size_t from = 0;
+    if (auto e = attribute(head, "WholeExtent", from))
+      if (auto v = integers(*e, 6))
+        for (std::size_t i = 0; i < 3; ++i) c.dims[i] = (*v)[2 * i + 1] - (*v)[2 * i] + 1;
+    from = 0;
+    while (auto n = attribute(head, "NumberOfComponents", from))
+      if (auto v = integers(*n, 1)) c.components = std::max(c.components, (*v)[0]);
+  } else if (format == "vtk") {
+    const std::string lower = to_lower(head);
+    if (auto d = integers(line_after(lower, "dimensions"), 3)) c.dims = {(*d)[0], (*d)[1], (*d)[2]};
+    std::istringstream scalars(line_after(lower, "scalars"));
+    std::string name, type;
+    long long n = 1;
+    if (scalars >> name >> type >> n) c.components = std::max(1LL, n);
+  } else if (auto d = integers(head.substr(0, 256), 4)) {  // slc: 11111 X Y Z
+    c.dims = {(*d)[1], (*d)[2], (*d)[3]};
+  }
+  return c;
+}
+
+/// Refuses, before VTK allocates for it, a header claiming more voxels than the file can hold:
+/// a .vtk stores at least a byte per value, a .vti at most ~1000 values per byte (deflate), an
+/// .slc at most 127 per two bytes (run lengths).
+void check_claim(const std::string& path, const std::string& format, std::uint64_t size) {
+  const Bytes head = read_bytes(path, 0, std::min<std::uint64_t>(size, 1 << 16));
+  const Claim c = read_claim(std::string(head.begin(), head.end()), format);
+  if (c.dims[0] == 0 && c.dims[1] == 0 && c.dims[2] == 0) return;  // the reader will complain
+  const std::string text = std::to_string(c.dims[0]) + " x " + std::to_string(c.dims[1]) + " x " +
+                           std::to_string(c.dims[2]);
+  for (long long d : c.dims)
+    if (d <= 0 || d > 0x7fffffffLL) throw Error(path, "invalid dimensions " + text);
+  const long double values = (long double)c.dims[0] * c.dims[1] * c.dims[2] * (long double)c.components;
+  const long double most = format == "vtk" ? (long double)size
+                           : format == "vti" ? (long double)max_inflated(size)
+                                             : (long double)size * 64 + 1024;
+  if (values > most)
+    throw Error(path, "header claims " + text + " voxels" +
+                          (c.components > 1 ? " of " + std::to_string(c.components) + " components" : "") +
+                          " (" + bytes_text(values) + " at one byte each) but the file holds " + bytes_text(size));
+}
+
 }  // namespace
 
 Volume load_vtk_image(const std::string& path, const LoadOptions& options) {
-  file_size(path);
+  const std::uint64_t size = file_size(path);
   const std::string name = to_lower(path);
   const bool xml = name.size() >= 4 && name.compare(name.size() - 4, 4, ".vti") == 0;
   const bool slc = name.size() >= 4 && name.compare(name.size() - 4, 4, ".slc") == 0;
   const std::string format = xml ? "vti" : slc ? "slc" : "vtk";
+  check_claim(path, format, size);
   OutputWindowGuard window;
   ErrorCatcher errors;
   vtkSmartPointer<vtkImageData> image;

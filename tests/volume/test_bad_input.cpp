@@ -32,7 +32,8 @@ TEST(VolumeBadInput, RawLayoutProblems) {
   o.raw.type = "int64";
   expect_error([&] { load(dir.file("plain.raw"), o); }, "plain.raw", "unsupported voxel type");
   o.raw.type = "uint16";  // 120 bytes needed, 60 present
-  expect_error([&] { load(dir.file("plain.raw"), o); }, "plain.raw", "does not match");
+  expect_error([&] { load(dir.file("plain.raw"), o); }, "plain.raw",
+               "layout claims 5 x 4 x 3 uint16 voxels (120 bytes) but the file holds 60 bytes");
   o.raw.type = "uint8";
   o.raw.dims = {5, 4, 2};  // file too long
   expect_error([&] { load(dir.file("plain.raw"), o); }, "plain.raw", "does not match");
@@ -55,7 +56,7 @@ TEST(VolumeBadInput, TruncatedAndOversizedCompressedStreams) {
   // A corrupt name asking for 2^39 voxels from a tiny file: refused before allocating.
   write_file(dir.file("huge_8192x8192x8192_uint8.raw.gz"), gz);
   expect_error([&] { load(dir.file("huge_8192x8192x8192_uint8.raw.gz")); }, "huge_8192x8192x8192_uint8.raw.gz",
-               "truncated");
+               "(5.5e+11 bytes) but the file holds " + std::to_string(gz.size()) + " bytes compressed");
 
   const std::string header = "X: 8\nY: 8\nZ: 8\nVersion: 3\n.\n";
   auto z = zlib_compress(to_bytes(ramp_values<std::uint8_t>(8, 8, 8)));
@@ -69,7 +70,7 @@ TEST(VolumeBadInput, TruncatedAndOversizedCompressedStreams) {
   write_file(dir.file("nodot.vol"), "X: 8\nY: 8\nZ: 8\nVersion: 3\n");
   expect_error([&] { load(dir.file("nodot.vol")); }, "nodot.vol", "terminator");
   write_file(dir.file("absurd.vol"), "X: 2000000000\nY: 2000000000\nZ: 2000000000\nVersion: 3\n.\nxx");
-  expect_error([&] { load(dir.file("absurd.vol")); }, "absurd.vol", "implausibly large");
+  expect_error([&] { load(dir.file("absurd.vol")); }, "absurd.vol", "(8e+27 bytes) but the file holds 2 bytes");
   write_file(dir.file("noz.vol"), "X: 8\nY: 8\nVersion: 3\n.\nxx");
   expect_error([&] { load(dir.file("noz.vol")); }, "noz.vol", "'Z'");
 }
@@ -82,10 +83,11 @@ TEST(VolumeBadInput, NrrdHeaders) {
   write_file(dir.file("type.nrrd"), base + "type: long long\n\n" + std::string(480, '\0'));
   expect_error([&] { load(dir.file("type.nrrd")); }, "type.nrrd", "unsupported NRRD type");
   write_file(dir.file("short.nrrd"), base + "type: short\n\n" + std::string(50, '\0'));
-  expect_error([&] { load(dir.file("short.nrrd")); }, "short.nrrd", "truncated");
+  expect_error([&] { load(dir.file("short.nrrd")); }, "short.nrrd", "(120 bytes) but the file holds 50 bytes");
   write_file(dir.file("huge.nrrd"),
              "NRRD0004\ndimension: 3\nsizes: 100000 100000 100\ntype: uchar\nencoding: raw\n\n" + std::string(50, '\0'));
-  expect_error([&] { load(dir.file("huge.nrrd")); }, "huge.nrrd", "truncated");
+  expect_error([&] { load(dir.file("huge.nrrd")); }, "huge.nrrd",
+               "header claims 100000 x 100000 x 100 uint8 voxels (1e+12 bytes) but the file holds 50 bytes");
   write_file(dir.file("dim4.nrrd"), "NRRD0004\ndimension: 4\nsizes: 1 5 4 3\ntype: uchar\nencoding: raw\n\n");
   expect_error([&] { load(dir.file("dim4.nrrd")); }, "dim4.nrrd", "3-D");
   write_file(dir.file("detached.nhdr"), "NRRD0004\ndimension: 3\nsizes: 5 4 3\ntype: uchar\nencoding: raw\ndata file: gone.raw\n");
@@ -102,7 +104,7 @@ TEST(VolumeBadInput, MetaImageHeaders) {
   expect_error([&] { load(dir.file("type.mhd")); }, "type.mhd", "ElementType");
   write_file(dir.file("short.mha"), "NDims = 3\nDimSize = 5 4 3\nElementType = MET_FLOAT\nElementDataFile = LOCAL\n" +
                                          std::string(10, '\0'));
-  expect_error([&] { load(dir.file("short.mha")); }, "short.mha", "truncated");
+  expect_error([&] { load(dir.file("short.mha")); }, "short.mha", "(240 bytes) but the file holds 10 bytes");
   write_file(dir.file("nodata.mhd"), "NDims = 3\nDimSize = 5 4 3\nElementType = MET_UCHAR\nElementDataFile = gone.raw\n");
   expect_error([&] { load(dir.file("nodata.mhd")); }, "nodata.mhd", "not found");
   write_file(dir.file("bad.mhd"), "NDims = 3\nDimSize = 5 four 3\nElementType = MET_UCHAR\nElementDataFile = LOCAL\n");
@@ -130,7 +132,7 @@ TEST(VolumeBadInput, NiftiHeaders) {
   const std::int16_t u8 = 2;
   std::memcpy(&h[70], &u8, 2);
   write_file(dir.file("nodata.nii"), h);
-  expect_error([&] { load(dir.file("nodata.nii")); }, "nodata.nii", "truncated");
+  expect_error([&] { load(dir.file("nodata.nii")); }, "nodata.nii", "(60 bytes) but the file holds 0 bytes");
 }
 
 TEST(VolumeBadInput, VtkFiles) {
@@ -282,4 +284,81 @@ TEST(VolumeBadInput, VdbWhoseTreeDisagreesWithItsStatsMetadata) {
   file.setGridStatsMetadataEnabled(false);  // keep the wrong count
   file.write(grids);
   expect_error([&] { load(dir.file("count.vdb")); }, "count.vdb", "corrupt file");
+}
+
+// A header claiming 100000^3 voxels is refused before anything is allocated for them, with the
+// size the claim would need and what the file holds, in every format.
+TEST(VolumeBadInput, HugeClaimsRefusedBeforeAllocating) {
+  TempDir dir;
+  const std::string need = "100000 x 100000 x 100000 uint8 voxels (1e+15 bytes) but the file holds";
+  const std::string payload(352, '\0');
+  write_file(dir.file("huge.nrrd"),
+             "NRRD0004\ndimension: 3\nsizes: 100000 100000 100000\ntype: uchar\nencoding: raw\n\n" + payload);
+  expect_error([&] { load(dir.file("huge.nrrd")); }, "huge.nrrd", "header claims " + need + " 352 bytes");
+  write_file(dir.file("huge_gz.nrrd"),
+             "NRRD0004\ndimension: 3\nsizes: 100000 100000 100000\ntype: uchar\nencoding: gzip\n\n" + payload);
+  expect_error([&] { load(dir.file("huge_gz.nrrd")); }, "huge_gz.nrrd",
+               need + " 352 bytes compressed, which inflate to at most 367104 bytes");
+  write_file(dir.file("huge_ascii.nrrd"),
+             "NRRD0004\ndimension: 3\nsizes: 100000 100000 100000\ntype: uchar\nencoding: ascii\n\n1 2 3\n");
+  expect_error([&] { load(dir.file("huge_ascii.nrrd")); }, "huge_ascii.nrrd", "of text, at most 4 numbers");
+  write_file(dir.file("detached.nhdr"),
+             "NRRD0004\ndimension: 3\nsizes: 100000 100000 100000\ntype: uchar\nencoding: raw\ndata file: d.raw\n");
+  write_file(dir.file("d.raw"), payload);
+  expect_error([&] { load(dir.file("detached.nhdr")); }, "detached.nhdr", "d.raw' holds 352 bytes");
+
+  write_file(dir.file("huge.mha"), "NDims = 3\nDimSize = 100000 100000 100000\nElementType = MET_UCHAR\n"
+                                   "ElementDataFile = LOCAL\n" + payload);
+  expect_error([&] { load(dir.file("huge.mha")); }, "huge.mha", need + " 352 bytes");
+  write_file(dir.file("huge_z.mha"), "NDims = 3\nDimSize = 100000 100000 100000\nElementType = MET_UCHAR\n"
+                                     "CompressedData = True\nElementDataFile = LOCAL\n" + payload);
+  expect_error([&] { load(dir.file("huge_z.mha")); }, "huge_z.mha", need + " 352 bytes compressed");
+
+  std::vector<std::uint8_t> h(352 + 352, 0);
+  const std::int32_t s = 348;
+  std::memcpy(h.data(), &s, 4);
+  const std::int16_t dims[4] = {3, 30000, 30000, 30000};
+  std::memcpy(&h[40], dims, sizeof dims);
+  const std::int16_t u8 = 2;
+  std::memcpy(&h[70], &u8, 2);
+  const float off = 352;
+  std::memcpy(&h[108], &off, 4);
+  std::memcpy(&h[344], "n+1", 4);
+  write_file(dir.file("huge.nii"), h);
+  expect_error([&] { load(dir.file("huge.nii")); }, "huge.nii",
+               "header claims 30000 x 30000 x 30000 uint8 voxels (2.7e+13 bytes) but the file holds 352 bytes");
+  write_file(dir.file("huge.nii.gz"), gzip_compress(h));
+  expect_error([&] { load(dir.file("huge.nii.gz")); }, "huge.nii.gz", "(2.7e+13 bytes) but the file holds");
+
+  write_file(dir.file("huge.vol"), "X: 100000\nY: 100000\nZ: 100000\nVersion: 2\n.\n" + payload);
+  expect_error([&] { load(dir.file("huge.vol")); }, "huge.vol", need + " 352 bytes");
+  write_file(dir.file("huge_100000x100000x100000_uint8.raw"), payload);
+  expect_error([&] { load(dir.file("huge_100000x100000x100000_uint8.raw")); }, "huge_100000x100000x100000",
+               "layout claims " + need + " 352 bytes");
+
+  const std::string vtk_need = "header claims 100000 x 100000 x 100000 voxels (1e+15 bytes at one byte each)";
+  write_file(dir.file("huge.vtk"), "# vtk DataFile Version 3.0\nx\nBINARY\nDATASET STRUCTURED_POINTS\n"
+                                   "DIMENSIONS 100000 100000 100000\nSPACING 1 1 1\nORIGIN 0 0 0\n"
+                                   "POINT_DATA 1000000000000000\nSCALARS s unsigned_char 1\n"
+                                   "LOOKUP_TABLE default\n" + payload);
+  expect_error([&] { load(dir.file("huge.vtk")); }, "huge.vtk", vtk_need);
+  write_file(dir.file("huge.vti"),
+             "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"1.0\">\n"
+             "<ImageData WholeExtent=\"0 99999 0 99999 0 99999\" Origin=\"0 0 0\" Spacing=\"1 1 1\">\n"
+             "<Piece Extent=\"0 99999 0 99999 0 99999\"><PointData Scalars=\"s\">"
+             "<DataArray type=\"UInt8\" Name=\"s\" format=\"ascii\">1 2 3</DataArray></PointData></Piece>"
+             "</ImageData></VTKFile>\n");
+  expect_error([&] { load(dir.file("huge.vti")); }, "huge.vti", vtk_need);
+  write_file(dir.file("huge.slc"), "11111\n100000 100000 100000 8\n1 1 1\n0 0 0 0\n0 0 X" + payload);
+  expect_error([&] { load(dir.file("huge.slc")); }, "huge.slc", vtk_need);
+}
+
+// A VOL header whose "." terminator is the file's last byte (no newline, no data): the payload
+// offset once ran one past the end, and the payload size wrapped around to 2^64 - 1.
+TEST(VolumeBadInput, VolTerminatorAtEndOfFile) {
+  TempDir dir;
+  write_file(dir.file("v3.vol"), "X: 2\nY: 2\nZ: 2\nVersion: 3\n.");
+  expect_error([&] { load(dir.file("v3.vol")); }, "v3.vol", "inflates to 0 bytes");
+  write_file(dir.file("v2.vol"), "X: 2\nY: 2\nZ: 2\n.");
+  expect_error([&] { load(dir.file("v2.vol")); }, "v2.vol", "the file holds 0 bytes");
 }
