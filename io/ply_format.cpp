@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -279,6 +280,33 @@ struct Target {
   std::uint8_t* bytes = nullptr;
 };
 
+/// The fewest bytes one record of `e` can take: its values' sizes in binary, a digit and a
+/// separator per value in ASCII (a list counts its length only: it may be empty).
+std::uint64_t min_record_bytes(const Element& e, Encoding encoding) {
+  std::uint64_t bytes = 0;
+  for (const Property& p : e.properties)
+    bytes += encoding == Encoding::Ascii ? 2 : size_of(p.is_list ? p.count_type : p.type);
+  return bytes;
+}
+
+/// Refuses, before anything is allocated, element counts the data after the header cannot hold
+/// (e.g. 4e9 vertices claimed by a small file).
+void check_claims(const Header& h, std::uint64_t body_bytes, const std::string& path) {
+  long double needed = 0;
+  std::string what;
+  for (const Element& e : h.elements) {
+    needed += (long double)e.count * (long double)min_record_bytes(e, h.encoding);
+    what += (what.empty() ? "" : ", ") + std::to_string(e.count) + " " + e.name;
+  }
+  if (h.encoding == Encoding::Ascii && needed > 0) needed -= 1;  // the last value needs no separator
+  if (needed > (long double)body_bytes) {
+    char size[32];
+    std::snprintf(size, sizeof size, needed < 1e9L ? "%.0Lf" : "%.3Lg", needed);
+    throw Error(path, "header claims " + what + " records (at least " + size + " bytes) but the file holds " +
+                          std::to_string(body_bytes) + " bytes after its header");
+  }
+}
+
 std::string read_whole_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path, std::string("cannot open: ") + std::strerror(errno));
@@ -293,6 +321,7 @@ std::string read_whole_file(const std::string& path) {
 MeshFile read_ply(const std::string& path) {
   const std::string data = read_whole_file(path);
   const Header header = parse_header(data, path);
+  check_claims(header, data.size() - header.data_start, path);
   Body body(data, header.data_start, header.encoding, path);
 
   MeshFile out;
@@ -306,10 +335,6 @@ MeshFile read_ply(const std::string& path) {
     if (is_vertex) {
       if (have_vertices) throw Error(path, "PLY file has two vertex elements");
       if (e.count > UINT32_MAX) throw Error(path, "too many vertices");
-      // every property of every record takes at least one byte: reject absurd counts before allocating
-      if (e.count * std::max<std::size_t>(e.properties.size(), 1) > data.size() - header.data_start)
-        throw Error(path, "truncated PLY file: " + std::to_string(e.count) + " vertices announced, " +
-                              std::to_string(data.size() - header.data_start) + " bytes of data");
       have_vertices = true;
       vertex_count = e.count;
       const std::size_t n = static_cast<std::size_t>(e.count);
@@ -346,6 +371,7 @@ MeshFile read_ply(const std::string& path) {
           index_property = static_cast<int>(i);
     if (is_face && index_property < 0) throw Error(path, "PLY face element lacks a vertex_indices list");
 
+    if (e.properties.empty()) continue;  // records of nothing: no data to read (or loop over)
     std::vector<std::uint32_t> polygon;
     for (std::uint64_t r = 0; r < e.count; ++r) {
       body.set_context(e, r);
