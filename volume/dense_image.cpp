@@ -110,6 +110,23 @@ Volume finish_dense(DenseImage&& image, const std::string& path, const std::stri
                      a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
                      a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
   if (!std::isfinite(det) || std::fabs(det) < 1e-6) throw Error(path, "degenerate direction matrix");
+  // World positions are doubles: each voxel step must stay far above their resolution (a z origin
+  // of 4.8e24 with spacing 2 put every slice at the same world position).
+  double largest = 0;
+  for (std::size_t j = 0; j < 3; ++j) {
+    double coord = std::fabs(image.origin[j]);
+    for (std::size_t i = 0; i < 3; ++i)
+      coord += double(image.dims[i] - 1) * image.spacing[i] * std::fabs(a[i][j]);
+    largest = std::max(largest, coord);
+  }
+  if (!std::isfinite(largest)) throw Error(path, "the volume's world box is not finite");
+  for (std::size_t i = 0; i < 3; ++i)
+    if (image.spacing[i] < largest * 0x1p-40) {
+      char text[96];
+      std::snprintf(text, sizeof text, "voxel spacing %g is too small for world coordinates up to %g",
+                    image.spacing[i], largest);
+      throw Error(path, std::string(text) + ": world positions cannot resolve the voxels");
+    }
   if (det < 0) {
     // Reverse X: voxel x becomes nx-1-x; the first voxel now sits where the last one was.
     const int nx = image.dims[0];

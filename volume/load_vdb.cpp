@@ -155,6 +155,13 @@ Volume load_vdb(const std::string& path, const LoadOptions& options) {
   v.domain = v.grid->evalActiveVoxelBoundingBox();
   if (v.grid->activeVoxelCount() == 0 || v.domain.empty())
     throw Error(path, "grid '" + v.grid_name + "' is empty (no active voxels)");
+  const openvdb::Vec3d voxel = v.grid->voxelSize();
+  const openvdb::Vec3d lo = v.grid->indexToWorld(v.domain.min()), hi = v.grid->indexToWorld(v.domain.max());
+  for (int i = 0; i < 3; ++i)
+    if (!(std::isfinite(voxel[i]) && voxel[i] > 0 && std::isfinite(lo[i]) && std::isfinite(hi[i])))
+      throw Error(path, "grid '" + v.grid_name + "' has a degenerate transform (voxel size " +
+                            std::to_string(voxel[0]) + " " + std::to_string(voxel[1]) + " " +
+                            std::to_string(voxel[2]) + ", or a world box that is not finite)");
 
   compute_stats(v);
   if (auto meta = v.grid->getMetadata<openvdb::FloatMetadata>("isovalue")) v.stats.suggested_isovalue = meta->value();

@@ -1,5 +1,6 @@
-// Image files read through VTK: XML image data (.vti), legacy STRUCTURED_POINTS (.vtk) and
-// VolVis SLC (.slc). VTK's error messages are caught by an observer and become the Error text.
+// Image files read through VTK: XML image data (.vti) and legacy STRUCTURED_POINTS (.vtk); VolVis
+// SLC (.slc) is handed to load_slc. VTK's error messages are caught by an observer and become the
+// Error text.
 #include <vtkCallbackCommand.h>
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
@@ -8,7 +9,6 @@
 #include <vtkObjectFactory.h>
 #include <vtkOutputWindow.h>
 #include <vtkPointData.h>
-#include <vtkSLCReader.h>
 #include <vtkSmartPointer.h>
 #include <vtkStructuredPoints.h>
 #include <vtkStructuredPointsReader.h>
@@ -174,7 +174,7 @@ std::string line_after(const std::string& lower_head, const std::string& keyword
 }
 
 /// Reads the claim from the first 64 KiB: WholeExtent and NumberOfComponents (.vti), DIMENSIONS
-/// and the SCALARS component count (.vtk), the sizes after the magic number (.slc).
+/// and the SCALARS component count (.vtk).
 Claim read_claim(const std::string& head, const std::string& format) {
   Claim c;
   if (format == "vti") {
@@ -192,15 +192,12 @@ Claim read_claim(const std::string& head, const std::string& format) {
     std::string name, type;
     long long n = 1;
     if (scalars >> name >> type >> n) c.components = std::max(1LL, n);
-  } else if (auto d = integers(head.substr(0, 256), 4)) {  // slc: 11111 X Y Z
-    c.dims = {(*d)[1], (*d)[2], (*d)[3]};
   }
   return c;
 }
 
 /// Refuses, before VTK allocates for it, a header claiming more voxels than the file can hold:
-/// a .vtk stores at least a byte per value, a .vti at most ~1000 values per byte (deflate), an
-/// .slc at most 127 per two bytes (run lengths).
+/// a .vtk stores at least a byte per value, a .vti at most ~1000 values per byte (deflate).
 void check_claim(const std::string& path, const std::string& format, std::uint64_t size) {
   const Bytes head = read_bytes(path, 0, std::min<std::uint64_t>(size, 1 << 16));
   const Claim c = read_claim(std::string(head.begin(), head.end()), format);
@@ -210,9 +207,7 @@ void check_claim(const std::string& path, const std::string& format, std::uint64
   for (long long d : c.dims)
     if (d <= 0 || d > 0x7fffffffLL) throw Error(path, "invalid dimensions " + text);
   const long double values = (long double)c.dims[0] * c.dims[1] * c.dims[2] * (long double)c.components;
-  const long double most = format == "vtk" ? (long double)size
-                           : format == "vti" ? (long double)max_inflated(size)
-                                             : (long double)size * 64 + 1024;
+  const long double most = format == "vtk" ? (long double)size : (long double)max_inflated(size);
   if (values > most)
     throw Error(path, "header claims " + text + " voxels" +
                           (c.components > 1 ? " of " + std::to_string(c.components) + " components" : "") +
@@ -226,7 +221,8 @@ Volume load_vtk_image(const std::string& path, const LoadOptions& options) {
   const std::string name = to_lower(path);
   const bool xml = name.size() >= 4 && name.compare(name.size() - 4, 4, ".vti") == 0;
   const bool slc = name.size() >= 4 && name.compare(name.size() - 4, 4, ".slc") == 0;
-  const std::string format = xml ? "vti" : slc ? "slc" : "vtk";
+  if (slc) return load_slc(path, options);  // VTK's SLC reader trusts every count in the file
+  const std::string format = xml ? "vti" : "vtk";
   check_claim(path, format, size);
   OutputWindowGuard window;
   ErrorCatcher errors;
@@ -236,13 +232,6 @@ Volume load_vtk_image(const std::string& path, const LoadOptions& options) {
     vtkNew<vtkXMLImageDataReader> reader;
     errors.watch(reader);
     if (!reader->CanReadFile(path.c_str())) throw Error(path, "not a VTK XML image data file");
-    reader->SetFileName(path.c_str());
-    reader->Update();
-    image = reader->GetOutput();
-  } else if (slc) {
-    vtkNew<vtkSLCReader> reader;
-    errors.watch(reader);
-    if (!reader->CanReadFile(path.c_str())) throw Error(path, "not an SLC file");
     reader->SetFileName(path.c_str());
     reader->Update();
     image = reader->GetOutput();

@@ -350,7 +350,7 @@ TEST(VolumeBadInput, HugeClaimsRefusedBeforeAllocating) {
              "</ImageData></VTKFile>\n");
   expect_error([&] { load(dir.file("huge.vti")); }, "huge.vti", vtk_need);
   write_file(dir.file("huge.slc"), "11111\n100000 100000 100000 8\n1 1 1\n0 0 0 0\n0 0 X" + payload);
-  expect_error([&] { load(dir.file("huge.slc")); }, "huge.slc", vtk_need);
+  expect_error([&] { load(dir.file("huge.slc")); }, "huge.slc", "header claims " + need + " 352 bytes");
 }
 
 // A VOL header whose "." terminator is the file's last byte (no newline, no data): the payload
@@ -361,4 +361,42 @@ TEST(VolumeBadInput, VolTerminatorAtEndOfFile) {
   expect_error([&] { load(dir.file("v3.vol")); }, "v3.vol", "inflates to 0 bytes");
   write_file(dir.file("v2.vol"), "X: 2\nY: 2\nZ: 2\n.");
   expect_error([&] { load(dir.file("v2.vol")); }, "v2.vol", "the file holds 0 bytes");
+}
+
+// World positions must resolve the voxels: an origin of 1e25 with spacing 1 put every slice at
+// the same position (found by the NIfTI fuzzer through an sform offset).
+TEST(VolumeBadInput, OriginTooFarForTheSpacing) {
+  TempDir dir;
+  write_file(dir.file("far_5x4x3_uint8.raw"), to_bytes(ramp_values<std::uint8_t>()));
+  LoadOptions o;
+  o.raw.origin = {0, 0, 1e25};
+  expect_error([&] { load(dir.file("far_5x4x3_uint8.raw"), o); }, "far_5x4x3_uint8.raw",
+               "world positions cannot resolve the voxels");
+  o.raw.origin = {0, 0, 1e6};  // far, but resolvable
+  EXPECT_EQ(load(dir.file("far_5x4x3_uint8.raw"), o).stats.voxels, 60u);
+}
+
+// SLC is read by isocurv, with every count checked: VTK's reader wrote past its plane buffer on
+// run-length codes longer than the plane (a segfault) and trusted the icon and plane sizes.
+TEST(VolumeBadInput, SlcCountsChecked) {
+  TempDir dir;
+  const std::string head = "11111\n4 3 1 8\n1.0 1.0 2.0\n0 0 0 ";
+  const std::string plane = "\x8c" + std::string("abcdefghijkl") + std::string(1, '\0');
+  write_file(dir.file("rle.slc"), head + "1\n1 1 Xrgb" + std::to_string(plane.size()) + " X" + plane);
+  const Volume v = load(dir.file("rle.slc"));
+  EXPECT_EQ(v.stats.voxels, 12u);
+  EXPECT_EQ(v.stats.min, 'a');
+  EXPECT_EQ(v.stats.max, 'l');
+  EXPECT_EQ(v.grid->tree().getValue(openvdb::Coord(1, 2, 0)), float('j'));
+  const std::string run = "\x0c" + std::string("abcdefghijkl") + std::string(1, '\0');  // runs of 12, 'b', ...
+  write_file(dir.file("overflow.slc"), head + "1\n1 1 Xrgb" + std::to_string(run.size()) + " X" + run);
+  expect_error([&] { load(dir.file("overflow.slc")); }, "overflow.slc", "overflow the plane");
+  write_file(dir.file("icon.slc"), head + "1\n-5 100 Xrgb");
+  expect_error([&] { load(dir.file("icon.slc")); }, "icon.slc", "negative icon size");
+  write_file(dir.file("bigicon.slc"), head + "1\n1000 1000 Xrgb");
+  expect_error([&] { load(dir.file("bigicon.slc")); }, "bigicon.slc", "truncated in the icon");
+  write_file(dir.file("plane.slc"), head + "1\n1 1 Xrgb99999 X" + plane);
+  expect_error([&] { load(dir.file("plane.slc")); }, "plane.slc", "truncated in the plane 0");
+  write_file(dir.file("raw.slc"), head + "0\n1 1 Xrgbabcdefghijk");
+  expect_error([&] { load(dir.file("raw.slc")); }, "raw.slc", "holds 11 bytes");
 }
