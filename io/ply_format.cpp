@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -307,6 +308,13 @@ void check_claims(const Header& h, std::uint64_t body_bytes, const std::string& 
   }
 }
 
+/// `v` as a float, saturating to infinity outside float's range (a plain cast is undefined there).
+float to_float(double v) {
+  if (v > std::numeric_limits<float>::max()) return std::numeric_limits<float>::infinity();
+  if (v < -std::numeric_limits<float>::max()) return -std::numeric_limits<float>::infinity();
+  return static_cast<float>(v);
+}
+
 std::string read_whole_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path, std::string("cannot open: ") + std::strerror(errno));
@@ -379,7 +387,10 @@ MeshFile read_ply(const std::string& path) {
         const Property& prop = e.properties[p];
         if (prop.is_list) {
           const double count = body.read(prop.count_type);
-          if (count < 0 || count != std::floor(count)) throw Error(path, "bad PLY list length in '" + e.name + "'");
+          // (any property type may carry the length: a float one may hold 1e32 or infinity)
+          if (!(count >= 0 && count <= 4294967295.0) || count != std::floor(count))
+            throw Error(path, "bad PLY list length " + std::to_string(count) + " in '" + e.name + "' record " +
+                                  std::to_string(r));
           const bool keep = static_cast<int>(p) == index_property;
           polygon.clear();
           for (std::uint64_t k = 0; k < static_cast<std::uint64_t>(count); ++k) {
@@ -395,8 +406,8 @@ MeshFile read_ply(const std::string& path) {
         } else {
           const double v = body.read(prop.type);
           const Target& t = targets[p];
-          if (t.base) t.base[r * t.stride] = static_cast<float>(v);
-          else if (t.bytes) t.bytes[r] = static_cast<std::uint8_t>(v);
+          if (t.base) t.base[r * t.stride] = to_float(v);
+          else if (t.bytes) t.bytes[r] = v != 0;  // Boundary is a 0/1 flag, whatever its type
         }
       }
     }

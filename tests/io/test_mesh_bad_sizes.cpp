@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -78,4 +79,23 @@ TEST_F(IoBadSizes, VtpClaimingBillionsOfPoints) {
                  "<DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0</DataArray>\n"
                  "</Points>\n</Piece>\n</PolyData>\n</VTKFile>\n",
                  "header claims NumberOfPoints=4000000000");
+}
+
+// Values are converted without undefined behaviour (found by the PLY fuzzer under UBSan): a list
+// length of 1e32 in a float count is an error, a double beyond float's range becomes infinity.
+TEST_F(IoBadSizes, PlyValuesOutOfTheirTargetsRange) {
+  expect_refused("list.ply",
+                 "ply\nformat ascii 1.0\nelement vertex 3\n" + kVertex +
+                     "element face 1\nproperty list float int vertex_indices\nend_header\n"
+                     "0 0 0\n1 0 0\n0 1 0\n1e32 0 1 2\n",
+                 "bad PLY list length");
+  const std::string path = (dir_ / "big.ply").string();
+  std::ofstream(path, std::ios::binary)
+      << "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\n"
+         "property double Boundary\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+         "1e300 0 0 7\n1 0 0 0\n0 1 0 -1e300\n3 0 1 2\n";
+  const auto file = isocurv::io::read_mesh(path);
+  EXPECT_TRUE(std::isinf(file.mesh.positions[0][0]));
+  ASSERT_TRUE(file.field.has_value());
+  EXPECT_EQ(file.field->boundary, (std::vector<std::uint8_t>{1, 0, 1}));
 }
