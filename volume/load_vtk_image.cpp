@@ -18,6 +18,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cctype>
 #include <mutex>
 #include <optional>
@@ -279,9 +280,14 @@ Volume load_vtk_image(const std::string& path, const LoadOptions& options) {
   image->GetOrigin(origin);
   vtkMatrix3x3* dir = image->GetDirectionMatrix();
   for (std::size_t i = 0; i < 3; ++i) {
-    out.spacing[i] = std::fabs(spacing[i]);
+    // Direction columns need not be unit vectors in the file: their length scales the spacing.
+    double len = 0;
+    for (std::size_t j = 0; j < 3; ++j) len += dir->GetElement(int(j), int(i)) * dir->GetElement(int(j), int(i));
+    len = std::sqrt(len);
+    if (!(len > 0) || !std::isfinite(len)) throw Error(path, "degenerate direction matrix");
+    out.spacing[i] = std::fabs(spacing[i]) * len;
     for (std::size_t j = 0; j < 3; ++j)
-      out.axes[i][j] = dir->GetElement(int(j), int(i)) * (spacing[i] < 0 ? -1.0 : 1.0);
+      out.axes[i][j] = dir->GetElement(int(j), int(i)) / len * (spacing[i] < 0 ? -1.0 : 1.0);
   }
   // The first voxel is at extent minimum, not necessarily index 0.
   for (std::size_t j = 0; j < 3; ++j) {

@@ -99,3 +99,9 @@ TEST_F(IoBadSizes, PlyValuesOutOfTheirTargetsRange) {
   ASSERT_TRUE(file.field.has_value());
   EXPECT_EQ(file.field->boundary, (std::vector<std::uint8_t>{1, 0, 1}));
 }
+
+// "solid" followed by binary bytes: VTK reads it as binary STL and allocated for the triangle
+// count at byte 80 (16 GB here) although the size does not match it (found by the STL fuzzer).
+TEST_F(IoBadSizes, StlSolidThenBinary) {
+  expect_refused("mixed.stl", "solid t\n" + std::string(100, '\xff'), "not an STL file");
+}

@@ -400,3 +400,26 @@ TEST(VolumeBadInput, SlcCountsChecked) {
   write_file(dir.file("raw.slc"), head + "0\n1 1 Xrgbabcdefghijk");
   expect_error([&] { load(dir.file("raw.slc")); }, "raw.slc", "holds 11 bytes");
 }
+
+// Fuzzer findings in header values: an integer beyond long long (its cast was undefined) and a
+// VTK direction matrix whose columns are not unit vectors (now normalised into the spacing, and
+// degenerate once normalised).
+TEST(VolumeBadInput, HeaderValuesOutOfRange) {
+  TempDir dir;
+  write_file(dir.file("big.vol"), "X: 4\nY: 3111111111111111111111111111111111111\nZ: 2\n.\n" + std::string(24, 'x'));
+  expect_error([&] { load(dir.file("big.vol")); }, "big.vol", "bad Y size");
+  const std::string vti = std::string(ISOCURV_SOURCE_DIR) + "/tests/data/fuzz/volume/vti_direction_4e31.vti";
+  expect_error([&] { load(vti); }, "vti_direction_4e31.vti", "degenerate direction matrix");
+  auto image = [](const std::string& direction) {
+    return "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"1.0\">\n"
+           "<ImageData WholeExtent=\"0 1 0 1 0 1\" Origin=\"0 0 0\" Spacing=\"1 1 1\" Direction=\"" +
+           direction +
+           "\">\n<Piece Extent=\"0 1 0 1 0 1\"><PointData Scalars=\"s\"><DataArray type=\"UInt8\" Name=\"s\" "
+           "format=\"ascii\">0 1 2 3 4 5 6 7</DataArray></PointData></Piece></ImageData></VTKFile>\n";
+  };
+  write_file(dir.file("scaled.vti"), image("0 0 2 0 3 0 -4 0 0"));  // columns of length 4, 3, 2
+  const Volume v = load(dir.file("scaled.vti"));
+  EXPECT_NEAR(v.spacing()[0], 4.0, 1e-12);
+  EXPECT_NEAR(v.spacing()[1], 3.0, 1e-12);
+  EXPECT_NEAR(v.spacing()[2], 2.0, 1e-12);
+}
