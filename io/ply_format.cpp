@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -279,6 +281,40 @@ struct Target {
   std::uint8_t* bytes = nullptr;
 };
 
+/// The fewest bytes one record of `e` can take: its values' sizes in binary, a digit and a
+/// separator per value in ASCII (a list counts its length only: it may be empty).
+std::uint64_t min_record_bytes(const Element& e, Encoding encoding) {
+  std::uint64_t bytes = 0;
+  for (const Property& p : e.properties)
+    bytes += encoding == Encoding::Ascii ? 2 : size_of(p.is_list ? p.count_type : p.type);
+  return bytes;
+}
+
+/// Refuses, before anything is allocated, element counts the data after the header cannot hold
+/// (e.g. 4e9 vertices claimed by a small file).
+void check_claims(const Header& h, std::uint64_t body_bytes, const std::string& path) {
+  long double needed = 0;
+  std::string what;
+  for (const Element& e : h.elements) {
+    needed += (long double)e.count * (long double)min_record_bytes(e, h.encoding);
+    what += (what.empty() ? "" : ", ") + std::to_string(e.count) + " " + e.name;
+  }
+  if (h.encoding == Encoding::Ascii && needed > 0) needed -= 1;  // the last value needs no separator
+  if (needed > (long double)body_bytes) {
+    char size[32];
+    std::snprintf(size, sizeof size, needed < 1e9L ? "%.0Lf" : "%.3Lg", needed);
+    throw Error(path, "header claims " + what + " records (at least " + size + " bytes) but the file holds " +
+                          std::to_string(body_bytes) + " bytes after its header");
+  }
+}
+
+/// `v` as a float, saturating to infinity outside float's range (a plain cast is undefined there).
+float to_float(double v) {
+  if (v > std::numeric_limits<float>::max()) return std::numeric_limits<float>::infinity();
+  if (v < -std::numeric_limits<float>::max()) return -std::numeric_limits<float>::infinity();
+  return static_cast<float>(v);
+}
+
 std::string read_whole_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path, std::string("cannot open: ") + std::strerror(errno));
@@ -293,6 +329,7 @@ std::string read_whole_file(const std::string& path) {
 MeshFile read_ply(const std::string& path) {
   const std::string data = read_whole_file(path);
   const Header header = parse_header(data, path);
+  check_claims(header, data.size() - header.data_start, path);
   Body body(data, header.data_start, header.encoding, path);
 
   MeshFile out;
@@ -306,10 +343,6 @@ MeshFile read_ply(const std::string& path) {
     if (is_vertex) {
       if (have_vertices) throw Error(path, "PLY file has two vertex elements");
       if (e.count > UINT32_MAX) throw Error(path, "too many vertices");
-      // every property of every record takes at least one byte: reject absurd counts before allocating
-      if (e.count * std::max<std::size_t>(e.properties.size(), 1) > data.size() - header.data_start)
-        throw Error(path, "truncated PLY file: " + std::to_string(e.count) + " vertices announced, " +
-                              std::to_string(data.size() - header.data_start) + " bytes of data");
       have_vertices = true;
       vertex_count = e.count;
       const std::size_t n = static_cast<std::size_t>(e.count);
@@ -346,6 +379,7 @@ MeshFile read_ply(const std::string& path) {
           index_property = static_cast<int>(i);
     if (is_face && index_property < 0) throw Error(path, "PLY face element lacks a vertex_indices list");
 
+    if (e.properties.empty()) continue;  // records of nothing: no data to read (or loop over)
     std::vector<std::uint32_t> polygon;
     for (std::uint64_t r = 0; r < e.count; ++r) {
       body.set_context(e, r);
@@ -353,7 +387,10 @@ MeshFile read_ply(const std::string& path) {
         const Property& prop = e.properties[p];
         if (prop.is_list) {
           const double count = body.read(prop.count_type);
-          if (count < 0 || count != std::floor(count)) throw Error(path, "bad PLY list length in '" + e.name + "'");
+          // (any property type may carry the length: a float one may hold 1e32 or infinity)
+          if (!(count >= 0 && count <= 4294967295.0) || count != std::floor(count))
+            throw Error(path, "bad PLY list length " + std::to_string(count) + " in '" + e.name + "' record " +
+                                  std::to_string(r));
           const bool keep = static_cast<int>(p) == index_property;
           polygon.clear();
           for (std::uint64_t k = 0; k < static_cast<std::uint64_t>(count); ++k) {
@@ -369,8 +406,8 @@ MeshFile read_ply(const std::string& path) {
         } else {
           const double v = body.read(prop.type);
           const Target& t = targets[p];
-          if (t.base) t.base[r * t.stride] = static_cast<float>(v);
-          else if (t.bytes) t.bytes[r] = static_cast<std::uint8_t>(v);
+          if (t.base) t.base[r * t.stride] = to_float(v);
+          else if (t.bytes) t.bytes[r] = v != 0;  // Boundary is a 0/1 flag, whatever its type
         }
       }
     }

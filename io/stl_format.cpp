@@ -43,8 +43,20 @@ void check_stl_framing(const std::string& path) {
   std::uint32_t count = 0;
   std::memcpy(&count, head + 80, 4);  // little-endian on the hosts VTK supports here
   if (size >= 84 && size == 84 + 50ull * count) return;
-  if (std::strncmp(head, "solid", 5) == 0) return;
-  throw Error(path, "not an STL file (neither ASCII 'solid' nor a binary file of " + std::to_string(count) +
+  // ASCII: "solid" and text. (VTK takes a file with bytes above 127 near its start for binary
+  // whatever it begins with, and then trusts the triangle count at byte 80.)
+  char text[512] = {};
+  in.clear();
+  in.seekg(0);
+  in.read(text, sizeof text);
+  const std::streamsize got = in.gcount();
+  bool ascii = std::strncmp(text, "solid", 5) == 0;
+  for (std::streamsize i = 0; ascii && i < got; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    ascii = (c >= 32 && c < 127) || c == '\n' || c == '\r' || c == '\t' || c == '\f' || c == '\v';
+  }
+  if (ascii) return;
+  throw Error(path, "not an STL file (neither ASCII 'solid' text nor a binary file of " + std::to_string(count) +
                         " triangles: " + std::to_string(size) + " bytes)");
 }
 

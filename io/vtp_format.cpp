@@ -1,5 +1,10 @@
 // .vtp: VTK XML PolyData through vtkXMLPolyDataWriter/Reader (binary appended, zlib).
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <stdexcept>
+#include <string>
 
 #include <vtkErrorCode.h>
 #include <vtkNew.h>
@@ -29,7 +34,43 @@ void write_vtp(const std::string& path, const Mesh& mesh, const curvature::Curva
                                              : vtkErrorCode::GetStringFromErrorCode(writer->GetErrorCode()));
 }
 
+namespace {
+
+/// The largest value of every `key="<integer>"` attribute in `head` (0 when there is none).
+long long largest_attribute(const std::string& head, const std::string& key) {
+  long long largest = 0;
+  const std::string pattern = key + "=\"";
+  for (std::size_t p = head.find(pattern); p != std::string::npos; p = head.find(pattern, p + 1)) {
+    const long long v = std::strtoll(head.c_str() + p + pattern.size(), nullptr, 10);
+    largest = std::max(largest, v);
+  }
+  return largest;
+}
+
+/// Refuses, before VTK allocates for them, point and cell counts (times the widest array) that
+/// the file cannot hold even deflated (at most ~1032 bytes out per byte in).
+void check_claims(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(1 << 16, '\0');
+  in.read(head.data(), std::streamsize(head.size()));
+  head.resize(std::size_t(in.gcount()));
+  std::error_code ec;
+  const long double size = (long double)std::filesystem::file_size(path, ec);
+  const long double most = size * 1040 + 1024;
+  const long double width = std::max(3LL, largest_attribute(head, "NumberOfComponents"));
+  for (const char* key : {"NumberOfPoints", "NumberOfPolys", "NumberOfStrips", "NumberOfVerts", "NumberOfLines"}) {
+    const long long n = largest_attribute(head, key);
+    if ((long double)n * width > most)
+      throw Error(path, std::string("header claims ") + key + "=" + std::to_string(n) + " (with arrays " +
+                            std::to_string((long long)width) + " wide) but the file holds " +
+                            std::to_string((long long)size) + " bytes");
+  }
+}
+
+}  // namespace
+
 MeshFile read_vtp(const std::string& path) {
+  check_claims(path);
   vtkNew<vtkXMLPolyDataReader> reader;
   VtkErrorCapture errors(reader);
   reader->SetFileName(path.c_str());

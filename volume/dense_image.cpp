@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/error.h"
+#include "volume/file_bytes.h"
 #include "volume/from_dense.h"
 #include "volume/from_dense_u8.h"
 
@@ -19,6 +21,42 @@ std::uint64_t checked_voxel_count(const std::string& path, const std::array<long
   const long double count = (long double)dims[0] * dims[1] * dims[2];
   if (count > (long double)(1ULL << 40)) throw Error(path, "dimensions " + text + " are implausibly large");
   return std::uint64_t(dims[0]) * std::uint64_t(dims[1]) * std::uint64_t(dims[2]);
+}
+
+std::string bytes_text(long double bytes) {
+  if (bytes < 1e9L) return std::to_string(std::uint64_t(bytes)) + " bytes";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3Lg bytes", bytes);
+  return text;
+}
+
+std::uint64_t checked_payload(const std::string& path, const std::array<long long, 3>& dims, VoxelType type,
+                              const std::string& data_path, std::uint64_t available, Payload payload,
+                              const std::string& source) {
+  const std::string text = std::to_string(dims[0]) + " x " + std::to_string(dims[1]) + " x " + std::to_string(dims[2]);
+  for (long long d : dims)
+    if (d <= 0 || d > 0x7fffffffLL) throw Error(path, "invalid dimensions " + text);
+  const long double count = (long double)dims[0] * dims[1] * dims[2];
+  const long double needed = count * voxel_size(type);
+  const std::string claim = source + " claims " + text + " " + voxel_type_name(type) + " voxels (" + bytes_text(needed) + ")";
+  const std::string holds = data_path == path ? "the file holds" : "data file '" + data_path + "' holds";
+  switch (payload) {
+    case Payload::Raw:
+      if (needed > (long double)available)
+        throw Error(path, claim + " but " + holds + " " + bytes_text(available));
+      break;
+    case Payload::Compressed:
+      if (needed > (long double)max_inflated(available))
+        throw Error(path, claim + " but " + holds + " " + bytes_text(available) + " compressed, which inflate to " +
+                              "at most " + bytes_text((long double)max_inflated(available)));
+      break;
+    case Payload::Ascii:
+      if (count > (long double)available / 2 + 1)
+        throw Error(path, claim + " but " + holds + " " + bytes_text(available) + " of text, at most " +
+                              std::to_string(available / 2 + 1) + " numbers");
+      break;
+  }
+  return checked_voxel_count(path, dims);
 }
 
 void decode_into(DenseImage& image, Bytes&& bytes, std::uint64_t offset, std::uint64_t count, VoxelType type,
@@ -76,6 +114,23 @@ Volume finish_dense(DenseImage&& image, const std::string& path, const std::stri
                      a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
                      a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
   if (!std::isfinite(det) || std::fabs(det) < 1e-6) throw Error(path, "degenerate direction matrix");
+  // World positions are doubles: each voxel step must stay far above their resolution (a z origin
+  // of 4.8e24 with spacing 2 put every slice at the same world position).
+  double largest = 0;
+  for (std::size_t j = 0; j < 3; ++j) {
+    double coord = std::fabs(image.origin[j]);
+    for (std::size_t i = 0; i < 3; ++i)
+      coord += double(image.dims[i] - 1) * image.spacing[i] * std::fabs(a[i][j]);
+    largest = std::max(largest, coord);
+  }
+  if (!std::isfinite(largest)) throw Error(path, "the volume's world box is not finite");
+  for (std::size_t i = 0; i < 3; ++i)
+    if (image.spacing[i] < largest * 0x1p-40) {
+      char text[96];
+      std::snprintf(text, sizeof text, "voxel spacing %g is too small for world coordinates up to %g",
+                    image.spacing[i], largest);
+      throw Error(path, std::string(text) + ": world positions cannot resolve the voxels");
+    }
   if (det < 0) {
     // Reverse X: voxel x becomes nx-1-x; the first voxel now sits where the last one was.
     const int nx = image.dims[0];

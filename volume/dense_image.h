@@ -28,6 +28,24 @@ struct DenseImage {
 /// returns the voxel count; throws Error(path, ...) otherwise.
 std::uint64_t checked_voxel_count(const std::string& path, const std::array<long long, 3>& dims);
 
+/// How a payload is stored, which bounds the voxels a number of bytes can hold.
+enum class Payload {
+  Raw,         ///< voxel_size(type) bytes per voxel
+  Compressed,  ///< deflate (zlib, gzip): at most max_inflated(bytes) out (file_bytes.h)
+  Ascii,       ///< a number and a separator per voxel: at least two bytes (bar the last)
+};
+
+/// checked_voxel_count, and before anything is allocated, that `available` bytes of `data_path`
+/// (the payload, stored as `payload`) can hold the header's voxels of `type`; throws, e.g.
+/// "header claims 100000 x 100000 x 100000 uint8 voxels (1e+15 bytes) but the file holds 352
+/// bytes" (`source` names what claims: "header", or "layout" for raw files). Returns the voxel count.
+std::uint64_t checked_payload(const std::string& path, const std::array<long long, 3>& dims, VoxelType type,
+                              const std::string& data_path, std::uint64_t available, Payload payload,
+                              const std::string& source = "header");
+
+/// A byte count for messages: exact below 10^9, else 3 significant digits ("1e+15 bytes").
+std::string bytes_text(long double bytes);
+
 /// Takes `count` voxels of `type` starting at byte `offset` of `bytes` (sets image.voxel_type):
 /// uint8 voxels filling the whole buffer are adopted as image.u8 without a copy, anything else
 /// is decoded into image.values.

@@ -40,7 +40,7 @@ Bytes inflate_exact(const std::string& path, const std::uint8_t* data, std::size
                                         std::uint64_t expected, const std::string& what) {
   // Deflate cannot expand more than ~1032:1; a header asking for more than that is wrong, and
   // reserving the expected size up front is then safe.
-  const std::uint64_t max_plausible = std::uint64_t(size) * 1040 + 1024;
+  const std::uint64_t max_plausible = max_inflated(size);
   if (expected > max_plausible)
     throw Error(path, what + " is truncated: " + std::to_string(size) + " compressed bytes cannot hold " +
                           std::to_string(expected) + " bytes");
@@ -148,7 +148,7 @@ bool GzipReader::at_end() {
 
 Bytes read_gzip_exact(const std::string& path, std::uint64_t expected, const std::string& what) {
   const std::uint64_t compressed = file_size(path);
-  if (expected > compressed * 1040 + 1024)
+  if (expected > max_inflated(compressed))
     throw Error(path, what + " is truncated: " + std::to_string(compressed) + " compressed bytes cannot hold " +
                           std::to_string(expected) + " bytes");
   GzipReader in(path);

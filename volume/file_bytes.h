@@ -12,6 +12,12 @@
 
 namespace isocurv::volume {
 
+/// Deflate (zlib, gzip) emits at most about 1032 bytes per input byte; with a margin, the bound
+/// every compressed payload is checked against before its output is allocated.
+constexpr std::uint64_t kMaxInflateRatio = 1040;
+/// The most bytes `compressed` bytes of deflate data can inflate to.
+constexpr std::uint64_t max_inflated(std::uint64_t compressed) { return compressed * kMaxInflateRatio + 1024; }
+
 /// Size of a regular file in bytes; throws when it does not exist or is not a regular file.
 std::uint64_t file_size(const std::string& path);
 

@@ -50,7 +50,9 @@ std::vector<long long> parse_integers_exact(const std::string& path, const std::
   const auto v = parse_numbers_exact(path, s, n, what);
   std::vector<long long> out;
   for (double d : v) {
-    if (d != double((long long)d) || d < -9e15 || d > 9e15) throw Error(path, "bad " + what + " '" + trim(s) + "'");
+    // range first: casting a double beyond long long's range is undefined
+    if (!(d >= -9e15 && d <= 9e15) || d != double((long long)d))
+      throw Error(path, "bad " + what + " '" + trim(s) + "'");
     out.push_back((long long)d);
   }
   return out;

@@ -1,5 +1,6 @@
 // DGtal VOL files: ASCII `Key: value` lines, a line holding only ".", then X*Y*Z uint8 voxels,
 // x fastest: raw for Version 2, a zlib stream for Version 3.
+#include <algorithm>
 #include <cstring>
 #include <map>
 
@@ -39,15 +40,20 @@ Volume load_dgtal_vol(const std::string& path, const LoadOptions& options) {
   const std::array<long long, 3> dims{parse_integers_exact(path, keys["X"], 1, "X size")[0],
                                       parse_integers_exact(path, keys["Y"], 1, "Y size")[0],
                                       parse_integers_exact(path, keys["Z"], 1, "Z size")[0]};
-  const std::uint64_t count = checked_voxel_count(path, dims);
-  const int version = keys.count("Version") ? int(parse_integers_exact(path, keys["Version"], 1, "Version")[0]) : 2;
-  if (version != 2 && version != 3) throw Error(path, "unsupported VOL version " + std::to_string(version));
+  const long long version_number =
+      keys.count("Version") ? parse_integers_exact(path, keys["Version"], 1, "Version")[0] : 2;
+  if (version_number != 2 && version_number != 3)
+    throw Error(path, "unsupported VOL version " + std::to_string(version_number));
+  const int version = int(version_number);
   if (keys.count("Voxel-Endian") && keys["Voxel-Endian"] != "0")
     throw Error(path, "unsupported VOL Voxel-Endian '" + keys["Voxel-Endian"] + "' (only 8-bit voxels are read)");
 
   Bytes voxels;
+  pos = std::min(pos, file.size());
   const std::uint8_t* payload = file.data() + pos;
   const std::size_t payload_size = file.size() - pos;
+  const std::uint64_t count = checked_payload(path, dims, VoxelType::UInt8, path, payload_size,
+                                              version == 3 ? Payload::Compressed : Payload::Raw);
   if (version == 3) {
     voxels = inflate_exact(path, payload, payload_size, count, "voxel data");
   } else if (payload_size != count) {

@@ -61,7 +61,6 @@ Volume load_metaimage(const std::string& path, const LoadOptions& options) {
     throw Error(path, "only 3-D images are supported (NDims = " + keys["NDims"] + ")");
   if (!keys.count("DimSize")) throw Error(path, "MetaImage header has no DimSize");
   const auto d = parse_integers_exact(path, keys["DimSize"], 3, "DimSize");
-  const std::uint64_t count = checked_voxel_count(path, {d[0], d[1], d[2]});
   if (keys.count("ElementNumberOfChannels") &&
       parse_integers_exact(path, keys["ElementNumberOfChannels"], 1, "ElementNumberOfChannels")[0] != 1)
     throw Error(path, "only single-channel images are supported");
@@ -72,7 +71,6 @@ Volume load_metaimage(const std::string& path, const LoadOptions& options) {
   const bool binary = !keys.count("BinaryData") || is_true(get("BinaryData"));
 
   DenseImage image;
-  image.dims = {int(d[0]), int(d[1]), int(d[2])};
   for (const char* k : {"ElementSpacing", "ElementSize"})
     if (keys.count(k)) {
       const auto s = parse_numbers_exact(path, keys[k], 3, k);
@@ -109,17 +107,18 @@ Volume load_metaimage(const std::string& path, const LoadOptions& options) {
   }
   const std::uint64_t data_size = file_size(data_path);
   if (data_offset > data_size) throw Error(data_path, "voxel data is missing");
-  const std::uint64_t bytes_needed = count * voxel_size(*type);
+  long long skip = 0;
   if (keys.count("HeaderSize")) {
-    const long long skip = parse_integers_exact(path, keys["HeaderSize"], 1, "HeaderSize")[0];
-    if (skip == -1 && !compressed && binary) {
-      if (data_size - data_offset < bytes_needed) throw Error(data_path, "voxel data is truncated");
-      data_offset = data_size - bytes_needed;
-    } else if (skip > 0) {
-      data_offset += std::uint64_t(skip);
-    }
+    skip = parse_integers_exact(path, keys["HeaderSize"], 1, "HeaderSize")[0];
+    if (skip < -1) throw Error(path, "bad HeaderSize " + keys["HeaderSize"]);
+    if (skip > 0) data_offset = std::min(data_size, data_offset + std::uint64_t(std::min(skip, 1LL << 62)));
   }
-  if (data_offset > data_size) throw Error(data_path, "voxel data is truncated");
+  // The dimensions must fit the data before anything is allocated for them.
+  const std::uint64_t count = checked_payload(path, {d[0], d[1], d[2]}, *type, data_path, data_size - data_offset,
+                                              !binary ? Payload::Ascii : compressed ? Payload::Compressed : Payload::Raw);
+  image.dims = {int(d[0]), int(d[1]), int(d[2])};
+  const std::uint64_t bytes_needed = count * voxel_size(*type);
+  if (skip == -1 && !compressed && binary) data_offset = data_size - bytes_needed;
   const std::uint64_t available = data_size - data_offset;
 
   if (!binary) {

@@ -74,17 +74,22 @@ Volume load_nifti(const std::string& path, const LoadOptions& options) {
   for (int i = 4; i <= ndim; ++i)
     if (h.i16(40 + 2 * std::size_t(i)) > 1) throw Error(path, "only 3-D NIfTI images are supported (dim[" + std::to_string(i) + "] > 1)");
   const std::array<long long, 3> dims{h.i16(42), h.i16(44), h.i16(46)};
-  const std::uint64_t count = checked_voxel_count(path, dims);
   const int datatype = h.i16(70);
   const auto type = nifti_type(datatype);
   if (!type) throw Error(path, "unsupported NIfTI datatype " + std::to_string(datatype));
   const float vox_offset_f = h.f32(108);
   if (!(vox_offset_f >= float(kHeaderSize)) || vox_offset_f > 1e9f) throw Error(path, "bad vox_offset");
   const std::uint64_t vox_offset = std::uint64_t(vox_offset_f);
+  // The dimensions must fit the data before anything is allocated: a plain file holds the voxels
+  // after vox_offset, a gzip one (magic 1f 8b) can inflate to at most ~1000 times its size.
+  const Bytes magic = read_bytes(path, 0, 2);
+  const bool gz = magic[0] == 0x1f && magic[1] == 0x8b;
+  if (!gz && vox_offset > file_bytes)
+    throw Error(path, "vox_offset " + std::to_string(vox_offset) + " is past the end of the file (" +
+                          std::to_string(file_bytes) + " bytes)");
+  const std::uint64_t count = checked_payload(path, dims, *type, path, gz ? file_bytes : file_bytes - vox_offset,
+                                              gz ? Payload::Compressed : Payload::Raw);
   const std::uint64_t bytes_needed = count * voxel_size(*type);
-  if (bytes_needed + vox_offset > file_bytes * 1040 + 1024)
-    throw Error(path, "voxel data is truncated: the file cannot hold the header's " + std::to_string(dims[0]) + "x" +
-                          std::to_string(dims[1]) + "x" + std::to_string(dims[2]) + " voxels");
 
   DenseImage image;
   image.dims = {int(dims[0]), int(dims[1]), int(dims[2])};

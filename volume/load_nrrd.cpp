@@ -105,7 +105,6 @@ Volume load_nrrd(const std::string& path, const LoadOptions& options) {
   if (get("dimension") != "3") throw Error(path, "only 3-D NRRD images are supported (dimension: " + get("dimension") + ")");
   if (!fields.count("sizes")) throw Error(path, "NRRD header has no sizes");
   const auto d = parse_integers_exact(path, get("sizes"), 3, "sizes");
-  const std::uint64_t count = checked_voxel_count(path, {d[0], d[1], d[2]});
   const auto type = nrrd_type(get("type"));
   if (!type) throw Error(path, "unsupported NRRD type '" + get("type") + "'");
   const std::string encoding = to_lower(get("encoding"));
@@ -118,7 +117,6 @@ Volume load_nrrd(const std::string& path, const LoadOptions& options) {
   const bool big_endian = endian == "big";
 
   DenseImage image;
-  image.dims = {int(d[0]), int(d[1]), int(d[2])};
   if (fields.count("space directions")) {
     const auto tokens = vector_tokens(get("space directions"));
     if (tokens.size() != 3) throw Error(path, "bad space directions '" + get("space directions") + "'");
@@ -171,6 +169,13 @@ Volume load_nrrd(const std::string& path, const LoadOptions& options) {
     data_offset += p;
   }
   long long byte_skip = fields.count("byte skip") ? parse_integers_exact(path, get("byte skip"), 1, "byte skip")[0] : 0;
+  if (byte_skip < -1) throw Error(path, "bad byte skip");
+  // The sizes must fit the data before anything is allocated for them.
+  const std::uint64_t after_skip = data_size - data_offset - std::min<std::uint64_t>(
+      data_size - data_offset, byte_skip > 0 && !ascii && !gzip ? std::uint64_t(byte_skip) : 0);
+  const std::uint64_t count = checked_payload(path, {d[0], d[1], d[2]}, *type, data_path, after_skip,
+                                              ascii ? Payload::Ascii : gzip ? Payload::Compressed : Payload::Raw);
+  image.dims = {int(d[0]), int(d[1]), int(d[2])};
   const std::uint64_t bytes_needed = count * voxel_size(*type);
 
   if (ascii) {

@@ -53,12 +53,13 @@ Volume load_raw(const std::string& path, const LoadOptions& options) {
     throw Error(path, "raw data needs its voxel type (--type uint8|int8|uint16|int16|uint32|int32|float|double)");
   const auto type = parse_voxel_type(type_name);
   if (!type) throw Error(path, "unsupported voxel type '" + type_name + "'");
-  const std::uint64_t count = checked_voxel_count(path, {dims[0], dims[1], dims[2]});
-  const std::uint64_t bytes_needed = count * voxel_size(*type);
-
   const std::string name = to_lower(path);
   const bool gz = name.size() > 3 && (name.compare(name.size() - 3, 3, ".gz") == 0 ||
                                       name.compare(name.size() - 3, 3, "-gz") == 0);
+  // The layout must fit the file before anything is allocated for it.
+  const std::uint64_t count = checked_payload(path, {dims[0], dims[1], dims[2]}, *type, path, file_size(path),
+                                              gz ? Payload::Compressed : Payload::Raw, "layout");
+  const std::uint64_t bytes_needed = count * voxel_size(*type);
   Bytes bytes;
   if (gz) {
     bytes = read_gzip_exact(path, bytes_needed, "voxel data");

@@ -1,5 +1,6 @@
-// Image files read through VTK: XML image data (.vti), legacy STRUCTURED_POINTS (.vtk) and
-// VolVis SLC (.slc). VTK's error messages are caught by an observer and become the Error text.
+// Image files read through VTK: XML image data (.vti) and legacy STRUCTURED_POINTS (.vtk); VolVis
+// SLC (.slc) is handed to load_slc. VTK's error messages are caught by an observer and become the
+// Error text.
 #include <vtkCallbackCommand.h>
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
@@ -8,7 +9,6 @@
 #include <vtkObjectFactory.h>
 #include <vtkOutputWindow.h>
 #include <vtkPointData.h>
-#include <vtkSLCReader.h>
 #include <vtkSmartPointer.h>
 #include <vtkStructuredPoints.h>
 #include <vtkStructuredPointsReader.h>
@@ -17,7 +17,12 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cctype>
 #include <mutex>
+#include <optional>
+#include <sstream>
 
 #include "core/error.h"
 #include "volume/dense_image.h"
@@ -125,14 +130,117 @@ void to_float(const T* src, std::size_t n, float* dst) {
   });
 }
 
+
+/// The voxel and component counts a VTK image header claims (0 when it does not say).
+struct Claim {
+  std::array<long long, 3> dims{0, 0, 0};
+  long long components = 1;
+};
+
+std::optional<std::vector<long long>> integers(const std::string& text, std::size_t n) {
+  std::istringstream in(text);
+  std::vector<long long> out(n);
+  for (auto& v : out)
+    if (!(in >> v) || v < -(1LL << 40) || v > (1LL << 40)) return std::nullopt;
+  return out;
+}
+
+/// The text after `key` and an `="` that follows it, up to the closing quote (at most 256 chars).
+std::optional<std::string> attribute(const std::string& head, const std::string& key, std::size_t& from) {
+  while ((from = head.find(key, from)) != std::string::npos) {
+    from += key.size();
+    std::size_t p = from;
+    while (p < head.size() && std::isspace(static_cast<unsigned char>(head[p]))) ++p;
+    if (p >= head.size() || head[p] != '=') continue;
+    const std::size_t open = head.find('"', p);
+    if (open == std::string::npos || open > p + 8) continue;
+    const std::size_t close = head.find('"', open + 1);
+    if (close == std::string::npos || close - open > 256) continue;
+    return head.substr(open + 1, close - open - 1);
+  }
+  return std::nullopt;
+}
+
+/// Whether a line of `lower_head` starts with `keyword` (after blanks).
+bool starts_a_line(const std::string& lower_head, const std::string& keyword) {
+  for (std::size_t p = 0; (p = lower_head.find(keyword, p)) != std::string::npos; p += keyword.size()) {
+    std::size_t q = p;
+    while (q > 0 && (lower_head[q - 1] == ' ' || lower_head[q - 1] == '\t')) --q;
+    if (q == 0 || lower_head[q - 1] == '\n') return true;
+  }
+  return false;
+}
+
+/// The rest of the first line starting with `keyword` (any case, after blanks), else empty.
+std::string line_after(const std::string& lower_head, const std::string& keyword) {
+  for (std::size_t p = 0; (p = lower_head.find(keyword, p)) != std::string::npos; p += keyword.size()) {
+    std::size_t q = p;
+    while (q > 0 && (lower_head[q - 1] == ' ' || lower_head[q - 1] == '\t')) --q;
+    if (q != 0 && lower_head[q - 1] != '\n') continue;
+    const std::size_t end = lower_head.find('\n', p);
+    return lower_head.substr(p + keyword.size(), (end == std::string::npos ? lower_head.size() : end) - p -
+                                                     keyword.size());
+  }
+  return {};
+}
+
+/// Reads the claim from the first 64 KiB: WholeExtent and NumberOfComponents (.vti), DIMENSIONS
+/// and the SCALARS component count (.vtk).
+Claim read_claim(const std::string& head, const std::string& format) {
+  Claim c;
+  if (format == "vti") {
+    std::size_t from = 0;
+    if (auto e = attribute(head, "WholeExtent", from))
+      if (auto v = integers(*e, 6))
+        for (std::size_t i = 0; i < 3; ++i) c.dims[i] = (*v)[2 * i + 1] - (*v)[2 * i] + 1;
+    from = 0;
+    while (auto n = attribute(head, "NumberOfComponents", from))
+      if (auto v = integers(*n, 1)) c.components = std::max(c.components, (*v)[0]);
+  } else if (format == "vtk") {
+    const std::string lower = to_lower(head);
+    if (auto d = integers(line_after(lower, "dimensions"), 3)) c.dims = {(*d)[0], (*d)[1], (*d)[2]};
+    std::istringstream scalars(line_after(lower, "scalars"));
+    std::string name, type;
+    long long n = 1;
+    if (scalars >> name >> type >> n) c.components = std::max(1LL, n);
+  }
+  return c;
+}
+
+/// Refuses, before VTK allocates for it, a header claiming more voxels than the file can hold:
+/// a .vtk stores at least a byte per value, a .vti at most ~1000 values per byte (deflate).
+void check_claim(const std::string& path, const std::string& format, std::uint64_t size) {
+  const Bytes head = read_bytes(path, 0, std::min<std::uint64_t>(size, 1 << 16));
+  const std::string head_text(head.begin(), head.end());
+  // VTK 9.1's legacy reader dereferences a null array on a malformed FIELD block (it matches any
+  // line starting "field"): isocurv reads only the image's scalars, so such files are refused.
+  if (format == "vtk" && starts_a_line(to_lower(head_text), "field"))
+    throw Error(path, "legacy .vtk files with FIELD data are not supported (VTK's reader can crash on "
+                      "them); save the image as .vti");
+  const Claim c = read_claim(head_text, format);
+  if (c.dims[0] == 0 && c.dims[1] == 0 && c.dims[2] == 0) return;  // the reader will complain
+  const std::string text = std::to_string(c.dims[0]) + " x " + std::to_string(c.dims[1]) + " x " +
+                           std::to_string(c.dims[2]);
+  for (long long d : c.dims)
+    if (d <= 0 || d > 0x7fffffffLL) throw Error(path, "invalid dimensions " + text);
+  const long double values = (long double)c.dims[0] * c.dims[1] * c.dims[2] * (long double)c.components;
+  const long double most = format == "vtk" ? (long double)size : (long double)max_inflated(size);
+  if (values > most)
+    throw Error(path, "header claims " + text + " voxels" +
+                          (c.components > 1 ? " of " + std::to_string(c.components) + " components" : "") +
+                          " (" + bytes_text(values) + " at one byte each) but the file holds " + bytes_text(size));
+}
+
 }  // namespace
 
 Volume load_vtk_image(const std::string& path, const LoadOptions& options) {
-  file_size(path);
+  const std::uint64_t size = file_size(path);
   const std::string name = to_lower(path);
   const bool xml = name.size() >= 4 && name.compare(name.size() - 4, 4, ".vti") == 0;
   const bool slc = name.size() >= 4 && name.compare(name.size() - 4, 4, ".slc") == 0;
-  const std::string format = xml ? "vti" : slc ? "slc" : "vtk";
+  if (slc) return load_slc(path, options);  // VTK's SLC reader trusts every count in the file
+  const std::string format = xml ? "vti" : "vtk";
+  check_claim(path, format, size);
   OutputWindowGuard window;
   ErrorCatcher errors;
   vtkSmartPointer<vtkImageData> image;
@@ -141,13 +249,6 @@ Volume load_vtk_image(const std::string& path, const LoadOptions& options) {
     vtkNew<vtkXMLImageDataReader> reader;
     errors.watch(reader);
     if (!reader->CanReadFile(path.c_str())) throw Error(path, "not a VTK XML image data file");
-    reader->SetFileName(path.c_str());
-    reader->Update();
-    image = reader->GetOutput();
-  } else if (slc) {
-    vtkNew<vtkSLCReader> reader;
-    errors.watch(reader);
-    if (!reader->CanReadFile(path.c_str())) throw Error(path, "not an SLC file");
     reader->SetFileName(path.c_str());
     reader->Update();
     image = reader->GetOutput();
@@ -195,9 +296,14 @@ Volume load_vtk_image(const std::string& path, const LoadOptions& options) {
   image->GetOrigin(origin);
   vtkMatrix3x3* dir = image->GetDirectionMatrix();
   for (std::size_t i = 0; i < 3; ++i) {
-    out.spacing[i] = std::fabs(spacing[i]);
+    // Direction columns need not be unit vectors in the file: their length scales the spacing.
+    double len = 0;
+    for (std::size_t j = 0; j < 3; ++j) len += dir->GetElement(int(j), int(i)) * dir->GetElement(int(j), int(i));
+    len = std::sqrt(len);
+    if (!(len > 0) || !std::isfinite(len)) throw Error(path, "degenerate direction matrix");
+    out.spacing[i] = std::fabs(spacing[i]) * len;
     for (std::size_t j = 0; j < 3; ++j)
-      out.axes[i][j] = dir->GetElement(int(j), int(i)) * (spacing[i] < 0 ? -1.0 : 1.0);
+      out.axes[i][j] = dir->GetElement(int(j), int(i)) / len * (spacing[i] < 0 ? -1.0 : 1.0);
   }
   // The first voxel is at extent minimum, not necessarily index 0.
   for (std::size_t j = 0; j < 3; ++j) {

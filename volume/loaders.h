@@ -11,7 +11,8 @@ Volume load_vdb(const std::string& path, const LoadOptions& options);         //
 Volume load_nrrd(const std::string& path, const LoadOptions& options);        ///< .nrrd, .nhdr
 Volume load_metaimage(const std::string& path, const LoadOptions& options);   ///< .mhd, .mha
 Volume load_nifti(const std::string& path, const LoadOptions& options);       ///< .nii, .nii.gz
-Volume load_vtk_image(const std::string& path, const LoadOptions& options);   ///< .vti, .vtk, .slc (VTK readers)
+Volume load_vtk_image(const std::string& path, const LoadOptions& options);   ///< .vti, .vtk (VTK readers); .slc
+Volume load_slc(const std::string& path, const LoadOptions& options);         ///< .slc (VolVis), via load_vtk_image
 Volume load_dgtal_vol(const std::string& path, const LoadOptions& options);   ///< .vol (DGtal VOL)
 Volume load_raw(const std::string& path, const LoadOptions& options);         ///< .raw, .raw.gz, .bin-gz
 

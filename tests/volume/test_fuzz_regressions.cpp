@@ -1,0 +1,28 @@
+// Every volume file the fuzzers found a problem with (tests/data/fuzz/volume, fuzz/README.md)
+// loads or fails with isocurv::Error, never anything else.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "core/error.h"
+#include "volume/load.h"
+
+namespace fs = std::filesystem;
+
+TEST(VolumeFuzzRegressions, EveryFileLoadsOrFailsWithError) {
+  const fs::path dir = fs::path(ISOCURV_SOURCE_DIR) / "tests/data/fuzz/volume";
+  int files = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    if (entry.path().filename() == "README.md" || entry.path().extension() == ".data") continue;
+    ++files;
+    SCOPED_TRACE(entry.path().string());
+    try {
+      const auto v = isocurv::volume::load(entry.path().string());
+      EXPECT_TRUE(std::isfinite(v.stats.min) && std::isfinite(v.stats.max));
+    } catch (const isocurv::Error&) {
+    }
+  }
+  RecordProperty("files", files);
+}
