@@ -9,6 +9,7 @@
 
 #include "cli.h"
 #include "io/mesh_file.h"
+#include "tests/mc/same_mesh.h"
 
 using namespace isocurv::test;
 using isocurv::Mesh;
@@ -56,16 +57,7 @@ void expect_same_surface(const Mesh& a, const Mesh& b,
     scale = std::max({scale, std::fabs(p[0]), std::fabs(p[1]), std::fabs(p[2])});
   const auto map = match_vertices(a, b, 1e-6f * scale);
   ASSERT_EQ(map.size(), a.positions.size());
-  auto canon = [](Tri t) {  // the smallest index first, keeping the winding
-    while (t[0] > t[1] || t[0] > t[2]) t = {t[1], t[2], t[0]};
-    return t;
-  };
-  std::vector<Tri> ta, tb;
-  for (const Tri& t : a.triangles) ta.push_back(canon({map[t[0]], map[t[1]], map[t[2]]}));
-  for (const Tri& t : b.triangles) tb.push_back(canon(t));
-  std::sort(ta.begin(), ta.end());
-  std::sort(tb.begin(), tb.end());
-  EXPECT_TRUE(ta == tb) << "the triangles differ";
+  expect_same_triangles(a, b, map);
   if (map_out) *map_out = map;
 }
 

@@ -16,6 +16,7 @@
 #include "mc/extract_reference.h"
 #include "mc/mesh_check.h"
 #include "mc/triangle_quality.h"
+#include "tests/mc/same_mesh.h"
 #include "tests/mc/volumes.h"
 
 using namespace isocurv;
@@ -38,30 +39,7 @@ void expect_sound(const Mesh& m, const std::string& what) {
   EXPECT_EQ(c.misoriented_edges, 0u) << what;
 }
 
-// Same vertices (matched by edge key, positions to 1e-6) and the same triangles.
-void expect_same_mesh(const Mesh& a, const Mesh& b) {
-  ASSERT_EQ(a.positions.size(), b.positions.size());
-  ASSERT_EQ(a.triangles.size(), b.triangles.size());
-  std::map<std::uint64_t, std::uint32_t> b_of_key;
-  for (std::uint32_t i = 0; i < b.edge_keys.size(); ++i) b_of_key[b.edge_keys[i]] = i;
-  std::vector<std::uint32_t> map(a.positions.size());
-  for (std::uint32_t i = 0; i < a.edge_keys.size(); ++i) {
-    auto it = b_of_key.find(a.edge_keys[i]);
-    ASSERT_NE(it, b_of_key.end()) << "vertex " << i << " has no twin";
-    map[i] = it->second;
-    for (int k = 0; k < 3; ++k) ASSERT_NEAR(a.positions[i][k], b.positions[it->second][k], 1e-5);
-  }
-  auto canon = [](Tri t) {
-    while (t[0] > t[1] || t[0] > t[2]) t = {t[1], t[2], t[0]};
-    return t;
-  };
-  std::vector<Tri> ta, tb;
-  for (const Tri& t : a.triangles) ta.push_back(canon({map[t[0]], map[t[1]], map[t[2]]}));
-  for (const Tri& t : b.triangles) tb.push_back(canon(t));
-  std::sort(ta.begin(), ta.end());
-  std::sort(tb.begin(), tb.end());
-  EXPECT_TRUE(ta == tb);
-}
+using test::expect_same_mesh;
 
 // A CT-like solid: a ball and a torus with blurred edges, scaled to 0..255, noise of a few grey
 // levels, rounded to integers (uint8 values held as floats).
