@@ -18,19 +18,22 @@ double mean_edge_length(const Mesh& mesh) {
   return sum / (3.0 * static_cast<double>(mesh.triangles.size()));
 }
 
+std::array<double, 3> triangle_area_vector(const Mesh& mesh, const Tri& t) {
+  const Vec3f &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
+  double u[3], v[3];
+  for (int k = 0; k < 3; ++k) {
+    u[k] = double(b[k]) - a[k];
+    v[k] = double(c[k]) - a[k];
+  }
+  return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+}
+
 std::vector<Vec3f> area_weighted_normals(const Mesh& mesh) {
   const std::size_t nv = mesh.positions.size();
   std::vector<std::array<double, 3>> sums(nv, {0, 0, 0});
   for (const Tri& t : mesh.triangles) {
     if (t[0] >= nv || t[1] >= nv || t[2] >= nv) continue;
-    const Vec3f &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
-    double u[3], v[3];
-    for (int k = 0; k < 3; ++k) {
-      u[k] = double(b[k]) - a[k];
-      v[k] = double(c[k]) - a[k];
-    }
-    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
-                         u[0] * v[1] - u[1] * v[0]};
+    const std::array<double, 3> n = triangle_area_vector(mesh, t);
     for (std::uint32_t i : t)
       for (int k = 0; k < 3; ++k) sums[i][k] += n[k];
   }

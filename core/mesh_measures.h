@@ -1,5 +1,6 @@
 #pragma once
 // Simple measures of a Mesh shared by several stages.
+#include <array>
 #include <vector>
 
 #include "core/mesh.h"
@@ -9,6 +10,10 @@ namespace isocurv {
 /// The mean length of the mesh's triangle edges (shared edges counted once per triangle), in
 /// world units; 0 for a mesh without triangles.
 double mean_edge_length(const Mesh& mesh);
+
+/// (b - a) x (c - a) in double precision for the triangle t = (a, b, c) of `mesh` (indices in
+/// range): twice its area, along its outward normal.
+std::array<double, 3> triangle_area_vector(const Mesh& mesh, const Tri& t);
 
 /// Per vertex, the sum of (b - a) x (c - a) over the triangles (a, b, c) using it: the
 /// area-weighted face normal (twice the area), pointing out of the object for the winding Mesh

@@ -6,6 +6,8 @@
 #include <numeric>
 #include <unordered_map>
 
+#include "core/mesh_measures.h"
+
 namespace isocurv::mc {
 namespace {
 
@@ -80,14 +82,7 @@ MeshCheck check_mesh(const Mesh& mesh) {
       if (bad_index) continue;
     }
     valid[f] = 1;
-    const Vec3f &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
-    double u[3], v[3];
-    for (int k = 0; k < 3; ++k) {
-      u[k] = double(b[k]) - a[k];
-      v[k] = double(c[k]) - a[k];
-    }
-    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
-                         u[0] * v[1] - u[1] * v[0]};
+    const std::array<double, 3> n = triangle_area_vector(mesh, t);
     const double area = 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     if (area == 0 && !(t[0] == t[1] || t[1] == t[2] || t[0] == t[2])) ++r.degenerate_triangles;
     r.area += area;

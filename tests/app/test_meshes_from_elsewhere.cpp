@@ -6,6 +6,7 @@
 
 #include "cli.h"
 #include "io/mesh_file.h"
+#include "tests/curvature/test_meshes.h"
 
 using namespace isocurv;
 using namespace isocurv::test;
@@ -21,16 +22,6 @@ Mesh sphere_mesh(const TempDir& dir) {
   return io::read_mesh(path).mesh;
 }
 
-// Each triangle with its own three corners, as an STL-minded exporter writes them.
-Mesh unwelded(const Mesh& m) {
-  Mesh u;
-  for (const Tri& t : m.triangles) {
-    const auto base = std::uint32_t(u.positions.size());
-    for (std::uint32_t i : t) u.positions.push_back(m.positions[i]);
-    u.triangles.push_back({base, base + 1, base + 2});
-  }
-  return u;
-}
 
 Mesh flipped(Mesh m) {
   for (Tri& t : m.triangles) std::swap(t[1], t[2]);

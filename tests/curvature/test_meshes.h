@@ -10,6 +10,17 @@
 
 namespace isocurv::test {
 
+/// Each triangle of `m` with its own three corners, as an STL-minded exporter writes them.
+inline Mesh unwelded(const Mesh& m) {
+  Mesh u;
+  for (const Tri& t : m.triangles) {
+    const auto base = std::uint32_t(u.positions.size());
+    for (std::uint32_t i : t) u.positions.push_back(m.positions[i]);
+    u.triangles.push_back({base, base + 1, base + 2});
+  }
+  return u;
+}
+
 /// Icosahedron subdivided `level` times, vertices projected onto the sphere of `radius` about the
 /// origin; outward winding. 10 * 4^level + 2 vertices.
 Mesh icosphere(int level, float radius = 1.0f);

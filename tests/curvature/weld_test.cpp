@@ -13,15 +13,6 @@
 namespace isocurv::test {
 namespace {
 
-Mesh unwelded(const Mesh& m) {
-  Mesh u;
-  for (const Tri& t : m.triangles) {
-    const auto base = std::uint32_t(u.positions.size());
-    for (std::uint32_t i : t) u.positions.push_back(m.positions[i]);
-    u.triangles.push_back({base, base + 1, base + 2});
-  }
-  return u;
-}
 
 TEST(Weld, UnweldedSphereGetsItsCurvatureBack) {
   const Mesh sphere = icosphere(3, 2.0f);
