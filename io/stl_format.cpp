@@ -53,7 +53,7 @@ void check_stl_framing(const std::string& path) {
   bool ascii = std::strncmp(text, "solid", 5) == 0;
   for (std::streamsize i = 0; ascii && i < got; ++i) {
     const auto c = static_cast<unsigned char>(text[i]);
-    ascii = (c >= 32 && c < 127) || c == '\n' || c == '\r' || c == '\t' || c == '\f' || c == '\v';
+    ascii = (c >= 32 && c < 127) || c == '\n' || c == '\r' || c == '\t';
   }
   if (ascii) return;
   throw Error(path, "not an STL file (neither ASCII 'solid' text nor a binary file of " + std::to_string(count) +

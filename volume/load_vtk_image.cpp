@@ -161,16 +161,6 @@ std::optional<std::string> attribute(const std::string& head, const std::string&
   return std::nullopt;
 }
 
-/// Whether a line of `lower_head` starts with `keyword` (after blanks).
-bool starts_a_line(const std::string& lower_head, const std::string& keyword) {
-  for (std::size_t p = 0; (p = lower_head.find(keyword, p)) != std::string::npos; p += keyword.size()) {
-    std::size_t q = p;
-    while (q > 0 && (lower_head[q - 1] == ' ' || lower_head[q - 1] == '\t')) --q;
-    if (q == 0 || lower_head[q - 1] == '\n') return true;
-  }
-  return false;
-}
-
 /// The rest of the first line starting with `keyword` (any case, after blanks), else empty.
 std::string line_after(const std::string& lower_head, const std::string& keyword) {
   for (std::size_t p = 0; (p = lower_head.find(keyword, p)) != std::string::npos; p += keyword.size()) {
@@ -212,11 +202,12 @@ Claim read_claim(const std::string& head, const std::string& format) {
 void check_claim(const std::string& path, const std::string& format, std::uint64_t size) {
   const Bytes head = read_bytes(path, 0, std::min<std::uint64_t>(size, 1 << 16));
   const std::string head_text(head.begin(), head.end());
-  // VTK 9.1's legacy reader dereferences a null array on a malformed FIELD block (it matches any
-  // line starting "field"): isocurv reads only the image's scalars, so such files are refused.
-  if (format == "vtk" && starts_a_line(to_lower(head_text), "field"))
-    throw Error(path, "legacy .vtk files with FIELD data are not supported (VTK's reader can crash on "
-                      "them); save the image as .vti");
+  // VTK 9.1's legacy reader dereferences a null array on a malformed FIELD block, and it reads
+  // words, not lines ("DIMENSIONS 4 3 2field" holds one): isocurv reads only the image's scalars,
+  // so a header with "field" anywhere in its first 64 KiB is refused.
+  if (format == "vtk" && to_lower(head_text).find("field") != std::string::npos)
+    throw Error(path, "legacy .vtk files with FIELD data (or the word 'field' in their header) are not "
+                      "supported: VTK's reader can crash on them; save the image as .vti");
   const Claim c = read_claim(head_text, format);
   if (c.dims[0] == 0 && c.dims[1] == 0 && c.dims[2] == 0) return;  // the reader will complain
   const std::string text = std::to_string(c.dims[0]) + " x " + std::to_string(c.dims[1]) + " x " +

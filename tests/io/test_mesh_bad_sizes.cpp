@@ -104,4 +104,5 @@ TEST_F(IoBadSizes, PlyValuesOutOfTheirTargetsRange) {
 // count at byte 80 (16 GB here) although the size does not match it (found by the STL fuzzer).
 TEST_F(IoBadSizes, StlSolidThenBinary) {
   expect_refused("mixed.stl", "solid t\n" + std::string(100, '\xff'), "not an STL file");
+  expect_refused("feeds.stl", "solid t\nfacet normal\n" + std::string(200, '\f'), "not an STL file");
 }

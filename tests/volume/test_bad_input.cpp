@@ -424,13 +424,14 @@ TEST(VolumeBadInput, HeaderValuesOutOfRange) {
   EXPECT_NEAR(v.spacing()[2], 2.0, 1e-12);
 }
 
-// VTK 9.1's legacy reader crashes (null dereference) on malformed FIELD blocks, and matches any
-// line starting "field" (found by the .vtk fuzzer): such files are refused before VTK reads them.
+// VTK 9.1's legacy reader crashes (null dereference) on malformed FIELD blocks, and reads words,
+// so "DIMENSIONS 4 3 2field" holds one (found by the .vtk fuzzer): refused before VTK reads them.
 TEST(VolumeBadInput, LegacyVtkFieldDataRefused) {
   TempDir dir;
-  for (const char* field : {"fieldN 1 2 3\n", "FIELD FieldData 1\nx\n", "FIELD FieldData 99999999999\n"}) {
+  for (const char* field : {"\nfieldN 1 2 3\n", "\nFIELD FieldData 1\nx\n", "\nFIELD FieldData 99999999999\n",
+                            "field\n"}) {  // the last one right after the dimensions, on their line
     write_file(dir.file("field.vtk"), std::string("# vtk DataFile Version 5.1\nvtk output\nASCII\n"
-                                                  "DATASET STRUCTURED_POINTS\nDIMENSIONS 4 3 2\n") + field);
+                                                  "DATASET STRUCTURED_POINTS\nDIMENSIONS 4 3 2") + field);
     expect_error([&] { load(dir.file("field.vtk")); }, "field.vtk", "FIELD data");
   }
 }
