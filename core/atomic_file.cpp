@@ -30,33 +30,46 @@ Slot g_slots[kSlots];
 static_assert(std::atomic<int>::is_always_lock_free, "the signal handler needs lock-free atomics");
 
 constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
+constexpr int kSignalCount = 4;
+// The action each signal had before ours (another library's, e.g. LLVM's in PoCL's compiler, or
+// the default), restored by our handler before the signal is raised again.
+struct sigaction g_previous[kSignalCount];
 
 extern "C" void remove_temporaries_and_reraise(int sig) {
   for (Slot& s : g_slots)
     if (s.state.load() == 2) unlink(s.path);
-  // SA_RESETHAND restored the default action; the signal is blocked until this handler returns,
-  // then it is delivered again and ends the process as it would have without us.
+  // Hand the signal on: restore the previous action (the default ends the process as it would
+  // have without us; a chained handler does its own work and then usually does the same). The
+  // signal is blocked until this handler returns, then delivered again.
+  for (int i = 0; i < kSignalCount; ++i)
+    if (kSignals[i] == sig) sigaction(sig, &g_previous[i], nullptr);
   raise(sig);
 }
 
+// Installs the handler for every signal not ignored, chaining to whatever was there: called on
+// each registration, since a library may install its own handlers later (PoCL compiles kernels
+// with LLVM, which does), and ours must stay first.
 void install_handlers() {
-  for (int sig : kSignals) {
+  for (int i = 0; i < kSignalCount; ++i) {
     struct sigaction old {};
-    if (sigaction(sig, nullptr, &old) != 0 || old.sa_handler != SIG_DFL ||
-        (old.sa_flags & SA_SIGINFO))
-      continue;
+    if (sigaction(kSignals[i], nullptr, &old) != 0) continue;
+    if (!(old.sa_flags & SA_SIGINFO) && old.sa_handler == remove_temporaries_and_reraise) continue;
+    if (!(old.sa_flags & SA_SIGINFO) && old.sa_handler == SIG_IGN) continue;  // e.g. nohup
+    g_previous[i] = old;
     struct sigaction action {};
     action.sa_handler = remove_temporaries_and_reraise;
     sigemptyset(&action.sa_mask);
-    action.sa_flags = SA_RESETHAND;
-    sigaction(sig, &action, nullptr);
+    sigaction(kSignals[i], &action, nullptr);
   }
 }
 
 /// Registers `path` for removal on a fatal signal; returns its slot, or -1 when none is free.
 int register_temporary(const std::string& path) {
-  static std::once_flag once;
-  std::call_once(once, install_handlers);
+  static std::mutex installing;
+  {
+    std::lock_guard<std::mutex> lock(installing);
+    install_handlers();
+  }
   if (path.size() >= kPathBytes) return -1;
   for (int i = 0; i < kSlots; ++i) {
     int expected = 0;

@@ -58,9 +58,21 @@ auto writes(const std::string& text) {
 /// Forks a child that starts writing `target` atomically and never finishes (it writes the
 /// temporary, then sleeps); kills it with `sig` once the temporary exists. Returns the child's
 /// wait status.
-int kill_during_write(const std::string& target, int sig, bool as_set) {
+// A handler as LLVM installs one (PoCL's kernel compiler, in every process that builds an OpenCL
+// program): it restores the default action and raises the signal again.
+extern "C" void foreign_handler(int sig) {
+  signal(sig, SIG_DFL);
+  raise(sig);
+}
+
+int kill_during_write(const std::string& target, int sig, bool as_set, bool foreign = false) {
   const pid_t pid = fork();
   if (pid == 0) {
+    if (foreign) {  // a first write installs ours; then another library installs its own
+      isocurv::write_atomically(target + ".before", writes("x"));
+      signal(SIGINT, foreign_handler);
+      signal(SIGTERM, foreign_handler);
+    }
     auto endless = [](const std::string& tmp) {
       put(tmp, std::string(1 << 20, 'x'));
       for (;;) pause();
@@ -158,6 +170,15 @@ TEST_F(AtomicFile, SigtermDuringAWriteRemovesTheTemporary) {
   EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM)
       << "the signal still ends the process";
   EXPECT_TRUE(entries().empty()) << ::testing::PrintToString(entries());
+}
+
+TEST_F(AtomicFile, SignalHandlersOfOtherLibrariesDoNotHideTheTemporaries) {
+  // Installed after our first write (as LLVM's are when PoCL compiles a kernel), another
+  // library's handler must not keep ours from running: the temporary goes, the signal still ends
+  // the process.
+  const int status = kill_during_write(at("big.vtp"), SIGTERM, false, true);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM);
+  EXPECT_EQ(entries(), std::vector<std::string>{"big.vtp.before"});
 }
 
 TEST_F(AtomicFile, SigintDuringASetRemovesEveryTemporary) {
