@@ -25,7 +25,7 @@ struct ExtractTimings {
   double total = 0;
   std::size_t bricks = 0;         ///< bricks processed
   std::size_t seam_vertices = 0;  ///< vertices other bricks look up (hashed, sorted, searched)
-  std::size_t snapped = 0;        ///< vertices moved onto a voxel (Options::snap)
+  std::size_t snapped = 0;        ///< vertices placed by snapping, one a merged group (Options::snap)
   std::size_t merged = 0;         ///< vertices merged into another there
 };
 

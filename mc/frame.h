@@ -18,8 +18,8 @@ struct Frame {
   float sign = 1;             ///< +1: inside is above the isovalue; -1: below
   float outside = -1;         ///< signed value given to non-finite voxels (< 0)
   /// Signed value of voxels outside `domain` when `clip`: so far below any sample that a vertex
-  /// between a domain voxel and one outside lies on the domain voxel (kMinEdgeFraction off it, or
-  /// on it when snapped), so capped surfaces close on the volume's box.
+  /// between a domain voxel and one outside lies on the domain voxel (kMinEdgeFraction off it at
+  /// most), so capped surfaces close on the volume's box.
   float clipped = -1e30f;
   openvdb::Coord key_origin;  ///< edge keys count from here (cells.min() - 1)
   std::array<float, 12> world;  ///< row-major 3x4 affine map: world = A * index + b
