@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "core/error.h"
+
 namespace isocurv::app {
 
 void add_render_options(CLI::App& cmd, viz::RenderOptions& opts) {
@@ -17,6 +19,24 @@ void add_render_options(CLI::App& cmd, viz::RenderOptions& opts) {
     opts.width = w;
     opts.height = h;
   }, "Image size WIDTHxHEIGHT (default 1024x768)")->group("Rendering");
+  add_camera_options(cmd, opts.view);
+}
+
+void add_camera_options(CLI::App& cmd, ViewSpec& view) {
+  cmd.add_option_function<std::string>("--view", [&view](const std::string& s) {
+    try {
+      view.view = parse_named_view(s);
+    } catch (const Error& e) {
+      throw CLI::ValidationError("--view", e.what());
+    }
+  }, "Viewpoint: iso (three-quarter view from above, the default), or +x -x +y -y +z -z (the camera on that side of the centre, looking at it)")->group("Camera");
+  cmd.add_option("--azimuth", view.azimuth_deg, "Then turn the camera this many degrees about the view up")
+      ->check(CLI::Range(-360.0, 360.0))->group("Camera");
+  cmd.add_option("--elevation", view.elevation_deg, "Then raise the camera this many degrees")
+      ->check(CLI::Range(-90.0, 90.0))->group("Camera");
+  cmd.add_option("--zoom", view.zoom, "Magnification after fitting the surface into the view (default 1)")
+      ->check(CLI::Range(0.05, 50.0))->group("Camera");
+  cmd.add_flag("--ortho", view.ortho, "Parallel projection instead of perspective")->group("Camera");
 }
 
 }  // namespace isocurv::app

@@ -162,19 +162,25 @@ const RenderOptions& CurvatureScene::options() const { return impl_->options; }
 double CurvatureScene::range_lo() const { return impl_->range.lo; }
 double CurvatureScene::range_hi() const { return impl_->range.hi; }
 
-void CurvatureScene::frame_camera() {
-  vtkRenderer* r = impl_->renderer;
-  vtkCamera* camera = r->GetActiveCamera();
-  // z up, seen from -y, then turned to a three-quarter view from above.
-  camera->SetFocalPoint(0, 0, 0);
-  camera->SetPosition(0, -1, 0);
-  camera->SetViewUp(0, 0, 1);
-  camera->Azimuth(35);
-  camera->Elevation(30);
-  camera->OrthogonalizeViewUp();
-  r->ResetCamera();
-  camera->Zoom(1.15);
-  r->ResetCameraClippingRange();
+Camera CurvatureScene::frame_camera() {
+  double b[6];
+  impl_->surface->GetBounds(b);
+  const RenderOptions& o = impl_->options;
+  const Camera cam = fit_camera({b[0], b[1], b[2], b[3], b[4], b[5]}, o.view,
+                                double(o.width) / double(o.height));
+  apply_camera(impl_->renderer, cam);
+  return cam;
+}
+
+void apply_camera(vtkRenderer* renderer, const Camera& cam) {
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetFocalPoint(cam.focal_point.data());
+  camera->SetPosition(cam.position.data());
+  camera->SetViewUp(cam.view_up.data());
+  camera->SetParallelProjection(cam.ortho ? 1 : 0);
+  camera->SetViewAngle(cam.view_angle_deg);
+  camera->SetParallelScale(cam.parallel_scale);
+  renderer->ResetCameraClippingRange();
 }
 
 }  // namespace isocurv::viz

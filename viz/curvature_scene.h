@@ -3,6 +3,7 @@
 // direction glyphs and a title. Used by render_png and the explorer.
 #include <memory>
 
+#include "core/camera.h"
 #include "core/mesh.h"
 #include "curvature/curvature_field.h"
 #include "viz/render_options.h"
@@ -35,12 +36,16 @@ class CurvatureScene {
   double range_lo() const;
   double range_hi() const;
 
-  /// Points the camera at the whole surface from a three-quarter view.
-  void frame_camera();
+  /// Points the camera at the whole surface as options().view says (fit_camera with the
+  /// window's aspect, options().width / options().height); returns the camera it set.
+  Camera frame_camera();
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// Sets the renderer's active camera to `cam` and resets the clipping range.
+void apply_camera(vtkRenderer* renderer, const Camera& cam);
 
 }  // namespace isocurv::viz

@@ -2,6 +2,8 @@
 // How a curvature surface is shown: shared by render_png and the explorer.
 #include <string>
 
+#include "core/camera.h"
+
 namespace isocurv::viz {
 
 /// What to show and how.
@@ -12,6 +14,7 @@ struct RenderOptions {
   int width = 1024, height = 768; ///< image (or window) size in pixels
   double clamp_percentile = 2;    ///< colour range ignores this percentage of extreme values (color_range)
   std::string title;              ///< text at the top of the image; none when empty
+  ViewSpec view;                  ///< viewpoint, turns, zoom and projection (fit_camera)
 };
 
 }  // namespace isocurv::viz

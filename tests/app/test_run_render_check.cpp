@@ -126,6 +126,21 @@ TEST(CliRender, DefaultSize) {
   EXPECT_EQ(size[1], 768u);
 }
 
+TEST(CliRender, CameraOptions) {
+  TempDir dir("render_camera");
+  // The ellipsoid's axes differ, so its outline from +x and from +z differ.
+  const auto side = run_isocurv({"render", dataset("ellipsoid"), "--view", "+x", "--ortho", "--size", "160x120",
+                                 "-o", dir / "x.png", "--quiet"});
+  ASSERT_TRUE(side.ok()) << side.describe();
+  const auto top = run_isocurv({"render", dataset("ellipsoid"), "--view", "+z", "--azimuth", "10", "--elevation",
+                                "-20", "--zoom", "1.5", "-o", dir / "z.png", "--size", "160x120", "--quiet"});
+  ASSERT_TRUE(top.ok()) << top.describe();
+  EXPECT_NE(fs::file_size(dir / "x.png"), fs::file_size(dir / "z.png"));
+  const auto bad = run_isocurv({"render", dataset("ellipsoid"), "--view", "front", "-o", dir / "b.png"});
+  expect_usage_error(bad, "--view");
+  EXPECT_FALSE(fs::exists(dir / "b.png"));
+}
+
 TEST(CliCheck, OurOutputIsFusedAndWatertight) {
   TempDir dir("check_ours");
   ASSERT_TRUE(run_isocurv({"extract", dataset("buckyball"), "-o", dir / "b.ply", "--quiet"}).ok());

@@ -1,0 +1,160 @@
+#include "core/camera.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace isocurv {
+namespace {
+
+using Vec = std::array<double, 3>;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kIsoAzimuthDeg = 35;    // the iso view: from -y, turned about +z ...
+constexpr double kIsoElevationDeg = 30;  // ... then raised
+
+Vec add(const Vec& a, const Vec& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec scale(const Vec& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
+double dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec cross(const Vec& a, const Vec& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+Vec normalized(const Vec& a) {
+  const double n = std::sqrt(dot(a, a));
+  return n > 0 ? scale(a, 1 / n) : a;
+}
+
+/// Rodrigues: `v` turned by `deg` degrees about the unit `axis` (right-handed).
+Vec rotate(const Vec& v, const Vec& axis, double deg) {
+  const double a = deg * kPi / 180, c = std::cos(a), s = std::sin(a);
+  return add(add(scale(v, c), scale(cross(axis, v), s)), scale(axis, dot(axis, v) * (1 - c)));
+}
+
+/// vtkCamera::Azimuth: the camera turns about the view up through the focal point.
+void azimuth(Vec& toward, const Vec& up, double deg) { toward = rotate(toward, up, deg); }
+
+/// vtkCamera::Elevation: the camera turns about (toward camera) x (view up), so it rises for
+/// positive angles; the view up turns with it.
+void elevation(Vec& toward, Vec& up, double deg) {
+  const Vec axis = normalized(cross(toward, up));
+  toward = rotate(toward, axis, deg);
+  up = rotate(up, axis, deg);
+}
+
+}  // namespace
+
+NamedView parse_named_view(const std::string& name) {
+  static const std::pair<const char*, NamedView> kNames[] = {
+      {"iso", NamedView::iso},     {"+x", NamedView::plus_x},  {"-x", NamedView::minus_x},
+      {"+y", NamedView::plus_y},   {"-y", NamedView::minus_y}, {"+z", NamedView::plus_z},
+      {"-z", NamedView::minus_z}};
+  for (const auto& [n, v] : kNames)
+    if (name == n) return v;
+  throw Error("unknown view '" + name + "' (expected iso, +x, -x, +y, -y, +z or -z)");
+}
+
+std::string to_string(NamedView v) {
+  switch (v) {
+    case NamedView::iso: return "iso";
+    case NamedView::plus_x: return "+x";
+    case NamedView::minus_x: return "-x";
+    case NamedView::plus_y: return "+y";
+    case NamedView::minus_y: return "-y";
+    case NamedView::plus_z: return "+z";
+    case NamedView::minus_z: return "-z";
+  }
+  return "iso";
+}
+
+std::array<double, 3> Camera::toward_camera() const {
+  return normalized(sub(position, focal_point));
+}
+
+std::array<double, 3> Camera::view_vector(const std::array<double, 3>& p) const {
+  return ortho ? toward_camera() : normalized(sub(position, p));
+}
+
+void view_axes(const ViewSpec& spec, Vec& toward, Vec& up) {
+  const Vec z{0, 0, 1}, y{0, 1, 0};
+  switch (spec.view) {
+    case NamedView::iso:
+      toward = {0, -1, 0};
+      up = z;
+      azimuth(toward, up, kIsoAzimuthDeg);
+      elevation(toward, up, kIsoElevationDeg);
+      break;
+    case NamedView::plus_x: toward = {1, 0, 0}, up = z; break;
+    case NamedView::minus_x: toward = {-1, 0, 0}, up = z; break;
+    case NamedView::plus_y: toward = {0, 1, 0}, up = z; break;
+    case NamedView::minus_y: toward = {0, -1, 0}, up = z; break;
+    case NamedView::plus_z: toward = {0, 0, 1}, up = y; break;
+    case NamedView::minus_z: toward = {0, 0, -1}, up = y; break;
+  }
+  if (spec.azimuth_deg != 0) azimuth(toward, up, spec.azimuth_deg);
+  if (spec.elevation_deg != 0) elevation(toward, up, spec.elevation_deg);
+  toward = normalized(toward);
+  up = normalized(sub(up, scale(toward, dot(up, toward))));
+}
+
+Camera fit_camera(const std::array<double, 6>& bounds, const ViewSpec& spec, double aspect,
+                  double margin) {
+  Vec lo{bounds[0], bounds[2], bounds[4]}, hi{bounds[1], bounds[3], bounds[5]};
+  bool empty = false;
+  for (int a = 0; a < 3; ++a) empty = empty || !(hi[a] >= lo[a]) || !std::isfinite(lo[a] + hi[a]);
+  if (empty) lo = {-0.5, -0.5, -0.5}, hi = {0.5, 0.5, 0.5};
+  double diag = std::sqrt(dot(sub(hi, lo), sub(hi, lo)));
+  if (!(diag > 0)) {
+    lo = sub(lo, {0.5, 0.5, 0.5});
+    hi = add(hi, {0.5, 0.5, 0.5});
+    diag = std::sqrt(3.0);
+  }
+  if (!(aspect > 0)) aspect = 1;
+
+  Camera cam;
+  cam.ortho = spec.ortho;
+  Vec toward, up;
+  view_axes(spec, toward, up);
+  const Vec right = cross(up, toward);  // image x to the right when looking along -toward
+  cam.view_up = up;
+
+  // The corners in view coordinates (right, up, toward) about the box centre; recentre so the
+  // projection (for ortho exactly, for perspective nearly) is centred.
+  const Vec centre = scale(add(lo, hi), 0.5);
+  Vec corners[8];
+  double rmin = 1e300, rmax = -1e300, umin = 1e300, umax = -1e300;
+  for (int i = 0; i < 8; ++i) {
+    const Vec p{(i & 1) ? hi[0] : lo[0], (i & 2) ? hi[1] : lo[1], (i & 4) ? hi[2] : lo[2]};
+    const Vec d = sub(p, centre);
+    corners[i] = {dot(d, right), dot(d, up), dot(d, toward)};
+    rmin = std::min(rmin, corners[i][0]), rmax = std::max(rmax, corners[i][0]);
+    umin = std::min(umin, corners[i][1]), umax = std::max(umax, corners[i][1]);
+  }
+  const double rc = 0.5 * (rmin + rmax), uc = 0.5 * (umin + umax);
+  cam.focal_point = add(centre, add(scale(right, rc), scale(up, uc)));
+  const double fill = 1 - std::clamp(margin, 0.0, 0.9);  // fraction of the half-size used
+  const double zoom = spec.zoom > 0 ? spec.zoom : 1;
+
+  if (spec.ortho) {
+    const double half_h = std::max(0.5 * (umax - umin), 0.5 * (rmax - rmin) / aspect);
+    cam.parallel_scale = std::max(half_h, 1e-12 * diag) / fill / zoom;
+    cam.position = add(cam.focal_point, scale(toward, 2 * diag));
+    return cam;
+  }
+  // Perspective: the distance D from the focal point at which every corner (r, u, t) satisfies
+  // |u| <= (D - t) tan(a/2) fill and |r| <= (D - t) tan(a/2) aspect fill.
+  const double tan_half = std::tan(0.5 * cam.view_angle_deg * kPi / 180);
+  double dist = 0;
+  for (const Vec& c : corners) {
+    const double r = std::abs(c[0] - rc), u = std::abs(c[1] - uc), t = c[2];
+    dist = std::max(dist, t + u / (tan_half * fill));
+    dist = std::max(dist, t + r / (tan_half * aspect * fill));
+  }
+  dist = std::max(dist, 0.75 * diag);  // keep the eye outside the box
+  cam.position = add(cam.focal_point, scale(toward, dist));
+  cam.view_angle_deg = 2 * std::atan(tan_half / zoom) * 180 / kPi;
+  return cam;
+}
+
+}  // namespace isocurv

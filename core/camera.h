@@ -1,0 +1,59 @@
+#pragma once
+// Where a picture or a line drawing is seen from: named views and a camera as plain data.
+//
+// Shared by everything that needs a viewpoint (viz renders, lines' contours and SVG output) so
+// that a line drawing and a rendered PNG of the same options see the same thing. No VTK here;
+// viz/ applies a Camera to a vtkCamera.
+#include <array>
+#include <string>
+
+namespace isocurv {
+
+/// A named viewpoint. `+x` puts the camera on the +x side of the object's centre, looking at it
+/// (towards -x), with +z up; `+z`/`-z` look along z with +y up. `iso` is the three-quarter view
+/// from above: from -y turned 35 degrees about +z, then raised 30 degrees.
+enum class NamedView { iso, plus_x, minus_x, plus_y, minus_y, plus_z, minus_z };
+
+/// Parses "iso", "+x", "-x", "+y", "-y", "+z", "-z". @throw Error naming the choices.
+NamedView parse_named_view(const std::string& name);
+/// The name parse_named_view accepts for `v`.
+std::string to_string(NamedView v);
+
+/// How to choose the camera: a named view, turned further, zoomed, and the projection.
+struct ViewSpec {
+  NamedView view = NamedView::iso;
+  double azimuth_deg = 0;    ///< then turned about the view up through the centre (as vtkCamera::Azimuth)
+  double elevation_deg = 0;  ///< then raised about the horizontal axis (as vtkCamera::Elevation)
+  double zoom = 1;           ///< > 1 magnifies (narrows the view angle, or the parallel scale)
+  bool ortho = false;        ///< parallel projection instead of perspective
+};
+
+/// A camera in world units. Perspective: `view_angle_deg` is the full vertical angle (as VTK's).
+/// Orthographic: `parallel_scale` is half the view's height in world units.
+struct Camera {
+  std::array<double, 3> position{0, 0, 1};
+  std::array<double, 3> focal_point{0, 0, 0};
+  std::array<double, 3> view_up{0, 1, 0};  ///< unit, perpendicular to the direction of projection
+  bool ortho = false;
+  double view_angle_deg = 30;
+  double parallel_scale = 1;
+
+  /// Unit vector from the focal point towards the camera.
+  std::array<double, 3> toward_camera() const;
+  /// Unit vector from `p` towards the eye: toward_camera() for ortho, else (position - p)/|..|.
+  std::array<double, 3> view_vector(const std::array<double, 3>& p) const;
+};
+
+/// Unit vector from the object's centre towards the camera, and the view up, for `spec` (its
+/// named view turned by its azimuth and elevation).
+void view_axes(const ViewSpec& spec, std::array<double, 3>& toward_camera,
+               std::array<double, 3>& view_up);
+
+/// The camera of `spec` that shows the whole box `bounds` (xmin, xmax, ymin, ymax, zmin, zmax)
+/// in an image of width/height `aspect`, every corner of the box at least `margin` (a fraction
+/// of the image's half-height or half-width) inside the image edges (before `zoom`). The box's
+/// projection is centred. An empty or degenerate box gets a unit box around its centre.
+Camera fit_camera(const std::array<double, 6>& bounds, const ViewSpec& spec, double aspect,
+                  double margin = 0.08);
+
+}  // namespace isocurv
