@@ -2,6 +2,7 @@
 // The per-vertex curvature arrays the curvature stage produces (names as in DESIGN.md).
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/mesh.h"
@@ -22,6 +23,13 @@ struct CurvatureField {
   std::vector<float> curvedness;             ///< "Curvedness" = sqrt((k1^2+k2^2)/2)
   std::vector<float> ao;                     ///< "AO": curvature-based ambient occlusion in [0, 1]
   std::vector<std::uint8_t> boundary;        ///< "Boundary": 1 on open-boundary vertices
+  /// More per-vertex scalar arrays, by name, from the stages after curvature (features/: "LBE",
+  /// "H_ii_r4", ...), written after the arrays above; each empty or one value per vertex.
+  struct Named {
+    std::string name;
+    std::vector<float> values;
+  };
+  std::vector<Named> extra;
 
   std::size_t size() const { return k1.size(); }
 };
