@@ -23,7 +23,8 @@ constexpr int kBrickSamples = kApron * kApron * kApron;
 /// dense volumes and for sparse grids whose box holds few blocks more than their leaves. Sparse:
 /// only the blocks a brick near a leaf or near the face of a constant region (a tile unlike its
 /// neighbour) reads, so that memory and time follow the leaves and tiles, not the bounding box
-/// (a .vdb with two small objects far apart is legal): at most 27 blocks and 8 bricks a leaf.
+/// (a .vdb with two small objects far apart is legal): at most 27 blocks and 8 bricks for each
+/// leaf and each block on such a face.
 class BrickIndex {
  public:
   enum class Layout { automatic, dense, sparse };

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <set>
 #include <tuple>
@@ -18,6 +19,7 @@
 #include "mc/frame.h"
 #include "tests/mc/volumes.h"
 #include "volume/from_dense.h"
+#include "volume/load.h"
 
 namespace isocurv {
 namespace {
@@ -194,6 +196,28 @@ TEST(BrickIndex, SparseLayoutGivesWhatTheDenseOneGives) {
   // The root tile's face at x = 4096, inside the index's box: beside the leaf at 4095 and beyond.
   EXPECT_TRUE(std::count(s.origins.begin(), s.origins.end(), openvdb::Coord(4088, 0, 0)));
   EXPECT_TRUE(std::count(s.origins.begin(), s.origins.end(), openvdb::Coord(4088, 48, 64)));
+}
+
+// The same on the real sparse .vdb files (a level set, a cube with interior tiles, smoke), at
+// their suggested isovalues and near their value ranges' ends.
+TEST(BrickIndex, SparseLayoutGivesWhatTheDenseOneGivesOnRealVdbFiles) {
+  int found = 0;
+  for (const char* file : {"vdb_sphere/sphere.vdb", "vdb_cube/cube.vdb", "vdb_smoke/smoke.vdb"}) {
+    const std::string path = std::string(ISOCURV_SHARED_DATASETS) + "/" + file;
+    if (!std::filesystem::exists(path)) continue;
+    ++found;
+    const volume::Volume v = volume::load(path);
+    const mc::BrickIndex dense(v, mc::BrickIndex::Layout::dense);
+    const mc::BrickIndex sparse(v, mc::BrickIndex::Layout::sparse);
+    const double span = v.stats.max - v.stats.min;
+    for (const double iso : {v.stats.suggested_isovalue, v.stats.min + 0.05 * span, v.stats.max - 0.05 * span}) {
+      const mc::Frame f = mc::make_frame(v, float(iso), {});
+      const Selection a = select(dense, f), b = select(sparse, f);
+      EXPECT_EQ(a.origins, b.origins) << file << " at " << iso;
+      EXPECT_TRUE(a.samples == b.samples) << file << " at " << iso;
+    }
+  }
+  if (found == 0) GTEST_SKIP() << "no .vdb datasets in " << ISOCURV_SHARED_DATASETS;
 }
 
 // Two small balls 1e5 voxels apart along every axis (a legal sparse .vdb): the automatic layout
