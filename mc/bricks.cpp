@@ -1,9 +1,11 @@
 #include "mc/bricks.h"
 
+#include "core/error.h"
 #include "core/huge_pages.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <cmath>
@@ -218,7 +220,115 @@ BrickIndex::Block BrickIndex::leaf_block_nonfinite(const float* d) {
   return b;
 }
 
-BrickIndex::BrickIndex(const volume::Volume& v) {
+namespace {
+
+constexpr int kKeyBits = 21;  // block coordinates (from BrickIndex::first_) a key holds per axis
+
+std::uint64_t block_key(int bx, int by, int bz) {
+  return (std::uint64_t(bx) << (2 * kKeyBits)) | (std::uint64_t(by) << kKeyBits) | std::uint64_t(bz);
+}
+openvdb::Coord times8(const openvdb::Coord& c) { return openvdb::Coord(c.x() * 8, c.y() * 8, c.z() * 8); }
+
+openvdb::Coord key_block(std::uint64_t k) {
+  constexpr std::uint64_t kMask = (std::uint64_t(1) << kKeyBits) - 1;
+  return openvdb::Coord(int(k >> (2 * kKeyBits)), int((k >> kKeyBits) & kMask), int(k & kMask));
+}
+
+std::uint32_t float_bits(float x) {
+  std::uint32_t b;
+  std::memcpy(&b, &x, sizeof b);
+  return b;
+}
+
+// Sides (voxels) of the regions an OpenVDB float tree stores one value for, by level (3 minus
+// the depth Accessor::getValueDepth returns, which is -1 for the background): 0 a leaf voxel
+// (its leaf: 8^3 values), 1 a tile of a lower internal node (8^3), 2 a tile of an upper
+// internal node (128^3), 3 a root tile or the background (4096^3, aligned).
+constexpr int kRegionSide[4] = {8, 8, 128, 4096};
+
+// Finds the faces of constant regions (tiles) where the value beyond differs, for the sparse
+// layout: each such face's blocks, on both sides, are marked (keys), so that the bricks reading
+// both are indexed. A face beyond the index's upper end is marked on the tile's side (those
+// bricks read the background there, as in the dense layout).
+class TileFaces {
+ public:
+  TileFaces(const openvdb::FloatGrid& g, const openvdb::Coord& first, const openvdb::Coord& nblocks,
+            std::vector<std::uint64_t>& marks)
+      : acc_(g.getConstAccessor()), first_(first), n_(nblocks), marks_(marks) {}
+
+  /// The tile of side `side` (voxels, a multiple of 8) at `origin` holding `value`.
+  void tile(const openvdb::Coord& origin, int side, float value) {
+    // Block coordinates from first_ (a multiple of 8, as tile origins are): within int.
+    const openvdb::Coord lo(origin.x() / 8 - first_.x() / 8, origin.y() / 8 - first_.y() / 8,
+                            origin.z() / 8 - first_.z() / 8);
+    const openvdb::Coord hi = lo + openvdb::Coord(side / 8 - 1);
+    for (int a = 0; a < 3; ++a)  // wholly outside the index: nothing to mark
+      if (hi[a] < 0 || lo[a] >= n_[a]) return;
+    const std::uint32_t bits = float_bits(value);
+    for (int axis = 0; axis < 3; ++axis)
+      for (int dir : {-1, 1}) {
+        // Blocks along the face: the tile's outer layer (inner), and the layer beyond. A tile that
+        // reaches past the index's upper end is cut there: the bricks of its last layer read
+        // past the index.
+        const int inner = dir < 0 ? lo[axis] : std::min(hi[axis], n_[axis] - 1);
+        const int outer = inner + dir;
+        if (inner < 0 || outer < 0) continue;  // below the index: no brick reads across it
+        openvdb::Coord square = lo;
+        square[axis] = outer;
+        face(axis, square, side / 8, bits, inner, outer >= n_[axis]);
+      }
+  }
+
+ private:
+  // The square of side `s` blocks at `sq` (block coordinates, in the layer beyond the tile along
+  // `axis`) against the tile's value; `past_end`: the layer lies past the index's upper end.
+  void face(int axis, const openvdb::Coord& sq, int s, std::uint32_t bits, int inner, bool past_end) {
+    const int b = (axis + 1) % 3, c = (axis + 2) % 3;
+    if (sq[b] >= n_[b] || sq[c] >= n_[c] || sq[b] + s <= 0 || sq[c] + s <= 0) return;
+    if (!past_end) {
+      const openvdb::Coord voxel = first_ + times8(sq);
+      const int level = std::min(3, 3 - acc_.getValueDepth(voxel));
+      if (level == 0) {
+        if (s == 1) return;  // a leaf: the blocks around every leaf are indexed anyway
+      } else if (kRegionSide[level] >= 8 * s) {  // one value over the whole square
+        if (float_bits(acc_.getValue(voxel)) == bits) return;
+        mark(axis, sq, s, inner, true);
+        return;
+      }
+      const int sub = s > 16 ? 16 : 1;  // the next region size down (128 or 8 voxels)
+      for (int i = 0; i < s; i += sub)
+        for (int j = 0; j < s; j += sub) {
+          openvdb::Coord q = sq;
+          q[b] += i;
+          q[c] += j;
+          face(axis, q, sub, bits, inner, false);
+        }
+      return;
+    }
+    mark(axis, sq, s, inner, false);
+  }
+
+  void mark(int axis, const openvdb::Coord& sq, int s, int inner, bool beyond) {
+    const int b = (axis + 1) % 3, c = (axis + 2) % 3;
+    for (int i = std::max(0, sq[b]); i < std::min(n_[b], sq[b] + s); ++i)
+      for (int j = std::max(0, sq[c]); j < std::min(n_[c], sq[c] + s); ++j) {
+        openvdb::Coord p = sq;
+        p[b] = i;
+        p[c] = j;
+        if (beyond) marks_.push_back(block_key(p.x(), p.y(), p.z()));
+        p[axis] = inner;
+        marks_.push_back(block_key(p.x(), p.y(), p.z()));
+      }
+  }
+
+  openvdb::FloatGrid::ConstAccessor acc_;
+  openvdb::Coord first_, n_;
+  std::vector<std::uint64_t>& marks_;
+};
+
+}  // namespace
+
+BrickIndex::BrickIndex(const volume::Volume& v, Layout layout) {
   // Blocks covering every cell any frame may visit (cap adds one layer) plus their apron.
   openvdb::CoordBBox box = v.domain;
   if (box.empty()) return;
@@ -228,8 +338,22 @@ BrickIndex::BrickIndex(const volume::Volume& v) {
   nx_ = floor_div8(box.max().x()) - first_.x() / 8 + 1;
   ny_ = floor_div8(box.max().y()) - first_.y() / 8 + 1;
   nz_ = floor_div8(box.max().z()) - first_.z() / 8 + 1;
-  resize_in_huge_pages(blocks_, std::size_t(nx_) * ny_ * nz_);  // first touches of small pages are slow on VMs
   background_ = v.grid->background();
+  if (layout == Layout::automatic) {
+    // Dense while the box holds few blocks more than the leaves (its memory then follows them
+    // too, and a block is found by arithmetic instead of a lookup).
+    const double box_blocks = double(nx_) * ny_ * nz_;
+    const double leaves = double(v.grid->tree().leafCount());
+    layout = v.dense || box_blocks <= 32 * leaves + 32768 ? Layout::dense : Layout::sparse;
+  }
+  if (layout == Layout::dense)
+    build_dense(v);
+  else
+    build_sparse(v);
+}
+
+void BrickIndex::build_dense(const volume::Volume& v) {
+  resize_in_huge_pages(blocks_, std::size_t(nx_) * ny_ * nz_);  // first touches of small pages are slow on VMs
   const openvdb::CoordBBox domain = v.domain;
   const bool dense = v.dense;
   // x fastest: dense volumes' leaves lie in memory in that order, so the scan streams.
@@ -239,24 +363,130 @@ BrickIndex::BrickIndex(const volume::Volume& v) {
       const int bz = zy / ny_, by = zy % ny_;
       for (int bx = 0; bx < nx_; ++bx) {
         const openvdb::Coord o = first_ + openvdb::Coord(bx * 8, by * 8, bz * 8);
-        Block b;
-        if (const auto* leaf = acc.probeConstLeaf(o)) {
-          b = leaf_block(leaf->buffer().data());
-        } else {
-          const float x = acc.getValue(o);  // a tile or background: constant over the block
-          b = Block{};
-          b.tile = x;
-          const bool finite = std::isfinite(x);
-          const Range r{finite ? x : std::numeric_limits<float>::max(),
-                        finite ? x : std::numeric_limits<float>::lowest()};
-          for (Range& p : b.part) p = r;
-          b.nonfinite = !finite;
-        }
-        b.clipped = dense && !domain.isInside(openvdb::CoordBBox(o, o + openvdb::Coord(7)));
-        blocks_[block_at(bx, by, bz)] = b;
+        blocks_[block_at(bx, by, bz)] = make_block(acc, o, dense, domain);
       }
     }
   });
+}
+
+// The sparse layout: the blocks of the leaves and of the marked tile faces (TileFaces) are the
+// seeds; the bricks that may straddle are those reading a seed (a seed and the 7 blocks below
+// it), and the blocks indexed those the bricks read (a seed and its 26 neighbours).
+void BrickIndex::build_sparse(const volume::Volume& v) {
+  if (nx_ >= (1 << kKeyBits) || ny_ >= (1 << kKeyBits) || nz_ >= (1 << kKeyBits))
+    throw Error(v.path, "volume spans more than 2^24 voxels along an axis; cannot mesh it");
+  sparse_ = true;
+  const openvdb::FloatTree& tree = v.grid->tree();
+  const openvdb::Coord n(nx_, ny_, nz_);
+  auto inside = [&](const openvdb::Coord& b) {
+    return b.x() >= 0 && b.y() >= 0 && b.z() >= 0 && b.x() < nx_ && b.y() < ny_ && b.z() < nz_;
+  };
+  std::vector<std::uint64_t> seeds;
+  seeds.reserve(tree.leafCount());
+  for (auto leaf = tree.cbeginLeaf(); leaf; ++leaf) {
+    const openvdb::Coord o = leaf->origin();  // multiples of 8, as first_
+    const openvdb::Coord b(o.x() / 8 - first_.x() / 8, o.y() / 8 - first_.y() / 8, o.z() / 8 - first_.z() / 8);
+    if (inside(b)) seeds.push_back(block_key(b.x(), b.y(), b.z()));
+  }
+  // Tiles unlike the background, at every level (the background's own faces, and those between
+  // equal values, hold no surface; a face between two tiles is found from either side).
+  {
+    using Root = openvdb::FloatTree::RootNodeType;
+    using Upper = Root::ChildNodeType;
+    using Lower = Upper::ChildNodeType;
+    TileFaces faces(*v.grid, first_, n, seeds);
+    const std::uint32_t background = float_bits(background_);
+    auto tile = [&](const openvdb::Coord& origin, int side, float value) {
+      if (float_bits(value) != background) faces.tile(origin, side, value);
+    };
+    const Root& root = tree.root();
+    for (auto t = root.cbeginValueAll(); t; ++t) tile(t.getCoord(), Upper::DIM, *t);
+    for (auto upper = root.cbeginChildOn(); upper; ++upper) {
+      for (auto t = upper->cbeginValueAll(); t; ++t) tile(t.getCoord(), Lower::DIM, *t);
+      for (auto lower = upper->cbeginChildOn(); lower; ++lower)
+        for (auto t = lower->cbeginValueAll(); t; ++t) tile(t.getCoord(), 8, *t);
+    }
+  }
+  tbb::parallel_sort(seeds.begin(), seeds.end());
+  seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
+  // Bricks: each seed and the 7 blocks below it; blocks: each seed and its 26 neighbours.
+  std::vector<std::uint64_t> bricks, blocks;
+  bricks.reserve(seeds.size() * 8);
+  blocks.reserve(seeds.size() * 27);
+  for (const std::uint64_t k : seeds) {
+    const openvdb::Coord s = key_block(k);
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz) {
+          const openvdb::Coord b = s + openvdb::Coord(dx, dy, dz);
+          if (!inside(b)) continue;
+          const std::uint64_t key = block_key(b.x(), b.y(), b.z());
+          blocks.push_back(key);
+          if (dx <= 0 && dy <= 0 && dz <= 0) bricks.push_back(key);
+        }
+  }
+  // Keys order blocks x, y, z (z fastest): the candidates' order.
+  tbb::parallel_sort(bricks.begin(), bricks.end());
+  bricks.erase(std::unique(bricks.begin(), bricks.end()), bricks.end());
+  tbb::parallel_sort(blocks.begin(), blocks.end());
+  blocks.erase(std::unique(blocks.begin(), blocks.end()), blocks.end());
+  bricks_.resize(bricks.size());
+  for (std::size_t i = 0; i < bricks.size(); ++i) bricks_[i] = key_block(bricks[i]);
+  blocks_.resize(blocks.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
+    auto acc = v.grid->getConstAccessor();
+    for (std::size_t i = r.begin(); i != r.end(); ++i)
+      blocks_[i] = make_block(acc, first_ + times8(key_block(blocks[i])), v.dense, v.domain);
+  });
+  slot_.reserve(blocks.size());
+  for (std::size_t i = 0; i < blocks.size(); ++i) slot_.emplace(blocks[i], std::uint32_t(i));
+}
+
+// One block's ranges, from its leaf or its constant value (a tile or the background).
+BrickIndex::Block BrickIndex::make_block(const openvdb::FloatGrid::ConstAccessor& acc, const openvdb::Coord& o,
+                                         bool dense, const openvdb::CoordBBox& domain) {
+  BrickIndex::Block b;
+  if (const auto* leaf = acc.probeConstLeaf(o)) {
+    b = leaf_block(leaf->buffer().data());
+  } else {
+    const float x = acc.getValue(o);  // a tile or background: constant over the block
+    b = BrickIndex::Block{};
+    b.tile = x;
+    const bool finite = std::isfinite(x);
+    const BrickIndex::Range r{finite ? x : std::numeric_limits<float>::max(),
+                              finite ? x : std::numeric_limits<float>::lowest()};
+    for (BrickIndex::Range& p : b.part) p = r;
+    b.nonfinite = !finite;
+  }
+  b.clipped = dense && !domain.isInside(openvdb::CoordBBox(o, o + openvdb::Coord(7)));
+  return b;
+}
+
+// Whether a brick whose eight blocks (own first, then d = dx + 2 dy + 4 dz above; null past the
+// index) are `blk` may straddle `iso`: judged by the ranges of just the samples it reads.
+bool BrickIndex::may_straddle(const Block* const* blk, bool above, float iso) {
+  bool in = false, out_side = false;
+  for (int d = 0; d < 8; ++d) {
+    const BrickIndex::Block* b = blk[d];
+    if (!b) {
+      out_side = true;
+      continue;
+    }
+    if (b->nonfinite || b->clipped) out_side = true;
+    const BrickIndex::Range& r = b->part[d];
+    if (r.min > r.max) continue;
+    if (above ? r.max > iso : r.min < iso) in = true;
+    if (above ? r.min <= iso : r.max >= iso) out_side = true;
+    if (in && out_side) return true;  // often at d = 0: the brick's own block straddles
+  }
+  return in && out_side;
+}
+
+const BrickIndex::Block* BrickIndex::find(int bx, int by, int bz) const {
+  if (bx < 0 || by < 0 || bz < 0 || bx >= nx_ || by >= ny_ || bz >= nz_) return nullptr;
+  if (!sparse_) return &blocks_[block_at(bx, by, bz)];
+  const auto it = slot_.find(block_key(bx, by, bz));
+  return it == slot_.end() ? nullptr : &blocks_[it->second];
 }
 
 std::vector<openvdb::Coord> BrickIndex::candidates(const Frame& f) const {
@@ -270,36 +500,42 @@ std::vector<openvdb::Coord> BrickIndex::candidates(const Frame& f) const {
   const int bz1 = floor_div8(f.cells.max().z()) - first_.z() / 8;
   const bool above = f.sign > 0;
   const float iso = f.isovalue;
-  // z innermost, as in VDB leaves: a brick's apron along z is the next brick's own leaf, still in
-  // cache when that brick is gathered. Slices of constant x in parallel, joined in order.
-  std::vector<std::vector<openvdb::Coord>> slices(std::size_t(std::max(0, bx1 - bx0 + 1)));
-  tbb::parallel_for(tbb::blocked_range<int>(bx0, bx1 + 1), [&](const tbb::blocked_range<int>& range) {
-    for (int bx = range.begin(); bx != range.end(); ++bx) {
-      std::vector<openvdb::Coord>& slice = slices[std::size_t(bx - bx0)];
-      for (int by = by0; by <= by1; ++by)
-        for (int bz = bz0; bz <= bz1; ++bz) {
-          bool in = false, out_side = false;
-          // The brick's samples lie in its own block and in a lower face, line or corner of each
-          // block one step up along some axes (Block::part).
-          for (int d = 0; d < 8; ++d) {
-            const int x = bx + (d & 1), y = by + ((d >> 1) & 1), z = bz + (d >> 2);
-            if (x >= nx_ || y >= ny_ || z >= nz_) { out_side = true; continue; }
-            const Block& b = blocks_[block_at(x, y, z)];
-            if (b.nonfinite || b.clipped) out_side = true;
-            const Range& r = b.part[d];
-            if (r.min > r.max) continue;
-            if (above ? r.max > iso : r.min < iso) in = true;
-            if (above ? r.min <= iso : r.max >= iso) out_side = true;
-            if (in && out_side) break;  // often at d = 0: the brick's own block straddles
-          }
-          if (in && out_side) slice.push_back(first_ + openvdb::Coord(bx * 8, by * 8, bz * 8));
-        }
-    }
-  });
+  // The brick's samples lie in its own block and in a lower face, line or corner of each block
+  // one step up along some axes (Block::part).
+  auto test = [&](int bx, int by, int bz) {
+    const Block* blk[8];
+    for (int d = 0; d < 8; ++d) blk[d] = find(bx + (d & 1), by + ((d >> 1) & 1), bz + (d >> 2));
+    return may_straddle(blk, above, iso);
+  };
+  std::vector<std::vector<openvdb::Coord>> parts;
+  if (sparse_) {
+    // The bricks that may straddle at some isovalue, in order; chunks in parallel, joined in order.
+    constexpr std::size_t kChunk = 4096;
+    parts.resize((bricks_.size() + kChunk - 1) / kChunk);
+    tbb::parallel_for(std::size_t(0), parts.size(), [&](std::size_t c) {
+      for (std::size_t i = c * kChunk; i < std::min(bricks_.size(), (c + 1) * kChunk); ++i) {
+        const openvdb::Coord& b = bricks_[i];
+        if (b.x() < bx0 || b.x() > bx1 || b.y() < by0 || b.y() > by1 || b.z() < bz0 || b.z() > bz1) continue;
+        if (test(b.x(), b.y(), b.z())) parts[c].push_back(first_ + times8(b));
+      }
+    });
+  } else {
+    // z innermost, as in VDB leaves: a brick's apron along z is the next brick's own leaf, still
+    // in cache when that brick is gathered. Slices of constant x in parallel, joined in order.
+    parts.resize(std::size_t(std::max(0, bx1 - bx0 + 1)));
+    tbb::parallel_for(tbb::blocked_range<int>(bx0, bx1 + 1), [&](const tbb::blocked_range<int>& range) {
+      for (int bx = range.begin(); bx != range.end(); ++bx) {
+        std::vector<openvdb::Coord>& slice = parts[std::size_t(bx - bx0)];
+        for (int by = by0; by <= by1; ++by)
+          for (int bz = bz0; bz <= bz1; ++bz)
+            if (test(bx, by, bz)) slice.push_back(first_ + openvdb::Coord(bx * 8, by * 8, bz * 8));
+      }
+    });
+  }
   std::size_t total = 0;
-  for (const auto& slice : slices) total += slice.size();
+  for (const auto& part : parts) total += part.size();
   out.reserve(total);
-  for (const auto& slice : slices) out.insert(out.end(), slice.begin(), slice.end());
+  for (const auto& part : parts) out.insert(out.end(), part.begin(), part.end());
   return out;
 }
 
@@ -319,8 +555,7 @@ void BrickIndex::gather(const Frame& f, std::vector<openvdb::Coord>& origins, fl
       const float* data[8];
       const int bx = (o.x() - first_.x()) / 8, by = (o.y() - first_.y()) / 8, bz = (o.z() - first_.z()) / 8;
       for (int k = 0; k < 8; ++k) {
-        const int x = bx + (k & 1), y = by + ((k >> 1) & 1), z = bz + (k >> 2);
-        const Block* blk = x < nx_ && y < ny_ && z < nz_ ? &blocks_[block_at(x, y, z)] : nullptr;
+        const Block* blk = find(bx + (k & 1), by + ((k >> 1) & 1), bz + (k >> 2));
         data[k] = blk ? blk->leaf : nullptr;
         if (data[k]) continue;
         const float value = blk ? blk->tile : background_;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "core/error.h"
@@ -79,6 +80,32 @@ TEST_F(IoBadSizes, VtpClaimingBillionsOfPoints) {
                  "<DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0</DataArray>\n"
                  "</Points>\n</Piece>\n</PolyData>\n</VTKFile>\n",
                  "header claims NumberOfPoints=4000000000");
+}
+
+// A compressed array's block header claiming more than the file holds is refused before VTK
+// allocates for it (the VTP fuzzer: a 4 KB file whose header asked for a 4 GB block). The file is
+// one our writer made (raw appended zlib, UInt64 headers), with the first array's (only) block size,
+// and then its block count, patched.
+TEST_F(IoBadSizes, VtpCompressedBlockClaimingGigabytes) {
+  isocurv::Mesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  const std::string good = (dir_ / "good.vtp").string();
+  isocurv::io::write_mesh(good, m);
+  std::ifstream in(good, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t data = bytes.find('_', bytes.find("<AppendedData")) + 1;
+  ASSERT_NE(data, std::string::npos);
+  ASSERT_NE(bytes.find("header_type=\"UInt64\""), std::string::npos);
+  ASSERT_NE(bytes.find("offset=\"0\""), std::string::npos);  // the first array's header is at `data`
+  auto patched = [&](std::size_t word, unsigned long long value) {
+    std::string b = bytes;
+    for (int k = 0; k < 8; ++k) b[data + 8 * word + k] = char((value >> (8 * k)) & 0xff);  // little-endian
+    return b;
+  };
+  expect_refused("block.vtp", patched(2, 4000000000ULL), "claims a block of 4000000000 bytes from");
+  expect_refused("blocks.vtp", patched(0, 1ULL << 40), "claims 1099511627776 blocks");
+  EXPECT_EQ(isocurv::io::read_mesh(good).mesh.triangles.size(), 4u);
 }
 
 // Values are converted without undefined behaviour (found by the PLY fuzzer under UBSan): a list

@@ -6,14 +6,20 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 #include <limits>
 #include <set>
 #include <tuple>
 #include <vector>
 
+#include <openvdb/tools/LevelSetSphere.h>
+
 #include "mc/bricks.h"
 #include "mc/frame.h"
 #include "tests/mc/volumes.h"
+#include "volume/from_dense.h"
+#include "volume/load.h"
 
 namespace isocurv {
 namespace {
@@ -106,6 +112,132 @@ TEST(BrickIndex, InfinityAmongInsideValuesIsOutside) {
     index.gather(f, origins, samples.data());
     EXPECT_EQ(origins, want) << bad;
   }
+}
+
+// The selected bricks and their samples: the candidates, gathered (those that straddle).
+struct Selection {
+  Coords origins;
+  std::vector<float> samples;
+};
+Selection select(const mc::BrickIndex& index, const mc::Frame& f) {
+  Selection s;
+  s.origins = index.candidates(f);
+  s.samples.resize(s.origins.size() * mc::kBrickSamples);
+  index.gather(f, s.origins, s.samples.data());
+  s.samples.resize(s.origins.size() * mc::kBrickSamples);
+  return s;
+}
+
+// A sparse fog grid (background 0) holding every kind of constant region OpenVDB stores: an
+// upper-node tile (128^3, value 1), beside it a lower-node tile (8^3) of another value and one
+// of the same value, a NaN tile, a leaf, and an inactive root tile (4096^3) that the index's
+// box cuts, touched by an active voxel beside it.
+volume::Volume tiles_of_every_level() {
+  volume::Volume v;
+  v.grid = openvdb::FloatGrid::create(0.0f);
+  openvdb::FloatTree& t = v.grid->tree();
+  v.grid->fill(openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(127)), 1.0f, true);
+  v.grid->fill(openvdb::CoordBBox(openvdb::Coord(128, 0, 0), openvdb::Coord(135, 7, 7)), 2.0f, true);
+  v.grid->fill(openvdb::CoordBBox(openvdb::Coord(-8, 8, 8), openvdb::Coord(-1, 15, 15)), 1.0f, true);
+  v.grid->fill(openvdb::CoordBBox(openvdb::Coord(0, 0, 128), openvdb::Coord(7, 7, 135)),
+               std::numeric_limits<float>::quiet_NaN(), true);
+  t.setValue(openvdb::Coord(140, 20, 20), 3.0f);
+  t.addTile(3, openvdb::Coord(4096, 0, 0), 1.0f, false);
+  t.setValue(openvdb::Coord(4095, 3, 3), 1.0f);
+  v.dense = false;
+  v.domain = v.grid->evalActiveVoxelBoundingBox();
+  volume::compute_stats(v);
+  return v;
+}
+
+// The sparse layout selects and gathers exactly what the dense one does (same bricks, same
+// order, same samples), for every kind of tile, a level set with tiles inside, both insides,
+// and isovalues between the tiles' values; while holding fewer blocks.
+TEST(BrickIndex, SparseLayoutGivesWhatTheDenseOneGives) {
+  volume::Volume tiles = tiles_of_every_level();
+  volume::Volume ls;
+  ls.grid = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(30.0f, openvdb::Vec3f(0.3f, -0.2f, 0.1f), 0.5f);
+  ls.dense = false;
+  ls.inside = volume::Inside::Below;
+  ls.domain = ls.grid->evalActiveVoxelBoundingBox();
+  volume::compute_stats(ls);
+  struct Case {
+    volume::Volume* v;
+    volume::Inside inside;
+    float iso;
+  };
+  const Case cases[] = {{&tiles, volume::Inside::Above, 0.5f}, {&tiles, volume::Inside::Above, 1.5f},
+                        {&tiles, volume::Inside::Above, 2.5f}, {&tiles, volume::Inside::Below, 0.5f},
+                        {&ls, volume::Inside::Below, 0.0f},    {&ls, volume::Inside::Below, 0.7f},
+                        {&ls, volume::Inside::Above, -0.3f}};
+  for (const Case& c : cases) {
+    c.v->inside = c.inside;
+    const mc::BrickIndex dense(*c.v, mc::BrickIndex::Layout::dense);
+    const mc::BrickIndex sparse(*c.v, mc::BrickIndex::Layout::sparse);
+    ASSERT_FALSE(dense.sparse());
+    ASSERT_TRUE(sparse.sparse());
+    EXPECT_LT(sparse.blocks(), dense.blocks());
+    const mc::Frame f = mc::make_frame(*c.v, c.iso, {});
+    const Selection a = select(dense, f), b = select(sparse, f);
+    ASSERT_FALSE(a.origins.empty()) << c.iso;
+    EXPECT_EQ(a.origins, b.origins) << c.iso;
+    EXPECT_TRUE(std::memcmp(a.samples.data(), b.samples.data(), a.samples.size() * sizeof(float)) == 0 &&
+                a.samples.size() == b.samples.size())
+        << c.iso;
+  }
+  // The tile faces are where the surface is: at 0.5 the upper tile's six faces (16 x 16 blocks
+  // each) are all selected, in both layouts.
+  tiles.inside = volume::Inside::Above;
+  const mc::Frame f = mc::make_frame(tiles, 0.5f, {});
+  const Selection s = select(mc::BrickIndex(tiles, mc::BrickIndex::Layout::sparse), f);
+  EXPECT_TRUE(std::count(s.origins.begin(), s.origins.end(), openvdb::Coord(-8, 64, 64)));
+  EXPECT_TRUE(std::count(s.origins.begin(), s.origins.end(), openvdb::Coord(64, 120, 64)));
+  EXPECT_TRUE(std::count(s.origins.begin(), s.origins.end(), openvdb::Coord(64, 64, 120)));
+  // The root tile's face at x = 4096, inside the index's box: beside the leaf at 4095 and beyond.
+  EXPECT_TRUE(std::count(s.origins.begin(), s.origins.end(), openvdb::Coord(4088, 0, 0)));
+  EXPECT_TRUE(std::count(s.origins.begin(), s.origins.end(), openvdb::Coord(4088, 48, 64)));
+}
+
+// The same on the real sparse .vdb files (a level set, a cube with interior tiles, smoke), at
+// their suggested isovalues and near their value ranges' ends.
+TEST(BrickIndex, SparseLayoutGivesWhatTheDenseOneGivesOnRealVdbFiles) {
+  int found = 0;
+  for (const char* file : {"vdb_sphere/sphere.vdb", "vdb_cube/cube.vdb", "vdb_smoke/smoke.vdb"}) {
+    const std::string path = std::string(ISOCURV_SHARED_DATASETS) + "/" + file;
+    if (!std::filesystem::exists(path)) continue;
+    ++found;
+    const volume::Volume v = volume::load(path);
+    const mc::BrickIndex dense(v, mc::BrickIndex::Layout::dense);
+    const mc::BrickIndex sparse(v, mc::BrickIndex::Layout::sparse);
+    const double span = v.stats.max - v.stats.min;
+    for (const double iso : {v.stats.suggested_isovalue, v.stats.min + 0.05 * span, v.stats.max - 0.05 * span}) {
+      const mc::Frame f = mc::make_frame(v, float(iso), {});
+      const Selection a = select(dense, f), b = select(sparse, f);
+      EXPECT_EQ(a.origins, b.origins) << file << " at " << iso;
+      EXPECT_TRUE(a.samples == b.samples) << file << " at " << iso;
+    }
+  }
+  if (found == 0) GTEST_SKIP() << "no .vdb datasets in " << ISOCURV_SHARED_DATASETS;
+}
+
+// Two small balls 1e5 voxels apart along every axis (a legal sparse .vdb): the automatic layout
+// is sparse, holding at most 27 blocks a leaf, where a dense index would need 12500^3 blocks.
+TEST(BrickIndex, FarApartObjectsCostTheirLeavesNotTheirBox) {
+  volume::Volume v;
+  v.grid = openvdb::FloatGrid::create(0.0f);
+  for (const int c : {0, 100000})
+    for (int x = -6; x <= 6; ++x)
+      for (int y = -6; y <= 6; ++y)
+        for (int z = -6; z <= 6; ++z)
+          v.grid->tree().setValue(openvdb::Coord(c + x, c + y, c + z), float(5 - std::sqrt(double(x * x + y * y + z * z))));
+  v.dense = false;
+  v.domain = v.grid->evalActiveVoxelBoundingBox();
+  volume::compute_stats(v);
+  const mc::BrickIndex index(v);
+  EXPECT_TRUE(index.sparse());
+  EXPECT_LE(index.blocks(), 27 * v.grid->tree().leafCount());
+  const Selection s = select(index, mc::make_frame(v, 0.0f, {}));
+  EXPECT_EQ(s.origins.size(), 2u * 8u);  // each ball straddles the 8 bricks around its centre
 }
 
 // Block corners (read by 8 bricks), points on a block's lower lines and faces (read by 4 and 2),

@@ -3,16 +3,21 @@
 
 #include <openvdb/tools/LevelSetSphere.h>
 
+#include <unistd.h>
+
 #include <cstring>
+#include <filesystem>
 #include <map>
 #include <random>
 
 #include "core/cl_device.h"
+#include "mc/bricks.h"
 #include "mc/extract.h"
 #include "mc/extract_reference.h"
 #include "mc/mesh_check.h"
 #include "tests/mc/same_mesh.h"
 #include "tests/mc/volumes.h"
+#include "volume/load.h"
 
 using namespace isocurv;
 
@@ -307,4 +312,51 @@ TEST(Extract, MesherReusesItsIndexAcrossIsovalues) {
     EXPECT_GT(t.bricks, 0u);
     expect_closed(m, 2);
   }
+}
+
+// A .vdb holding two small level-set balls 1e5 voxels apart along every axis (legal: a sparse
+// grid's box may be huge; a brick index dense over it would need 12500^3 blocks): the mesh is
+// the two balls' meshes, each extracted from a .vdb of its own, vertex for vertex and triangle
+// for triangle, and the index follows the leaves.
+TEST(Extract, FarApartObjectsInOneSparseVdb) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("isocurv_far_apart_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  auto ball = [](double c) {
+    return openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(
+        4.5f, openvdb::Vec3f(float(c + 0.3), float(c - 0.2), float(c + 0.1)), 1.0f);
+  };
+  auto write = [&](const std::string& name, openvdb::FloatGrid::Ptr g) {
+    const std::string path = (dir / name).string();
+    openvdb::io::File(path).write({g});
+    return volume::load(path);
+  };
+  openvdb::FloatGrid::Ptr both = ball(0);
+  both->tree().merge(ball(1e5)->tree());
+  const volume::Volume v = write("both.vdb", both), a = write("a.vdb", ball(0)), b = write("b.vdb", ball(1e5));
+  std::filesystem::remove_all(dir);
+  ASSERT_FALSE(v.dense);
+  ASSERT_GE(v.domain.dim().x(), 100000);
+  const mc::BrickIndex index(v);
+  EXPECT_TRUE(index.sparse());
+  EXPECT_LE(index.blocks(), 27 * v.grid->tree().leafCount());
+
+  const Mesh m = mc::extract(v, 0.0f, dev());
+  expect_closed(m, 4);  // two spheres
+  Mesh parts = mc::extract(a, 0.0f, dev());
+  const Mesh mb = mc::extract(b, 0.0f, dev());
+  const auto offset = std::uint32_t(parts.positions.size());
+  parts.positions.insert(parts.positions.end(), mb.positions.begin(), mb.positions.end());
+  for (const Tri& t : mb.triangles) parts.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  ASSERT_EQ(parts.positions.size(), m.positions.size());
+  ASSERT_EQ(parts.triangles.size(), m.triangles.size());
+  std::map<Vec3f, std::uint32_t> at;
+  for (std::uint32_t i = 0; i < m.positions.size(); ++i) at[m.positions[i]] = i;
+  std::vector<std::uint32_t> map(parts.positions.size());
+  for (std::size_t i = 0; i < parts.positions.size(); ++i) {
+    const auto it = at.find(parts.positions[i]);
+    ASSERT_TRUE(it != at.end()) << "vertex " << i << " of the parts is not in the whole";
+    map[i] = it->second;
+  }
+  test::expect_same_triangles(parts, m, map);
 }
