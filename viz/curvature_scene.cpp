@@ -34,8 +34,6 @@ namespace {
 constexpr double kAmbient = 0.15, kDiffuse = 0.85;
 constexpr double kAmbientWithAo = 0.45, kDiffuseWithAo = 0.55;
 constexpr double kSpecular = 0.15, kSpecularPower = 20;
-constexpr double kBackgroundBottom[3] = {0.08, 0.08, 0.10};
-constexpr double kBackgroundTop[3] = {0.30, 0.31, 0.36};
 constexpr const char* kAoAttribute = "isocurvAO";  // the vertex shader's input for "AO"
 
 /// Shader replacements that multiply the ambient term of VTK's lighting by the per-vertex AO

@@ -16,6 +16,10 @@ class vtkRenderer;
 
 namespace isocurv::viz {
 
+/// The background: a vertical gradient from kBackgroundBottom to kBackgroundTop (RGB, 0..1).
+constexpr double kBackgroundBottom[3] = {0.08, 0.08, 0.10};
+constexpr double kBackgroundTop[3] = {0.30, 0.31, 0.36};
+
 class CurvatureScene {
  public:
   CurvatureScene();
