@@ -34,7 +34,7 @@ namespace {
 constexpr double kLiveUpdateMs = 150;  // slower updates wait for the slider's release
 constexpr unsigned long kScriptTickMs = 100;
 constexpr double kStatusFontPerPixel = 1.0 / 48;  // status font per pixel of the window height
-constexpr int kStatusLines = 3;
+constexpr int kStatusLines = 4;
 constexpr double kSliderBand = 0.07;              // of the window height, above the status
 constexpr char kEnter = '\r', kEscape = 27, kBackSpace = 8, kDelete = 127;
 
@@ -231,7 +231,7 @@ class Explorer {
     const int font = std::max(11, static_cast<int>(height * kStatusFontPerPixel));
     status_->GetTextProperty()->SetFontSize(font);
     const int status_px = static_cast<int>(kStatusLines * font * 1.25);
-    const int slider_px = static_cast<int>(kSliderBand * height);
+    const int slider_px = std::max(static_cast<int>(kSliderBand * height), 2 * font);
     scene_.set_size(width, height);
     scene_.set_bottom_reserved(status_px + slider_px);
     auto* rep = static_cast<vtkSliderRepresentation2D*>(slider_->GetRepresentation());
@@ -323,7 +323,7 @@ class Explorer {
     if (!detail_.empty()) line += "   (" + detail_ + ")";
     line += "\n[c] colour: " + canonical_quantity(o.color) + "  [a] AO: " + (uses_ao(o.shading) ? "on" : "off") +
             "  [d] directions: " + (o.dirs ? "on" : "off") + "  [v] view: " + to_string(view_) +
-            "  [r] reset  [i] isovalue  [o] open  [w] save  [k] camera  [s] screenshot";
+            "\n[r] reset view  [i] isovalue  [o] open  [w] save  [k] camera  [s] screenshot";
     static const char* kPrompts[] = {"", "isovalue: ", "open mesh: ", "save surface as: "};
     if (entry_ != Entry::none)
       line += "\n" + std::string(kPrompts[static_cast<int>(entry_)]) + typed_ + "_   (Enter / Escape)";
@@ -337,7 +337,7 @@ class Explorer {
     rep->SetMinimumValue(setup_.min_value);
     rep->SetMaximumValue(setup_.max_value);
     rep->SetValue(setup_.isovalue);
-    rep->SetTitleText("isovalue");
+    rep->SetTitleText("");  // the status line right below names the isovalue
     rep->SetLabelFormat("%.4g");
     rep->GetPoint1Coordinate()->SetCoordinateSystemToNormalizedDisplay();
     rep->GetPoint2Coordinate()->SetCoordinateSystemToNormalizedDisplay();  // placed by relayout
@@ -349,6 +349,7 @@ class Explorer {
     rep->SetTitleHeight(0.025);
     rep->SetLabelHeight(0.022);
     slider_->SetInteractor(interactor_);
+    slider_->KeyPressActivationOff();  // 'i' is ours (typing an isovalue), not the widget's toggle
     slider_->SetRepresentation(rep);
     slider_->SetCurrentRenderer(scene_.overlay());
     slider_->SetDefaultRenderer(scene_.overlay());
