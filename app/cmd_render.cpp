@@ -3,17 +3,21 @@
 
 #include "app/commands.h"
 #include "app/pipeline.h"
+#include "app/picture_title.h"
 #include "app/render_options_cli.h"
+#include "core/error.h"
+#include "core/atomic_file.h"
+#include "viz/direction_glyphs.h"
 #include "viz/render.h"
 
 namespace isocurv::app {
 
 void register_render(CLI::App& app) {
   auto* cmd = app.add_subcommand("render", "Render a volume's isosurface or a mesh to a PNG, coloured by curvature (no display needed)");
-  cmd->footer("Example: isocurv render torus.vdb --color K --ao --dirs -o torus.png\n"
+  cmd->footer("Example: isocurv render torus.vdb --color K --shading ambient-ao --dirs -o torus.png\n"
               "A mesh without curvature arrays gets them estimated first.");
   static CommonOptions o;
-  static viz::RenderOptions ro;
+  static RenderCli ro;
   static std::string in, out;
   cmd->add_option("VOLUME_OR_MESH", in, "Volume or mesh file")->required();
   cmd->add_option("-o,--output", out, "PNG file to write")->required();
@@ -22,15 +26,26 @@ void register_render(CLI::App& app) {
   add_render_options(*cmd, ro);
   cmd->callback([] {
     StageTimer timer;
+    if (!ro.dirs_out.empty() && !ro.opts.dirs) throw Error(ro.dirs_out, "--dirs-out needs --dirs");
+    if (!ro.dirs_out.empty()) viz::check_glyphs_path(ro.dirs_out);
     Surface s = load_surface(in, o, timer);
+    bool estimated = false;
     if (o.flip || !s.field || s.field->H.size() != s.mesh.positions.size()) {
       prepare_mesh_for_curvature(s, in, o);
       s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, o, timer, &s.normals);
+      estimated = true;
     }
+    const viz::RenderOptions opts =
+        render_options_for(ro, in, s.volume ? std::optional<float>(s.isovalue) : std::nullopt,
+                           estimated ? kEstimatorName : "curvature from the file");
     timer.start("render");
-    viz::RenderOptions opts = ro;
-    if (opts.title.empty()) opts.title = in;
-    viz::render_png(out, s.mesh, *s.field, opts);
+    AtomicFileSet outputs;  // the PNG and the glyphs together or not at all
+    outputs.write(out, [&](const std::string& tmp) { viz::render_png(tmp, s.mesh, *s.field, opts); });
+    if (!ro.dirs_out.empty())
+      outputs.write(ro.dirs_out, [&](const std::string& tmp) {
+        viz::write_glyphs(tmp, viz::direction_glyphs(s.mesh, *s.field, viz::glyph_options(opts)));
+      });
+    outputs.commit();
     timer.stop();
     if (o.json) {
       nlohmann::json r = surface_report(s);

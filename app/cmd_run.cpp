@@ -4,10 +4,12 @@
 
 #include "app/commands.h"
 #include "app/pipeline.h"
+#include "app/picture_title.h"
 #include "app/render_options_cli.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "io/mesh_file.h"
+#include "viz/direction_glyphs.h"
 #include "viz/render.h"
 
 namespace isocurv::app {
@@ -18,7 +20,7 @@ void register_run(CLI::App& app) {
               "stats.json holds counts, timings_ms per stage, the device, the normals (and their face-normal\n"
               "fallbacks), and area-weighted min/max/mean/percentiles of H, K, k1, k2 without the unreliable vertices.");
   static CommonOptions o;
-  static viz::RenderOptions ro;
+  static RenderCli ro;
   static std::string in, dir, format = "vtp";
   cmd->add_option("VOLUME", in, "Volume file")->required();
   cmd->add_option("-o,--output", dir, "Output folder (created if missing)")->required();
@@ -32,6 +34,9 @@ void register_run(CLI::App& app) {
   cmd->callback([] {
     namespace fs = std::filesystem;
     if (is_mesh_path(in)) throw Error(in, "isocurv run takes a volume; use isocurv curvature or render for meshes");
+    if (!ro.dirs_out.empty() && !ro.opts.dirs) throw Error(ro.dirs_out, "--dirs-out needs --dirs");
+    if (!ro.dirs_out.empty()) viz::check_glyphs_path(ro.dirs_out);
+    const viz::RenderOptions opts_check = render_options_for(ro, in, 0.f, kEstimatorName);  // a bad --camera fails early
     StageTimer timer;
     Surface s =
         load_surface(in, o, timer);  // fails (no surface, ...) before any output folder is made
@@ -59,10 +64,14 @@ void register_run(CLI::App& app) {
     outputs.write(mesh_path,
                   [&](const std::string& tmp) { io::write_mesh(tmp, s.mesh, &*s.field); });
     timer.start("render");
-    viz::RenderOptions opts = ro;
-    if (opts.title.empty()) opts.title = fs::path(in).filename().string() + "  (" + opts.color + ")";
+    viz::RenderOptions opts = opts_check;
+    if (ro.title.empty()) opts.title = picture_title(in, opts.color, s.isovalue, kEstimatorName);
     outputs.write(png_path,
                   [&](const std::string& tmp) { viz::render_png(tmp, s.mesh, *s.field, opts); });
+    if (!ro.dirs_out.empty())
+      outputs.write(ro.dirs_out, [&](const std::string& tmp) {
+        viz::write_glyphs(tmp, viz::direction_glyphs(s.mesh, *s.field, viz::glyph_options(opts)));
+      });
     timer.stop();
     nlohmann::json r = surface_report(s);
     r["input"] = in;

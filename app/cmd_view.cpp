@@ -5,7 +5,10 @@
 
 #include "app/commands.h"
 #include "app/pipeline.h"
+#include "app/picture_title.h"
 #include "app/render_options_cli.h"
+#include "core/error.h"
+#include "io/mesh_file.h"
 #include "curvature/estimate.h"
 #include "mc/extract.h"
 #include "viz/explorer.h"
@@ -15,15 +18,21 @@ namespace isocurv::app {
 void register_view(CLI::App& app) {
   auto* cmd = app.add_subcommand("view", "Explore a volume interactively: isovalue slider, surface coloured by curvature");
   cmd->footer("Example: isocurv view headsq.raw --dims 64 64 93 --type int16 --iso 500\n"
-              "Keys: c cycles the colour quantity, a toggles AO, d toggles direction glyphs, s saves a screenshot,\n"
-              "r resets the camera, q quits. Needs an X display.");
+              "Keys: c cycles the colour quantity, a toggles AO, d toggles direction glyphs, v cycles the views,\n"
+              "r resets the camera, i types an isovalue, o opens a mesh file, w saves the surface shown, k saves\n"
+              "the camera (for render --camera), s saves a screenshot, q quits. Needs an X display.");
   static CommonOptions o;
-  static viz::RenderOptions ro;
-  static std::string in;
+  static RenderCli ro;
+  static std::string in, screenshots = "isocurv-screenshot", camera_out = "isocurv-camera.json",
+                         surface_out = "isocurv-surface.vtp";
   cmd->add_option("VOLUME", in, "Volume file")->required();
+  cmd->add_option("--screenshots", screenshots, "'s' writes PREFIX-NNN.png")->capture_default_str();
+  cmd->add_option("--camera-out", camera_out, "'k' writes the camera here")->capture_default_str();
+  cmd->add_option("--surface-out", surface_out, "The path 'w' proposes for the surface (.vtp or .ply)")
+      ->capture_default_str();
   add_common_options(*cmd, o);
   add_curvature_options(*cmd, o);
-  add_render_options(*cmd, ro);
+  add_render_options(*cmd, ro, false);
   cmd->callback([] {
     StageTimer timer;
     float iso = 0;
@@ -36,8 +45,32 @@ void register_view(CLI::App& app) {
     setup.isovalue = iso;
     setup.min_value = static_cast<float>(vol->stats.min);
     setup.max_value = static_cast<float>(vol->stats.max);
-    setup.view = ro;
-    if (setup.view.title.empty()) setup.view.title = in;
+    setup.view = render_options_for(ro, in, iso, kEstimatorName);
+    if (ro.title.empty())
+      setup.title_for = [](float value, const std::string& quantity) {
+        return picture_title(in, quantity, value, kEstimatorName);
+      };
+    setup.screenshot_prefix = screenshots;
+    setup.camera_path = camera_out;
+    setup.surface_path = surface_out;
+    setup.save_surface = [](const std::string& path, const Mesh& mesh, const curvature::CurvatureField& field) {
+      require_curvature_format(path);
+      io::write_mesh(path, mesh, &field);
+    };
+    setup.open_mesh = [](const std::string& path) {
+      if (!is_mesh_path(path)) throw Error(path, "not a mesh file (.vtp .ply .obj .stl)");
+      CommonOptions mesh_options;  // the mesh's own defaults: normals from its faces
+      mesh_options.device = o.device;
+      mesh_options.quiet = true;
+      mesh_options.ao_scale = o.ao_scale;
+      StageTimer ignored;
+      Surface s = load_surface(path, mesh_options, ignored);
+      if (!s.field || s.field->H.size() != s.mesh.positions.size()) {
+        prepare_mesh_for_curvature(s, path, mesh_options);
+        s.field = estimate_curvature(s.mesh, nullptr, mesh_options, ignored);
+      }
+      return viz::Surface{std::move(s.mesh), std::move(*s.field), 0, "opened " + path};
+    };
     setup.surface = [vol, mesher](float value) {
       const auto t0 = std::chrono::steady_clock::now();
       mc::Options mo;

@@ -69,10 +69,12 @@ void add_curvature_options(CLI::App& cmd, CommonOptions& o, bool mesh_input) {
 void StageTimer::start(const std::string& stage) {
   stop();
   current_ = stage;
+  bar_ = std::make_unique<StageBar>(stage);
   t0_ = std::chrono::steady_clock::now();
 }
 
 void StageTimer::stop() {
+  bar_.reset();
   if (current_.empty()) return;
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0_).count();
   timings_[current_] = timings_.value(current_, 0.0) + std::round(ms * 1000) / 1000;

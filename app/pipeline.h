@@ -4,12 +4,14 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <memory>
 #include <optional>
 #include <string>
 
 #include "app/volume_options.h"
 #include "core/cl_device.h"
 #include "core/mesh.h"
+#include "core/progress.h"
 #include "curvature/curvature_field.h"
 #include "curvature/options.h"
 #include "mc/options.h"
@@ -36,15 +38,17 @@ void add_common_options(CLI::App& cmd, CommonOptions& o, bool with_iso = true);
 /// Adds --normals and --ao-scale, and --flip when the command takes mesh files.
 void add_curvature_options(CLI::App& cmd, CommonOptions& o, bool mesh_input = false);
 
-/// Wall-clock timings of the stages of one command, reported as "timings_ms".
+/// Wall-clock timings of the stages of one command, reported as "timings_ms", with a progress
+/// bar on a terminal for each stage that runs over half a second (StageBar; none with --quiet).
 class StageTimer {
  public:
-  /// Starts timing `stage`; the previous stage (if any) ends here.
+  /// Starts timing `stage` (and its bar); the previous stage (if any) ends here.
   void start(const std::string& stage);
   void stop();
   const nlohmann::json& json() const { return timings_; }
 
  private:
+  std::unique_ptr<StageBar> bar_;
   std::string current_;
   std::chrono::steady_clock::time_point t0_;
   nlohmann::json timings_ = nlohmann::json::object();

@@ -2,15 +2,54 @@
 
 #include <cstdio>
 
+#include "app/picture_title.h"
 #include "core/error.h"
+#include "viz/camera_file.h"
+#include "viz/color_map.h"
+#include "viz/quantity.h"
 
 namespace isocurv::app {
 
-void add_render_options(CLI::App& cmd, viz::RenderOptions& opts) {
-  cmd.add_option("--color", opts.color, "Quantity to colour by (blue negative, green zero, red positive)")
-      ->check(CLI::IsMember({"H", "K", "k1", "k2", "ShapeIndex", "Curvedness", "AO"}))->capture_default_str()->group("Rendering");
-  cmd.add_flag("--ao", opts.ao, "Shade with curvature-based ambient occlusion")->group("Rendering");
-  cmd.add_flag("--dirs", opts.dirs, "Draw principal directions (dir1 white, dir2 black) on a subsample of vertices")->group("Rendering");
+void add_render_options(CLI::App& cmd, RenderCli& r, bool files) {
+  viz::RenderOptions& opts = r.opts;
+  cmd.add_option("--color", opts.color, "Quantity to colour by")
+      ->check(CLI::IsMember(viz::color_quantities()))->capture_default_str()->group("Rendering");
+  cmd.add_option("--cmap", opts.cmap,
+                 "Colour map: auto (diverging for H K k1 k2 ShapeIndex, viridis for Curvedness, grey "
+                 "for AO), diverging (colour-blind-safe blue - light grey at zero - red), viridis "
+                 "(perceptually uniform), grey, bgr (the papers' blue-green-red)")
+      ->check(CLI::IsMember(viz::color_map_names()))->capture_default_str()->group("Rendering");
+  cmd.add_option_function<std::vector<double>>("--range", [&opts](const std::vector<double>& v) {
+    if (!(v[0] < v[1])) throw CLI::ValidationError("--range", "expected MIN MAX with MIN < MAX");
+    opts.range = viz::ColorRange{v[0], v[1]};
+  }, "Colour exactly this value range (MIN MAX; default: from the values, see --percentile)")
+      ->expected(2)->group("Rendering");
+  cmd.add_option("--percentile", opts.clamp_percentile,
+                 "The automatic colour range leaves out this percentage of extreme values (0..49)")
+      ->check(CLI::Range(0.0, 49.0))->capture_default_str()->group("Rendering");
+  cmd.add_option_function<std::string>("--shading", [&opts](const std::string& s) {
+    try {
+      opts.shading = viz::parse_shading(s);
+    } catch (const Error& e) {
+      throw CLI::ValidationError("--shading", e.what());
+    }
+  }, "lambert (default), ambient-ao (the ambient term times the curvature AO, as Griffin et al.; "
+     "diffuse light kept) or both (AO darkens ambient and diffuse)")->group("Rendering");
+  cmd.add_flag_callback("--ao", [&opts] { opts.shading = viz::Shading::ambient_ao; },
+                        "Same as --shading ambient-ao")->group("Rendering");
+  cmd.add_flag("--dirs", opts.dirs,
+               "Draw principal directions on a subsample of vertices (dir1 white, dir2 black, each with a "
+               "halo of the other)")->group("Rendering");
+  cmd.add_option("--dirs-count", opts.dirs_count,
+                 "About this many direction glyphs over the surface (default: one per 36x36 pixels "
+                 "of the image, never denser than 2.5 mean edges)")
+      ->check(CLI::Range(1, 1000000))->group("Rendering");
+  cmd.add_option("--dirs-length", opts.dirs_length,
+                 "Glyph length in world units (default: 0.7 x their spacing)")
+      ->check(CLI::PositiveNumber)->group("Rendering");
+  if (files)
+    cmd.add_option("--dirs-out", r.dirs_out, "Also write the direction glyphs to this .vtp (line cells)")
+        ->group("Rendering");
   cmd.add_option_function<std::string>("--size", [&opts](const std::string& s) {
     int w = 0, h = 0;
     char x = 0;
@@ -19,7 +58,15 @@ void add_render_options(CLI::App& cmd, viz::RenderOptions& opts) {
     opts.width = w;
     opts.height = h;
   }, "Image size WIDTHxHEIGHT (default 1024x768)")->group("Rendering");
+  cmd.add_option("--title", r.title, "Title text (default: file, quantity, isovalue, estimator)")
+      ->group("Rendering");
+  cmd.add_option("--unit", opts.length_unit,
+                 "The volume's length unit for the legend, e.g. mm (default: 'length': 1/length)")
+      ->group("Rendering");
   add_camera_options(cmd, opts.view);
+  cmd.add_option("--camera", r.camera_file,
+                 "Camera JSON saved by the explorer ('k'); replaces --view and the fitting")
+      ->check(CLI::ExistingFile)->group("Camera");
 }
 
 void add_camera_options(CLI::App& cmd, ViewSpec& view) {
@@ -37,6 +84,14 @@ void add_camera_options(CLI::App& cmd, ViewSpec& view) {
   cmd.add_option("--zoom", view.zoom, "Magnification after fitting the surface into the view (default 1)")
       ->check(CLI::Range(0.05, 50.0))->group("Camera");
   cmd.add_flag("--ortho", view.ortho, "Parallel projection instead of perspective")->group("Camera");
+}
+
+viz::RenderOptions render_options_for(const RenderCli& r, const std::string& input,
+                                      std::optional<float> isovalue, const std::string& estimator) {
+  viz::RenderOptions o = r.opts;
+  if (!r.camera_file.empty()) o.camera = viz::load_camera(r.camera_file);
+  o.title = r.title.empty() ? picture_title(input, o.color, isovalue, estimator) : r.title;
+  return o;
 }
 
 }  // namespace isocurv::app

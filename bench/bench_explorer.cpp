@@ -88,7 +88,7 @@ struct Windows {
       w->SetSize(c.width, c.height);
     }
     viz::check_opengl(ours);
-    ours->AddRenderer(scene.renderer());
+    scene.attach(ours);
     vtk_mapper->SetScalarModeToUsePointData();
     vtk_mapper->ScalarVisibilityOn();
     vtk_actor->SetMapper(vtk_mapper);

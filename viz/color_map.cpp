@@ -1,15 +1,43 @@
 #include "viz/color_map.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <vtkColorTransferFunction.h>
 #include <vtkUnsignedCharArray.h>
 
+#include "core/error.h"
 #include "viz/quantity.h"
 
 namespace isocurv::viz {
 namespace {
+
+using Rgb = std::array<double, 3>;
+
+/// ColorBrewer RdBu (9 classes), blue end first: colour-blind safe, light neutral in the middle.
+const std::vector<Rgb> kDiverging = {
+    {0x21 / 255., 0x66 / 255., 0xac / 255.}, {0x43 / 255., 0x93 / 255., 0xc3 / 255.},
+    {0x92 / 255., 0xc5 / 255., 0xde / 255.}, {0xd1 / 255., 0xe5 / 255., 0xf0 / 255.},
+    {0xf7 / 255., 0xf7 / 255., 0xf7 / 255.}, {0xfd / 255., 0xdb / 255., 0xc7 / 255.},
+    {0xf4 / 255., 0xa5 / 255., 0x82 / 255.}, {0xd6 / 255., 0x60 / 255., 0x4d / 255.},
+    {0xb2 / 255., 0x18 / 255., 0x2b / 255.}};
+/// matplotlib's viridis at t = 0, 1/8, ..., 1 (entries 0, 32, ..., 224, 255 of its table).
+const std::vector<Rgb> kViridis = {
+    {0.267004, 0.004874, 0.329415}, {0.282623, 0.140926, 0.457517}, {0.229739, 0.322361, 0.545706},
+    {0.172719, 0.448791, 0.557885}, {0.127568, 0.566949, 0.550556}, {0.134692, 0.658636, 0.517649},
+    {0.369214, 0.788888, 0.382914}, {0.678489, 0.863742, 0.189503}, {0.993248, 0.906157, 0.143936}};
+const std::vector<Rgb> kGrey = {{0, 0, 0}, {1, 1, 1}};
+/// The papers' map: blue negative, green zero, red positive.
+const std::vector<Rgb> kBlueGreenRed = {{0.15, 0.25, 0.90}, {0.20, 0.78, 0.25}, {0.90, 0.15, 0.10}};
+
+const std::vector<Rgb>& stops(const std::string& cmap) {
+  if (cmap == "diverging") return kDiverging;
+  if (cmap == "viridis") return kViridis;
+  if (cmap == "grey") return kGrey;
+  if (cmap == "bgr") return kBlueGreenRed;
+  throw Error("unknown colour map '" + cmap + "' (choose auto, diverging, viridis, grey or bgr)");
+}
 
 /// The q-th percentile (q in [0, 100]) of `v` (reordered), nearest rank.
 double percentile(std::vector<double>& v, double q) {
@@ -20,51 +48,91 @@ double percentile(std::vector<double>& v, double q) {
   return v[k];
 }
 
-constexpr int kTableSize = 256;
+constexpr int kTableSize = 1024;
+constexpr double kMaxClampPercentile = 49;
 
 }  // namespace
 
-ColorRange color_range(const std::vector<float>& values, const std::string& name, double clamp_percentile) {
+const std::vector<std::string>& color_map_names() {
+  static const std::vector<std::string> names = {"auto", "diverging", "viridis", "grey", "bgr"};
+  return names;
+}
+
+std::string resolve_color_map(const std::string& cmap, const std::string& quantity) {
+  const std::string q = canonical_quantity(quantity);
+  if (cmap != "auto") {
+    stops(cmap);  // throws for an unknown name
+    return cmap;
+  }
+  if (is_signed_quantity(q)) return "diverging";
+  return q == "AO" ? "grey" : "viridis";
+}
+
+bool is_centred_map(const std::string& cmap) { return cmap == "diverging" || cmap == "bgr"; }
+
+ColorRange color_range(const std::vector<float>& values, const std::string& name,
+                       double clamp_percentile, const std::optional<ColorRange>& fixed) {
   const std::string q = canonical_quantity(name);
+  if (fixed) {
+    if (!(fixed->lo < fixed->hi) || !std::isfinite(fixed->lo) || !std::isfinite(fixed->hi))
+      throw Error("colour range " + std::to_string(fixed->lo) + " .. " + std::to_string(fixed->hi) +
+                  " is empty: MIN must be below MAX");
+    return *fixed;
+  }
   if (q == "ShapeIndex") return {-1, 1};
-  const bool symmetric = is_signed_quantity(q);
+  if (q == "AO") return {0, 1};
+  const double c = std::clamp(clamp_percentile, 0.0, kMaxClampPercentile);
   std::vector<double> finite;
   finite.reserve(values.size());
   for (float v : values)
-    if (std::isfinite(v)) finite.push_back(symmetric ? std::fabs(v) : v);
-  const double c = std::clamp(clamp_percentile, 0.0, 49.0);
-  ColorRange range;
-  if (symmetric) {
-    const double r = percentile(finite, 100.0 - c);
-    range = {-r, r};
+    if (std::isfinite(v)) finite.push_back(v);
+  ColorRange range{0, 0};
+  if (is_signed_quantity(q)) {
+    const double lo = percentile(finite, c), hi = percentile(finite, 100.0 - c);
+    if (lo < 0 && hi > 0) {
+      for (double& v : finite) v = std::fabs(v);
+      const double r = percentile(finite, 100.0 - c);
+      range = {-r, r};
+    } else if (hi > 0) {
+      range = {0, hi};
+    } else {
+      range = {lo, 0};
+    }
   } else {
-    range.hi = percentile(finite, 100.0 - c);
-    range.lo = percentile(finite, c);
+    range = {0, percentile(finite, 100.0 - c)};
   }
-  if (!(range.hi > range.lo)) {  // all equal (or nothing finite): a small range around the value
-    const double mid = 0.5 * (range.lo + range.hi);
-    const double half = std::max(1e-6, std::fabs(mid) * 1e-3);
-    range = symmetric ? ColorRange{-std::max(half, std::fabs(mid)), std::max(half, std::fabs(mid))}
-                      : ColorRange{mid - half, mid + half};
+  if (!(range.hi > range.lo)) {  // all zero (or nothing finite): a small range around zero
+    const double half = std::max({1e-6, std::fabs(range.lo), std::fabs(range.hi)});
+    range = is_signed_quantity(q) ? ColorRange{-half, half} : ColorRange{0, half};
   }
   return range;
 }
 
-vtkSmartPointer<vtkColorTransferFunction> make_color_map(const ColorRange& range) {
+vtkSmartPointer<vtkColorTransferFunction> make_color_map(const ColorRange& range,
+                                                         const std::string& cmap) {
+  const std::vector<Rgb>& rgb = stops(cmap);
+  double a = range.lo, b = range.hi;  // the values of the first and the last stop
+  if (is_centred_map(cmap) && a <= 0 && b >= 0) {
+    const double m = std::max(-a, b);
+    a = -m, b = m;
+  }
   auto map = vtkSmartPointer<vtkColorTransferFunction>::New();
   map->SetColorSpaceToRGB();
-  const double mid = 0.5 * (range.lo + range.hi);
-  map->AddRGBPoint(range.lo, 0.15, 0.25, 0.90);  // blue: negative
-  map->AddRGBPoint(mid, 0.20, 0.78, 0.25);       // green: zero for signed quantities
-  map->AddRGBPoint(range.hi, 0.90, 0.15, 0.10);  // red: positive
+  const std::size_t n = rgb.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = double(i) / double(n - 1);
+    // the centre stop exactly at (a + b) / 2: zero for a centred map over a range with zero
+    const double v = (2 * i + 1 == n) ? 0.5 * (a + b) : a + t * (b - a);
+    map->AddRGBPoint(v, rgb[i][0], rgb[i][1], rgb[i][2]);
+  }
   map->ClampingOn();
   return map;
 }
 
 vtkSmartPointer<vtkUnsignedCharArray> vertex_colors(const std::vector<float>& values, const ColorRange& range,
                                                     vtkColorTransferFunction* map, const std::vector<float>* ao) {
-  double table[3 * kTableSize];
-  map->GetTable(range.lo, range.hi, kTableSize, table);
+  std::vector<double> table(3 * kTableSize);
+  map->GetTable(range.lo, range.hi, kTableSize, table.data());
   auto colors = vtkSmartPointer<vtkUnsignedCharArray>::New();
   colors->SetName("Colors");
   colors->SetNumberOfComponents(3);
@@ -75,8 +143,8 @@ vtkSmartPointer<vtkUnsignedCharArray> vertex_colors(const std::vector<float>& va
     double rgb[3] = {0.5, 0.5, 0.5};
     if (std::isfinite(values[i])) {
       const double t = std::clamp((values[i] - range.lo) * scale, 0.0, double(kTableSize - 1));
-      const int k = static_cast<int>(std::lround(t));
-      std::copy(table + 3 * k, table + 3 * k + 3, rgb);
+      const auto k = static_cast<std::size_t>(std::lround(t));
+      std::copy(table.begin() + 3 * k, table.begin() + 3 * k + 3, rgb);
     }
     double shade = 1;
     if (ao) shade = std::isfinite((*ao)[i]) ? std::clamp(double((*ao)[i]), 0.0, 1.0) : 1.0;

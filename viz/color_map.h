@@ -1,6 +1,12 @@
 #pragma once
-// The curvature colour map (DESIGN.md: blue negative, green zero, red positive, symmetric around
-// zero), its percentile-clamped range, and per-vertex colours with optional AO shading.
+// Colour maps for curvature quantities, the value range they span, and per-vertex colours.
+//
+// Maps (--cmap): "diverging" (blue - light grey - red, ColorBrewer's colour-blind-safe RdBu run
+// from blue to red, neutral #f7f7f7), "viridis" (perceptually uniform sequential, matplotlib's),
+// "grey" (black to white) and "bgr" (the papers' blue-green-red, green at the centre). "auto"
+// picks diverging for signed quantities (H, K, k1, k2, ShapeIndex), grey for AO and viridis for
+// the other unsigned ones (Curvedness).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,27 +17,47 @@ class vtkUnsignedCharArray;
 
 namespace isocurv::viz {
 
-/// The value range mapped onto the colour map, from blue (lo) through green to red (hi).
+/// The value range mapped onto a colour map: `lo` gets the map's first colour, `hi` its last.
 struct ColorRange {
   double lo = -1, hi = 1;
 };
 
-/// The range for `values` of quantity `name`, ignoring non-finite values:
-///  - signed quantities (H, K, k1, k2): symmetric [-r, r], r = the (100 - clamp_percentile)th
-///    percentile of |value|, so a few outliers do not wash the map out (green stays zero);
-///  - ShapeIndex: its natural range [-1, 1];
-///  - Curvedness, AO (never negative): [the clamp_percentile-th, the (100 - clamp_percentile)th
-///    percentile], over the whole map.
-/// A degenerate range (all values equal) is widened so that it is never empty.
-ColorRange color_range(const std::vector<float>& values, const std::string& name, double clamp_percentile);
+/// The names --cmap accepts, "auto" first.
+const std::vector<std::string>& color_map_names();
 
-/// The blue-green-red map over `range` (values outside are clamped to the end colours), for
-/// the scalar bar; vertex_colors uses the same map.
-vtkSmartPointer<vtkColorTransferFunction> make_color_map(const ColorRange& range);
+/// The map "auto" means for quantity `name` (see the file comment); any other name is checked
+/// and returned. @throw Error for an unknown map or quantity name.
+std::string resolve_color_map(const std::string& cmap, const std::string& quantity);
+
+/// True for the maps with a neutral centre (diverging, bgr): over a range that contains zero,
+/// the centre colour lands exactly at zero (make_color_map).
+bool is_centred_map(const std::string& cmap);
+
+/// The range for `values` of quantity `name`, ignoring non-finite values. `fixed`, when given,
+/// is returned exactly (--range; it must have lo < hi). Otherwise, with p = clamp_percentile
+/// (clamped to [0, 49]) so that a few outliers do not wash the map out:
+///  - H, K, k1, k2 that take both signs (the p-th percentile below zero and the (100-p)-th above):
+///    symmetric [-r, r], r = the (100-p)-th percentile of |value|; one-signed: [0, the
+///    (100-p)-th percentile] or [the p-th percentile, 0] (zero to the extreme);
+///  - ShapeIndex: its natural range [-1, 1]; AO: [0, 1];
+///  - Curvedness (never negative): [0, the (100-p)-th percentile].
+/// A degenerate range (all values equal, or nothing finite) is widened so it is never empty.
+/// @throw Error for an unknown quantity or a fixed range with !(lo < hi).
+ColorRange color_range(const std::vector<float>& values, const std::string& name,
+                       double clamp_percentile,
+                       const std::optional<ColorRange>& fixed = std::nullopt);
+
+/// The map `cmap` (a resolved name, not "auto") over `range` (values outside are clamped to the
+/// end colours). For a centred map over a range containing zero, the map is laid out over
+/// [-m, m], m = max(|lo|, |hi|), so its neutral sits at zero and a one-signed range shows only
+/// its half; over a range without zero the map is spread from lo to hi. @throw Error for an
+/// unknown map.
+vtkSmartPointer<vtkColorTransferFunction> make_color_map(const ColorRange& range,
+                                                         const std::string& cmap = "diverging");
 
 /// RGB colours (unsigned char, 3 components, named "Colors") for `values` through `map` over
-/// `range`; when `ao` is non-null each colour is multiplied by the vertex's AO (clamped to
-/// [0, 1]). Non-finite values are grey.
+/// `range` (1024 steps); when `ao` is non-null each colour is multiplied by the vertex's AO
+/// (clamped to [0, 1]; --shading both). Non-finite values are mid grey.
 vtkSmartPointer<vtkUnsignedCharArray> vertex_colors(const std::vector<float>& values, const ColorRange& range,
                                                     vtkColorTransferFunction* map,
                                                     const std::vector<float>* ao = nullptr);

@@ -1,17 +1,21 @@
 #include "viz/curvature_scene.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include <vtkActor.h>
 #include <vtkCamera.h>
 #include <vtkColorTransferFunction.h>
+#include <vtkDataObject.h>
+#include <vtkFloatArray.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
+#include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
-#include <vtkScalarBarActor.h>
+#include <vtkShaderProperty.h>
 #include <vtkSmartPointer.h>
-#include <vtkTextActor.h>
-#include <vtkTextProperty.h>
 #include <vtkUnsignedCharArray.h>
 
 #include "core/error.h"
@@ -19,29 +23,69 @@
 #include "io/polydata.h"
 #include "viz/color_map.h"
 #include "viz/direction_glyphs.h"
+#include "viz/legend.h"
 #include "viz/quantity.h"
 
 namespace isocurv::viz {
+namespace {
+
+// Lighting (VTK's headlight): ambient + diffuse + a little specular. With AO on the ambient term
+// the ambient weight is raised so that occlusion shows (Griffin et al. weigh it similarly).
+constexpr double kAmbient = 0.15, kDiffuse = 0.85;
+constexpr double kAmbientWithAo = 0.45, kDiffuseWithAo = 0.55;
+constexpr double kSpecular = 0.15, kSpecularPower = 20;
+constexpr const char* kAoAttribute = "isocurvAO";  // the vertex shader's input for "AO"
+
+/// Shader replacements that multiply the ambient term of VTK's lighting by the per-vertex AO
+/// (a vertex attribute, interpolated across triangles): ambientColor is VTK's ambient term,
+/// declared in //VTK::Color::Impl before //VTK::Light::Impl uses it.
+void set_ambient_ao(vtkActor* actor, vtkPolyDataMapper* mapper, bool on) {
+  vtkShaderProperty* sp = actor->GetShaderProperty();
+  sp->ClearAllShaderReplacements();
+  mapper->RemoveAllVertexAttributeMappings();
+  if (!on) return;
+  mapper->MapDataArrayToVertexAttribute(kAoAttribute, "AO", vtkDataObject::FIELD_ASSOCIATION_POINTS, -1);
+  sp->AddVertexShaderReplacement("//VTK::Normal::Dec", true,
+                                 "//VTK::Normal::Dec\nin float isocurvAO;\nout float isocurvAOVS;\n", false);
+  sp->AddVertexShaderReplacement("//VTK::Normal::Impl", true,
+                                 "//VTK::Normal::Impl\n  isocurvAOVS = isocurvAO;\n", false);
+  sp->AddFragmentShaderReplacement("//VTK::Normal::Dec", true,
+                                   "//VTK::Normal::Dec\nin float isocurvAOVS;\n", false);
+  sp->AddFragmentShaderReplacement("//VTK::Light::Impl", true,
+                                   "  ambientColor *= clamp(isocurvAOVS, 0.0, 1.0);\n//VTK::Light::Impl\n",
+                                   false);
+}
+
+}  // namespace
 
 struct CurvatureScene::Impl {
+  vtkSmartPointer<vtkRenderer> overlay = vtkSmartPointer<vtkRenderer>::New();
   vtkSmartPointer<vtkRenderer> renderer = vtkSmartPointer<vtkRenderer>::New();
   vtkSmartPointer<vtkPolyData> surface = vtkSmartPointer<vtkPolyData>::New();
   vtkSmartPointer<vtkPolyDataMapper> surface_mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
   vtkSmartPointer<vtkActor> surface_actor = vtkSmartPointer<vtkActor>::New();
+  vtkSmartPointer<vtkPolyDataMapper> halo_mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
+  vtkSmartPointer<vtkActor> halo_actor = vtkSmartPointer<vtkActor>::New();
   vtkSmartPointer<vtkPolyDataMapper> glyph_mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
   vtkSmartPointer<vtkActor> glyph_actor = vtkSmartPointer<vtkActor>::New();
-  vtkSmartPointer<vtkScalarBarActor> scalar_bar = vtkSmartPointer<vtkScalarBarActor>::New();
-  vtkSmartPointer<vtkTextActor> title = vtkSmartPointer<vtkTextActor>::New();
+  vtkSmartPointer<vtkPolyData> glyphs;
+  Legend legend{overlay};
   Mesh mesh;
   curvature::CurvatureField field;
   RenderOptions options;
   ColorRange range;
-  bool glyphs_stale = true;  // the glyphs are built when first shown after a surface change
+  std::string cmap = "diverging";
+  PictureLayout layout;
+  int bottom_reserved = 0;
+  bool glyphs_stale = true;  // the glyphs are built when first needed after a change
 
   Impl() {
-    renderer->GradientBackgroundOn();
-    renderer->SetBackground(0.08, 0.08, 0.10);
-    renderer->SetBackground2(0.30, 0.31, 0.36);
+    overlay->SetLayer(0);
+    overlay->GradientBackgroundOn();
+    overlay->SetBackground(kBackgroundBottom[0], kBackgroundBottom[1], kBackgroundBottom[2]);
+    overlay->SetBackground2(kBackgroundTop[0], kBackgroundTop[1], kBackgroundTop[2]);
+    overlay->InteractiveOff();
+    renderer->SetLayer(1);  // transparent: draws over the overlay's background
 
     surface_mapper->SetInputData(surface);
     surface_mapper->SetScalarModeToUsePointFieldData();
@@ -50,77 +94,99 @@ struct CurvatureScene::Impl {
     surface_mapper->ScalarVisibilityOn();
     surface_actor->SetMapper(surface_mapper);
     vtkProperty* p = surface_actor->GetProperty();
-    p->SetAmbient(0.15);
-    p->SetDiffuse(0.85);
-    p->SetSpecular(0.15);
-    p->SetSpecularPower(20);
+    p->SetSpecular(kSpecular);
+    p->SetSpecularPower(kSpecularPower);
     renderer->AddActor(surface_actor);
 
-    glyph_mapper->SetScalarModeToUseCellData();
-    glyph_mapper->SetColorModeToDirectScalars();
-    glyph_actor->SetMapper(glyph_mapper);
-    glyph_actor->GetProperty()->SetLineWidth(2);
-    glyph_actor->GetProperty()->LightingOff();
-    glyph_actor->VisibilityOff();
-    renderer->AddActor(glyph_actor);
-
-    scalar_bar->SetNumberOfLabels(5);
-    scalar_bar->SetLabelFormat("%-#6.3g");
-    scalar_bar->SetMaximumWidthInPixels(110);
-    scalar_bar->SetBarRatio(0.25);
-    scalar_bar->GetPositionCoordinate()->SetValue(0.88, 0.12);
-    scalar_bar->SetWidth(0.11);
-    scalar_bar->SetHeight(0.72);
-    scalar_bar->UnconstrainedFontSizeOn();
-    scalar_bar->GetTitleTextProperty()->SetFontSize(18);
-    scalar_bar->GetLabelTextProperty()->SetFontSize(14);
-    for (vtkTextProperty* t : {scalar_bar->GetTitleTextProperty(), scalar_bar->GetLabelTextProperty()}) {
-      t->SetColor(1, 1, 1);
-      t->ItalicOff();
-      t->ShadowOff();
+    for (auto [mapper, actor, array] : {std::tuple{halo_mapper.Get(), halo_actor.Get(), "Halo"},
+                                        std::tuple{glyph_mapper.Get(), glyph_actor.Get(), "Colors"}}) {
+      mapper->SetScalarModeToUseCellFieldData();
+      mapper->SelectColorArray(array);
+      mapper->SetColorModeToDirectScalars();
+      actor->SetMapper(mapper);
+      actor->GetProperty()->LightingOff();
+      actor->VisibilityOff();
+      renderer->AddActor(actor);
     }
-    renderer->AddViewProp(scalar_bar);
-
-    title->GetTextProperty()->SetFontSize(20);
-    title->GetTextProperty()->SetColor(1, 1, 1);
-    title->GetTextProperty()->SetJustificationToCentered();
-    title->GetTextProperty()->SetVerticalJustificationToTop();
-    title->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
-    title->GetPositionCoordinate()->SetValue(0.5, 0.97);
-    title->VisibilityOff();
-    renderer->AddViewProp(title);
+    glyph_mapper->SetRelativeCoincidentTopologyLineOffsetParameters(0, -2);  // over the halo
   }
 
   /// Checks that `o` can be shown with the current field; throws Error otherwise.
   void check(const RenderOptions& o) const {
-    canonical_quantity(o.color);
+    resolve_color_map(o.cmap, o.color);
+    if (o.range) color_range({}, o.color, 0, o.range);
     if (mesh.positions.empty()) return;
     quantity_values(field, o.color);
-    if (o.ao && field.ao.empty()) throw Error("AO shading requested but the curvature field has no AO values");
+    if (uses_ao(o.shading) && field.ao.empty())
+      throw Error("AO shading requested but the curvature field has no AO values");
+  }
+
+  void relayout() {
+    const std::string q = canonical_quantity(options.color);
+    const std::string unit = quantity_unit(q, options.length_unit);
+    layout = layout_picture(options.width, options.height, options.title,
+                            unit.empty() ? q : q + "\n" + unit, range.lo, range.hi, bottom_reserved);
+    const PixelBox& s = layout.surface;
+    const double w = std::max(1, options.width), h = std::max(1, options.height);
+    renderer->SetViewport(s.x0 / w, s.y0 / h, s.x1 / w, s.y1 / h);
+    legend.update(layout, cmap, range, !mesh.positions.empty());
+    // Lines a little wider in big pictures; the halo two pixels wider than the line.
+    const double line = std::max(1.0, std::round(std::min(w, h) / 400.0));
+    glyph_actor->GetProperty()->SetLineWidth(static_cast<float>(line));
+    halo_actor->GetProperty()->SetLineWidth(static_cast<float>(line + 2));
+  }
+
+  void build_glyphs() {
+    if (!glyphs_stale && glyphs) return;
+    glyphs = direction_glyphs(mesh, field, glyph_options(options));
+    glyph_mapper->SetInputData(glyphs);
+    halo_mapper->SetInputData(glyphs);
+    glyphs_stale = false;
   }
 
   void recolor() {
     const std::string q = canonical_quantity(options.color);
-    scalar_bar->SetTitle((options.ao ? q + " (AO)" : q).c_str());
-    title->SetInput(options.title.c_str());
-    title->SetVisibility(!options.title.empty());
-    glyph_actor->SetVisibility(options.dirs && !mesh.positions.empty());
-    if (options.dirs && glyphs_stale) {
-      glyph_mapper->SetInputData(direction_glyphs(mesh, field));
-      glyphs_stale = false;
-    }
-    if (mesh.positions.empty()) {
-      range = {};
-      scalar_bar->SetLookupTable(make_color_map(range));
+    cmap = resolve_color_map(options.cmap, q);
+    const bool shown = !mesh.positions.empty();
+    glyph_actor->SetVisibility(options.dirs && shown);
+    halo_actor->SetVisibility(options.dirs && shown);
+    if (options.dirs && shown) build_glyphs();
+    if (!shown) {
+      range = options.range ? *options.range : ColorRange{};
+      relayout();
       return;
     }
     const std::vector<float>& values = quantity_values(field, q);
-    range = color_range(values, q, options.clamp_percentile);
-    auto map = make_color_map(range);
-    surface->GetPointData()->RemoveArray("Colors");
-    surface->GetPointData()->AddArray(vertex_colors(values, range, map, options.ao ? &field.ao : nullptr));
+    // The range leaves out open-boundary vertices (a surface cut by the volume's box), whose
+    // one-sided curvature is an artefact that would otherwise set the scale.
+    std::vector<float> inner;
+    if (!options.range && field.boundary.size() == values.size()) {
+      inner.reserve(values.size());
+      for (std::size_t i = 0; i < values.size(); ++i)
+        if (!field.boundary[i]) inner.push_back(values[i]);
+    }
+    range = color_range(inner.empty() ? values : inner, q, options.clamp_percentile, options.range);
+    auto map = make_color_map(range, cmap);
+    vtkPointData* pd = surface->GetPointData();
+    pd->RemoveArray("Colors");
+    pd->AddArray(vertex_colors(values, range, map,
+                               options.shading == Shading::both ? &field.ao : nullptr));
+    pd->RemoveArray("AO");
+    const bool ambient_ao = options.shading == Shading::ambient_ao;
+    if (ambient_ao) {
+      auto ao = vtkSmartPointer<vtkFloatArray>::New();
+      ao->SetName("AO");
+      ao->SetNumberOfTuples(static_cast<vtkIdType>(field.ao.size()));
+      for (std::size_t i = 0; i < field.ao.size(); ++i)
+        ao->SetValue(static_cast<vtkIdType>(i), std::isfinite(field.ao[i]) ? field.ao[i] : 1.f);
+      pd->AddArray(ao);
+    }
+    set_ambient_ao(surface_actor, surface_mapper, ambient_ao);
+    vtkProperty* p = surface_actor->GetProperty();
+    p->SetAmbient(ambient_ao ? kAmbientWithAo : kAmbient);
+    p->SetDiffuse(ambient_ao ? kDiffuseWithAo : kDiffuse);
     surface->Modified();
-    scalar_bar->SetLookupTable(map);
+    relayout();
   }
 };
 
@@ -128,6 +194,13 @@ CurvatureScene::CurvatureScene() : impl_(std::make_unique<Impl>()) { impl_->reco
 CurvatureScene::~CurvatureScene() = default;
 
 vtkRenderer* CurvatureScene::renderer() const { return impl_->renderer; }
+vtkRenderer* CurvatureScene::overlay() const { return impl_->overlay; }
+
+void CurvatureScene::attach(vtkRenderWindow* window) {
+  window->SetNumberOfLayers(2);
+  window->AddRenderer(impl_->overlay);
+  window->AddRenderer(impl_->renderer);
+}
 
 void CurvatureScene::set_surface(const Mesh& mesh, const curvature::CurvatureField& field) {
   io::check_field_sizes(field, mesh.positions.size(), "surface");
@@ -154,21 +227,62 @@ void CurvatureScene::set_surface(const Mesh& mesh, const curvature::CurvatureFie
 
 void CurvatureScene::set_options(const RenderOptions& options) {
   impl_->check(options);
+  const RenderOptions& old = impl_->options;
+  if (options.dirs_count != old.dirs_count || options.dirs_length != old.dirs_length ||
+      options.width != old.width || options.height != old.height)
+    impl_->glyphs_stale = true;
   impl_->options = options;
   impl_->recolor();
 }
 
 const RenderOptions& CurvatureScene::options() const { return impl_->options; }
+
+void CurvatureScene::set_size(int width, int height) {
+  if (width == impl_->options.width && height == impl_->options.height) return;
+  impl_->options.width = width;
+  impl_->options.height = height;
+  impl_->relayout();
+}
+
+void CurvatureScene::set_bottom_reserved(int pixels) {
+  impl_->bottom_reserved = pixels;
+  impl_->relayout();
+}
+
+const PictureLayout& CurvatureScene::layout() const { return impl_->layout; }
 double CurvatureScene::range_lo() const { return impl_->range.lo; }
 double CurvatureScene::range_hi() const { return impl_->range.hi; }
+const std::string& CurvatureScene::color_map() const { return impl_->cmap; }
+
+vtkPolyData* CurvatureScene::glyphs() {
+  impl_->build_glyphs();
+  return impl_->glyphs;
+}
 
 Camera CurvatureScene::frame_camera() {
+  const RenderOptions& o = impl_->options;
+  if (o.camera) {
+    apply_camera(impl_->renderer, *o.camera);
+    return *o.camera;
+  }
   double b[6];
   impl_->surface->GetBounds(b);
-  const RenderOptions& o = impl_->options;
-  const Camera cam = fit_camera({b[0], b[1], b[2], b[3], b[4], b[5]}, o.view,
-                                double(o.width) / double(o.height));
+  const PixelBox& s = impl_->layout.surface;
+  const double aspect = s.empty() ? double(o.width) / double(o.height) : double(s.x1 - s.x0) / double(s.y1 - s.y0);
+  const Camera cam = fit_camera({b[0], b[1], b[2], b[3], b[4], b[5]}, o.view, aspect);
   apply_camera(impl_->renderer, cam);
+  return cam;
+}
+
+Camera CurvatureScene::current_camera() const {
+  vtkCamera* c = impl_->renderer->GetActiveCamera();
+  Camera cam;
+  c->GetPosition(cam.position.data());
+  c->GetFocalPoint(cam.focal_point.data());
+  c->GetViewUp(cam.view_up.data());
+  cam.ortho = c->GetParallelProjection() != 0;
+  cam.view_angle_deg = c->GetViewAngle();
+  cam.parallel_scale = c->GetParallelScale();
   return cam;
 }
 

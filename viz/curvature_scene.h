@@ -1,16 +1,24 @@
 #pragma once
-// A VTK renderer showing one curvature surface: the coloured mesh, a scalar bar, optional
-// direction glyphs and a title. Used by render_png and the explorer.
+// A VTK scene showing one curvature surface: the coloured, shaded mesh, optional direction
+// glyphs, and a 2D overlay with the title and the legend laid out so that neither covers the
+// surface (picture_layout.h). Used by render_png and the explorer.
 #include <memory>
 
 #include "core/camera.h"
 #include "core/mesh.h"
 #include "curvature/curvature_field.h"
+#include "viz/picture_layout.h"
 #include "viz/render_options.h"
 
+class vtkPolyData;
+class vtkRenderWindow;
 class vtkRenderer;
 
 namespace isocurv::viz {
+
+/// The background: a vertical gradient from kBackgroundBottom to kBackgroundTop (RGB, 0..1).
+constexpr double kBackgroundBottom[3] = {0.08, 0.08, 0.10};
+constexpr double kBackgroundTop[3] = {0.30, 0.31, 0.36};
 
 class CurvatureScene {
  public:
@@ -19,26 +27,45 @@ class CurvatureScene {
   CurvatureScene(const CurvatureScene&) = delete;
   CurvatureScene& operator=(const CurvatureScene&) = delete;
 
-  /// The renderer to add to a render window (owned by the scene).
+  /// The 3D renderer (owned by the scene): the surface and glyphs, in the viewport
+  /// layout().surface; add 3D overlays here. It draws on layer 1, over overlay().
   vtkRenderer* renderer() const;
+  /// The full-window 2D renderer on layer 0 (owned): background, title, legend; the explorer's
+  /// status line and slider go here.
+  vtkRenderer* overlay() const;
+  /// Gives `window` two layers and adds both renderers to it. Call once per window.
+  void attach(vtkRenderWindow* window);
 
   /// Shows `mesh` with `field` (copied), recoloured with the current options. An empty mesh shows
   /// nothing. Throws Error when the field's arrays do not match the vertex count, or (for a
-  /// non-empty mesh) when it lacks the current colour quantity or, with AO on, the AO array.
+  /// non-empty mesh) when it lacks the current colour quantity or, with AO shading, the AO array.
   void set_surface(const Mesh& mesh, const curvature::CurvatureField& field);
 
-  /// Applies colour quantity, AO, direction glyphs, clamp percentile and title (width and height
-  /// are the window's business). Throws Error as set_surface does; the previous options stay.
+  /// Applies every option but the camera's (frame_camera does that). Throws Error as
+  /// set_surface does, and for an unknown map or an empty --range; the previous options stay.
   void set_options(const RenderOptions& options);
   const RenderOptions& options() const;
 
-  /// The colour range in use (see color_range).
+  /// The window's size changed (or will be): lays the picture out again for width x height.
+  void set_size(int width, int height);
+  /// Keeps `pixels` at the bottom free of the surface and the legend (the explorer's controls).
+  void set_bottom_reserved(int pixels);
+  /// Where the title, legend and surface are (for the current size, options and range).
+  const PictureLayout& layout() const;
+
+  /// The colour range in use (see color_range) and the resolved colour map.
   double range_lo() const;
   double range_hi() const;
+  const std::string& color_map() const;
 
-  /// Points the camera at the whole surface as options().view says (fit_camera with the
-  /// window's aspect, options().width / options().height); returns the camera it set.
+  /// The glyphs drawn (or that would be drawn) for the current surface and options.
+  vtkPolyData* glyphs();
+
+  /// Points the camera: options().camera when set, else fit_camera(bounds, options().view) with
+  /// the aspect of layout().surface; returns the camera it set.
   Camera frame_camera();
+  /// The 3D renderer's current camera (after the user moved it, say) as plain data.
+  Camera current_camera() const;
 
  private:
   struct Impl;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -21,6 +22,7 @@
 #include <vtkTextProperty.h>
 
 #include "core/error.h"
+#include "viz/camera_file.h"
 #include "viz/curvature_scene.h"
 #include "viz/headless_display.h"
 #include "viz/quantity.h"
@@ -31,6 +33,10 @@ namespace {
 
 constexpr double kLiveUpdateMs = 150;  // slower updates wait for the slider's release
 constexpr unsigned long kScriptTickMs = 100;
+constexpr double kStatusFontPerPixel = 1.0 / 48;  // status font per pixel of the window height
+constexpr int kStatusLines = 4;
+constexpr double kSliderBand = 0.07;              // of the window height, above the status
+constexpr char kEnter = '\r', kEscape = 27, kBackSpace = 8, kDelete = 127;
 
 class Explorer;
 
@@ -55,24 +61,29 @@ class Explorer {
     scene_.set_options(setup_.view);
     scene_.set_surface(first.mesh, first.field);
     note_update(first);
+    view_ = setup_.view.view.view;
 
     window_->SetSize(setup_.view.width, setup_.view.height);
     window_->SetWindowName(("isocurv explorer" + (setup_.view.title.empty() ? "" : " - " + setup_.view.title)).c_str());
     check_opengl(window_);
-    window_->AddRenderer(scene_.renderer());
+    scene_.attach(window_);
     interactor_->SetRenderWindow(window_);
     style_->explorer = this;
     interactor_->SetInteractorStyle(style_);
+    style_->SetDefaultRenderer(scene_.renderer());
 
-    status_->GetTextProperty()->SetFontSize(15);
     status_->GetTextProperty()->SetColor(1, 1, 1);
     status_->GetTextProperty()->SetVerticalJustificationToBottom();
     status_->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
     status_->GetPositionCoordinate()->SetValue(0.01, 0.01);  // bottom left, under the slider
-    scene_.renderer()->AddViewProp(status_);
+    scene_.overlay()->AddViewProp(status_);
     make_slider();
+    relayout(setup_.view.width, setup_.view.height);
     scene_.frame_camera();
     refresh_status();
+    resize_callback_->SetCallback(&Explorer::on_resize);
+    resize_callback_->SetClientData(this);
+    window_->AddObserver(vtkCommand::WindowResizeEvent, resize_callback_);
 
     interactor_->Initialize();
     slider_->EnabledOn();
@@ -90,6 +101,12 @@ class Explorer {
 
   /// Key handling shared by the keyboard and scripts; false when the key is not ours.
   bool on_key(char key) {
+    if (entry_ != Entry::none) {
+      typed(key);
+      refresh_status();
+      window_->Render();
+      return true;
+    }
     RenderOptions o = scene_.options();
     switch (key) {
       case 'c': {
@@ -103,9 +120,27 @@ class Explorer {
         }
         break;
       }
-      case 'a': o.ao = !o.ao; try_options(o); break;
+      case 'a':
+        o.shading = o.shading == Shading::lambert ? Shading::ambient_ao : Shading::lambert;
+        try_options(o);
+        break;
       case 'd': o.dirs = !o.dirs; try_options(o); break;
       case 's': screenshot(next_screenshot_name()); break;
+      case 'v':
+        view_ = static_cast<NamedView>((static_cast<int>(view_) + 1) % kNamedViews);
+        reset_camera();
+        break;
+      case 'r': reset_camera(); break;
+      case 'i': start_entry(Entry::isovalue, ""); break;
+      case 'o':
+        if (setup_.open_mesh) start_entry(Entry::open, "");
+        else message_ = "opening meshes is not available here";
+        break;
+      case 'w':
+        if (setup_.save_surface) start_entry(Entry::save, setup_.surface_path);
+        else message_ = "saving the surface is not available here";
+        break;
+      case 'k': save_camera_file(); break;
       default: return false;
     }
     refresh_status();
@@ -114,6 +149,106 @@ class Explorer {
   }
 
  private:
+  enum class Entry { none, isovalue, open, save };
+  static constexpr int kNamedViews = 7;
+
+  void start_entry(Entry e, const std::string& initial) {
+    entry_ = e;
+    typed_ = initial;
+    message_.clear();
+  }
+
+  /// A key while typing: Enter applies, Escape cancels, BackSpace deletes, others are text.
+  void typed(char key) {
+    if (key == kEscape) {
+      entry_ = Entry::none;
+      return;
+    }
+    if (key == kBackSpace || key == kDelete) {
+      if (!typed_.empty()) typed_.pop_back();
+      return;
+    }
+    if (key != kEnter && key != '\n') {
+      if (key >= 32 && key < 127) typed_.push_back(key);
+      return;
+    }
+    const Entry e = entry_;
+    entry_ = Entry::none;
+    if (e == Entry::isovalue) {
+      char* end = nullptr;
+      const double v = std::strtod(typed_.c_str(), &end);
+      if (typed_.empty() || *end != '\0' || !std::isfinite(v)) {
+        message_ = "not a number: '" + typed_ + "'";
+      } else if (v < setup_.min_value || v > setup_.max_value) {
+        message_ = "isovalue " + format(v) + " is outside the value range [" + format(setup_.min_value) + ", " +
+                   format(setup_.max_value) + "]";
+      } else {
+        static_cast<vtkSliderRepresentation2D*>(slider_->GetRepresentation())->SetValue(v);
+        update(static_cast<float>(v));
+      }
+    } else if (e == Entry::open) {
+      try {
+        Surface s = setup_.open_mesh(typed_);
+        scene_.set_surface(s.mesh, s.field);
+        note_update(s);
+        shown_ = typed_;
+        reset_camera();
+      } catch (const Error& err) {
+        message_ = err.what();
+      }
+    } else if (e == Entry::save) {
+      try {
+        setup_.save_surface(typed_, current_.mesh, current_.field);
+        message_ = "saved the surface to " + typed_;
+        std::cout << "saved surface: " << typed_ << std::endl;
+      } catch (const Error& err) {
+        message_ = err.what();
+      }
+    }
+  }
+
+  void reset_camera() {
+    RenderOptions o = scene_.options();
+    o.view.view = view_;
+    o.camera.reset();
+    try_options(o);
+    scene_.frame_camera();
+  }
+
+  void save_camera_file() {
+    try {
+      save_camera(setup_.camera_path, scene_.current_camera());
+      message_ = "saved the camera to " + setup_.camera_path + " (isocurv render --camera)";
+      std::cout << "saved camera: " << setup_.camera_path << std::endl;
+    } catch (const Error& e) {
+      message_ = e.what();
+    }
+  }
+
+  /// Lays out the window: the status line and slider in a strip at the bottom, the legend on the
+  /// right, the surface in the rest.
+  void relayout(int width, int height) {
+    const int font = std::max(11, static_cast<int>(height * kStatusFontPerPixel));
+    status_->GetTextProperty()->SetFontSize(font);
+    const int status_px = static_cast<int>(kStatusLines * font * 1.25);
+    const int slider_px = std::max(static_cast<int>(kSliderBand * height), 2 * font);
+    scene_.set_size(width, height);
+    scene_.set_bottom_reserved(status_px + slider_px);
+    auto* rep = static_cast<vtkSliderRepresentation2D*>(slider_->GetRepresentation());
+    const double y = (status_px + 0.5 * slider_px) / double(height);
+    const double right = scene_.layout().surface.x1 / double(width);
+    rep->GetPoint1Coordinate()->SetValue(0.08, y);
+    rep->GetPoint2Coordinate()->SetValue(std::max(0.3, right - 0.08), y);
+  }
+
+  static void on_resize(vtkObject*, unsigned long, void* self, void*) {
+    auto* e = static_cast<Explorer*>(self);
+    const int* size = e->window_->GetSize();
+    if (size[0] < 16 || size[1] < 16) return;
+    if (size[0] == e->scene_.options().width && size[1] == e->scene_.options().height) return;
+    e->relayout(size[0], size[1]);
+  }
+
   Surface call(float iso) {
     const auto start = std::chrono::steady_clock::now();
     Surface s = setup_.surface(iso);
@@ -123,6 +258,8 @@ class Explorer {
   }
 
   void note_update(const Surface& s) {
+    current_.mesh = s.mesh;
+    current_.field = s.field;
     vertices_ = s.mesh.vertex_count();
     triangles_ = s.mesh.triangle_count();
     last_ms_ = s.update_ms;
@@ -130,7 +267,15 @@ class Explorer {
     message_.clear();
   }
 
-  bool try_options(const RenderOptions& o) {
+  void retitle() {
+    if (!setup_.title_for) return;
+    RenderOptions o = scene_.options();
+    o.title = setup_.title_for(iso_, o.color);
+    try_options(o);
+  }
+
+  bool try_options(RenderOptions o) {
+    if (setup_.title_for) o.title = setup_.title_for(iso_, o.color);
     try {
       scene_.set_options(o);
       return true;
@@ -148,7 +293,9 @@ class Explorer {
       Surface s = call(iso);
       scene_.set_surface(s.mesh, s.field);
       iso_ = iso;
+      shown_.clear();
       note_update(s);
+      retitle();
     } catch (const Error& e) {
       message_ = "isovalue " + format(iso) + ": " + e.what();
     }
@@ -170,12 +317,18 @@ class Explorer {
 
   void refresh_status() {
     const RenderOptions& o = scene_.options();
-    std::string line = "isovalue " + format(iso_) + "   " + std::to_string(vertices_) + " vertices, " +
-                       std::to_string(triangles_) + " triangles   update " + format_ms(last_ms_);
+    std::string line = (shown_.empty() ? "isovalue " + format(iso_) : "mesh " + shown_) + "   " +
+                       std::to_string(vertices_) + " vertices, " + std::to_string(triangles_) +
+                       " triangles   update " + format_ms(last_ms_);
     if (!detail_.empty()) line += "   (" + detail_ + ")";
-    line += "\n[c] colour: " + canonical_quantity(o.color) + "   [a] AO: " + (o.ao ? "on" : "off") +
-            "   [d] directions: " + (o.dirs ? "on" : "off") + "   [s] screenshot";
-    if (!message_.empty()) line += "\n" + message_;
+    line += "\n[c] colour: " + canonical_quantity(o.color) + "  [a] AO: " + (uses_ao(o.shading) ? "on" : "off") +
+            "  [d] directions: " + (o.dirs ? "on" : "off") + "  [v] view: " + to_string(view_) +
+            "\n[r] reset view  [i] isovalue  [o] open  [w] save  [k] camera  [s] screenshot";
+    static const char* kPrompts[] = {"", "isovalue: ", "open mesh: ", "save surface as: "};
+    if (entry_ != Entry::none)
+      line += "\n" + std::string(kPrompts[static_cast<int>(entry_)]) + typed_ + "_   (Enter / Escape)";
+    else if (!message_.empty())
+      line += "\n" + message_;
     status_->SetInput(line.c_str());
   }
 
@@ -184,12 +337,10 @@ class Explorer {
     rep->SetMinimumValue(setup_.min_value);
     rep->SetMaximumValue(setup_.max_value);
     rep->SetValue(setup_.isovalue);
-    rep->SetTitleText("isovalue");
+    rep->SetTitleText("");  // the status line right below names the isovalue
     rep->SetLabelFormat("%.4g");
     rep->GetPoint1Coordinate()->SetCoordinateSystemToNormalizedDisplay();
-    rep->GetPoint1Coordinate()->SetValue(0.15, 0.13);
-    rep->GetPoint2Coordinate()->SetCoordinateSystemToNormalizedDisplay();
-    rep->GetPoint2Coordinate()->SetValue(0.75, 0.13);
+    rep->GetPoint2Coordinate()->SetCoordinateSystemToNormalizedDisplay();  // placed by relayout
     rep->SetSliderLength(0.02);
     rep->SetSliderWidth(0.03);
     rep->SetTubeWidth(0.008);
@@ -198,7 +349,10 @@ class Explorer {
     rep->SetTitleHeight(0.025);
     rep->SetLabelHeight(0.022);
     slider_->SetInteractor(interactor_);
+    slider_->KeyPressActivationOff();  // 'i' is ours (typing an isovalue), not the widget's toggle
     slider_->SetRepresentation(rep);
+    slider_->SetCurrentRenderer(scene_.overlay());
+    slider_->SetDefaultRenderer(scene_.overlay());
     slider_->SetAnimationModeToJump();
     slider_callback_->SetCallback(&Explorer::on_slider);
     slider_callback_->SetClientData(this);
@@ -235,6 +389,17 @@ class Explorer {
         interactor_->SetKeyEventInformation(0, 0, a.key, 1, std::string(1, a.key).c_str());
         interactor_->CharEvent();
         break;
+      case ExplorerAction::Kind::Type:
+        for (char c : a.path) {
+          interactor_->SetKeyEventInformation(0, 0, c, 1, std::string(1, c).c_str());
+          interactor_->CharEvent();
+        }
+        break;
+      case ExplorerAction::Kind::Resize:
+        window_->SetSize(a.width, a.height);
+        relayout(a.width, a.height);
+        window_->Render();
+        break;
       case ExplorerAction::Kind::Screenshot:
         screenshot(a.path);
         break;
@@ -270,6 +435,12 @@ class Explorer {
   vtkNew<vtkTextActor> status_;
   vtkNew<vtkCallbackCommand> slider_callback_;
   vtkNew<vtkCallbackCommand> timer_callback_;
+  vtkNew<vtkCallbackCommand> resize_callback_;
+  Surface current_;            // the surface shown (for 'w')
+  std::string shown_;          // the mesh file shown, empty for the volume's isosurface
+  NamedView view_ = NamedView::iso;
+  Entry entry_ = Entry::none;  // what is being typed
+  std::string typed_;
   float iso_ = 0;        // isovalue of the surface shown
   float attempted_ = 0;  // last isovalue the callback was asked for
   std::size_t vertices_ = 0, triangles_ = 0;

@@ -22,15 +22,18 @@ struct Surface {
 
 /// One step of a scripted run (for tests and demos), executed on a timer inside the event loop.
 struct ExplorerAction {
-  enum class Kind { SetIsovalue, Key, Screenshot };
+  enum class Kind { SetIsovalue, Key, Type, Screenshot, Resize };
   Kind kind = Kind::Key;
   float isovalue = 0;  ///< SetIsovalue: moves the slider there, as a user would
-  char key = 0;        ///< Key: a key press ('c', 'a', 'd', 's', 'r', ...)
-  std::string path;    ///< Screenshot: PNG path
+  char key = 0;        ///< Key: a key press ('c', 'a', 'd', 's', 'r', '\r' for Enter, ...)
+  std::string path;    ///< Screenshot: PNG path; Type: the characters typed, one key each
+  int width = 0, height = 0;  ///< Resize: the window's new size
 
-  static ExplorerAction set_isovalue(float iso) { return {Kind::SetIsovalue, iso, 0, {}}; }
-  static ExplorerAction press(char key) { return {Kind::Key, 0, key, {}}; }
-  static ExplorerAction screenshot(std::string path) { return {Kind::Screenshot, 0, 0, std::move(path)}; }
+  static ExplorerAction set_isovalue(float iso) { return {Kind::SetIsovalue, iso, 0, {}, 0, 0}; }
+  static ExplorerAction press(char key) { return {Kind::Key, 0, key, {}, 0, 0}; }
+  static ExplorerAction type(std::string text) { return {Kind::Type, 0, 0, std::move(text), 0, 0}; }
+  static ExplorerAction screenshot(std::string path) { return {Kind::Screenshot, 0, 0, std::move(path), 0, 0}; }
+  static ExplorerAction resize(int w, int h) { return {Kind::Resize, 0, 0, {}, w, h}; }
 };
 
 /// Everything the explorer needs.
@@ -38,16 +41,31 @@ struct ExplorerSetup {
   float isovalue = 0;                       ///< initial isovalue
   float min_value = 0, max_value = 1;       ///< slider range (the volume's value range)
   std::function<Surface(float iso)> surface;  ///< re-extracts and re-estimates; may throw Error
-  RenderOptions view;                       ///< initial colour, AO, glyphs, window size, title
+  /// 'o': reads a mesh file (with curvature estimated when it carries none); may throw Error.
+  /// Unset: 'o' says that opening is not available.
+  std::function<Surface(const std::string& path)> open_mesh;
+  /// 'w': writes the surface shown, with its arrays; may throw Error. Unset: not available.
+  std::function<void(const std::string& path, const Mesh&, const curvature::CurvatureField&)> save_surface;
+  RenderOptions view;                       ///< initial colour, shading, glyphs, window size, title
+  /// When set: the title for the surface at `iso` coloured by `quantity` (shown after each
+  /// change of either).
+  std::function<std::string(float iso, const std::string& quantity)> title_for;
   std::string screenshot_prefix = "isocurv-screenshot";  ///< 's' writes <prefix>-NNN.png
+  std::string camera_path = "isocurv-camera.json";       ///< 'k' writes the camera here (--camera)
+  std::string surface_path = "isocurv-surface.vtp";      ///< 'w' proposes this path
   /// When non-empty: run these actions (one per timer tick, ~100 ms apart) and close the window.
   std::vector<ExplorerAction> script;
 };
 
 /// Opens the explorer and returns when its window is closed (or 'q'/'e' pressed, or the script is
-/// done). Keys: c cycles the colour quantity (H, K, k1, k2, ShapeIndex, Curvedness, AO), a toggles
-/// AO shading, d toggles direction glyphs, s saves a screenshot (name printed on stdout), r
-/// re-frames the camera; the mouse rotates, pans and zooms. Dragging the slider re-runs the callback
+/// done). The surface is framed beside the legend and above the status line and the isovalue
+/// slider, which have a strip of their own. Keys: c cycles the colour quantity (H, K, k1, k2,
+/// ShapeIndex, Curvedness, AO), a toggles AO shading (lambert / ambient-ao), d toggles direction
+/// glyphs, v cycles the named views (iso, +x, -x, +y, -y, +z, -z) and r resets the camera to the
+/// current one, i types an isovalue, o types a mesh file to open, w types a path to save the
+/// surface shown (proposing surface_path), k saves the camera to camera_path, s saves a
+/// screenshot (name printed on stdout). While typing, Enter applies, Escape cancels, BackSpace
+/// deletes. The mouse rotates, pans and zooms. Dragging the slider re-runs the callback
 /// live while updates take under 150 ms, otherwise on release. A failed update (Error from the
 /// callback) is shown on the status line and the previous surface stays. Interactive use needs an X
 /// display; a scripted run starts a private Xvfb when there is none (ensure_display). Throws Error

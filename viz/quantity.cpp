@@ -49,4 +49,22 @@ bool is_signed_quantity(const std::string& name) {
   return q != "Curvedness" && q != "AO";
 }
 
+std::string quantity_description(const std::string& name) {
+  const std::string q = canonical_quantity(name);
+  if (q == "H") return "mean curvature H";
+  if (q == "K") return "Gaussian curvature K";
+  if (q == "k1") return "k1 (larger principal curvature)";
+  if (q == "k2") return "k2 (smaller principal curvature)";
+  if (q == "ShapeIndex") return "shape index";
+  if (q == "Curvedness") return "curvedness";
+  return "ambient occlusion";
+}
+
+std::string quantity_unit(const std::string& name, const std::string& length_unit) {
+  const std::string q = canonical_quantity(name);
+  const std::string l = length_unit.empty() ? "length" : length_unit;
+  if (q == "ShapeIndex" || q == "AO") return "";
+  return q == "K" ? "1/" + l + "\u00b2" : "1/" + l;
+}
+
 }  // namespace isocurv::viz

@@ -22,4 +22,14 @@ const std::vector<float>& quantity_values(const curvature::CurvatureField& field
 /// symmetric around zero; false for Curvedness and AO (never negative).
 bool is_signed_quantity(const std::string& name);
 
+/// A reader's name for quantity `name`: "mean curvature H", "Gaussian curvature K", "k1 (larger
+/// principal curvature)", "k2 (smaller principal curvature)", "shape index", "curvedness",
+/// "ambient occlusion". @throw Error for an unknown name.
+std::string quantity_description(const std::string& name);
+
+/// The unit of quantity `name` when lengths are in `length_unit` (e.g. "mm"; empty: "length"):
+/// "1/mm" for H, k1, k2 and Curvedness, "1/mm²" for K, empty for the dimensionless ShapeIndex and
+/// AO. @throw Error for an unknown name.
+std::string quantity_unit(const std::string& name, const std::string& length_unit);
+
 }  // namespace isocurv::viz

@@ -11,7 +11,7 @@
 
 namespace isocurv::viz {
 
-void render_png(const std::string& path, const Mesh& mesh, const curvature::CurvatureField& field,
+PictureLayout render_png(const std::string& path, const Mesh& mesh, const curvature::CurvatureField& field,
                 const RenderOptions& options) {
   if (mesh.positions.empty() || mesh.triangles.empty()) throw Error(path, "nothing to render: the mesh is empty");
   if (options.width < 16 || options.height < 16 || options.width > 16384 || options.height > 16384)
@@ -26,10 +26,11 @@ void render_png(const std::string& path, const Mesh& mesh, const curvature::Curv
   window->SetSize(options.width, options.height);
   window->SetMultiSamples(8);
   check_opengl(window);
-  window->AddRenderer(scene.renderer());
+  scene.attach(window);
   scene.frame_camera();
   save_png(window, path);
   window->Finalize();
+  return scene.layout();
 }
 
 }  // namespace isocurv::viz

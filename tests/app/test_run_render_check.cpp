@@ -229,3 +229,42 @@ TEST(CliView, FailsCleanlyBeforeOpeningAWindow) {
   EXPECT_NE(opt.exit_code, 0) << opt.describe();
   EXPECT_FALSE(opt.timed_out);
 }
+
+TEST(RenderOptions, ColourMapRangeShadingGlyphsAndCameraFile) {
+  TempDir dir("render_options");
+  const std::string vdb = dataset("torus");
+  const auto a = run_isocurv({"render", vdb, "--color", "K", "--cmap", "bgr", "--range", "-2", "3", "--percentile",
+                              "5", "--shading", "both", "--size", "160x120", "-o", dir / "a.png", "--quiet"});
+  EXPECT_TRUE(a.ok()) << a.describe();
+  const auto glyphs = run_isocurv({"render", vdb, "--dirs", "--dirs-count", "50", "--dirs-length", "0.1", "--size",
+                                   "160x120", "-o", dir / "g.png", "--dirs-out", dir / "g.vtp", "--quiet"});
+  ASSERT_TRUE(glyphs.ok()) << glyphs.describe();
+  EXPECT_GT(fs::file_size(dir / "g.vtp"), 500u);
+  // --dirs-out without --dirs, to a wrong format, and bad values: errors, nothing written
+  for (const std::vector<std::string>& bad :
+       {std::vector<std::string>{"--dirs-out", dir / "x.vtp"}, {"--dirs", "--dirs-out", dir / "x.ply"},
+        {"--range", "1", "1"}, {"--cmap", "rainbow"}, {"--shading", "phong"}, {"--percentile", "70"},
+        {"--camera", dir / "missing.json"}}) {
+    std::vector<std::string> args = {"render", vdb, "-o", dir / "bad.png"};
+    args.insert(args.end(), bad.begin(), bad.end());
+    const auto r = run_isocurv(args);
+    EXPECT_NE(r.exit_code, 0) << r.describe();
+    EXPECT_EQ(r.err_lines().size(), 1u) << r.describe();
+    EXPECT_EQ(r.err.rfind("isocurv: ", 0), 0u) << r.describe();
+    EXPECT_FALSE(fs::exists(dir / "bad.png")) << r.describe();
+  }
+  // a camera file (as the explorer's 'k' writes) replaces the fitted view
+  write_file(dir / "cam.json",
+             R"({"position": [0, 0, 8], "focal_point": [0, 0, 0], "view_up": [0, 1, 0], "ortho": false,
+                 "view_angle_deg": 30, "parallel_scale": 1})");
+  const auto top = run_isocurv({"render", vdb, "--camera", dir / "cam.json", "--size", "160x120", "-o",
+                                dir / "top.png", "--quiet"});
+  ASSERT_TRUE(top.ok()) << top.describe();
+  const auto plus_z = run_isocurv({"render", vdb, "--view", "+z", "--size", "160x120", "-o", dir / "z.png", "--quiet"});
+  ASSERT_TRUE(plus_z.ok()) << plus_z.describe();
+  EXPECT_NE(read_file(dir / "top.png"), read_file(dir / "z.png")) << "the camera file was used";
+  write_file(dir / "broken.json", R"({"position": [0, 0, 1], "focal_point": [0, 0, 1], "view_up": [0, 1, 0]})");
+  const auto broken = run_isocurv({"render", vdb, "--camera", dir / "broken.json", "-o", dir / "b.png"});
+  EXPECT_EQ(broken.exit_code, 1) << broken.describe();
+  EXPECT_NE(broken.err.find("broken.json"), std::string::npos) << broken.describe();
+}

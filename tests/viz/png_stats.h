@@ -1,6 +1,8 @@
 #pragma once
 // Reading a PNG back and measuring its colours, for the rendering tests.
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <string>
 
 #include <vtkImageData.h>
@@ -50,6 +52,79 @@ inline PngStats png_stats(const std::string& path, double max_x_fraction = 0.8) 
   s.reddish /= count;
   s.white /= count;
   return s;
+}
+
+/// The bounding box (x0, y0, x1, y1; y up from the bottom row, as VTK) of the pixels of `path`
+/// that differ from the scene's background gradient (bottom -> top colours, 0..1) by more than
+/// `tolerance` in some channel, leaving out the pixels inside `skip` boxes (title, legend).
+/// {0, 0, 0, 0} when there are none.
+struct Box {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+template <class Boxes>
+inline Box foreground_box(const std::string& path, const double bottom[3], const double top[3],
+                          const Boxes& skip, int tolerance = 14) {
+  vtkNew<vtkPNGReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkImageData* image = reader->GetOutput();
+  int dims[3];
+  image->GetDimensions(dims);
+  const int n = image->GetNumberOfScalarComponents();
+  const auto* pixels = static_cast<const unsigned char*>(image->GetScalarPointer());
+  Box b{dims[0], dims[1], 0, 0};
+  for (int y = 0; y < dims[1]; ++y) {
+    const double t = dims[1] > 1 ? double(y) / (dims[1] - 1) : 0;
+    double bg[3];
+    for (int c = 0; c < 3; ++c) bg[c] = 255 * (bottom[c] + t * (top[c] - bottom[c]));
+    for (int x = 0; x < dims[0]; ++x) {
+      bool skipped = false;
+      for (const auto& s : skip) skipped = skipped || (x >= s.x0 && x < s.x1 && y >= s.y0 && y < s.y1);
+      if (skipped) continue;
+      const unsigned char* p = pixels + (static_cast<std::size_t>(y) * dims[0] + x) * n;
+      bool fg = false;
+      for (int c = 0; c < 3; ++c) fg = fg || std::abs(p[c] - bg[c]) > tolerance;
+      if (!fg) continue;
+      b.x0 = std::min(b.x0, x), b.y0 = std::min(b.y0, y);
+      b.x1 = std::max(b.x1, x + 1), b.y1 = std::max(b.y1, y + 1);
+    }
+  }
+  if (b.x1 == 0) return {};
+  return b;
+}
+
+/// Mean luminance (0..255) and mean |r-g| + |g-b| of a picture's surface pixels.
+struct MaskedStats {
+  double luminance = 0, chroma = 0;
+  long count = 0;
+};
+/// Statistics of the pixels of `path` inside `box` that differ from the background gradient
+/// (as foreground_box), i.e. of the surface's pixels when `box` is the surface's viewport.
+inline MaskedStats surface_stats(const std::string& path, const Box& box, const double bottom[3],
+                                 const double top[3], int tolerance = 14) {
+  vtkNew<vtkPNGReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkImageData* image = reader->GetOutput();
+  int dims[3];
+  image->GetDimensions(dims);
+  const int n = image->GetNumberOfScalarComponents();
+  const auto* pixels = static_cast<const unsigned char*>(image->GetScalarPointer());
+  MaskedStats m;
+  for (int y = std::max(0, box.y0); y < std::min(dims[1], box.y1); ++y) {
+    const double t = dims[1] > 1 ? double(y) / (dims[1] - 1) : 0;
+    for (int x = std::max(0, box.x0); x < std::min(dims[0], box.x1); ++x) {
+      const unsigned char* p = pixels + (static_cast<std::size_t>(y) * dims[0] + x) * n;
+      bool fg = false;
+      for (int c = 0; c < 3; ++c) fg = fg || std::abs(p[c] - 255 * (bottom[c] + t * (top[c] - bottom[c]))) > tolerance;
+      if (!fg) continue;
+      m.luminance += 0.299 * p[0] + 0.587 * p[1] + 0.114 * p[2];
+      m.chroma += std::abs(p[0] - p[1]) + std::abs(p[1] - p[2]);
+      ++m.count;
+    }
+  }
+  if (m.count) m.luminance /= double(m.count), m.chroma /= double(m.count);
+  return m;
 }
 
 /// The number of bytes in which two files differ (or -1 when one cannot be read).

@@ -30,8 +30,8 @@ TEST(VizColorMap, SignedRangeIsSymmetricAndClampsOutliers) {
 TEST(VizColorMap, UnsignedAndShapeIndexRanges) {
   std::vector<float> v;
   for (int i = 0; i <= 100; ++i) v.push_back(2.f + i / 100.f);
-  const viz::ColorRange c = viz::color_range(v, "Curvedness", 2);
-  EXPECT_NEAR(c.lo, 2.02, 1e-6);
+  const viz::ColorRange c = viz::color_range(v, "Curvedness", 2);  // unsigned: from zero
+  EXPECT_EQ(c.lo, 0.0);
   EXPECT_NEAR(c.hi, 2.98, 1e-6);
   const viz::ColorRange s = viz::color_range(v, "ShapeIndex", 2);
   EXPECT_EQ(s.lo, -1);
@@ -41,9 +41,9 @@ TEST(VizColorMap, UnsignedAndShapeIndexRanges) {
   EXPECT_GT(flat.hi, 0);
 }
 
-TEST(VizColorMap, BlueNegativeGreenZeroRedPositiveAndAoDarkens) {
+TEST(VizColorMap, PapersMapIsBlueNegativeGreenZeroRedPositiveAndAoDarkens) {
   const viz::ColorRange range{-1, 1};
-  auto map = viz::make_color_map(range);
+  auto map = viz::make_color_map(range, "bgr");
   const std::vector<float> values = {-1, 0, 1, 5, NAN};
   auto colors = viz::vertex_colors(values, range, map);
   auto rgb = [&](vtkUnsignedCharArray* a, int i) {
@@ -64,6 +64,92 @@ TEST(VizColorMap, BlueNegativeGreenZeroRedPositiveAndAoDarkens) {
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(rgb(shaded, 2)[c], pos[c] / 2.0, 1.0);
 }
 
+namespace {
+
+std::array<int, 3> colour_of(float value, const viz::ColorRange& range, const std::string& cmap) {
+  auto map = viz::make_color_map(range, cmap);
+  auto c = viz::vertex_colors({value}, range, map);
+  return {c->GetValue(0), c->GetValue(1), c->GetValue(2)};
+}
+
+}  // namespace
+
+TEST(VizColorMap, DivergingNeutralLandsAtZeroForEveryRange) {
+  // ColorBrewer RdBu's light neutral #f7f7f7 sits at zero whether the range is symmetric,
+  // lopsided or one-signed; blue below, red above.
+  for (const viz::ColorRange r : {viz::ColorRange{-1, 1}, viz::ColorRange{-0.2, 3}, viz::ColorRange{0, 2},
+                                  viz::ColorRange{-5, 0}}) {
+    const auto zero = colour_of(0.f, r, "diverging");
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(zero[c], 0xf7, 2) << r.lo << " " << r.hi;
+    if (r.lo < 0) {
+      const auto neg = colour_of(static_cast<float>(r.lo), r, "diverging");
+      EXPECT_GT(neg[2], neg[0]) << "negative end is blue";
+    }
+    if (r.hi > 0) {
+      const auto pos = colour_of(static_cast<float>(r.hi), r, "diverging");
+      EXPECT_GT(pos[0], pos[2]) << "positive end is red";
+    }
+  }
+  const auto blue = colour_of(-1.f, {-1, 1}, "diverging"), red = colour_of(1.f, {-1, 1}, "diverging");
+  EXPECT_GT(blue[2], blue[0] + 100);
+  EXPECT_GT(red[0], red[2] + 100);
+  // the symmetric range reaches both saturated ends; a one-signed one only its half
+  EXPECT_EQ(colour_of(2.f, {0, 2}, "diverging"), colour_of(2.f, {-2, 2}, "diverging"));
+  EXPECT_EQ(colour_of(1.f, {0, 2}, "diverging"), colour_of(1.f, {-2, 2}, "diverging"));
+}
+
+TEST(VizColorMap, FixedRangeIsHonouredExactly) {
+  std::vector<float> v;
+  for (int i = 0; i < 500; ++i) v.push_back(-3.f + i * 0.02f);
+  const viz::ColorRange fixed{-0.25, 0.75};
+  const viz::ColorRange r = viz::color_range(v, "H", 2, fixed);
+  EXPECT_EQ(r.lo, -0.25);
+  EXPECT_EQ(r.hi, 0.75);
+  // values at and beyond the ends take the end colours; inside the range they differ
+  const auto lo = colour_of(-0.25f, r, "viridis"), hi = colour_of(0.75f, r, "viridis");
+  EXPECT_EQ(colour_of(-9.f, r, "viridis"), lo);
+  EXPECT_EQ(colour_of(9.f, r, "viridis"), hi);
+  EXPECT_NE(colour_of(-0.2f, r, "viridis"), lo);
+  EXPECT_NE(colour_of(0.7f, r, "viridis"), hi);
+  EXPECT_THROW(viz::color_range(v, "H", 2, viz::ColorRange{1, 1}), Error);
+  EXPECT_THROW(viz::color_range(v, "H", 2, viz::ColorRange{2, 1}), Error);
+}
+
+TEST(VizColorMap, OneSignedQuantitiesRunFromZeroToTheExtreme) {
+  std::vector<float> pos, neg;
+  for (int i = 1; i <= 100; ++i) pos.push_back(0.5f + i * 0.01f), neg.push_back(-0.5f - i * 0.01f);
+  const viz::ColorRange p = viz::color_range(pos, "K", 2), n = viz::color_range(neg, "k2", 2);
+  EXPECT_EQ(p.lo, 0.0);
+  EXPECT_NEAR(p.hi, 1.48, 1e-6);
+  EXPECT_NEAR(n.lo, -1.48, 1e-6);
+  EXPECT_EQ(n.hi, 0.0);
+  EXPECT_EQ(viz::color_range(pos, "AO", 2).lo, 0.0);
+  EXPECT_EQ(viz::color_range(pos, "AO", 2).hi, 1.0);
+}
+
+TEST(VizColorMap, AutoMapsByQuantityAndAoIsGrey) {
+  EXPECT_EQ(viz::resolve_color_map("auto", "H"), "diverging");
+  EXPECT_EQ(viz::resolve_color_map("auto", "ShapeIndex"), "diverging");
+  EXPECT_EQ(viz::resolve_color_map("auto", "Curvedness"), "viridis");
+  EXPECT_EQ(viz::resolve_color_map("auto", "AO"), "grey");
+  EXPECT_EQ(viz::resolve_color_map("bgr", "AO"), "bgr");
+  EXPECT_THROW(viz::resolve_color_map("rainbow", "H"), Error);
+  for (float a : {0.f, 0.3f, 0.8f, 1.f}) {
+    const auto g = colour_of(a, {0, 1}, "grey");
+    EXPECT_EQ(g[0], g[1]);
+    EXPECT_EQ(g[1], g[2]);
+    EXPECT_NEAR(g[0], 255 * a, 1.0);
+  }
+  // viridis is perceptually ordered: its luminance rises monotonically
+  double last = -1;
+  for (int i = 0; i <= 20; ++i) {
+    const auto c = colour_of(i / 20.f, {0, 1}, "viridis");
+    const double l = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+    EXPECT_GT(l, last) << i;
+    last = l;
+  }
+}
+
 TEST(VizQuantity, NamesAndMissingArrays) {
   const auto torus = test::torus(16, 8);
   EXPECT_EQ(viz::canonical_quantity("shapeindex"), "ShapeIndex");
@@ -74,6 +160,9 @@ TEST(VizQuantity, NamesAndMissingArrays) {
   EXPECT_THROW(viz::quantity_values(empty, "H"), Error);
   EXPECT_TRUE(viz::is_signed_quantity("K"));
   EXPECT_FALSE(viz::is_signed_quantity("AO"));
+  EXPECT_EQ(viz::quantity_unit("H", "mm"), "1/mm");
+  EXPECT_EQ(viz::quantity_unit("K", ""), "1/length\u00b2");
+  EXPECT_EQ(viz::quantity_unit("ShapeIndex", "mm"), "");
 }
 
 TEST(VizDirectionGlyphs, EvenSubsampleTwoColouredSegmentsPerVertex) {
@@ -87,6 +176,9 @@ TEST(VizDirectionGlyphs, EvenSubsampleTwoColouredSegmentsPerVertex) {
   ASSERT_NE(colors, nullptr);
   EXPECT_EQ(colors->GetValue(0), viz::kDir1Color[0]);
   EXPECT_EQ(colors->GetValue(3), viz::kDir2Color[0]);
+  EXPECT_NE(viz::kDir1Color[0], viz::kDir2Color[0]) << "two contrasting colours";
+  ASSERT_NE(glyphs->GetCellData()->GetArray("Halo"), nullptr);
+  ASSERT_NE(glyphs->GetCellData()->GetArray("Direction"), nullptr);
   // segment length relates to the mesh resolution
   double a[3], b[3];
   glyphs->GetPoint(0, a);
@@ -99,4 +191,34 @@ TEST(VizDirectionGlyphs, EvenSubsampleTwoColouredSegmentsPerVertex) {
   curvature::CurvatureField no_dirs = s.field;
   no_dirs.dir1.clear();
   EXPECT_EQ(viz::direction_glyphs(s.mesh, no_dirs)->GetNumberOfLines(), 0);
+}
+
+TEST(VizDirectionGlyphs, CountAndLengthFollowTheOptions) {
+  const auto t = test::torus(1.f, 0.4f, 192, 96);
+  auto sites = [&](int count) {
+    viz::GlyphOptions g;
+    g.count = count;
+    return viz::direction_glyphs(t.mesh, t.field, g)->GetNumberOfLines() / 2;
+  };
+  const vtkIdType few = sites(60), more = sites(400);
+  EXPECT_GT(few, 20);
+  EXPECT_LT(few, 180);
+  EXPECT_GT(more, 3 * few) << "more glyphs asked for";
+  EXPECT_LT(more, 1200);
+  // never denser than 2.5 mean edges, however many are asked for
+  EXPECT_LT(sites(10000000), static_cast<vtkIdType>(t.mesh.vertex_count() / 4));
+  // the default grows with the image
+  viz::GlyphOptions small, large;
+  small.image_width = small.image_height = 300;
+  large.image_width = 1920, large.image_height = 1080;
+  EXPECT_LT(viz::direction_glyphs(t.mesh, t.field, small)->GetNumberOfLines(),
+            viz::direction_glyphs(t.mesh, t.field, large)->GetNumberOfLines());
+  viz::GlyphOptions fixed;
+  fixed.length = 0.05;
+  auto g = viz::direction_glyphs(t.mesh, t.field, fixed);
+  double a[3], b[3];
+  g->GetPoint(0, a);
+  g->GetPoint(1, b);
+  EXPECT_NEAR(std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2])),
+              0.05, 1e-6);
 }

@@ -2,10 +2,12 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "core/error.h"
 #include "png_stats.h"
 #include "test_surfaces.h"
+#include "viz/camera_file.h"
 #include "viz/explorer.h"
 
 namespace fs = std::filesystem;
@@ -102,4 +104,90 @@ TEST(VizExplorer, BadSetupIsAnError) {
   setup.max_value = 1;
   setup.isovalue = 2;
   EXPECT_THROW(viz::run_explorer(setup), Error);
+}
+
+TEST(VizExplorer, TypedIsovalueOpenSaveCameraViewsAndResize) {
+  const fs::path dir = fresh_dir("keys");
+  std::vector<float> calls;
+  std::vector<std::string> opened, saved;
+  viz::ExplorerSetup setup;
+  setup.isovalue = 0.25f;
+  setup.min_value = 0.1f;
+  setup.max_value = 0.6f;
+  setup.view.width = 400;
+  setup.view.height = 300;
+  setup.camera_path = (dir / "camera.json").string();
+  setup.surface_path = (dir / "surface.vtp").string();
+  setup.title_for = [](float iso, const std::string& q) { return q + " at " + std::to_string(iso); };
+  setup.surface = [&](float iso) {
+    calls.push_back(iso);
+    auto t = test::torus(1.f, iso, 48, 24);
+    return viz::Surface{std::move(t.mesh), std::move(t.field), 0, {}};
+  };
+  setup.open_mesh = [&](const std::string& path) {
+    opened.push_back(path);
+    auto s = test::saddle(32);
+    return viz::Surface{std::move(s.mesh), std::move(s.field), 0, "opened"};
+  };
+  setup.save_surface = [&](const std::string& path, const Mesh& mesh, const curvature::CurvatureField& field) {
+    EXPECT_EQ(field.H.size(), mesh.positions.size());
+    saved.push_back(path);
+  };
+  const std::string iso = (dir / "iso.png").string(), side = (dir / "side.png").string(),
+                    reset = (dir / "reset.png").string(), mesh = (dir / "mesh.png").string(),
+                    big = (dir / "big.png").string();
+  using A = viz::ExplorerAction;
+  setup.script = {A::screenshot(iso),
+                  A::press('i'), A::type("0.4x"), A::press(8), A::press('\r'),  // typed, one typo deleted
+                  A::press('i'), A::type("7"), A::press('\r'),                   // outside the range: refused
+                  A::press('v'), A::screenshot(side),                           // the +x view
+                  A::press('k'),                                                // camera saved
+                  A::press('w'), A::press('\r'),                                // saved at surface_path
+                  A::press('i'), A::type("0.3"), A::press(27),                  // Escape: nothing
+                  A::press('o'), A::type("elsewhere.ply"), A::press('\r'), A::screenshot(mesh),
+                  A::resize(640, 360), A::screenshot(big)};
+  viz::run_explorer(setup);
+
+  ASSERT_EQ(calls.size(), 2u);
+  EXPECT_FLOAT_EQ(calls[1], 0.4f) << "the typed isovalue was used";
+  EXPECT_EQ(saved, std::vector<std::string>{setup.surface_path});
+  EXPECT_EQ(opened, std::vector<std::string>{"elsewhere.ply"});
+  ASSERT_TRUE(fs::exists(setup.camera_path));
+  const Camera cam = viz::load_camera(setup.camera_path);
+  EXPECT_GT(cam.toward_camera()[0], 0.99) << "'v' moved to the +x view, and 'k' saved it";
+  EXPECT_GT(test::pixel_difference(iso, side), 3000);
+  EXPECT_GT(test::pixel_difference(side, mesh), 3000) << "the opened mesh is shown";
+  ASSERT_TRUE(fs::exists(big));
+  EXPECT_EQ(test::png_stats(big).width, 640);
+  if (!HasFailure()) fs::remove_all(dir);
+}
+
+TEST(VizCameraFile, RoundTripAndBadFiles) {
+  const fs::path dir = fresh_dir("camera");
+  Camera cam;
+  cam.position = {1, 2, 3};
+  cam.focal_point = {0, 0.5, 0};
+  cam.view_up = {0, 0, 1};
+  cam.ortho = true;
+  cam.parallel_scale = 2.5;
+  const std::string p = (dir / "c.json").string();
+  // view_up is kept perpendicular to the view direction
+  viz::save_camera(p, cam);
+  const Camera back = viz::load_camera(p);
+  EXPECT_EQ(back.position, cam.position);
+  EXPECT_EQ(back.focal_point, cam.focal_point);
+  EXPECT_TRUE(back.ortho);
+  EXPECT_DOUBLE_EQ(back.parallel_scale, 2.5);
+  const auto d = back.toward_camera();
+  EXPECT_NEAR(d[0] * back.view_up[0] + d[1] * back.view_up[1] + d[2] * back.view_up[2], 0.0, 1e-12);
+  for (const char* bad : {"", "[1, 2]", R"({"position": [0, 0, 1]})",
+                          R"({"position": [0, 0, 1], "focal_point": [0, 0, 0], "view_up": [0, 0, 1]})",
+                          R"({"position": [0, 0, 1], "focal_point": [0, 0, 0], "view_up": [0, 1, 0], "view_angle_deg": 200})",
+                          R"({"position": [0, 0, "a"], "focal_point": [0, 0, 0], "view_up": [0, 1, 0]})"}) {
+    const std::string b = (dir / "bad.json").string();
+    std::ofstream(b) << bad;
+    EXPECT_THROW(viz::load_camera(b), Error) << bad;
+  }
+  EXPECT_THROW(viz::load_camera((dir / "missing.json").string()), Error);
+  fs::remove_all(dir);
 }

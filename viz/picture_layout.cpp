@@ -1,0 +1,141 @@
+#include "viz/picture_layout.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <vtkNew.h>
+#include <vtkStdString.h>
+#include <vtkTextProperty.h>
+#include <vtkTextRenderer.h>
+
+namespace isocurv::viz {
+namespace {
+
+constexpr int kTicks = 5;
+constexpr int kMinFontPx = 7;
+constexpr int kMaxFontPx = 48;
+constexpr double kFontPerPixel = 1.0 / 36;     // font size per pixel of the image's smaller side
+constexpr double kTitleFontScale = 1.25;       // the title's font beside the labels'
+constexpr double kMaxLegendWidth = 0.40;       // of the image width
+constexpr double kBarHeightFraction = 0.65;    // of the height left free for the legend
+constexpr double kBarWidthPerFont = 1.1;
+constexpr int kDpi = 72;                        // vtkTextActor's default: points are pixels
+
+int width_of(const PixelBox& b) { return b.x1 - b.x0; }
+int height_of(const PixelBox& b) { return b.y1 - b.y0; }
+
+/// Places `text` at `font_px` so that its ink's left-bottom corner is at (x, y).
+PlacedText place(const std::string& text, int font_px, int x, int y) {
+  PlacedText t;
+  t.text = text;
+  t.font_px = font_px;
+  const PixelBox m = measure_text(text, font_px);
+  t.x = x - m.x0;
+  t.y = y - m.y0;
+  t.box = {x, y, x + width_of(m), y + height_of(m)};
+  return t;
+}
+
+}  // namespace
+
+PixelBox measure_text(const std::string& text, int font_px) {
+  if (text.empty()) return {};
+  vtkNew<vtkTextProperty> p;
+  p->SetFontFamilyToArial();
+  p->SetFontSize(font_px);
+  p->SetJustificationToLeft();
+  p->SetVerticalJustificationToBottom();
+  p->ItalicOff();
+  p->BoldOff();
+  p->ShadowOff();
+  int bbox[4] = {0, 0, 0, 0};
+  vtkTextRenderer* r = vtkTextRenderer::GetInstance();
+  if (!r || !r->GetBoundingBox(p, vtkStdString(text), bbox, kDpi)) {
+    // no FreeType: a generous estimate (0.65 em per character, 1.2 em per line)
+    const int lines = 1 + static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+    return {0, 0, static_cast<int>(0.65 * font_px * static_cast<double>(text.size())),
+            static_cast<int>(1.2 * font_px * lines)};
+  }
+  // vtkTextRenderer's bbox is inclusive: [xmin, xmax] x [ymin, ymax]
+  return {bbox[0], bbox[2], bbox[1] + 1, bbox[3] + 1};
+}
+
+std::string tick_label(double value, double range) {
+  if (std::fabs(value) <= 1e-9 * std::fabs(range)) value = 0;
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", value);
+  return text;
+}
+
+PictureLayout layout_picture(int width, int height, const std::string& title,
+                             const std::string& legend_title, double lo, double hi,
+                             int bottom_reserved) {
+  PictureLayout l;
+  l.width = width;
+  l.height = height;
+  const int small = std::max(1, std::min(width, height));
+  const int pad = std::max(3, static_cast<int>(std::lround(0.012 * small)));
+  int font = std::clamp(static_cast<int>(std::lround(small * kFontPerPixel)), 9, kMaxFontPx);
+  bottom_reserved = std::clamp(bottom_reserved, 0, height / 2);
+
+  // The title: shrink the font, then shorten the text, until it fits.
+  int top = height;  // the free part's top edge
+  if (!title.empty()) {
+    const int avail = width - 2 * pad;
+    int tf = static_cast<int>(std::lround(kTitleFontScale * font));
+    std::string text = title;
+    while (tf > kMinFontPx && width_of(measure_text(text, tf)) > avail) --tf;
+    while (text.size() > 4 && width_of(measure_text(text, tf)) > avail)
+      text = "..." + text.substr(std::min(text.size(), std::size_t(4)));
+    const PixelBox m = measure_text(text, tf);
+    l.title = place(text, tf, (width - width_of(m)) / 2, height - pad - height_of(m));
+    top = l.title.box.y0 - pad;
+  }
+
+  // The legend column: shrink its font until it takes at most kMaxLegendWidth of the width.
+  for (;; --font) {
+    l.ticks.clear();
+    for (int i = 0; i < kTicks; ++i) l.ticks.push_back(lo + (hi - lo) * i / (kTicks - 1));
+    const PixelBox tm = measure_text(legend_title, font);
+    int label_w = 0, label_h = 0;
+    for (double t : l.ticks) {
+      const PixelBox m = measure_text(tick_label(t, hi - lo), font);
+      label_w = std::max(label_w, width_of(m));
+      label_h = std::max(label_h, height_of(m));
+    }
+    const int bar_w = std::max(4, static_cast<int>(std::lround(kBarWidthPerFont * font)));
+    const int column = std::max(width_of(tm), bar_w + pad + label_w) + 2 * pad;
+    if (column > kMaxLegendWidth * width && font > kMinFontPx) continue;
+
+    const int x0 = width - column + pad;
+    const int title_y = top - pad - height_of(tm);
+    l.legend_title = place(legend_title, font, x0, title_y);
+    const int free_top = (legend_title.empty() ? top - pad : title_y - pad) - (label_h + 1) / 2;
+    const int free_bottom = bottom_reserved + pad + (label_h + 1) / 2;
+    const int bar_h = std::max(8, static_cast<int>(kBarHeightFraction * (free_top - free_bottom)));
+    const int bar_top = std::max(free_bottom + 8, free_top);
+    const int bar_bottom = std::max(free_bottom, bar_top - bar_h);
+    l.bar = {x0, bar_bottom, x0 + bar_w, bar_top};
+    l.labels.clear();
+    l.legend = l.legend_title.box.empty() ? l.bar : l.legend_title.box;
+    auto grow = [&l](const PixelBox& b) {
+      if (b.empty()) return;
+      l.legend = {std::min(l.legend.x0, b.x0), std::min(l.legend.y0, b.y0),
+                  std::max(l.legend.x1, b.x1), std::max(l.legend.y1, b.y1)};
+    };
+    grow(l.bar);
+    for (int i = 0; i < kTicks; ++i) {
+      const std::string text = tick_label(l.ticks[i], hi - lo);
+      const PixelBox m = measure_text(text, font);
+      const int yc = bar_bottom + (bar_top - bar_bottom) * i / (kTicks - 1);
+      l.labels.push_back(place(text, font, l.bar.x1 + pad, yc - height_of(m) / 2));
+      grow(l.labels.back().box);
+    }
+    l.surface = {0, bottom_reserved, width - column, top};
+    break;
+  }
+  return l;
+}
+
+}  // namespace isocurv::viz
