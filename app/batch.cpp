@@ -108,8 +108,10 @@ void write_outputs(Pending& p, BatchKind kind, const BatchRequest& rq, const Com
   const Surface& s = p.surface;
   AtomicFileSet outputs;
   p.timer.start("write");
+  std::uint64_t mesh_bytes = 0;
   outputs.write(p.mesh_path, [&](const std::string& tmp) {
     io::write_mesh(tmp, s.mesh, s.field ? &*s.field : nullptr, o.compress);
+    mesh_bytes = file_bytes(tmp);
   });
   if (kind == BatchKind::run) {
     p.timer.start("render");
@@ -122,6 +124,7 @@ void write_outputs(Pending& p, BatchKind kind, const BatchRequest& rq, const Com
   r["input"] = p.input;
   r["mesh"] = p.mesh_path;
   if (kind == BatchKind::run) r["png"] = p.png_path;
+  r["mesh_bytes"] = mesh_bytes;
   r["compression"] = io::to_string(o.compress);
   r["device"] = device_name(o);
   r["timings_ms"] = p.timer.json();
@@ -129,7 +132,7 @@ void write_outputs(Pending& p, BatchKind kind, const BatchRequest& rq, const Com
   outputs.commit();
   p.entry["status"] = "ok";
   p.entry["mesh"] = p.mesh_path;
-  p.entry["mesh_bytes"] = file_bytes(p.mesh_path);
+  p.entry["mesh_bytes"] = mesh_bytes;
   if (kind == BatchKind::run) p.entry["png"] = p.png_path;
   p.entry["stats"] = p.stats_path;
   p.entry["vertices"] = r["vertices"];

@@ -63,8 +63,11 @@ void register_run(CLI::App& app) {
     const std::string stats_path = (fs::path(dir) / "stats.json").string();
     AtomicFileSet outputs;
     timer.start("write");
-    outputs.write(mesh_path,
-                  [&](const std::string& tmp) { io::write_mesh(tmp, s.mesh, &*s.field, o.compress); });
+    std::uint64_t mesh_bytes = 0;
+    outputs.write(mesh_path, [&](const std::string& tmp) {
+      io::write_mesh(tmp, s.mesh, &*s.field, o.compress);
+      mesh_bytes = file_bytes(tmp);
+    });
     timer.start("render");
     viz::RenderOptions opts = ro;
     if (opts.title.empty()) opts.title = fs::path(in).filename().string() + "  (" + opts.color + ")";
@@ -75,6 +78,7 @@ void register_run(CLI::App& app) {
     r["input"] = in;
     r["mesh"] = mesh_path;
     r["png"] = png_path;
+    r["mesh_bytes"] = mesh_bytes;
     r["compression"] = io::to_string(o.compress);
     r["device"] = device_name(o);
     r["programs"] = program_report();
@@ -83,7 +87,6 @@ void register_run(CLI::App& app) {
                   [&](const std::string& tmp) { write_text_file(tmp, r.dump(2) + "\n"); });
     outputs.commit();
     cleanup.armed = false;
-    r["mesh_bytes"] = file_bytes(mesh_path);
     if (o.json) {
       std::cout << r.dump(2) << "\n";
     } else if (!o.quiet) {

@@ -17,6 +17,7 @@ Needs numpy, python3-vtk9 and the module in BUILD/python. Writes under a tempora
 import argparse
 import json
 import os
+import resource
 import shutil
 import statistics
 import subprocess
@@ -65,17 +66,31 @@ def write_nrrd(path, a):
         f.write(a.astype("<u2").tobytes())
 
 
+CPU = []  # CPU time (user + sys, ms) of each wall() call's process, in call order
+
+
 def wall(cmd, env=None):
+    """Runs cmd; returns its wall time in ms and its stdout, and appends its CPU time to CPU (on a
+    shared, overloaded machine the CPU time is the steadier figure)."""
+    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
     r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
     dt = (time.perf_counter() - t0) * 1000
+    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    CPU.append(1000 * (r1.ru_utime - r0.ru_utime + r1.ru_stime - r0.ru_stime))
     if r.returncode != 0:
         sys.exit("bench_headless: failed: %s\n%s" % (" ".join(cmd), r.stderr.decode()))
     return dt, r.stdout
 
 
 def median_of(runs, f):
-    return statistics.median(f() for _ in range(runs))
+    """Median wall ms of f() over runs calls, and the median CPU ms of the processes they ran."""
+    walls, cpus = [], []
+    for _ in range(runs):
+        n = len(CPU)
+        walls.append(f())
+        cpus.append(sum(CPU[n:]))
+    return statistics.median(walls), statistics.median(cpus)
 
 
 def main():
@@ -107,9 +122,11 @@ def main():
         out1 = os.path.join(work, "one.vtp")
         one_ours = median_of(args.runs, lambda: wall([exe, "curvature", vols[0], "--iso", str(ISO), "-o", out1, "--quiet"], env)[0])
         one_vtk = median_of(args.runs, lambda: wall(vtk_script + [os.path.join(work, "one_vtk"), vols[0]])[0])
-        print("\n1. one volume, whole process          ms")
-        print("   isocurv curvature               %8.0f" % one_ours)
-        print("   Python + VTK script             %8.0f   VTK / isocurv = %.2f" % (one_vtk, one_vtk / one_ours))
+        row = "   %-32s %8.0f %8.0f"
+        print("\n1. one volume, whole process       wall ms   CPU ms")
+        print(row % ("isocurv curvature", *one_ours))
+        print(row % ("Python + VTK script", *one_vtk) + "   VTK / isocurv: wall %.2f, CPU %.2f"
+              % (one_vtk[0] / one_ours[0], one_vtk[1] / one_ours[1]))
 
         def batch(jobs):
             d = os.path.join(work, "batch_j%d" % jobs)
@@ -120,11 +137,13 @@ def main():
         b2 = median_of(args.runs, lambda: batch(2))
         loop = median_of(args.runs, lambda: wall(vtk_script + [os.path.join(work, "loop_vtk"), *vols])[0])
         each = median_of(1, lambda: sum(wall(vtk_script + [os.path.join(work, "each_vtk"), v])[0] for v in vols))
-        print("\n2. %d volumes                          ms" % args.volumes)
-        print("   isocurv curvature IN... -o DIR  %8.0f" % b1)
-        print("   the same with --jobs 2          %8.0f" % b2)
-        print("   Python + VTK, one loop process  %8.0f   loop / isocurv = %.2f (--jobs 2: %.2f)" % (loop, loop / b1, loop / b2))
-        print("   Python + VTK, %d processes      %8.0f   processes / isocurv = %.2f" % (args.volumes, each, each / b1))
+        print("\n2. %d volumes                      wall ms   CPU ms" % args.volumes)
+        print(row % ("isocurv curvature IN... -o DIR", *b1))
+        print(row % ("the same with --jobs 2", *b2))
+        print(row % ("Python + VTK, one loop process", *loop) + "   loop / isocurv: wall %.2f (--jobs 2: %.2f), CPU %.2f"
+              % (loop[0] / b1[0], loop[0] / b2[0], loop[1] / b1[1]))
+        print(row % ("Python + VTK, %d processes" % args.volumes, *each) + "   processes / isocurv: wall %.2f, CPU %.2f"
+              % (each[0] / b1[0], each[1] / b1[1]))
 
         compiles = []
         for _ in range(max(3, args.runs)):
@@ -152,7 +171,7 @@ def main():
             isocurv.curvature(m, v)
             return (time.perf_counter() - t0) * 1000
 
-        py = median_of(max(3, args.runs), py_once)
+        py = statistics.median(py_once() for _ in range(max(3, args.runs)))
         print("\n4. extract + curvature in process     ms")
         print("   C++ library (CLI timings_ms)    %8.1f" % lib)
         print("   Python module                   %8.1f   Python / C++ = %.2f" % (py, py / lib))
