@@ -7,8 +7,8 @@ processes, medians of --runs).
   2. twenty such volumes: one `isocurv curvature IN... -o DIR` call (and with --jobs 2) against
      twenty Python + VTK processes and against one Python process looping over them;
   3. program builds of a second and later process start (timings_ms.compile, with the cache);
-  4. the Python module's extract + curvature against the C++ library's (the CLI's timings_ms
-     extract + normals + curvature of a warm batch entry), same volume.
+  4. the Python module's extract + curvature against the C++ library's same calls
+     (bench_library), same volume, both warm.
 
     /usr/bin/python3 bench/python/bench_headless.py [--build build] [--runs 3]
 
@@ -156,14 +156,8 @@ def main():
         print("   without the cache               %8.1f" % cold)
         print("   with it (later starts, median)  %8.1f   (runs: %s)" % (statistics.median(compiles), ", ".join("%.1f" % c for c in compiles)))
 
-        # 4. Python module vs the C++ library on the same volume, both warm.
-        d = os.path.join(work, "lib")
-        shutil.rmtree(d, ignore_errors=True)
-        _, out = wall([exe, "curvature", *([vols[0]] * (args.runs + 1)), "--iso", str(ISO), "-o", d, "--json"], env)
-        entries = json.loads(out)["entries"][1:]
-        lib = statistics.median(e["timings_ms"]["extract"] + e["timings_ms"]["normals"] + e["timings_ms"]["curvature"] for e in entries)
+        # 4. Python module vs the C++ library on the same volume, both warm, alternating.
         v = isocurv.load(vols[0])
-        isocurv.curvature(isocurv.extract(v, ISO), v)  # warm
 
         def py_once():
             t0 = time.perf_counter()
@@ -171,10 +165,19 @@ def main():
             isocurv.curvature(m, v)
             return (time.perf_counter() - t0) * 1000
 
-        py = statistics.median(py_once() for _ in range(max(3, args.runs)))
-        print("\n4. extract + curvature in process     ms")
-        print("   C++ library (CLI timings_ms)    %8.1f" % lib)
-        print("   Python module                   %8.1f   Python / C++ = %.2f" % (py, py / lib))
+        lib_exe = os.path.join(build, "bench", "bench_library")
+        libs, pys = [], []
+        for _ in range(max(3, args.runs)):
+            _, out = wall([lib_exe, "--volume", vols[0], "--iso", str(ISO), "--runs", "9"], env)
+            libs.append(float(out.split()[1]))
+            for _ in range(2):
+                py_once()  # warm-up, as bench_library's
+            pys.append(statistics.median(py_once() for _ in range(9)))
+        lib, py = statistics.median(libs), statistics.median(pys)
+        print("\n4. extract + curvature in process     ms (medians of 9, warm; rounds alternate)")
+        print("   C++ library (bench_library)     %8.1f   (rounds: %s)" % (lib, ", ".join("%.1f" % x for x in libs)))
+        print("   Python module                   %8.1f   (rounds: %s)   Python / C++ = %.2f"
+              % (py, ", ".join("%.1f" % x for x in pys), py / lib))
     finally:
         shutil.rmtree(work, ignore_errors=True)
 
