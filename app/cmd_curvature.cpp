@@ -1,6 +1,7 @@
 // isocurv curvature VOLUME|MESH -o MESH: a mesh carrying every curvature array.
 #include <iostream>
 
+#include "app/batch.h"
 #include "app/commands.h"
 #include "app/pipeline.h"
 #include "io/mesh_file.h"
@@ -13,31 +14,40 @@ void register_curvature(CLI::App& app) {
   cmd->footer("Example: isocurv curvature torus.vdb -o torus.vtp --normals volume --json\n"
               "Normals point out of the object, so a solid sphere of radius R has k1 = k2 = H = +1/R.");
   static CommonOptions o;
-  static std::string in, out;
-  cmd->add_option("VOLUME_OR_MESH", in, "Volume or mesh file")->required();
+  static BatchCli b;
+  static std::string out;
+  add_batch_options(*cmd, b, "VOLUME_OR_MESH", "Volume or mesh file", {"vtp", "ply"});
   cmd->add_option("-o,--output", out,
-                  "Mesh file to write (.vtp or .ply: the formats that carry the curvature arrays)")
+                  "Mesh file to write (.vtp or .ply: the formats that carry the curvature arrays), "
+                  "or the folder of a batch")
       ->required();
-  add_common_options(*cmd, o);
+  add_common_options(*cmd, o, false);
   add_curvature_options(*cmd, o, true);
+  add_compress_option(*cmd, o);
   cmd->callback([] {
+    if (run_as_batch(b, o, BatchKind::curvature, out)) return;
+    const std::string& in = b.inputs.front();
     require_curvature_format(out);  // before any work: .obj and .stl would drop the arrays
     StageTimer timer;
     Surface s = load_surface(in, o, timer);
     prepare_mesh_for_curvature(s, in, o);
     s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, o, timer, &s.normals);
     timer.start("write");
-    io::write_mesh(out, s.mesh, &*s.field);
+    io::write_mesh(out, s.mesh, &*s.field, o.compress);
     timer.stop();
     nlohmann::json r = surface_report(s);
+    const std::uint64_t bytes = file_bytes(out);
     if (o.json) {
       r["input"] = in;
       r["output"] = out;
+      r["output_bytes"] = bytes;
+      r["compression"] = io::to_string(o.compress);
+      r["programs"] = program_report();
       r["device"] = device_name(o);
       r["timings_ms"] = timer.json();
       std::cout << r.dump(2) << "\n";
     } else if (!o.quiet) {
-      std::cout << "wrote " << out << ": " << r["vertices"] << " vertices with curvature (curvature "
+      std::cout << "wrote " << out << " (" << format_bytes(bytes) << "): " << r["vertices"] << " vertices with curvature (curvature "
                 << timer.json().value("curvature", 0.0) << " ms)\n";
     }
   });

@@ -1,6 +1,7 @@
 // isocurv extract VOLUME -o MESH: the fused isosurface mesh.
 #include <iostream>
 
+#include "app/batch.h"
 #include "app/commands.h"
 #include "app/pipeline.h"
 #include "io/mesh_file.h"
@@ -15,25 +16,34 @@ void register_extract(CLI::App& app) {
       "--inside below); triangles are wound so their normals point out of it. An isovalue that\n"
       "gives no surface writes an empty mesh after a warning (the other commands refuse it).");
   static CommonOptions o;
-  static std::string in, out;
-  cmd->add_option("VOLUME", in, "Volume file")->required();
-  cmd->add_option("-o,--output", out, std::string("Mesh file to write (") + io::mesh_extensions() + ")")->required();
-  add_common_options(*cmd, o);
+  static BatchCli b;
+  static std::string out;
+  add_batch_options(*cmd, b, "VOLUME", "Volume file", {"vtp", "ply", "obj", "stl"});
+  cmd->add_option("-o,--output", out, std::string("Mesh file to write (") + io::mesh_extensions() +
+                                          "), or the folder of a batch")->required();
+  add_common_options(*cmd, o, false);
+  add_compress_option(*cmd, o);
   cmd->callback([] {
+    if (run_as_batch(b, o, BatchKind::extract, out)) return;
+    const std::string& in = b.inputs.front();
     StageTimer timer;
     Surface s = load_surface(in, o, timer, EmptySurface::warn);
     timer.start("write");
-    io::write_mesh(out, s.mesh);
+    io::write_mesh(out, s.mesh, nullptr, o.compress);
     timer.stop();
     nlohmann::json r = surface_report(s);
+    const std::uint64_t bytes = file_bytes(out);
     if (o.json) {
       r["input"] = in;
       r["output"] = out;
+      r["output_bytes"] = bytes;
+      r["compression"] = io::to_string(o.compress);
+      r["programs"] = program_report();
       r["device"] = device_name(o);
       r["timings_ms"] = timer.json();
       std::cout << r.dump(2) << "\n";
     } else if (!o.quiet) {
-      std::cout << "wrote " << out << ": " << r["vertices"] << " vertices, " << r["triangles"] << " triangles at isovalue "
+      std::cout << "wrote " << out << " (" << format_bytes(bytes) << "): " << r["vertices"] << " vertices, " << r["triangles"] << " triangles at isovalue "
                 << s.isovalue << " (extract " << timer.json().value("extract", 0.0) << " ms)\n";
     }
   });

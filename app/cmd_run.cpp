@@ -2,6 +2,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "app/batch.h"
 #include "app/commands.h"
 #include "app/pipeline.h"
 #include "app/picture_title.h"
@@ -21,22 +22,29 @@ void register_run(CLI::App& app) {
               "fallbacks), and area-weighted min/max/mean/percentiles of H, K, k1, k2 without the unreliable vertices.");
   static CommonOptions o;
   static RenderCli ro;
-  static std::string in, dir, format = "vtp";
-  cmd->add_option("VOLUME", in, "Volume file")->required();
+  static BatchCli b;
+  static std::string dir, format = "vtp";
+  add_batch_options(*cmd, b, "VOLUME", "Volume file", {});
   cmd->add_option("-o,--output", dir, "Output folder (created if missing)")->required();
   cmd->add_option("--format", format,
                   "Mesh format (vtp or ply: the formats that carry the curvature arrays)")
       ->check(CLI::IsMember({"vtp", "ply"}))
       ->capture_default_str();
-  add_common_options(*cmd, o);
+  add_common_options(*cmd, o, false);
   add_curvature_options(*cmd, o);
+  add_compress_option(*cmd, o);
   add_render_options(*cmd, ro);
   cmd->callback([] {
     namespace fs = std::filesystem;
-    if (is_mesh_path(in)) throw Error(in, "isocurv run takes a volume; use isocurv curvature or render for meshes");
+    for (const std::string& input : b.inputs)
+      if (is_mesh_path(input))
+        throw Error(input, "isocurv run takes a volume; use isocurv curvature or render for meshes");
     if (!ro.dirs_out.empty() && !ro.opts.dirs) throw Error(ro.dirs_out, "--dirs-out needs --dirs");
     if (!ro.dirs_out.empty()) viz::check_glyphs_path(ro.dirs_out);
-    const viz::RenderOptions opts_check = render_options_for(ro, in, 0.f, kEstimatorName);  // a bad --camera fails early
+    // A bad --camera fails early, before any batch entry or output folder.
+    const viz::RenderOptions opts_check = render_options_for(ro, b.inputs.front(), 0.f, kEstimatorName);
+    if (run_as_batch(b, o, BatchKind::run, dir, &ro, format)) return;
+    const std::string& in = b.inputs.front();
     StageTimer timer;
     Surface s =
         load_surface(in, o, timer);  // fails (no surface, ...) before any output folder is made
@@ -61,8 +69,11 @@ void register_run(CLI::App& app) {
     const std::string stats_path = (fs::path(dir) / "stats.json").string();
     AtomicFileSet outputs;
     timer.start("write");
-    outputs.write(mesh_path,
-                  [&](const std::string& tmp) { io::write_mesh(tmp, s.mesh, &*s.field); });
+    std::uint64_t mesh_bytes = 0;
+    outputs.write(mesh_path, [&](const std::string& tmp) {
+      io::write_mesh(tmp, s.mesh, &*s.field, o.compress);
+      mesh_bytes = file_bytes(tmp);
+    });
     timer.start("render");
     viz::RenderOptions opts = opts_check;
     if (ro.title.empty()) opts.title = picture_title(in, opts.color, s.isovalue, kEstimatorName);
@@ -77,7 +88,10 @@ void register_run(CLI::App& app) {
     r["input"] = in;
     r["mesh"] = mesh_path;
     r["png"] = png_path;
+    r["mesh_bytes"] = mesh_bytes;
+    r["compression"] = io::to_string(o.compress);
     r["device"] = device_name(o);
+    r["programs"] = program_report();
     r["timings_ms"] = timer.json();
     outputs.write(stats_path,
                   [&](const std::string& tmp) { write_text_file(tmp, r.dump(2) + "\n"); });

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -11,6 +12,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/mesh_measures.h"
+#include "core/program_cache.h"
 #include "core/progress.h"
 #include "curvature/ao_scale.h"
 #include "curvature/estimate.h"
@@ -49,7 +51,25 @@ void add_common_options(CLI::App& cmd, CommonOptions& o, bool with_iso) {
   cmd.add_flag("--json", o.json, "Print a JSON summary with timings_ms per stage on stdout");
   cmd.add_flag("--quiet", o.quiet, "No progress bars or messages on stderr");
   add_volume_options(cmd, o.volume);
-  cmd.parse_complete_callback([&o] { set_progress_enabled(!o.quiet); });
+  cmd.parse_complete_callback([&o] {
+    set_progress_enabled(!o.quiet);
+    set_program_cache_warnings(!o.quiet);
+  });
+}
+
+void add_compress_option(CLI::App& cmd, CommonOptions& o) {
+  cmd.add_option_function<std::string>(
+         "--compress", [&o](const std::string& text) { o.compress = io::parse_compression(text); },
+         "Compression of .vtp outputs: none, lz4[:LEVEL] or zlib[:LEVEL], LEVEL 1 (fastest, the "
+         "default) to 9 (smallest); default lz4:1, several times faster to write than zlib")
+      ->check([](const std::string& text) -> std::string {
+        try {
+          io::parse_compression(text);
+          return "";
+        } catch (const Error& e) {
+          return e.what();
+        }
+      });
 }
 
 void add_curvature_options(CLI::App& cmd, CommonOptions& o, bool mesh_input) {
@@ -70,6 +90,7 @@ void StageTimer::start(const std::string& stage) {
   stop();
   current_ = stage;
   bar_ = std::make_unique<StageBar>(stage);
+  compile0_ = program_build_stats().ms;
   t0_ = std::chrono::steady_clock::now();
 }
 
@@ -77,7 +98,12 @@ void StageTimer::stop() {
   bar_.reset();
   if (current_.empty()) return;
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0_).count();
-  timings_[current_] = timings_.value(current_, 0.0) + std::round(ms * 1000) / 1000;
+  const double compile = std::min(ms, program_build_stats().ms - compile0_);
+  auto add = [&](const std::string& key, double v) {
+    timings_[key] = std::round((timings_.value(key, 0.0) + v) * 1000) / 1000;
+  };
+  add(current_, ms - compile);
+  if (compile > 0) add("compile", compile);
   current_.clear();
 }
 
@@ -135,10 +161,17 @@ volume::Volume load_volume(const std::string& path, const CommonOptions& o, Stag
   timer.start("load");
   volume::Volume v = volume::load(path, to_load_options(o.volume));
   timer.stop();
-  const float value = o.iso ? *o.iso : static_cast<float>(v.stats.suggested_isovalue);
+  const float value = checked_isovalue(path, v, o.iso);
+  if (iso) *iso = value;
+  return v;
+}
+
+float checked_isovalue(const std::string& path, const volume::Volume& v,
+                       std::optional<float> requested) {
+  const float value = requested ? *requested : static_cast<float>(v.stats.suggested_isovalue);
   if (!std::isfinite(value))
     throw Error(path, "isovalue must be a finite number");
-  if (o.iso && (value < v.stats.min || value > v.stats.max))
+  if (requested && (value < v.stats.min || value > v.stats.max))
     throw Error(path, "isovalue " + format_number(value) + " is outside the value range [" +
                           format_number(v.stats.min) + ", " + format_number(v.stats.max) + "]");
   // The tie rule: a voxel equal to the isovalue is outside, so at the top of the range (bottom
@@ -151,8 +184,7 @@ volume::Volume load_volume(const std::string& path, const CommonOptions& o, Stag
                           "outside, and none is " + (above ? "above" : "below") +
                           " it (the range is [" + format_number(v.stats.min) + ", " +
                           format_number(v.stats.max) + "])");
-  if (iso) *iso = value;
-  return v;
+  return value;
 }
 
 namespace {
@@ -166,7 +198,8 @@ void reject_volume_options(const std::string& path, const CommonOptions& o) {
     throw Error(path, given.front() + " applies to volumes only, and this is a mesh file");
 }
 
-/// The one rule for an isosurface without triangles (see EmptySurface).
+}  // namespace
+
 void handle_empty_surface(const Surface& s, const std::string& path, const CommonOptions& o,
                           EmptySurface empty) {
   if (!s.mesh.triangles.empty()) return;
@@ -179,8 +212,6 @@ void handle_empty_surface(const Surface& s, const std::string& path, const Commo
     std::fprintf(stderr, "isocurv: warning: %s: %s; writing an empty mesh\n", path.c_str(),
                  problem.c_str());
 }
-
-}  // namespace
 
 Surface load_surface(const std::string& path, const CommonOptions& o, StageTimer& timer,
                      EmptySurface empty) {
@@ -329,6 +360,29 @@ nlohmann::json surface_report(const Surface& s) {
   if (s.field && s.field->size() == s.mesh.positions.size())
     r["curvature"] = field_stats_json(*s.field, s.mesh);
   return r;
+}
+
+nlohmann::json program_report() {
+  const ProgramBuildStats st = program_build_stats();
+  const std::string dir = program_cache_dir();
+  return {{"compiled", st.compiled},
+          {"from_cache", st.from_cache},
+          {"rejected", st.rejected},
+          {"cache_dir", dir.empty() ? nlohmann::json(nullptr) : nlohmann::json(dir)}};
+}
+
+std::uint64_t file_bytes(const std::string& path) {
+  std::error_code ec;
+  const auto n = std::filesystem::file_size(path, ec);
+  return ec ? 0 : std::uint64_t(n);
+}
+
+std::string format_bytes(std::uint64_t bytes) {
+  char buf[32];
+  if (bytes >= 1000000) std::snprintf(buf, sizeof buf, "%.2f MB", double(bytes) / 1e6);
+  else if (bytes >= 1000) std::snprintf(buf, sizeof buf, "%.1f kB", double(bytes) / 1e3);
+  else std::snprintf(buf, sizeof buf, "%llu bytes", static_cast<unsigned long long>(bytes));
+  return buf;
 }
 
 void write_text_file(const std::string& path, const std::string& text) {

@@ -14,6 +14,7 @@
 #include "core/progress.h"
 #include "curvature/curvature_field.h"
 #include "curvature/options.h"
+#include "io/compression.h"
 #include "mc/options.h"
 #include "volume/volume.h"
 
@@ -31,6 +32,7 @@ struct CommonOptions {
   std::string normals;            ///< --normals mesh|volume; empty: volume for volume input
   bool flip = false;              ///< --flip: reverse a mesh file's triangles
   float ao_scale = 0;             ///< --ao-scale; 0: 4 x the mean edge length
+  io::Compression compress;       ///< --compress (.vtp outputs)
 };
 
 /// Adds --iso --device --cap --snap --json --quiet and the volume options.
@@ -38,8 +40,13 @@ void add_common_options(CLI::App& cmd, CommonOptions& o, bool with_iso = true);
 /// Adds --normals and --ao-scale, and --flip when the command takes mesh files.
 void add_curvature_options(CLI::App& cmd, CommonOptions& o, bool mesh_input = false);
 
+/// Adds --compress none|lz4|zlib[:LEVEL] (io/compression.h) for the commands that write meshes.
+void add_compress_option(CLI::App& cmd, CommonOptions& o);
+
 /// Wall-clock timings of the stages of one command, reported as "timings_ms", with a progress
 /// bar on a terminal for each stage that runs over half a second (StageBar; none with --quiet).
+/// Time spent building OpenCL programs inside a stage (the first extraction or curvature of a
+/// process, unless the program cache had them) is moved out of that stage into "compile".
 class StageTimer {
  public:
   /// Starts timing `stage` (and its bar); the previous stage (if any) ends here.
@@ -51,6 +58,7 @@ class StageTimer {
   std::unique_ptr<StageBar> bar_;
   std::string current_;
   std::chrono::steady_clock::time_point t0_;
+  double compile0_ = 0;  ///< program_build_stats().ms when the stage started
   nlohmann::json timings_ = nlohmann::json::object();
 };
 
@@ -96,10 +104,20 @@ Mesh extract_surface(const volume::Volume& v, float isovalue, const CommonOption
 /// naming the file.
 volume::Volume load_volume(const std::string& path, const CommonOptions& o, StageTimer& timer, float* iso);
 
+/// The isovalue to use on `v`: `requested`, or the suggested one when it is empty; checked as
+/// load_volume describes (an Error naming `path` when outside the range or at its inside end).
+float checked_isovalue(const std::string& path, const volume::Volume& v,
+                       std::optional<float> requested);
+
 /// What a command does when the isosurface has no triangles (README, "The empty surface"):
 /// `error` for the commands that need triangles (curvature, run, render, check), `warn` for
 /// extract, which writes the empty mesh after one warning line on stderr (unless --quiet).
 enum class EmptySurface { error, warn };
+
+/// Applies that rule to `s` (a volume's isosurface at s.isovalue): nothing when it has triangles,
+/// else an Error naming `path` (`error`) or one warning line unless --quiet (`warn`).
+void handle_empty_surface(const Surface& s, const std::string& path, const CommonOptions& o,
+                          EmptySurface empty);
 
 /// Volume path -> load + extract (stage "extract"), the empty surface handled per `empty`; mesh
 /// path -> read (stage "load"), an Error when volume-only options (--iso --cap --grid --inside
@@ -128,6 +146,16 @@ curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Vol
 /// genus, the normals used and their fallbacks, and, when a field is present, the area-weighted
 /// min/max/mean/percentiles of H, K, k1, k2 over the reliable vertices (curvature::field_stats).
 nlohmann::json surface_report(const Surface& s);
+
+/// The OpenCL program builds of this process, for --json: {"compiled", "from_cache", "rejected",
+/// "cache_dir"} (core/program_cache.h; cache_dir null when the cache is off).
+nlohmann::json program_report();
+
+/// The size of a written file in bytes (0 when it cannot be read), for reports.
+std::uint64_t file_bytes(const std::string& path);
+
+/// "1.23 MB" (10^6 bytes), for the normal summaries.
+std::string format_bytes(std::uint64_t bytes);
 
 /// A number as %g (for messages).
 std::string format_number(double x);

@@ -3,6 +3,7 @@
 // Not a test: prints a table.
 //
 //   bench_curvature [--quick] [--runs N]
+//   bench_curvature --volume PATH [--iso V] [--runs N]   (any volume; iso: its suggested value)
 #include <tbb/global_control.h>
 #include <vtkCurvatures.h>
 #include <vtkNew.h>
@@ -65,10 +66,18 @@ int main(int argc, char** argv) {
   bench::keep_freed_memory();
   bool quick = false;
   int runs = 5;
+  std::string volume_path;
+  float iso = 0;
+  bool iso_given = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--quick")) quick = true;
     else if (!std::strcmp(argv[i], "--runs") && i + 1 < argc) runs = std::atoi(argv[++i]);
-    else { std::fprintf(stderr, "usage: bench_curvature [--quick] [--runs N]\n"); return 2; }
+    else if (!std::strcmp(argv[i], "--volume") && i + 1 < argc) volume_path = argv[++i];
+    else if (!std::strcmp(argv[i], "--iso") && i + 1 < argc) iso = std::strtof(argv[++i], nullptr), iso_given = true;
+    else {
+      std::fprintf(stderr, "usage: bench_curvature [--quick] [--runs N] | --volume PATH [--iso V] [--runs N]\n");
+      return 2;
+    }
   }
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 2);
   openvdb::initialize();
@@ -76,6 +85,17 @@ int main(int argc, char** argv) {
               Device::default_device().info().name.c_str(), runs);
   std::printf("%-22s %9s %8s %8s %8s %7s %9s %7s %7s | %6s %6s %6s %6s %6s\n", "mesh", "vertices", "ours ms",
               "VTK H", "VTK K", "VTK/us", "ref ms", "ref/us", "B/vert", "setup", "n+area", "tensor", "dirs", "deriv");
+  if (!volume_path.empty()) {
+    try {
+      const volume::Volume v = volume::load(volume_path);
+      const float value = iso_given ? iso : float(v.stats.suggested_isovalue);
+      run_case(std::filesystem::path(volume_path).filename().string(), mesh_of(v, value), runs, true);
+      return 0;
+    } catch (const Error& e) {
+      std::fprintf(stderr, "bench_curvature: %s\n", e.what());
+      return 1;
+    }
+  }
   auto sphere = datasets::make_field("sphere");
   run_case("sphere 256^3", mesh_of(datasets::sample(*sphere, 256), float(sphere->isovalue())), runs, true);
   if (quick) return 0;

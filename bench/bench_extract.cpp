@@ -2,6 +2,7 @@
 // openvdb::tools::volumeToMesh on the same volumes in the same run. Not a test: prints a table.
 //
 //   bench_extract [--quick] [--runs N] [--datasets DIR] [--only NAME_PART]
+//   bench_extract --volume PATH [--iso V] [--runs N]   (any volume; iso: its suggested value)
 #include <openvdb/tools/VolumeToMesh.h>
 #include <tbb/global_control.h>
 #include <vtkFlyingEdges3D.h>
@@ -11,6 +12,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <optional>
 #include <filesystem>
 #include <iostream>
 
@@ -97,13 +99,18 @@ int main(int argc, char** argv) {
   int runs = 5;
   std::string data = ISOCURV_SHARED_DATASETS;
   std::string only;  // run only the volumes whose name contains this
+  std::string volume_path;  // --volume: only this file
+  std::optional<float> iso;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--quick")) quick = true;
     else if (!std::strcmp(argv[i], "--runs") && i + 1 < argc) runs = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--datasets") && i + 1 < argc) data = argv[++i];
     else if (!std::strcmp(argv[i], "--only") && i + 1 < argc) only = argv[++i];
+    else if (!std::strcmp(argv[i], "--volume") && i + 1 < argc) volume_path = argv[++i];
+    else if (!std::strcmp(argv[i], "--iso") && i + 1 < argc) iso = std::strtof(argv[++i], nullptr);
     else {
-      std::fprintf(stderr, "usage: bench_extract [--quick] [--runs N] [--datasets DIR] [--only NAME_PART]\n");
+      std::fprintf(stderr, "usage: bench_extract [--quick] [--runs N] [--datasets DIR] [--only NAME_PART] "
+                           "| --volume PATH [--iso V] [--runs N]\n");
       return 2;
     }
   }
@@ -114,6 +121,17 @@ int main(int argc, char** argv) {
               Device::default_device().info().name.c_str(), vtkSMPTools::GetBackend(), runs);
   std::printf("%-26s %10s %9s %8s %7s %9s %7s %8s %8s %8s %8s\n", "volume", "triangles", "ours ms", "FE ms", "FE/ours",
               "VDB ms", "VDB/our", "ktri/ms", "MiB ours", "MiB FE", "MiB VDB");
+  if (!volume_path.empty()) {
+    try {
+      volume::Volume v = volume::load(volume_path);
+      const float value = iso ? *iso : float(v.stats.suggested_isovalue);
+      run_case(Case{std::filesystem::path(volume_path).filename().string(), std::move(v), value}, runs);
+      return 0;
+    } catch (const Error& e) {
+      std::fprintf(stderr, "bench_extract: %s\n", e.what());
+      return 1;
+    }
+  }
   std::vector<int> sizes = quick ? std::vector<int>{128} : std::vector<int>{256, 512};
   for (int n : sizes)
     for (const char* name : {"sphere", "torus", "gyroid"}) {

@@ -1,10 +1,13 @@
 #include "core/cl_device.h"
 
+#include <chrono>
 #include <cstdlib>
 #include <mutex>
+#include <optional>
 
 #include "core/cl_scratch.h"
 #include "core/error.h"
+#include "core/program_cache.h"
 
 namespace isocurv {
 namespace {
@@ -91,6 +94,13 @@ std::shared_ptr<Device> Device::open(int index) {
   dev->info_ = all[index].info;
   dev->device_ = all[index].device;
   try {
+    dev->driver_.driver_version = dev->device_.getInfo<CL_DRIVER_VERSION>();
+    dev->driver_.platform_version =
+        cl::Platform(dev->device_.getInfo<CL_DEVICE_PLATFORM>()).getInfo<CL_PLATFORM_VERSION>();
+  } catch (const cl::Error&) {
+    // left empty: the cache key still names the device and its version
+  }
+  try {
     dev->context_ = cl::Context(dev->device_);
     dev->queue_ = cl::CommandQueue(dev->context_, dev->device_);
   } catch (const cl::Error& e) {
@@ -112,18 +122,54 @@ cl::Program& Device::program(const std::string& name, const char* source, const 
   const std::string key = name + "|" + options;
   auto it = programs_.find(key);
   if (it != programs_.end()) return it->second;
-  cl::Program prog(context_, std::string(source));
-  try {
-    prog.build({device_}, (options + " -cl-std=CL1.2").c_str());
-  } catch (const cl::Error&) {
-    std::string log;
-    try {
-      log = prog.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device_);
-    } catch (...) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string build_options = options + " -cl-std=CL1.2";
+  detail::ProgramKey cache_key;
+  cache_key.name = name;
+  cache_key.source_hash = detail::hash_hex(source);
+  cache_key.options = build_options;
+  cache_key.platform = info_.platform + " " + driver_.platform_version;
+  cache_key.device = info_.name + " " + info_.version;
+  cache_key.driver = driver_.driver_version;
+  const std::string cache_dir = program_cache_dir();
+  bool rejected = false;
+  std::optional<cl::Program> built;
+  if (auto binary = detail::load_program_binary(cache_dir, cache_key, &rejected)) {
+    try {  // a binary the driver refuses (stale, corrupt past the checksum) is rebuilt below
+      cl::Program prog(context_, {device_}, cl::Program::Binaries{*binary});
+      prog.build({device_}, build_options.c_str());
+      built = prog;
+    } catch (const cl::Error&) {
+      rejected = true;
     }
-    throw Error("OpenCL program '" + name + "' failed to build on " + info_.name + ":\n" + log);
   }
-  return programs_.emplace(key, prog).first->second;
+  const bool from_cache = built.has_value();
+  if (!built) {
+    cl::Program prog(context_, std::string(source));
+    try {
+      prog.build({device_}, build_options.c_str());
+    } catch (const cl::Error&) {
+      std::string log;
+      try {
+        log = prog.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device_);
+      } catch (...) {
+      }
+      throw Error("OpenCL program '" + name + "' failed to build on " + info_.name + ":\n" + log);
+    }
+    built = prog;
+    if (!cache_dir.empty()) {
+      try {
+        const auto binaries = prog.getInfo<CL_PROGRAM_BINARIES>();
+        if (binaries.size() == 1) detail::store_program_binary(cache_dir, cache_key, binaries[0]);
+      } catch (const cl::Error&) {
+        // a driver that cannot return binaries: no cache, nothing else lost
+      }
+    }
+  }
+  detail::record_program_build(
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count(),
+      from_cache, rejected);
+  return programs_.emplace(key, *built).first->second;
 }
 
 cl::Kernel& Device::kernel(cl::Program& program, const char* name) {

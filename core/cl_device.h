@@ -53,8 +53,9 @@ class Device {
   cl::CommandQueue& queue() { return queue_; }
   cl::Device& device() { return device_; }
 
-  /// Builds (once; later calls return the cached program) `source` under `name`. A failed build
-  /// throws Error carrying the compiler's log.
+  /// Builds (once; later calls return the cached program) `source` under `name`. The compiled
+  /// binary is also kept on disk (core/program_cache.h) and later processes build from it instead
+  /// of compiling. A failed build throws Error carrying the compiler's log.
   cl::Program& program(const std::string& name, const char* source, const std::string& options = "");
 
   /// Kernel `name` of `program` (one of this device's), created once and cached: creating kernels
@@ -70,7 +71,11 @@ class Device {
   ~Device();
 
  private:
+  struct DriverInfo {
+    std::string driver_version, platform_version;  ///< for the program cache's key
+  };
   DeviceInfo info_;
+  DriverInfo driver_;
   cl::Device device_;
   cl::Context context_;
   cl::CommandQueue queue_;

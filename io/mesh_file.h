@@ -1,7 +1,7 @@
 #pragma once
 // Reading and writing meshes with their curvature arrays, the format chosen by the extension.
 //
-//   .vtp  VTK XML PolyData, binary appended, zlib compressed; every array of DESIGN.md by name,
+//   .vtp  VTK XML PolyData, binary appended, LZ4 compressed by default (io/compression.h); every array of DESIGN.md by name,
 //         "Normals" also set as the point normals. Opens in ParaView.
 //   .ply  binary little-endian PLY: vertex properties x y z, nx ny nz (Normals), then one float
 //         property per scalar array (Area k1 k2 H K ShapeIndex Curvedness AO), vectors as
@@ -17,6 +17,7 @@
 #include <string>
 
 #include "core/mesh.h"
+#include "io/compression.h"
 #include "curvature/curvature_field.h"
 
 namespace isocurv::io {
@@ -32,9 +33,11 @@ struct MeshFile {
 /// Writes `mesh` (and the non-empty arrays of `field`, when given) to `path`, the format chosen by
 /// the extension (.vtp, .ply, .obj, .stl; case-insensitive). Written atomically: on failure no
 /// file is left and an existing one is untouched. Throws Error for an unknown extension, a field
-/// whose arrays do not match the vertex count, or any write failure.
+/// whose arrays do not match the vertex count, or any write failure. `compression` applies to
+/// .vtp only (the other formats are uncompressed).
 void write_mesh(const std::string& path, const Mesh& mesh,
-                const curvature::CurvatureField* field = nullptr);
+                const curvature::CurvatureField* field = nullptr,
+                const Compression& compression = {});
 
 /// Reads a mesh file written by write_mesh (or any reasonable .vtp/.ply/.obj/.stl). Throws Error
 /// naming the file for a missing, unreadable, truncated or malformed file, an unknown extension or

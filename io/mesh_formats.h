@@ -5,11 +5,13 @@
 // names the target file, not the temporary); readers throw Error naming `path`.
 #include <string>
 
+#include "io/compression.h"
 #include "io/mesh_file.h"
 
 namespace isocurv::io::detail {
 
-void write_vtp(const std::string& path, const Mesh& mesh, const curvature::CurvatureField* field);
+void write_vtp(const std::string& path, const Mesh& mesh, const curvature::CurvatureField* field,
+               const Compression& compression);
 MeshFile read_vtp(const std::string& path);
 
 void write_ply(const std::string& path, const Mesh& mesh, const curvature::CurvatureField* field);

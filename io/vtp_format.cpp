@@ -1,4 +1,4 @@
-// .vtp: VTK XML PolyData through vtkXMLPolyDataWriter/Reader (binary appended, zlib).
+// .vtp: VTK XML PolyData through vtkXMLPolyDataWriter/Reader (binary appended; LZ4, zlib or none).
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
@@ -21,14 +21,20 @@
 
 namespace isocurv::io::detail {
 
-void write_vtp(const std::string& path, const Mesh& mesh, const curvature::CurvatureField* field) {
+void write_vtp(const std::string& path, const Mesh& mesh, const curvature::CurvatureField* field,
+               const Compression& compression) {
   vtkNew<vtkXMLPolyDataWriter> writer;
   VtkErrorCapture errors(writer);
   writer->SetInputData(to_polydata(mesh, field));
   writer->SetFileName(path.c_str());
   writer->SetDataModeToAppended();
   writer->EncodeAppendedDataOff();  // raw binary, not base64
-  writer->SetCompressorTypeToZLib();
+  switch (compression.compressor) {
+    case Compressor::none: writer->SetCompressorTypeToNone(); break;
+    case Compressor::lz4: writer->SetCompressorTypeToLZ4(); break;
+    case Compressor::zlib: writer->SetCompressorTypeToZLib(); break;
+  }
+  if (compression.compressor != Compressor::none) writer->SetCompressionLevel(compression.level);
   writer->SetHeaderTypeToUInt64();  // arrays over 4 GiB
   const int ok = writer->Write();
   if (!ok || errors.failed() || writer->GetErrorCode() != vtkErrorCode::NoError)

@@ -8,6 +8,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "io/field_arrays.h"
+#include "io/compression.h"
 #include "io/mesh_file.h"
 #include "test_meshes.h"
 
@@ -166,12 +167,42 @@ TEST_F(IoMeshFileTest, VtpUsesDesignArrayNamesAppendedCompressed) {
   io::write_mesh(p, mesh, &field);
   const std::string text = slurp(p);
   EXPECT_NE(text.find("format=\"appended\""), std::string::npos);
-  EXPECT_NE(text.find("vtkZLibDataCompressor"), std::string::npos);
+  EXPECT_NE(text.find("vtkLZ4DataCompressor"), std::string::npos);  // the default (io/compression.h)
   EXPECT_NE(text.find("Normals=\"Normals\""), std::string::npos);  // the active point normals
   for (const char* name : {"Normals", "Area", "k1", "k2", "dir1", "dir2", "H", "K", "dcurv", "ShapeIndex",
                            "Curvedness", "AO", "Boundary"})
     EXPECT_NE(text.find(std::string("Name=\"") + name + "\""), std::string::npos) << name;
   EXPECT_NE(text.find("Name=\"dcurv\" NumberOfComponents=\"4\""), std::string::npos);
+}
+
+TEST_F(IoMeshFileTest, VtpCompressorsAsAskedAndTheSameArraysBack) {
+  const Mesh mesh = test::grid_mesh();
+  const auto field = test::random_field(mesh.vertex_count());
+  const struct {
+    const char* text;
+    const char* marker;  // in the file's header; nullptr: no compressor named
+  } cases[] = {{"zlib:1", "vtkZLibDataCompressor"}, {"lz4:9", "vtkLZ4DataCompressor"}, {"none", nullptr}};
+  for (const auto& c : cases) {
+    const std::string p = path(std::string("c") + c.text[0] + ".vtp");
+    io::write_mesh(p, mesh, &field, io::parse_compression(c.text));
+    const std::string text = slurp(p);
+    if (c.marker) EXPECT_NE(text.find(c.marker), std::string::npos) << c.text;
+    else EXPECT_EQ(text.find("compressor="), std::string::npos) << c.text;
+    const io::MeshFile back = io::read_mesh(p);
+    ASSERT_TRUE(back.field.has_value()) << c.text;
+    EXPECT_EQ(back.field->k1, field.k1) << c.text;
+    EXPECT_EQ(back.field->dcurv, field.dcurv) << c.text;
+  }
+}
+
+TEST(IoCompression, ParsesTheDocumentedFormsOnly) {
+  EXPECT_EQ(io::to_string(io::parse_compression("lz4")), "lz4:1");
+  EXPECT_EQ(io::to_string(io::parse_compression("zlib")), "zlib:1");
+  EXPECT_EQ(io::to_string(io::parse_compression("zlib:9")), "zlib:9");
+  EXPECT_EQ(io::to_string(io::parse_compression("none")), "none");
+  EXPECT_EQ(io::to_string(io::Compression{}), "lz4:1");
+  for (const char* bad : {"", "gzip", "zlib:0", "zlib:10", "lz4:", "none:1", "zlib:x", "LZ4"})
+    EXPECT_THROW(io::parse_compression(bad), Error) << bad;
 }
 
 TEST_F(IoMeshFileTest, PlyHeaderIsAsDocumented) {

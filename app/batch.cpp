@@ -1,0 +1,404 @@
+#include "app/batch.h"
+
+#include "app/picture_title.h"
+
+#include <glob.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <future>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <set>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "io/mesh_file.h"
+#include "mc/extract.h"
+#include "mc/extract_reference.h"
+#include "volume/load.h"
+
+namespace isocurv::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool has_glob_chars(const std::string& s) { return s.find_first_of("*?[") != std::string::npos; }
+
+/// One input as the batch sees it: a path, or a glob that matched nothing (an error entry).
+struct Input {
+  std::string path;
+  std::string error;  ///< set when there is nothing to read
+};
+
+std::vector<Input> expand_inputs(const std::vector<std::string>& given) {
+  std::vector<Input> out;
+  for (const std::string& g : given) {
+    std::error_code ec;
+    if (!has_glob_chars(g) || fs::exists(g, ec)) {
+      out.push_back({g, ""});
+      continue;
+    }
+    glob_t found{};
+    const int rc = ::glob(g.c_str(), 0, nullptr, &found);  // sorted by glob(3)
+    if (rc == 0) {
+      for (std::size_t i = 0; i < found.gl_pathc; ++i) out.push_back({found.gl_pathv[i], ""});
+    } else {
+      out.push_back({g, g + ": no file matches this pattern"});
+    }
+    globfree(&found);
+  }
+  return out;
+}
+
+/// The file name without its extensions ("head.nii.gz" -> "head").
+std::string stem_of(const std::string& path) {
+  std::string stem = fs::path(path).filename().string();
+  const auto dot = stem.find('.');
+  if (dot != std::string::npos && dot > 0) stem = stem.substr(0, dot);
+  return stem.empty() ? "input" : stem;
+}
+
+/// A loaded input, or why it could not be loaded.
+struct Loaded {
+  std::optional<volume::Volume> volume;
+  std::optional<Surface> mesh_file;  ///< a mesh input (curvature only)
+  nlohmann::json load_timings = nlohmann::json::object();
+  std::string error;
+};
+
+Loaded load_input(const Input& in, BatchKind kind, const CommonOptions& o, bool sweep) {
+  Loaded l;
+  if (!in.error.empty()) {
+    l.error = in.error;
+    return l;
+  }
+  try {
+    StageTimer timer;
+    if (is_mesh_path(in.path)) {
+      if (kind != BatchKind::curvature)
+        throw Error(in.path, std::string("isocurv ") + (kind == BatchKind::run ? "run" : "extract") +
+                                 " takes a volume, and this is a mesh file");
+      if (sweep) throw Error(in.path, "--iso applies to volumes only, and this is a mesh file");
+      l.mesh_file = load_surface(in.path, o, timer);  // also refuses volume options
+    } else {
+      timer.start("load");
+      l.volume = volume::load(in.path, to_load_options(o.volume));
+      timer.stop();
+    }
+    l.load_timings = timer.json();
+  } catch (const std::exception& e) {
+    l.error = e.what();
+  }
+  return l;
+}
+
+/// What writing one entry needs, so that it can run on the writer thread.
+struct Pending {
+  Surface surface;
+  std::string input, mesh_path, png_path, stats_path;
+  nlohmann::json entry;  ///< filled in by the writer
+  StageTimer timer;
+};
+
+/// Writes an entry's outputs together (mesh, PNG for run, stats.json) and completes its entry.
+void write_outputs(Pending& p, BatchKind kind, const BatchRequest& rq, const CommonOptions& o) {
+  const Surface& s = p.surface;
+  AtomicFileSet outputs;
+  p.timer.start("write");
+  std::uint64_t mesh_bytes = 0;
+  outputs.write(p.mesh_path, [&](const std::string& tmp) {
+    io::write_mesh(tmp, s.mesh, s.field ? &*s.field : nullptr, o.compress);
+    mesh_bytes = file_bytes(tmp);
+  });
+  if (kind == BatchKind::run) {
+    p.timer.start("render");
+    const viz::RenderOptions opts = render_options_for(*rq.render, p.input, s.isovalue, kEstimatorName);
+    outputs.write(p.png_path, [&](const std::string& tmp) { viz::render_png(tmp, s.mesh, *s.field, opts); });
+  }
+  p.timer.stop();
+  nlohmann::json r = surface_report(s);
+  r["input"] = p.input;
+  r["mesh"] = p.mesh_path;
+  if (kind == BatchKind::run) r["png"] = p.png_path;
+  r["mesh_bytes"] = mesh_bytes;
+  r["compression"] = io::to_string(o.compress);
+  r["device"] = device_name(o);
+  r["timings_ms"] = p.timer.json();
+  outputs.write(p.stats_path, [&](const std::string& tmp) { write_text_file(tmp, r.dump(2) + "\n"); });
+  outputs.commit();
+  p.entry["status"] = "ok";
+  p.entry["mesh"] = p.mesh_path;
+  p.entry["mesh_bytes"] = mesh_bytes;
+  if (kind == BatchKind::run) p.entry["png"] = p.png_path;
+  p.entry["stats"] = p.stats_path;
+  p.entry["vertices"] = r["vertices"];
+  p.entry["triangles"] = r["triangles"];
+  p.entry["timings_ms"] = p.timer.json();
+}
+
+/// The probe of an output folder before any work: created if missing, and a file can be made in it.
+void require_writable_folder(const std::string& dir) {
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw Error(dir, "the output (-o) must be a folder for several inputs or isovalues, and this is a file");
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir)) throw Error(dir, "cannot create the output folder: " + ec.message());
+  const std::string probe = (fs::path(dir) / (".isocurv-probe-" + std::to_string(getpid()))).string();
+  std::FILE* f = std::fopen(probe.c_str(), "wb");
+  if (!f) throw Error(dir, "the output folder is not writable");
+  std::fclose(f);
+  fs::remove(probe, ec);
+}
+
+std::string one_line(std::string text) {
+  for (char& c : text)
+    if (c == '\n' || c == '\r' || c == '\t') c = ' ';
+  return text;
+}
+
+}  // namespace
+
+std::vector<float> parse_isovalues(const std::string& text) {
+  std::vector<float> out;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = text.find(',', start);
+    const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    char* end = nullptr;
+    const float v = std::strtof(item.c_str(), &end);
+    if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(v))
+      throw Error("--iso '" + text + "': '" + item + "' is not a finite number (expected V or V1,V2,...)");
+    for (float seen : out)
+      if (seen == v) throw Error("--iso '" + text + "': " + item + " is given twice");
+    out.push_back(v);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+bool is_batch(const std::vector<std::string>& inputs, const std::vector<float>& isovalues) {
+  if (inputs.size() > 1 || isovalues.size() > 1) return true;
+  std::error_code ec;
+  return !inputs.empty() && has_glob_chars(inputs[0]) && !fs::exists(inputs[0], ec);
+}
+
+void add_batch_options(CLI::App& cmd, BatchCli& b, const std::string& input_name,
+                       const std::string& input_help, const std::vector<std::string>& formats) {
+  cmd.add_option(input_name, b.inputs,
+                 input_help + "; several files or globs make a batch: -o is then a folder, each "
+                              "input written under DIR/<stem>/, and DIR/summary.json lists them")
+      ->required();
+  cmd.add_option("--iso", b.iso,
+                 "Isovalue (default: the volume's suggested isovalue, see isocurv info); several, "
+                 "V1,V2,..., make a sweep of one loaded volume (outputs suffixed _iso<V>, -o a folder)")
+      ->check([](const std::string& text) -> std::string {
+        try {
+          parse_isovalues(text);
+          return "";
+        } catch (const Error& e) {
+          return e.what();
+        }
+      });
+  cmd.add_option("--jobs", b.jobs,
+                 "Batches: 2 or more loads the next input and writes the last one's mesh while the "
+                 "current one is computed (1: one step at a time)")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  if (!formats.empty())
+    cmd.add_option("--format", b.format, "Batches: the mesh format written under DIR/<stem>/")
+        ->check(CLI::IsMember(formats))
+        ->capture_default_str();
+}
+
+bool run_as_batch(const BatchCli& b, CommonOptions& o, BatchKind kind, const std::string& dir,
+                  const RenderCli* render, const std::string& format) {
+  const std::vector<float> isos = b.iso.empty() ? std::vector<float>{} : parse_isovalues(b.iso);
+  if (!is_batch(b.inputs, isos)) {
+    if (!isos.empty()) o.iso = isos[0];
+    return false;
+  }
+  if (render && !render->dirs_out.empty())
+    throw Error(render->dirs_out, "--dirs-out names one file: not with several inputs or isovalues");
+  BatchRequest rq;
+  rq.kind = kind;
+  rq.inputs = b.inputs;
+  rq.isovalues = isos;
+  rq.dir = dir;
+  rq.format = format.empty() ? b.format : format;
+  rq.jobs = b.jobs;
+  rq.render = render;
+  run_batch(rq, o);
+  return true;
+}
+
+std::string iso_suffix(float iso) { return "_iso" + format_number(iso); }
+
+void run_batch(const BatchRequest& rq, const CommonOptions& o) {
+  const auto t_start = std::chrono::steady_clock::now();
+  if (rq.kind != BatchKind::extract) require_curvature_format("x." + rq.format);
+  if (rq.kind == BatchKind::run && !rq.render) throw Error("internal: run batch without render options");
+  require_writable_folder(rq.dir);  // before any work
+  const std::vector<Input> inputs = expand_inputs(rq.inputs);
+  const bool sweep = rq.isovalues.size() > 1;
+  if (!reference_device(o)) device_for(o);  // no OpenCL: one error before any input
+
+  // Per-input folders, unique by stem.
+  std::vector<std::string> folders;
+  std::map<std::string, int> seen;
+  for (const Input& in : inputs) {
+    const std::string stem = stem_of(in.path);
+    const int n = ++seen[stem];
+    folders.push_back(stem + (n > 1 ? "_" + std::to_string(n) : ""));
+  }
+
+  nlohmann::json entries = nlohmann::json::array();
+  std::size_t failed = 0;
+  auto fail = [&](nlohmann::json entry, const std::string& message) {
+    std::fprintf(stderr, "isocurv: %s\n", one_line(message).c_str());
+    entry["status"] = "failed";
+    entry["error"] = one_line(message);
+    entries.push_back(std::move(entry));
+    ++failed;
+  };
+
+  const bool overlap = rq.jobs >= 2;
+  std::future<Loaded> next;
+  if (overlap && !inputs.empty())
+    next = std::async(std::launch::async, load_input, inputs[0], rq.kind, o, sweep);
+  // At most one write in flight; its entry is appended when it is collected, in order.
+  std::future<void> writing;
+  std::unique_ptr<Pending> in_flight;
+  auto collect = [&] {
+    if (!in_flight) return;
+    try {
+      writing.get();
+      entries.push_back(in_flight->entry);
+    } catch (const std::exception& e) {
+      fail(in_flight->entry, e.what());
+    }
+    in_flight.reset();
+  };
+
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const Input& in = inputs[i];
+    Loaded loaded = overlap ? next.get() : load_input(in, rq.kind, o, sweep);
+    if (overlap && i + 1 < inputs.size())
+      next = std::async(std::launch::async, load_input, inputs[i + 1], rq.kind, o, sweep);
+    const fs::path folder = fs::path(rq.dir) / folders[i];
+    const std::string stem = stem_of(in.path);
+    std::vector<std::optional<float>> isos;
+    if (rq.isovalues.empty() || loaded.mesh_file) isos.push_back(std::nullopt);
+    for (float v : rq.isovalues)
+      if (!loaded.mesh_file) isos.push_back(v);
+    if (!loaded.error.empty()) {
+      for (const auto& iso : isos) {
+        nlohmann::json entry = {{"input", in.path}};
+        if (iso) entry["isovalue"] = *iso;
+        fail(entry, loaded.error);
+      }
+      continue;
+    }
+    std::unique_ptr<mc::Mesher> mesher;  // one block index per volume, shared by its isovalues
+    for (const auto& iso : isos) {
+      nlohmann::json entry = {{"input", in.path}};
+      if (iso) entry["isovalue"] = *iso;
+      auto p = std::make_unique<Pending>();
+      p->input = in.path;
+      try {
+        Surface& s = p->surface;
+        if (loaded.mesh_file) {
+          s = *loaded.mesh_file;
+          prepare_mesh_for_curvature(s, in.path, o);
+        } else {
+          s.volume = loaded.volume;
+          s.isovalue = checked_isovalue(in.path, *s.volume, iso);
+          entry["isovalue"] = s.isovalue;
+          mc::Options mo;
+          mo.cap = o.cap;
+          mo.snap = o.snap;
+          p->timer.start("extract");
+          if (reference_device(o)) {
+            s.mesh = mc::extract_reference(*s.volume, s.isovalue, mo);
+          } else {
+            if (!mesher) mesher = std::make_unique<mc::Mesher>(*loaded.volume, device_for(o));
+            s.mesh = mesher->extract(s.isovalue, mo);
+          }
+          p->timer.stop();
+          handle_empty_surface(s, in.path, o,
+                               rq.kind == BatchKind::extract ? EmptySurface::warn : EmptySurface::error);
+        }
+        if (rq.kind != BatchKind::extract)
+          s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, o, p->timer, &s.normals);
+        std::error_code ec;
+        fs::create_directories(folder, ec);
+        if (ec) throw Error(folder.string(), "cannot create the output folder: " + ec.message());
+        const std::string suffix = sweep ? iso_suffix(s.isovalue) : "";
+        p->mesh_path = (folder / (stem + suffix + "." + rq.format)).string();
+        p->png_path = (folder / (stem + suffix + ".png")).string();
+        p->stats_path = (folder / ("stats" + suffix + ".json")).string();
+        entry["load_ms"] = loaded.load_timings.value("load", 0.0);
+        p->entry = entry;
+      } catch (const std::exception& e) {
+        fail(entry, e.what());
+        continue;
+      }
+      // The write of this entry may overlap the next entry's compute (not for run: VTK renders
+      // on this thread).
+      collect();
+      if (overlap && rq.kind != BatchKind::run) {
+        in_flight = std::move(p);
+        Pending* raw = in_flight.get();
+        writing = std::async(std::launch::async, [raw, &rq, &o] { write_outputs(*raw, rq.kind, rq, o); });
+      } else {
+        try {
+          write_outputs(*p, rq.kind, rq, o);
+          entries.push_back(p->entry);
+        } catch (const std::exception& e) {
+          fail(p->entry, e.what());
+        }
+      }
+    }
+    loaded = Loaded{};
+  }
+  collect();
+  // Folders of inputs that wrote nothing are removed again (only when empty).
+  for (const std::string& f : folders) {
+    std::error_code ec;
+    fs::remove(fs::path(rq.dir) / f, ec);
+  }
+
+  const double total_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_start).count();
+  nlohmann::json summary = {{"command", rq.kind == BatchKind::extract     ? "extract"
+                                        : rq.kind == BatchKind::curvature ? "curvature"
+                                                                          : "run"},
+                            {"inputs", inputs.size()},
+                            {"entries", entries},
+                            {"ok", entries.size() - failed},
+                            {"failed", failed},
+                            {"compression", io::to_string(o.compress)},
+                            {"jobs", rq.jobs},
+                            {"device", reference_device(o) ? device_name(o) : device_for(o).info().name},
+                            {"programs", program_report()},
+                            {"wall_ms", std::round(total_ms * 1000) / 1000}};
+  const std::string summary_path = (fs::path(rq.dir) / "summary.json").string();
+  write_text_file(summary_path, summary.dump(2) + "\n");
+  if (o.json) {
+    std::cout << summary.dump(2) << "\n";
+  } else if (!o.quiet) {
+    std::cout << entries.size() - failed << " of " << entries.size() << " written under " << rq.dir
+              << " (" << inputs.size() << " input" << (inputs.size() == 1 ? "" : "s") << ", "
+              << format_number(std::round(total_ms)) << " ms); summary: " << summary_path << "\n";
+  }
+  if (failed > 0)
+    throw Error(std::to_string(failed) + " of " + std::to_string(entries.size()) +
+                " entries failed (listed above and in " + summary_path + ")");
+}
+
+}  // namespace isocurv::app

@@ -1,0 +1,70 @@
+#pragma once
+// Several inputs, several isovalues, one process: `isocurv run|extract|curvature IN... -o DIR`
+// and `--iso V1,V2,...`. Each input writes under DIR/<input stem>/, DIR/summary.json lists every
+// (input, isovalue) entry; a bad input is reported and the others still run.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/pipeline.h"
+#include "app/render_options_cli.h"
+#include "viz/render.h"
+
+namespace isocurv::app {
+
+/// The command a batch runs per entry.
+enum class BatchKind { extract, curvature, run };
+
+/// Everything a batch needs besides the CommonOptions.
+struct BatchRequest {
+  BatchKind kind = BatchKind::extract;
+  std::vector<std::string> inputs;  ///< paths or globs (a glob is expanded, sorted)
+  std::vector<float> isovalues;     ///< empty: each volume's suggested isovalue
+  std::string dir;                  ///< the output folder (-o)
+  std::string format = "vtp";       ///< mesh extension without the dot
+  int jobs = 1;  ///< >= 2: the next input is loaded, and the last one's mesh written, while the
+                 ///< current one is computed (two extra threads; the device stays on this one)
+  const RenderCli* render = nullptr;  ///< run: the PNG's options (render_options_for per input)
+};
+
+/// The command-line state of a command that can run as a batch.
+struct BatchCli {
+  std::vector<std::string> inputs;  ///< the positional inputs
+  std::string iso;                  ///< --iso text: V or V1,V2,...
+  std::string format = "vtp";       ///< --format (batch mesh format)
+  int jobs = 1;                     ///< --jobs
+};
+
+/// Adds the positional INPUT... (named `input_name`), --iso V[,V2,...] and --jobs, and --format
+/// choosing from `formats` when `formats` is not empty (run has its own --format).
+void add_batch_options(CLI::App& cmd, BatchCli& b, const std::string& input_name,
+                       const std::string& input_help, const std::vector<std::string>& formats);
+
+/// Called first in the command's callback: parses --iso; for one input at one isovalue sets o.iso
+/// and returns false (the command goes on as for a single file); otherwise runs the batch with
+/// -o `dir` as the folder and returns true. `format` overrides b.format when not empty.
+bool run_as_batch(const BatchCli& b, CommonOptions& o, BatchKind kind, const std::string& dir,
+                  const RenderCli* render = nullptr, const std::string& format = "");
+
+/// Parses --iso "V1,V2,..." (finite numbers, at least one, no repeats). @throw Error naming the
+/// bad item.
+std::vector<float> parse_isovalues(const std::string& text);
+
+/// True when the command must run as a batch: several inputs (after expanding globs), a glob, or
+/// several isovalues. One input at one isovalue keeps the single-output layout (-o names the file
+/// or, for run, the folder).
+bool is_batch(const std::vector<std::string>& inputs, const std::vector<float>& isovalues);
+
+/// The output name's suffix for isovalue `iso` in a sweep: "_iso40", "_iso0.5", "_iso-1e-05".
+std::string iso_suffix(float iso);
+
+/// Runs the batch. Before any work, DIR is created (if missing) and must be writable (else an
+/// Error). Each input gets DIR/<stem>/ (a stem met twice gets _2, _3, ...): the mesh
+/// <stem>[_iso<V>].<format>, for run the PNG, and stats[_iso<V>].json; DIR/summary.json holds one
+/// entry per input and isovalue with its status, outputs, counts and timings. A failing entry is
+/// reported in one line on stderr (and in the summary) and the others still run; at the end an
+/// Error saying how many failed is thrown if any did (exit status 1). With several isovalues a
+/// volume is loaded once and its blocks indexed once (mc::Mesher).
+void run_batch(const BatchRequest& request, const CommonOptions& o);
+
+}  // namespace isocurv::app

@@ -1,0 +1,190 @@
+"""Tests of the isocurv Python module (run by CTest as python.module, with Debian's python3).
+
+A sphere sampled into numpy arrays of every voxel type is the oracle (k1 = k2 = H = 1/R), the
+module's results are compared with the command line's files, and bad arguments must raise
+TypeError or ValueError naming the argument, bad files isocurv.Error.
+"""
+import os
+import subprocess
+import tempfile
+import threading
+import unittest
+
+import numpy as np
+
+import isocurv
+
+BUILD = os.environ.get("ISOCURV_BUILD_DIR", os.path.join(os.path.dirname(__file__), "..", "..", "build"))
+TORUS = os.path.join(BUILD, "datasets", "torus.vdb")
+RADIUS = 12.0
+
+
+def ball(dtype, scale=10.0):
+    """A solid ball of radius RADIUS voxels as a CT-like density: 255 at the centre falling by
+    `scale` per voxel, so the isovalue 255 - scale * RADIUS is the sphere of radius RADIUS."""
+    z, y, x = np.mgrid[0:36, 0:34, 0:32].astype(np.float64)
+    r = np.sqrt((x - 15.5) ** 2 + (y - 16.5) ** 2 + (z - 17.5) ** 2)
+    return np.clip(255.0 - scale * r, 0, 255).astype(dtype)
+
+
+class Volumes(unittest.TestCase):
+    def test_from_array_every_voxel_type_gives_the_sphere(self):
+        for dtype in (np.uint8, np.int8, np.uint16, np.int16, np.uint32, np.int32, np.float32, np.float64):
+            a = ball(dtype) if dtype != np.int8 else (ball(np.int16) // 2).astype(np.int8)
+            iso = 255 - 10 * RADIUS if dtype != np.int8 else (255 - 10 * RADIUS) / 2
+            v = isocurv.from_array(a, spacing=(1, 1, 1))
+            self.assertEqual(v.shape, a.shape)
+            mesh = isocurv.extract(v, iso)
+            arrays = isocurv.curvature(mesh, volume=v)
+            h = np.median(arrays["H"])
+            self.assertAlmostEqual(h, 1 / RADIUS, delta=0.05 / RADIUS, msg=str(dtype))
+            self.assertEqual(arrays["k1"].shape, (len(mesh.vertices),))
+            self.assertEqual(arrays["dir1"].shape, (len(mesh.vertices), 3))
+            self.assertEqual(arrays["dcurv"].shape, (len(mesh.vertices), 4))
+            self.assertTrue(np.all(arrays["k1"] >= arrays["k2"]))
+
+    def test_spacing_and_origin_place_the_surface_in_world_space(self):
+        v = isocurv.from_array(ball(np.float32), spacing=(2, 2, 2), origin=(100, 0, -5))
+        mesh = isocurv.extract(v, 255 - 10 * RADIUS)
+        centre = mesh.vertices.mean(axis=0)
+        np.testing.assert_allclose(centre, [100 + 2 * 15.5, 2 * 16.5, -5 + 2 * 17.5], atol=0.1)
+        h = np.median(isocurv.curvature(mesh, v)["H"])
+        self.assertAlmostEqual(h, 1 / (2 * RADIUS), delta=0.05 / RADIUS)
+
+    def test_inside_below_flips_the_object(self):
+        a = ball(np.float32)
+        above = isocurv.curvature(isocurv.extract(isocurv.from_array(a), 135))["H"]
+        below = isocurv.curvature(isocurv.extract(isocurv.from_array(-a, inside="below"), -135))["H"]
+        self.assertGreater(np.median(above), 0)
+        self.assertGreater(np.median(below), 0)
+
+    def test_bad_arrays_raise_type_or_value_errors_naming_the_argument(self):
+        with self.assertRaisesRegex(ValueError, "array"):
+            isocurv.from_array(np.zeros((4, 4)))
+        with self.assertRaisesRegex(ValueError, "contiguous"):
+            isocurv.from_array(np.zeros((4, 4, 8))[:, :, ::2])
+        with self.assertRaisesRegex(TypeError, "array"):
+            isocurv.from_array(np.zeros((4, 4, 4), dtype=np.complex64))
+        with self.assertRaisesRegex(TypeError, "array"):
+            isocurv.from_array(np.zeros((4, 4, 4), dtype=">f4"))
+        with self.assertRaisesRegex(ValueError, "spacing"):
+            isocurv.from_array(np.zeros((4, 4, 4), np.float32), spacing=(1, 0, 1))
+        with self.assertRaisesRegex(ValueError, "inside"):
+            isocurv.from_array(np.zeros((4, 4, 4), np.float32), inside="left")
+        v = isocurv.from_array(ball(np.float32))
+        with self.assertRaisesRegex(ValueError, "device"):
+            isocurv.extract(v, 100, device="gpu9")
+        with self.assertRaisesRegex(ValueError, "snap"):
+            isocurv.extract(v, 100, snap=2)
+
+    def test_bad_files_raise_isocurv_error_with_the_one_line_message(self):
+        with self.assertRaises(isocurv.Error) as e:
+            isocurv.load("/nonexistent/ct.nrrd")
+        self.assertIn("/nonexistent/ct.nrrd", str(e.exception))
+        self.assertNotIn("\n", str(e.exception))
+        with tempfile.TemporaryDirectory() as d:
+            bad = os.path.join(d, "bad.vdb")
+            with open(bad, "wb") as f:
+                f.write(b"not a vdb")
+            with self.assertRaises(isocurv.Error):
+                isocurv.load(bad)
+            with self.assertRaises(isocurv.Error):
+                isocurv.read_mesh(os.path.join(d, "missing.ply"))
+
+
+class Meshes(unittest.TestCase):
+    def test_vertices_and_triangles_are_views_without_a_copy(self):
+        mesh = isocurv.extract(isocurv.from_array(ball(np.uint8)), 135)
+        vtx, tri = mesh.vertices, mesh.triangles
+        self.assertEqual((vtx.dtype, vtx.shape[1]), (np.float32, 3))
+        self.assertEqual((tri.dtype, tri.shape[1]), (np.uint32, 3))
+        self.assertFalse(vtx.flags["OWNDATA"])
+        self.assertTrue(np.shares_memory(vtx, mesh.vertices))  # the same memory each time
+        del mesh  # the views keep the mesh alive
+        self.assertTrue(np.isfinite(vtx).all())
+        self.assertLess(int(tri.max()), len(vtx))
+
+    def test_check_reports_a_closed_sphere(self):
+        mesh = isocurv.extract(isocurv.from_array(ball(np.float32)), 135)
+        c = isocurv.check(mesh)
+        self.assertTrue(c["watertight"])
+        self.assertEqual(c["duplicate_vertices"], 0)
+        self.assertEqual(c["euler_characteristic"], 2)
+        self.assertEqual(c["genus"], 0)
+        self.assertGreater(c["closed_signed_volume"], 0)
+        opened = isocurv.Mesh(mesh.vertices, mesh.triangles[1:])
+        self.assertFalse(isocurv.check(opened)["watertight"])
+        self.assertIsNone(isocurv.check(opened)["genus"])
+
+    def test_mesh_from_arrays_checks_shapes_and_indices(self):
+        with self.assertRaisesRegex(ValueError, "vertices"):
+            isocurv.Mesh(np.zeros((3, 2)), np.zeros((1, 3), int))
+        with self.assertRaisesRegex(ValueError, "triangles"):
+            isocurv.Mesh(np.zeros((3, 3)), np.array([[0, 1, 3]]))
+        with self.assertRaisesRegex(TypeError, "vertices"):
+            isocurv.Mesh("abc", np.zeros((1, 3), int))
+
+    def test_write_and_read_back_every_array(self):
+        v = isocurv.from_array(ball(np.uint16))
+        mesh = isocurv.extract(v, 135)
+        arrays = isocurv.curvature(mesh, v)
+        with tempfile.TemporaryDirectory() as d:
+            for name, compress in (("a.vtp", "lz4"), ("b.vtp", "zlib:9"), ("c.ply", "none")):
+                path = os.path.join(d, name)
+                isocurv.write_mesh(path, mesh, arrays, compress=compress)
+                back, back_arrays = isocurv.read_mesh(path)
+                np.testing.assert_array_equal(back.vertices, mesh.vertices)
+                np.testing.assert_array_equal(back.triangles, mesh.triangles)
+                for key in ("k1", "k2", "H", "K", "dir1", "dcurv", "AO"):
+                    np.testing.assert_array_equal(back_arrays[key], arrays[key], err_msg=name + " " + key)
+            with self.assertRaisesRegex(ValueError, "k1"):
+                isocurv.write_mesh(os.path.join(d, "x.vtp"), mesh, {"k1": arrays["k1"][:-1]})
+            with self.assertRaisesRegex(ValueError, "unknown array"):
+                isocurv.write_mesh(os.path.join(d, "x.vtp"), mesh, {"curv": arrays["k1"]})
+            with self.assertRaises(isocurv.Error):
+                isocurv.write_mesh(os.path.join(d, "x.vtp"), mesh, compress="gzip")
+            self.assertEqual(sorted(os.listdir(d)), ["a.vtp", "b.vtp", "c.ply"])
+
+    @unittest.skipUnless(os.path.exists(TORUS), "bundled datasets not built")
+    def test_same_mesh_and_curvature_as_the_command_line(self):
+        exe = os.path.join(BUILD, "app", "isocurv")
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "torus.vtp")
+            subprocess.run([exe, "curvature", TORUS, "-o", out, "--quiet"], check=True)
+            cli_mesh, cli_arrays = isocurv.read_mesh(out)
+        v = isocurv.load(TORUS)
+        mesh = isocurv.extract(v)
+        arrays = isocurv.curvature(mesh, v)
+        np.testing.assert_array_equal(mesh.vertices, cli_mesh.vertices)
+        np.testing.assert_array_equal(mesh.triangles, cli_mesh.triangles)
+        for key in ("k1", "k2", "H", "K", "Normals", "AO"):
+            np.testing.assert_array_equal(arrays[key], cli_arrays[key], err_msg=key)
+
+    def test_reference_device_agrees_to_float_precision(self):
+        v = isocurv.from_array(ball(np.float32))
+        ours = isocurv.curvature(isocurv.extract(v, 135), v)
+        mesh_ref = isocurv.extract(v, 135, device="reference")
+        ref = isocurv.curvature(mesh_ref, v, device="reference")
+        self.assertEqual(len(ref["H"]), len(ours["H"]))
+        self.assertAlmostEqual(float(np.median(ref["H"])), float(np.median(ours["H"])), places=4)
+
+    def test_threads_may_call_concurrently(self):
+        v = isocurv.from_array(ball(np.float32))
+        expected = isocurv.curvature(isocurv.extract(v, 135), v)["H"]
+        results = []
+
+        def work():
+            results.append(isocurv.curvature(isocurv.extract(v, 135), v)["H"])
+
+        threads = [threading.Thread(target=work) for _ in range(3)]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        self.assertEqual(len(results), 3)
+        for r in results:
+            np.testing.assert_array_equal(r, expected)
+
+
+if __name__ == "__main__":
+    unittest.main()

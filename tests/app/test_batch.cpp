@@ -1,0 +1,174 @@
+// Batches, sweeps, --compress and the program cache, end to end through the executable: several
+// inputs (and globs) in one call, per-input folders and summary.json, a bad input reported while
+// the others still run, --iso V1,V2 sweeps, --jobs 2 giving the same files as --jobs 1.
+#include <gtest/gtest.h>
+
+#include "io/mesh_file.h"
+#include "tests/app/cli.h"
+
+namespace isocurv::test {
+namespace {
+
+/// The mesh and k1 of a mesh file, for comparisons.
+struct Read {
+  std::vector<Vec3f> positions;
+  std::vector<Tri> triangles;
+  std::vector<float> k1;
+};
+
+Read read(const std::string& path) {
+  io::MeshFile f = io::read_mesh(path);
+  Read r;
+  r.positions.assign(f.mesh.positions.begin(), f.mesh.positions.end());
+  r.triangles.assign(f.mesh.triangles.begin(), f.mesh.triangles.end());
+  if (f.field) r.k1.assign(f.field->k1.begin(), f.field->k1.end());
+  return r;
+}
+
+void expect_same(const std::string& a, const std::string& b) {
+  const Read x = read(a), y = read(b);
+  EXPECT_EQ(x.positions, y.positions) << a << " vs " << b;
+  EXPECT_EQ(x.triangles, y.triangles) << a << " vs " << b;
+  EXPECT_EQ(x.k1, y.k1) << a << " vs " << b;
+}
+
+TEST(Batch, EachInputInItsFolderOneBadInputReportedOthersRun) {
+  TempDir dir("batch");
+  fs::create_directories(dir / "in/other");
+  fs::copy_file(dataset("sphere"), dir / "in/sphere.vdb");
+  fs::copy_file(dataset("torus"), dir / "in/torus.vdb");
+  fs::copy_file(dataset("gyroid"), dir / "in/other/sphere.vdb");  // same stem: gets sphere_2
+  write_file(dir / "in/broken.vdb", "not a vdb file");
+  const auto r = run_isocurv({"curvature", dir / "in/*.vdb", dir / "in/other/sphere.vdb",
+                              dir / "in/none*.nrrd", "-o", dir / "out"},
+                             120);
+  EXPECT_EQ(r.exit_code, 1) << r.describe();
+  const auto lines = r.err_lines();
+  ASSERT_EQ(lines.size(), 3u) << r.describe();  // broken.vdb, the empty glob, then the count
+  EXPECT_NE(lines[0].find("broken.vdb"), std::string::npos) << r.describe();
+  EXPECT_NE(lines[1].find("none*.nrrd"), std::string::npos) << r.describe();
+  EXPECT_NE(lines[2].find("2 of 5 entries failed"), std::string::npos) << r.describe();
+  for (const char* f : {"out/sphere/sphere.vtp", "out/sphere/stats.json", "out/torus/torus.vtp",
+                        "out/sphere_2/sphere.vtp", "out/summary.json"})
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
+  EXPECT_FALSE(fs::exists(dir / "out/broken")) << "a failed input leaves no folder";
+  const nlohmann::json s = parse_json(read_file(dir / "out/summary.json"), "summary.json");
+  EXPECT_EQ(s["inputs"], 5);
+  EXPECT_EQ(s["failed"], 2);
+  EXPECT_EQ(s["ok"], 3);
+  ASSERT_EQ(s["entries"].size(), 5u);
+  int failed = 0;
+  for (const auto& e : s["entries"]) {
+    if (e["status"] == "failed") {
+      ++failed;
+      EXPECT_FALSE(e.value("error", "").empty());
+    } else {
+      EXPECT_EQ(e["mesh_bytes"], fs::file_size(e["mesh"].get<std::string>()));
+      EXPECT_GT(e["triangles"].get<int>(), 0);
+    }
+  }
+  EXPECT_EQ(failed, 2);
+  // The batch's output is what a single call writes.
+  const auto single = run_isocurv({"curvature", dataset("torus"), "-o", dir / "torus.vtp", "--quiet"});
+  ASSERT_TRUE(single.ok()) << single.describe();
+  expect_same(dir / "out/torus/torus.vtp", dir / "torus.vtp");
+  const nlohmann::json st = parse_json(read_file(dir / "out/torus/stats.json"), "stats.json");
+  EXPECT_TRUE(st.contains("curvature"));
+  EXPECT_EQ(st["input"], dir / "in/torus.vdb");
+}
+
+TEST(Batch, SweepWritesEachIsovalueAsASingleCallWould) {
+  TempDir dir("sweep");
+  const auto r = run_isocurv({"extract", dataset("torus"), "--iso", "-0.5,0.125", "--format", "ply",
+                              "-o", dir / "out", "--json"});
+  ASSERT_TRUE(r.ok()) << r.describe();
+  const nlohmann::json s = parse_json(r.out, "stdout");
+  ASSERT_EQ(s["entries"].size(), 2u);
+  EXPECT_EQ(s["entries"][0]["isovalue"], -0.5);
+  EXPECT_EQ(s["entries"][1]["isovalue"], 0.125);
+  for (const char* iso : {"-0.5", "0.125"}) {
+    const std::string mesh = dir / ("out/torus/torus_iso" + std::string(iso) + ".ply");
+    ASSERT_TRUE(fs::exists(mesh)) << mesh;
+    EXPECT_TRUE(fs::exists(dir / ("out/torus/stats_iso" + std::string(iso) + ".json")));
+    const auto one = run_isocurv({"extract", dataset("torus"), "--iso", iso, "-o", dir / "one.ply", "--quiet"});
+    ASSERT_TRUE(one.ok()) << one.describe();
+    expect_same(mesh, dir / "one.ply");
+  }
+  EXPECT_NE(read(dir / "out/torus/torus_iso-0.5.ply").positions.size(),
+            read(dir / "out/torus/torus_iso0.125.ply").positions.size());
+}
+
+TEST(Batch, JobsTwoWritesTheSameFilesAsJobsOne) {
+  TempDir dir("jobs");
+  for (const char* jobs : {"1", "2"}) {
+    const auto r = run_isocurv({"curvature", dataset("sphere"), dataset("torus"), dataset("gyroid"),
+                                "--jobs", jobs, "-o", dir / ("j" + std::string(jobs)), "--quiet"},
+                               120);
+    ASSERT_TRUE(r.ok()) << r.describe();
+  }
+  for (const char* name : {"sphere/sphere.vtp", "torus/torus.vtp", "gyroid/gyroid.vtp"})
+    EXPECT_EQ(read_file(dir / ("j1/" + std::string(name))), read_file(dir / ("j2/" + std::string(name))))
+        << name;
+}
+
+TEST(Batch, UnwritableOutputIsCaughtBeforeAnyWork) {
+  TempDir dir("unwritable");
+  write_file(dir / "file", "x");
+  const auto r = run_isocurv({"curvature", dataset("sphere"), dataset("torus"), "-o", dir / "file/out"});
+  expect_clean_failure(r, "file/out");
+  const auto f = run_isocurv({"extract", dataset("sphere"), dataset("torus"), "-o", dir / "file"});
+  expect_clean_failure(f, "must be a folder");
+}
+
+TEST(Batch, MalformedIsovalueListIsAUsageError) {
+  TempDir dir("badiso");
+  expect_usage_error(run_isocurv({"extract", dataset("sphere"), "--iso", "0,x", "-o", dir / "o"}), "--iso");
+  expect_usage_error(run_isocurv({"extract", dataset("sphere"), "--iso", "0,0", "-o", dir / "o"}), "--iso");
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(Compress, EveryCompressorReadsBackTheSameArraysAndSizesDiffer) {
+  TempDir dir("compress");
+  std::map<std::string, std::uint64_t> bytes;
+  for (const char* c : {"none", "lz4", "zlib:6"}) {
+    const std::string out = dir / (std::string(c).substr(0, 4) + ".vtp");
+    const auto r = run_isocurv({"curvature", dataset("torus"), "--compress", c, "-o", out, "--json"});
+    ASSERT_TRUE(r.ok()) << r.describe();
+    const nlohmann::json j = parse_json(r.out, "stdout");
+    EXPECT_EQ(j["output_bytes"], fs::file_size(out));
+    bytes[c] = j["output_bytes"];
+  }
+  expect_same(dir / "none.vtp", dir / "lz4.vtp");
+  expect_same(dir / "none.vtp", dir / "zlib.vtp");
+  EXPECT_GT(bytes["none"], bytes["lz4"]);
+  EXPECT_GT(bytes["lz4"], bytes["zlib:6"]);
+  expect_usage_error(run_isocurv({"curvature", dataset("torus"), "--compress", "zlib:0", "-o", dir / "x.vtp"}),
+                     "--compress");
+  expect_usage_error(run_isocurv({"extract", dataset("torus"), "--compress", "gzip", "-o", dir / "x.vtp"}),
+                     "--compress");
+}
+
+TEST(ProgramCacheCli, SecondProcessLoadsProgramsAndWritesTheSameMesh) {
+  TempDir dir("cache");
+  const std::vector<std::string> env = {"ISOCURV_CACHE_DIR=" + (dir / "cache")};
+  const auto first = run_isocurv({"curvature", dataset("sphere"), "-o", dir / "a.vtp", "--json"}, 60, env);
+  ASSERT_TRUE(first.ok()) << first.describe();
+  const auto second = run_isocurv({"curvature", dataset("sphere"), "-o", dir / "b.vtp", "--json"}, 60, env);
+  ASSERT_TRUE(second.ok()) << second.describe();
+  const nlohmann::json a = parse_json(first.out, "first"), b = parse_json(second.out, "second");
+  EXPECT_GT(a["programs"]["compiled"].get<int>(), 0);
+  EXPECT_EQ(b["programs"]["compiled"], 0);
+  EXPECT_EQ(b["programs"]["from_cache"], a["programs"]["compiled"]);
+  EXPECT_TRUE(a["timings_ms"].contains("compile"));
+  EXPECT_EQ(read_file(dir / "a.vtp"), read_file(dir / "b.vtp"));
+  // A cache folder that cannot be made: the command still works, after one warning.
+  write_file(dir / "plain", "x");
+  const auto off = run_isocurv({"extract", dataset("sphere"), "-o", dir / "c.ply"}, 60,
+                               {"ISOCURV_CACHE_DIR=" + (dir / "plain/cache")});
+  ASSERT_TRUE(off.ok()) << off.describe();
+  ASSERT_EQ(off.err_lines().size(), 1u) << off.describe();
+  EXPECT_NE(off.err_lines()[0].find("not writable"), std::string::npos) << off.describe();
+}
+
+}  // namespace
+}  // namespace isocurv::test
