@@ -25,7 +25,8 @@ void register_render(CLI::App& app) {
     Surface s = load_surface(in, o, timer);
     if (o.flip || !s.field || s.field->H.size() != s.mesh.positions.size()) {
       prepare_mesh_for_curvature(s, in, o);
-      s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, o, timer, &s.normals);
+      s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer,
+                                 &s.normals, &s.estimator);
     }
     timer.start("render");
     viz::RenderOptions opts = ro;

@@ -35,7 +35,8 @@ void register_run(CLI::App& app) {
     StageTimer timer;
     Surface s =
         load_surface(in, o, timer);  // fails (no surface, ...) before any output folder is made
-    s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, o, timer, &s.normals);
+    s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer,
+                                 &s.normals, &s.estimator);
     // The folder is made now, and removed again if it was new and the outputs fail; the outputs
     // appear together or not at all.
     const bool new_folder = !fs::exists(dir);

@@ -48,7 +48,7 @@ void register_view(CLI::App& app) {
       out.mesh = mesher ? mesher->extract(value, mo, &et) : extract_surface(*vol, value, o);
       const auto t1 = std::chrono::steady_clock::now();
       StageTimer ignored;  // the explorer shows its own timings
-      out.field = estimate_curvature(out.mesh, vol.get(), o, ignored);
+      out.field = estimate_curvature(out.mesh, vol.get(), value, o, ignored);
       const auto t2 = std::chrono::steady_clock::now();
       auto ms = [](auto a, auto b) { return std::chrono::duration<double, std::milli>(b - a).count(); };
       out.update_ms = ms(t0, t2);
