@@ -117,7 +117,7 @@ void write_outputs(Pending& p, BatchKind kind, const BatchRequest& rq, const Com
   });
   if (kind == BatchKind::run) {
     p.timer.start("render");
-    const viz::RenderOptions opts = render_options_for(*rq.render, p.input, s.isovalue, kEstimatorName);
+    const viz::RenderOptions opts = render_options_for(*rq.render, p.input, s.isovalue, estimator_title(s.estimator));
     outputs.write(p.png_path, [&](const std::string& tmp) { viz::render_png(tmp, s.mesh, *s.field, opts); });
   }
   p.timer.stop();
@@ -334,7 +334,8 @@ void run_batch(const BatchRequest& rq, const CommonOptions& o) {
                                rq.kind == BatchKind::extract ? EmptySurface::warn : EmptySurface::error);
         }
         if (rq.kind != BatchKind::extract)
-          s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, o, p->timer, &s.normals);
+          s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, p->timer,
+                                       &s.normals, &s.estimator);
         std::error_code ec;
         fs::create_directories(folder, ec);
         if (ec) throw Error(folder.string(), "cannot create the output folder: " + ec.message());

@@ -31,7 +31,8 @@ void register_curvature(CLI::App& app) {
     StageTimer timer;
     Surface s = load_surface(in, o, timer);
     prepare_mesh_for_curvature(s, in, o);
-    s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, o, timer, &s.normals);
+    s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer,
+                                 &s.normals, &s.estimator);
     timer.start("write");
     io::write_mesh(out, s.mesh, &*s.field, o.compress);
     timer.stop();

@@ -95,7 +95,7 @@ void register_features(CLI::App &app) {
     prepare_mesh_for_curvature(s, in, o);
     if (!s.field || s.field->normals.size() != s.mesh.vertex_count() ||
         s.field->area.size() != s.mesh.vertex_count())
-      s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, o,
+      s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o,
                                    timer, &s.normals);
     parse_radii(radius, diagonal_of(s.mesh), fo);
     fo.isovalue = s.isovalue;

@@ -32,12 +32,13 @@ void register_render(CLI::App& app) {
     bool estimated = false;
     if (o.flip || !s.field || s.field->H.size() != s.mesh.positions.size()) {
       prepare_mesh_for_curvature(s, in, o);
-      s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, o, timer, &s.normals);
+      s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer,
+                                   &s.normals, &s.estimator);
       estimated = true;
     }
     const viz::RenderOptions opts =
         render_options_for(ro, in, s.volume ? std::optional<float>(s.isovalue) : std::nullopt,
-                           estimated ? kEstimatorName : "curvature from the file");
+                           estimated ? estimator_title(s.estimator) : "curvature from the file");
     timer.start("render");
     AtomicFileSet outputs;  // the PNG and the glyphs together or not at all
     outputs.write(out, [&](const std::string& tmp) { viz::render_png(tmp, s.mesh, *s.field, opts); });

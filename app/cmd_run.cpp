@@ -42,13 +42,14 @@ void register_run(CLI::App& app) {
     if (!ro.dirs_out.empty() && !ro.opts.dirs) throw Error(ro.dirs_out, "--dirs-out needs --dirs");
     if (!ro.dirs_out.empty()) viz::check_glyphs_path(ro.dirs_out);
     // A bad --camera fails early, before any batch entry or output folder.
-    const viz::RenderOptions opts_check = render_options_for(ro, b.inputs.front(), 0.f, kEstimatorName);
+    const viz::RenderOptions opts_check = render_options_for(ro, b.inputs.front(), 0.f, "");
     if (run_as_batch(b, o, BatchKind::run, dir, &ro, format)) return;
     const std::string& in = b.inputs.front();
     StageTimer timer;
     Surface s =
         load_surface(in, o, timer);  // fails (no surface, ...) before any output folder is made
-    s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, o, timer, &s.normals);
+    s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer,
+                                 &s.normals, &s.estimator);
     // The folder is made now, and removed again if it was new and the outputs fail; the outputs
     // appear together or not at all.
     const bool new_folder = !fs::exists(dir);
@@ -76,7 +77,7 @@ void register_run(CLI::App& app) {
     });
     timer.start("render");
     viz::RenderOptions opts = opts_check;
-    if (ro.title.empty()) opts.title = picture_title(in, opts.color, s.isovalue, kEstimatorName);
+    if (ro.title.empty()) opts.title = picture_title(in, opts.color, s.isovalue, estimator_title(s.estimator));
     outputs.write(png_path,
                   [&](const std::string& tmp) { viz::render_png(tmp, s.mesh, *s.field, opts); });
     if (!ro.dirs_out.empty())

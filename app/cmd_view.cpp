@@ -45,10 +45,10 @@ void register_view(CLI::App& app) {
     setup.isovalue = iso;
     setup.min_value = static_cast<float>(vol->stats.min);
     setup.max_value = static_cast<float>(vol->stats.max);
-    setup.view = render_options_for(ro, in, iso, kEstimatorName);
+    setup.view = render_options_for(ro, in, iso, estimator_title(o));
     if (ro.title.empty())
       setup.title_for = [](float value, const std::string& quantity) {
-        return picture_title(in, quantity, value, kEstimatorName);
+        return picture_title(in, quantity, value, estimator_title(o));
       };
     setup.screenshot_prefix = screenshots;
     setup.camera_path = camera_out;
@@ -67,7 +67,7 @@ void register_view(CLI::App& app) {
       Surface s = load_surface(path, mesh_options, ignored);
       if (!s.field || s.field->H.size() != s.mesh.positions.size()) {
         prepare_mesh_for_curvature(s, path, mesh_options);
-        s.field = estimate_curvature(s.mesh, nullptr, mesh_options, ignored);
+        s.field = estimate_curvature(s.mesh, nullptr, 0.f, mesh_options, ignored);
       }
       return viz::Surface{std::move(s.mesh), std::move(*s.field), 0, "opened " + path};
     };
@@ -81,7 +81,7 @@ void register_view(CLI::App& app) {
       out.mesh = mesher ? mesher->extract(value, mo, &et) : extract_surface(*vol, value, o);
       const auto t1 = std::chrono::steady_clock::now();
       StageTimer ignored;  // the explorer shows its own timings
-      out.field = estimate_curvature(out.mesh, vol.get(), o, ignored);
+      out.field = estimate_curvature(out.mesh, vol.get(), value, o, ignored);
       const auto t2 = std::chrono::steady_clock::now();
       auto ms = [](auto a, auto b) { return std::chrono::duration<double, std::milli>(b - a).count(); };
       out.update_ms = ms(t0, t2);

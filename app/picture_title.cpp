@@ -21,4 +21,20 @@ std::string picture_title(const std::string& input, const std::string& quantity,
   return title;
 }
 
+std::string estimator_title(const curvature::EstimatorReport& report) {
+  std::string t = report.estimator;
+  for (std::size_t i = 0; i < report.parameters.size(); ++i) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%s%s %g", i == 0 ? ", " : " ", report.parameters[i].first.c_str(),
+                  report.parameters[i].second);
+    t += buf;
+  }
+  return t;
+}
+
+std::string estimator_title(const CommonOptions& o) {
+  const std::string name = o.estimator.empty() ? "rusinkiewicz" : o.estimator;
+  return name == "volume" ? name + ", scale " + o.scale : name;
+}
+
 }  // namespace isocurv::app

@@ -3,6 +3,9 @@
 #include <optional>
 #include <string>
 
+#include "app/pipeline.h"
+#include "curvature/estimator.h"
+
 namespace isocurv::app {
 
 /// "NAME  |  QUANTITY  |  iso V  |  ESTIMATOR": the input's file name (no folders), the colour
@@ -12,7 +15,12 @@ namespace isocurv::app {
 std::string picture_title(const std::string& input, const std::string& quantity,
                           std::optional<float> isovalue, const std::string& estimator);
 
-/// The estimator named in titles for the curvature the commands compute.
-inline const char* kEstimatorName = "Rusinkiewicz";
+/// The estimator as titles name it, from what an estimate used: "rusinkiewicz", "volume, scale
+/// 1.5" (its parameters, %g); empty when nothing was estimated.
+std::string estimator_title(const curvature::EstimatorReport& report);
+
+/// The same from the options, before any estimate (the explorer's titles, checks): --estimator
+/// (or the default) and --scale as given.
+std::string estimator_title(const CommonOptions& o);
 
 }  // namespace isocurv::app

@@ -73,6 +73,22 @@ void add_compress_option(CLI::App& cmd, CommonOptions& o) {
 }
 
 void add_curvature_options(CLI::App& cmd, CommonOptions& o, bool mesh_input) {
+  cmd.add_option("--estimator", o.estimator,
+                 "Curvature estimator: rusinkiewicz (from the mesh; the default) or volume (from the "
+                 "volume's derivatives at --scale; volume input only)")
+      ->check(CLI::IsMember(curvature::estimator_names()));
+  cmd.add_option("--scale", o.scale,
+                 "Volume estimator: the Gaussian's standard deviation in world units, or auto (the "
+                 "default: from the voxel size, the voxel type and the noise measured near the "
+                 "surface)")
+      ->check([](const std::string& s) -> std::string {
+        if (s == "auto") return "";
+        char* end = nullptr;
+        const double v = std::strtod(s.c_str(), &end);
+        if (s.empty() || *end != 0 || !std::isfinite(v) || !(v > 0))
+          return "--scale takes a positive number (world units) or auto, not '" + s + "'";
+        return "";
+      });
   cmd.add_option("--normals", o.normals,
                  "Vertex normals: volume (from the volume's gradient, face normals where it points against the "
                  "faces or vanishes; the default for volume input) or mesh (from the faces, as Rusinkiewicz; "
@@ -273,13 +289,28 @@ void require_curvature_format(const std::string& path) {
 }
 
 curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Volume* volume,
-                                             const CommonOptions& o, StageTimer& timer,
-                                             NormalsUsed* used) {
+                                             float isovalue, const CommonOptions& o,
+                                             StageTimer& timer, NormalsUsed* used,
+                                             curvature::EstimatorReport* report) {
   curvature::Options co;
+  co.estimator = o.estimator.empty() ? curvature::Estimator::rusinkiewicz
+                                     : *curvature::estimator_from_name(o.estimator);
+  const bool mesh_estimator = co.estimator == curvature::Estimator::rusinkiewicz;
+  if (!mesh_estimator && !volume)
+    throw Error("--estimator " + o.estimator +
+                " needs a volume input (it reads the volume's derivatives), not a mesh file");
+  if (!mesh_estimator && !o.normals.empty())
+    throw Error("--normals applies to the rusinkiewicz estimator; --estimator " + o.estimator +
+                " takes its normals from the volume's gradient at --scale");
+  if (mesh_estimator && o.scale != "auto")
+    throw Error("--scale applies to --estimator volume");
+  co.scale = o.scale == "auto" ? 0.0 : std::strtod(o.scale.c_str(), nullptr);
   NormalsUsed chosen;
-  chosen.source = o.normals.empty() ? (volume ? "volume" : "mesh") : o.normals;
+  chosen.source = !mesh_estimator ? "volume estimator"
+                  : o.normals.empty() ? (volume ? "volume" : "mesh")
+                                      : o.normals;
   volume::MeshNormals normals;
-  if (chosen.source == "volume") {
+  if (mesh_estimator && chosen.source == "volume") {
     if (!volume) throw Error("--normals volume needs a volume input, not a mesh file");
     timer.start("normals");
     normals = volume::gradient_normals_for_mesh(*volume, mesh, o.cap);
@@ -297,10 +328,11 @@ curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Vol
   }
   if (!reference_device(o)) device_for(o);  // open the device (and fail on it) before timing
   timer.start("curvature");
-  curvature::CurvatureField field = reference_device(o)
-                                        ? curvature::estimate_reference(mesh, co)
-                                        : curvature::estimate(mesh, device_for(o), co);
+  curvature::EstimatorReport r;
+  curvature::CurvatureField field = curvature::estimate_field(
+      mesh, {volume, isovalue}, reference_device(o) ? nullptr : &device_for(o), co, &r);
   timer.stop();
+  if (report) *report = std::move(r);
   return field;
 }
 
@@ -356,6 +388,13 @@ nlohmann::json surface_report(const Surface& s) {
                                         format_number(100 * volume::kWeakGradientFraction) +
                                         "% of its median over the vertices"}};
     if (s.normals.source == "volume" && s.normals.caps > 0) r["cap_vertices_with_box_normals"] = s.normals.caps;
+  }
+  if (!s.estimator.estimator.empty()) {
+    nlohmann::json e = {{"name", s.estimator.estimator}};
+    for (const auto& [key, value] : s.estimator.parameters) e[key] = value;
+    for (const auto& [key, how] : s.estimator.notes) e[key + "_chosen"] = how;
+    if (s.estimator.estimator == "volume") e["unreliable_vertices"] = s.estimator.unreliable;
+    r["estimator"] = e;
   }
   if (s.field && s.field->size() == s.mesh.positions.size())
     r["curvature"] = field_stats_json(*s.field, s.mesh);

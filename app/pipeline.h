@@ -13,6 +13,7 @@
 #include "core/mesh.h"
 #include "core/progress.h"
 #include "curvature/curvature_field.h"
+#include "curvature/estimator.h"
 #include "curvature/options.h"
 #include "io/compression.h"
 #include "mc/options.h"
@@ -33,11 +34,13 @@ struct CommonOptions {
   bool flip = false;              ///< --flip: reverse a mesh file's triangles
   float ao_scale = 0;             ///< --ao-scale; 0: 4 x the mean edge length
   io::Compression compress;       ///< --compress (.vtp outputs)
+  std::string estimator;          ///< --estimator (curvature::estimator_names); empty: rusinkiewicz
+  std::string scale = "auto";     ///< --scale: sigma in world units, or "auto"
 };
 
 /// Adds --iso --device --cap --snap --json --quiet and the volume options.
 void add_common_options(CLI::App& cmd, CommonOptions& o, bool with_iso = true);
-/// Adds --normals and --ao-scale, and --flip when the command takes mesh files.
+/// Adds --estimator, --scale, --normals and --ao-scale, and --flip when the command takes mesh files.
 void add_curvature_options(CLI::App& cmd, CommonOptions& o, bool mesh_input = false);
 
 /// Adds --compress none|lz4|zlib[:LEVEL] (io/compression.h) for the commands that write meshes.
@@ -80,6 +83,7 @@ struct Surface {
   Mesh mesh;
   std::optional<curvature::CurvatureField> field;  ///< carried by a mesh file, or estimated
   NormalsUsed normals;       ///< set by estimate_curvature
+  curvature::EstimatorReport estimator;  ///< set by estimate_curvature
   std::size_t welded = 0;    ///< duplicate vertices merged by prepare_mesh_for_curvature
   bool flipped = false;      ///< triangles reversed by --flip
 };
@@ -134,13 +138,16 @@ void require_curvature_format(const std::string& path);
 /// input), and warns (one line on stderr) when the closed part of the mesh is oriented inward.
 void prepare_mesh_for_curvature(Surface& s, const std::string& path, const CommonOptions& o);
 
-/// Estimates the curvature of `mesh` (stage "curvature") on the chosen device. Normals: --normals, by default volume
-/// when `volume` is given, else mesh; volume normals come from volume::gradient_normals_for_mesh
-/// (face normals where the gradient disagrees or vanishes). --normals volume without a volume
-/// (a mesh file) is an Error. `used`, when given, receives what was used.
+/// Estimates the curvature of `mesh` (stage "curvature") on the chosen device with --estimator
+/// (curvature::estimate_field). Rusinkiewicz's normals: --normals, by default volume when `volume`
+/// is given, else mesh; volume normals come from volume::gradient_normals_for_mesh (face normals
+/// where the gradient disagrees or vanishes). --normals volume without a volume (a mesh file) is an
+/// Error. The volume estimator (at --scale, from `volume` at `isovalue`) takes no --normals and
+/// needs a volume. `used` and `report`, when given, receive what was used.
 curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Volume* volume,
-                                             const CommonOptions& o, StageTimer& timer,
-                                             NormalsUsed* used = nullptr);
+                                             float isovalue, const CommonOptions& o,
+                                             StageTimer& timer, NormalsUsed* used = nullptr,
+                                             curvature::EstimatorReport* report = nullptr);
 
 /// Mesh and curvature statistics for --json and stats.json: counts, area, Euler characteristic,
 /// genus, the normals used and their fallbacks, and, when a field is present, the area-weighted

@@ -182,10 +182,7 @@ cl::Kernel& Device::kernel(cl::Program& program, const char* name) {
 Device::Device() = default;
 Device::~Device() = default;
 
-ScratchBuffers& Device::scratch() {
-  if (!scratch_) scratch_ = std::make_unique<ScratchBuffers>(*this);
-  return *scratch_;
-}
+ScratchBuffers& Device::scratch() { return state<ScratchBuffers>(); }
 
 std::string cl_error_name(int code) {
   switch (code) {

@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <typeindex>
 #include <utility>
 #include <vector>
 
@@ -63,9 +64,21 @@ class Device {
   /// launch (an enqueue keeps the values it was given). Like the queue, for one thread at a time.
   cl::Kernel& kernel(cl::Program& program, const char* name);
 
-  /// The device's reusable scratch buffers (core/cl_scratch.h). Like the queue, for one thread at
-  /// a time.
+  /// The device's reusable scratch buffers (core/cl_scratch.h), the state<ScratchBuffers>() the
+  /// mesher and the scans share. Like the queue, for one thread at a time.
   ScratchBuffers& scratch();
+
+  /// The one place every stage keeps what it reuses on this device between calls (kernels, buffers,
+  /// host storage): the object of type T, constructed as T(*this) on the first call and destroyed
+  /// with the device, before its queue and context. One object per type and device; T is usually
+  /// a stage's private struct. Like the queue, for one thread at a time (a T that must serialise
+  /// its callers holds its own mutex).
+  template <class T>
+  T& state() {
+    std::shared_ptr<void>& slot = states_[std::type_index(typeid(T))];
+    if (!slot) slot = std::make_shared<T>(*this);
+    return *static_cast<T*>(slot.get());
+  }
 
   Device();
   ~Device();
@@ -81,7 +94,7 @@ class Device {
   cl::CommandQueue queue_;
   std::map<std::string, cl::Program> programs_;
   std::map<std::pair<const cl::Program*, std::string>, cl::Kernel> kernels_;
-  std::unique_ptr<ScratchBuffers> scratch_;
+  std::map<std::type_index, std::shared_ptr<void>> states_;  // state<T>(), destroyed first
 };
 
 /// Rounds n up to a multiple of m (for global work sizes).

@@ -9,7 +9,8 @@
 
 namespace isocurv {
 
-/// The slots of a device's scratch buffers (one owner each).
+/// The slots of a device's shared scratch buffers, Device::scratch() (one owner each). Other stages
+/// keep a ScratchBuffers of their own, with their own slots, in their Device::state<T>().
 enum ScratchSlot : std::size_t {
   kScanTotals, kScanTotal, kRadixHistogram, kRadixKeys, kRadixValues,
   kMcSamples, kMcCounts, kMcOrigins, kMcCases, kMcRowRanks, kMcTriangleOffsets, kMcVertexOffsets,
@@ -22,12 +23,14 @@ enum ScratchSlot : std::size_t {
 /// Reusable device buffers by slot. Not thread-safe: like the device's queue, one user at a time.
 class ScratchBuffers {
  public:
-  explicit ScratchBuffers(Device& device) : device_(device), slots_(kScratchSlots) {}
+  /// `slots` buffers, all empty; the default is the shared set of ScratchSlot.
+  explicit ScratchBuffers(Device& device, std::size_t slots = kScratchSlots)
+      : device_(device), slots_(slots) {}
   ~ScratchBuffers();
   ScratchBuffers(const ScratchBuffers&) = delete;
   ScratchBuffers& operator=(const ScratchBuffers&) = delete;
 
-  /// Buffer `slot` (< kScratchSlots) with room for at least `bytes` (grown by half again when too small;
+  /// Buffer `slot` (< the number of slots) with room for at least `bytes` (grown by half again when too small;
   /// contents are not preserved across growth, which first waits for the device's queue to drain).
   /// Valid until the next get() of the same slot.
   cl::Buffer& get(std::size_t slot, std::size_t bytes);

@@ -16,13 +16,29 @@ enum class NormalWeights {
   area,
 };
 
+/// The curvature estimators behind curvature::estimate_field (curvature/estimator.h).
+enum class Estimator {
+  /// Rusinkiewicz's estimator on the mesh (Griffin et al.'s parallel form): curvature from the
+  /// variation of the vertex normals over each triangle. Needs only the mesh.
+  rusinkiewicz,
+  /// Curvature of the volume itself, reconstructed at a scale: gradient, Hessian and third
+  /// derivatives by Gaussian derivative filters (curvature/volume_estimate.h). Needs the volume.
+  volume,
+};
+
 struct Options {
+  /// Which estimator estimate_field runs (estimate() and estimate_reference() are Rusinkiewicz's).
+  Estimator estimator = Estimator::rusinkiewicz;
+  /// Volume estimator: the Gaussian's standard deviation sigma, world units; 0 (the default)
+  /// chooses it from the data (curvature/auto_scale.h). Ignored by the mesh estimators.
+  double scale = 0;
   /// Per-vertex outward normals supplied from outside (e.g. the volume gradient), one per mesh
   /// vertex; they need not be unit length (they are normalised). A zero or non-finite entry falls
   /// back to the mesh normal of that vertex. nullptr (the default): normals from the mesh faces.
-  /// The pointee must outlive the call.
+  /// The pointee must outlive the call. Mesh estimators only (the volume estimator takes its normals
+  /// from the reconstructed gradient).
   const std::vector<Vec3f>* vertex_normals = nullptr;
-  /// Weighting of face normals when the normals come from the mesh.
+  /// Weighting of face normals when the normals come from the mesh (mesh estimators).
   NormalWeights normal_weights = NormalWeights::max;
   /// Radius, in world units, of the hemisphere the ambient occlusion integrates over (Griffin et
   /// al. section 3.7): curvatures are multiplied by it before the polynomial is evaluated, so a

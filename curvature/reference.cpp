@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
 #include <utility>
 
 #include "curvature/derived.h"
 #include "curvature/input.h"
+#include "curvature/mesh_areas.h"
 #include "curvature/tolerances.h"
 
 namespace isocurv::curvature {
@@ -52,26 +52,11 @@ bool ldlt_solve(const Eigen::Matrix<double, N, N>& A, const Eigen::Matrix<double
   return true;
 }
 
-// Meyer et al.'s mixed area of each corner: the Voronoi region of a non-obtuse triangle (from
-// the circumcentre's barycentric coordinates); else half the area to the obtuse corner and a
-// quarter to each other one. Zero for a zero-area triangle.
+// Mixed corner areas (curvature/mesh_areas.h) of the triangle p.
 std::array<double, 3> corner_areas(const V3 p[3]) {
-  const V3 e[3] = {p[2] - p[1], p[0] - p[2], p[1] - p[0]};  // e[j] is opposite corner j
-  const double area = 0.5 * e[0].cross(e[1]).norm();
-  if (!(area > 0)) return {0, 0, 0};
-  const double l2[3] = {e[0].squaredNorm(), e[1].squaredNorm(), e[2].squaredNorm()};
-  for (int j = 0; j < 3; ++j)
-    if (l2[j] > l2[next(j)] + l2[prev(j)]) {  // obtuse at corner j
-      std::array<double, 3> a{area / 4, area / 4, area / 4};
-      a[j] = area / 2;
-      return a;
-    }
-  double w[3];  // circumcentre barycentrics, up to a common factor (their sum is 16 area^2)
-  for (int j = 0; j < 3; ++j) w[j] = l2[j] * (l2[next(j)] + l2[prev(j)] - l2[j]);
-  const double sum = w[0] + w[1] + w[2];
-  if (!(sum > 0)) return {area / 3, area / 3, area / 3};  // rounding on a needle
-  const double scale = area / (2 * sum);
-  return {scale * (w[1] + w[2]), scale * (w[2] + w[0]), scale * (w[0] + w[1])};
+  return mixed_corner_areas({{{p[0].x(), p[0].y(), p[0].z()},
+                              {p[1].x(), p[1].y(), p[1].z()},
+                              {p[2].x(), p[2].y(), p[2].z()}}});
 }
 
 // An orthonormal tangent basis (u, v) with (u, v, n) right-handed, from the unit normal alone
@@ -296,12 +281,7 @@ CurvatureField estimate_reference(const Mesh& mesh, const Options& options) {
   }
 
   // Boundary: vertices of an edge that only one (non-repeated-index) triangle uses.
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edge_uses;
-  for (const Tri& t : mesh.triangles)
-    if (!repeated_index(t))
-      for (int j = 0; j < 3; ++j) ++edge_uses[std::minmax(t[j], t[next(j)])];
-  for (const auto& [edge, uses] : edge_uses)
-    if (uses == 1) out.boundary[edge.first] = out.boundary[edge.second] = 1;
+  out.boundary = boundary_vertices(mesh);
   return out;
 }
 

@@ -19,7 +19,7 @@ constexpr int components_of() {
 }
 
 /// Calls fn(name, vector) for every array of the field in the canonical order: Normals, Area, k1,
-/// k2, dir1, dir2, H, K, dcurv, ShapeIndex, Curvedness, AO, Boundary. The vector is a
+/// k2, dir1, dir2, H, K, dcurv, ShapeIndex, Curvedness, AO, Boundary, Unreliable. The vector is a
 /// std::vector<float>, <Vec3f>, <std::array<float, 4>> or <std::uint8_t>; fn is usually a generic
 /// lambda. Works on const and non-const fields. The field's `extra` arrays come last, in order.
 template <class Field, class Fn>
@@ -38,6 +38,7 @@ void for_each_array(Field& f, Fn&& fn) {
   fn("Curvedness", f.curvedness);
   fn("AO", f.ao);
   fn("Boundary", f.boundary);
+  fn("Unreliable", f.unreliable);
   for (auto& e : f.extra) fn(e.name.c_str(), e.values);
 }
 

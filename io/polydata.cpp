@@ -9,7 +9,9 @@
 #include <vtkFloatArray.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
+#include <vtkFieldData.h>
 #include <vtkPolyData.h>
+#include <vtkStringArray.h>
 #include <vtkTypeInt32Array.h>
 #include <vtkTypeInt64Array.h>
 #include <vtkUnsignedCharArray.h>
@@ -97,6 +99,12 @@ vtkSmartPointer<vtkPolyData> to_polydata(const Mesh& mesh, const curvature::Curv
       if (std::strcmp(name, "Normals") == 0) pd->SetNormals(array);
       else pd->AddArray(array);
     });
+    for (const auto& [key, value] : field->metadata) {  // how the field was made
+      auto text = vtkSmartPointer<vtkStringArray>::New();
+      text->SetName(key.c_str());
+      text->InsertNextValue(value);
+      poly->GetFieldData()->AddArray(text);
+    }
   }
   return poly;
 }

@@ -1,0 +1,55 @@
+#pragma once
+// curvature::estimate_field: every curvature estimator behind one call (Options::estimator), all
+// returning the same CurvatureField (names and conventions of curvature_field.h).
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/cl_device.h"
+#include "core/mesh.h"
+#include "curvature/curvature_field.h"
+#include "curvature/options.h"
+#include "volume/volume.h"
+
+namespace isocurv::curvature {
+
+/// The estimator's name as the command line and the reports spell it: "rusinkiewicz", "volume".
+const char* estimator_name(Estimator e);
+/// The estimator called `name`, or nothing for an unknown name.
+std::optional<Estimator> estimator_from_name(const std::string& name);
+/// Every estimator's name, in enum order (for help texts and error messages).
+std::vector<std::string> estimator_names();
+
+/// The CurvatureField arrays (file names: "Normals", "Area", ...) estimator `e` fills; the others
+/// stay empty and are absent from output files.
+std::vector<std::string> arrays_filled(Estimator e);
+
+/// True when estimator `e` needs the volume the mesh was extracted from.
+bool needs_volume(Estimator e);
+
+/// The volume a mesh was extracted from, for the estimators that read it.
+struct VolumeSource {
+  const volume::Volume* volume = nullptr;  ///< must outlive the call
+  float isovalue = 0;                      ///< the mesh's isovalue
+};
+
+/// What an estimate_field call used, for reports (--json, stats.json, the VTP's field data).
+struct EstimatorReport {
+  std::string estimator;  ///< estimator_name
+  /// The estimator's parameters by name, in a fixed order, e.g. {"scale", 1.5} (world units).
+  std::vector<std::pair<std::string, double>> parameters;
+  /// How a parameter chosen from the data was chosen, e.g. {"scale", "auto"}; empty otherwise.
+  std::vector<std::pair<std::string, std::string>> notes;
+  std::size_t unreliable = 0;  ///< vertices flagged "Unreliable" (volume: vanishing gradient)
+};
+
+/// Per-vertex curvature of `mesh` by options.estimator, on `device` or, when device is nullptr,
+/// by the estimator's double-precision C++ reference. The volume estimator needs `source` (with a
+/// volume; else Error "needs a volume"); the mesh estimators ignore it. Deterministic. Throws
+/// isocurv::Error for invalid input or options, or an OpenCL failure. `report`, when given,
+/// receives what was used.
+CurvatureField estimate_field(const Mesh& mesh, const VolumeSource& source, Device* device,
+                              const Options& options, EstimatorReport* report = nullptr);
+
+}  // namespace isocurv::curvature

@@ -1,0 +1,26 @@
+#pragma once
+// What every curvature estimator takes from the mesh itself, whatever gives the curvature: the
+// mixed Voronoi areas ("Area") and the open-boundary flags ("Boundary").
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/mesh.h"
+
+namespace isocurv::curvature {
+
+/// Meyer et al.'s mixed area of each corner of a triangle with corners p[0..2] (world units
+/// squared): the Voronoi region of a non-obtuse triangle (from the circumcentre's barycentric
+/// coordinates); else half the area to the obtuse corner and a quarter to each other one. Zero for
+/// a zero-area triangle.
+std::array<double, 3> mixed_corner_areas(const std::array<std::array<double, 3>, 3>& p);
+
+/// Per vertex, the sum of its corners' mixed areas (double precision, stored as float). Triangles
+/// with a repeated index contribute nothing. Indices must be in range (curvature::check_input).
+std::vector<float> mixed_vertex_areas(const Mesh& mesh);
+
+/// Per vertex, 1 when it lies on an edge that only one triangle (without a repeated index) uses,
+/// else 0. Indices must be in range.
+std::vector<std::uint8_t> boundary_vertices(const Mesh& mesh);
+
+}  // namespace isocurv::curvature

@@ -1,0 +1,55 @@
+#pragma once
+// The volume estimator: curvature of the volume itself at each mesh vertex, from derivatives of
+// the volume reconstructed at scale sigma by Gaussian derivative filters (volume/gaussian_jet.h).
+//
+// At each vertex x0 (on the mesh, which is not moved): the gradient g0 there gives the line
+// x0 + t g0/|g0|; kNewtonSteps Newton steps find where it meets the reconstructed isosurface
+// (|t| capped at kMaxShiftVoxels voxels); there the gradient, Hessian and third derivatives give
+// the curvature by curvature/implicit_curvature.h (Normals, k1 >= k2, dir1, dir2, H, K, dcurv,
+// ShapeIndex, Curvedness, AO). Area and Boundary come from the mesh (curvature/mesh_areas.h).
+// A vertex is Unreliable (flag 1, its curvature zero, AO that of a plane, its normal the
+// area-weighted face normal) where the gradient is at most volume::kWeakGradientFraction of its
+// median over the vertices, or the reconstructed surface was not found within the cap.
+#include <cstddef>
+
+#include "core/cl_device.h"
+#include "core/mesh.h"
+#include "curvature/curvature_field.h"
+#include "volume/volume.h"
+
+namespace isocurv::curvature {
+
+/// Newton steps along each vertex's gradient line (a fixed count: deterministic, and from a
+/// marching-cubes vertex, within a fraction of a voxel of the surface, two leave it within
+/// 1e-3 voxel; the check kOnSurfaceVoxels flags the rest).
+inline constexpr int kNewtonSteps = 2;
+/// The largest move along the gradient line, in voxels (the largest spacing).
+inline constexpr double kMaxShiftVoxels = 1.5;
+/// The reconstructed surface counts as found when the field there is within this many voxels
+/// (|F - iso| / |g|, in the largest spacing) of the isovalue.
+inline constexpr double kOnSurfaceVoxels = 0.05;
+
+/// What one volume estimate did.
+struct VolumeEstimateStats {
+  std::size_t unreliable = 0;  ///< vertices flagged Unreliable
+  std::size_t bricks = 0;      ///< 8^3 bricks of samples read (device path)
+};
+
+/// The volume estimator on `device` (float; the same steps as volume_estimate_reference), at
+/// scale `sigma` (world units) for the surface at `isovalue` of `volume` from which `mesh` was
+/// extracted. Only the 8^3 bricks within the filters' reach of a vertex are gathered and sent to
+/// the device. `ao_scale`: Options::ao_scale. Deterministic. Throws isocurv::Error when sigma is
+/// not positive and finite, larger than the volume, or so large against a spacing that a filter
+/// would exceed volume::kMaxDeviation voxels; when the grid transform is not affine with
+/// orthogonal axes; for invalid meshes (check_input); or on an OpenCL failure.
+CurvatureField volume_estimate(const Mesh& mesh, const volume::Volume& volume, float isovalue,
+                               double sigma, float ao_scale, Device& device,
+                               VolumeEstimateStats* stats = nullptr);
+
+/// The specification: the same in double precision on the host, single-threaded per vertex
+/// batch (TBB), reading the grid directly.
+CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume& volume,
+                                         float isovalue, double sigma, float ao_scale,
+                                         VolumeEstimateStats* stats = nullptr);
+
+}  // namespace isocurv::curvature

@@ -1,0 +1,152 @@
+// The volume estimator's specification (volume_estimate_reference) and the steps the device path
+// shares with it (detail/volume_setup.h).
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/error.h"
+#include "core/mesh_measures.h"
+#include "curvature/derived.h"
+#include "curvature/detail/volume_setup.h"
+#include "curvature/implicit_curvature.h"
+#include "curvature/input.h"
+#include "curvature/mesh_areas.h"
+#include "curvature/volume_estimate.h"
+#include "volume/gradient_normals.h"
+
+namespace isocurv::curvature {
+namespace detail {
+
+VolumeSetup volume_setup(const Mesh& mesh, const volume::Volume& volume, double sigma) {
+  check_input(mesh, Options{});
+  if (!volume.grid) throw Error("curvature: the volume estimator needs a volume");
+  VolumeSetup s;
+  s.frame = volume::grid_frame(volume);
+  s.voxel = std::max({s.frame.spacing[0], s.frame.spacing[1], s.frame.spacing[2]});
+  const double finest = std::min({s.frame.spacing[0], s.frame.spacing[1], s.frame.spacing[2]});
+  if (!(sigma > 0) || !std::isfinite(sigma))
+    throw Error("curvature: the scale must be a positive finite number (world units), not " +
+                std::to_string(sigma));
+  if (!volume.domain.empty()) {
+    const openvdb::Coord dim = volume.domain.dim();
+    double extent = 0;
+    for (int a = 0; a < 3; ++a) extent = std::max(extent, dim[a] * s.frame.spacing[a]);
+    if (sigma > extent)
+      throw Error(volume.path, "scale " + std::to_string(sigma) +
+                                   " is larger than the volume (" + std::to_string(extent) +
+                                   " world units across)");
+  }
+  if (sigma / finest > volume::kMaxDeviation)
+    throw Error(volume.path, "scale " + std::to_string(sigma) + " is " +
+                                 std::to_string(sigma / finest) +
+                                 " voxels along the finest axis; at most " +
+                                 std::to_string(int(volume::kMaxDeviation)) + " are supported");
+  s.sigma = sigma;
+  s.max_shift = kMaxShiftVoxels * s.voxel;
+  s.inside = volume.inside;
+  return s;
+}
+
+std::size_t finish_volume_field(const Mesh& mesh, const RawVertex& raw, float ao_scale,
+                                CurvatureField& field) {
+  const std::size_t nv = mesh.positions.size();
+  field.area = mixed_vertex_areas(mesh);
+  field.boundary = boundary_vertices(mesh);
+  field.unreliable.assign(nv, 0);
+  std::vector<float> lengths;
+  lengths.reserve(nv);
+  for (float g : raw.gradient_norm)
+    if (g > 0) lengths.push_back(g);
+  float weak_below = 0;
+  if (!lengths.empty()) {
+    auto mid = lengths.begin() + lengths.size() / 2;
+    std::nth_element(lengths.begin(), mid, lengths.end());
+    weak_below = float(volume::kWeakGradientFraction) * *mid;
+  }
+  std::vector<Vec3f> faces;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < nv; ++i) {
+    if (raw.gradient_norm[i] > weak_below && !raw.missed[i]) continue;
+    if (faces.empty()) faces = area_weighted_normals(mesh);
+    field.unreliable[i] = 1;
+    ++count;
+    const Vec3f a = faces[i];
+    const double len = std::sqrt(double(a[0]) * a[0] + double(a[1]) * a[1] + double(a[2]) * a[2]);
+    field.normals[i] = len > 0 ? Vec3f{float(a[0] / len), float(a[1] / len), float(a[2] / len)}
+                               : Vec3f{0, 0, 0};
+    field.k1[i] = field.k2[i] = field.H[i] = field.K[i] = 0;
+    field.dir1[i] = field.dir2[i] = Vec3f{0, 0, 0};
+    field.dcurv[i] = {0, 0, 0, 0};
+    field.shape_index[i] = shape_index(0.0f, 0.0f);
+    field.curvedness[i] = 0;
+    field.ao[i] = ambient_occlusion(0.0f, 0.0f, ao_scale);
+  }
+  return count;
+}
+
+}  // namespace detail
+
+namespace {
+
+Vec3f to_f3(const Eigen::Vector3d& v) { return {float(v.x()), float(v.y()), float(v.z())}; }
+
+}  // namespace
+
+CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume& volume,
+                                         float isovalue, double sigma, float ao_scale,
+                                         VolumeEstimateStats* stats) {
+  const detail::VolumeSetup s = detail::volume_setup(mesh, volume, sigma);
+  if (!std::isfinite(ao_scale)) throw Error("curvature: ao_scale must be finite");
+  const std::size_t nv = mesh.positions.size();
+  CurvatureField out;
+  out.normals.resize(nv), out.k1.resize(nv), out.k2.resize(nv), out.dir1.resize(nv);
+  out.dir2.resize(nv), out.H.resize(nv), out.K.resize(nv), out.dcurv.resize(nv);
+  out.shape_index.resize(nv), out.curvedness.resize(nv), out.ao.resize(nv);
+  detail::RawVertex raw{std::vector<float>(nv, 0.0f), std::vector<std::uint8_t>(nv, 0)};
+  const openvdb::FloatGrid& grid = *volume.grid;
+
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 256), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const Vec3f& p = mesh.positions[i];
+      const openvdb::Vec3d x0(p[0], p[1], p[2]);
+      // The gradient line through the vertex, and Newton steps along it to F = isovalue.
+      const volume::Jet j0 = volume::gaussian_jet(grid, s.frame, x0, s.sigma, 1);
+      const openvdb::Vec3d g0(j0.gradient[0], j0.gradient[1], j0.gradient[2]);
+      const double g0len = g0.length();
+      PointCurvature c;
+      bool missed = true;
+      if (g0len > 0 && std::isfinite(g0len)) {
+        const openvdb::Vec3d d = g0 / g0len;
+        double t = 0;
+        volume::Jet j = j0;
+        for (int step = 0; step < kNewtonSteps; ++step) {
+          if (step > 0) j = volume::gaussian_jet(grid, s.frame, x0 + t * d, s.sigma, 1);
+          const double slope = j.gradient[0] * d[0] + j.gradient[1] * d[1] + j.gradient[2] * d[2];
+          if (!(std::abs(slope) > 0)) break;
+          t = std::clamp(t - (j.value - isovalue) / slope, -s.max_shift, s.max_shift);
+        }
+        const volume::Jet jet = volume::gaussian_jet(grid, s.frame, x0 + t * d, s.sigma, 3);
+        c = implicit_curvature(jet, s.inside);
+        missed = !(std::abs(jet.value - isovalue) <= kOnSurfaceVoxels * s.voxel * c.gradient_norm);
+      }
+      raw.gradient_norm[i] = float(c.gradient_norm);
+      raw.missed[i] = missed;
+      out.normals[i] = to_f3(c.normal);
+      out.k1[i] = float(c.k1), out.k2[i] = float(c.k2);
+      out.dir1[i] = to_f3(c.dir1), out.dir2[i] = to_f3(c.dir2);
+      out.H[i] = float((c.k1 + c.k2) / 2), out.K[i] = float(c.k1 * c.k2);
+      out.dcurv[i] = {float(c.dcurv[0]), float(c.dcurv[1]), float(c.dcurv[2]), float(c.dcurv[3])};
+      out.shape_index[i] = float(shape_index(c.k1, c.k2));
+      out.curvedness[i] = float(curvedness(c.k1, c.k2));
+      out.ao[i] = float(ambient_occlusion(c.k1, c.k2, double(ao_scale)));
+    }
+  });
+  const std::size_t unreliable = detail::finish_volume_field(mesh, raw, ao_scale, out);
+  if (stats) *stats = VolumeEstimateStats{unreliable, 0};
+  return out;
+}
+
+}  // namespace isocurv::curvature

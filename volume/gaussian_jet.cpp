@@ -1,0 +1,135 @@
+#include "volume/gaussian_jet.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace isocurv::volume {
+
+GridFrame grid_frame(const Volume& volume) {
+  const openvdb::math::Transform& xform = volume.grid->transform();
+  if (!xform.isLinear())
+    throw Error(volume.path, "the volume estimator needs an affine grid transform");
+  GridFrame f;
+  f.origin = xform.indexToWorld(openvdb::Vec3d(0, 0, 0));
+  for (int a = 0; a < 3; ++a) {
+    openvdb::Vec3d e(0, 0, 0);
+    e[a] = 1;
+    const openvdb::Vec3d col = xform.indexToWorld(e) - f.origin;
+    for (int r = 0; r < 3; ++r) f.A(r, a) = col[r];
+    f.spacing[a] = col.length();
+  }
+  for (int a = 0; a < 3; ++a)
+    for (int b = a + 1; b < 3; ++b) {
+      double d = 0;
+      for (int r = 0; r < 3; ++r) d += f.A(r, a) * f.A(r, b);
+      if (std::abs(d) > 1e-6 * f.spacing[a] * f.spacing[b])
+        throw Error(volume.path,
+                    "the volume estimator needs a grid whose axes are orthogonal (this transform "
+                    "shears them); use --estimator rusinkiewicz");
+    }
+  f.B = f.A.inverse();
+  f.clamp = volume.dense && !volume.domain.empty();
+  f.lo = volume.domain.min();
+  f.hi = volume.domain.max();
+  return f;
+}
+
+AxisWeights axis_weights(double q, double s) {
+  AxisWeights aw;
+  const double reach = kGaussianRadius * s;
+  aw.first = int(std::ceil(q - reach));
+  const int last = int(std::floor(q + reach));
+  aw.count = std::min(last - aw.first + 1, AxisWeights::kMaxTaps);
+  const double s2 = s * s;
+  double moment[4] = {0, 0, 0, 0};
+  for (int t = 0; t < aw.count; ++t) {
+    const double d = aw.first + t - q;  // tap minus evaluation point
+    const double g = std::exp(-d * d / (2 * s2));
+    // d^n/dq^n of G(q - j): with x = q - j = -d, G' = -x/s^2 G, G'' = (x^2/s^4 - 1/s^2) G and
+    // G''' = (-x^3/s^6 + 3x/s^4) G.
+    aw.w[0][t] = g;
+    aw.w[1][t] = d / s2 * g;
+    aw.w[2][t] = (d * d / s2 - 1) / s2 * g;
+    aw.w[3][t] = (d * d / s2 - 3) * d / (s2 * s2) * g;
+    moment[0] += aw.w[0][t];
+    moment[1] += aw.w[1][t] * d;
+    moment[2] += aw.w[2][t] * d * d / 2;
+    moment[3] += aw.w[3][t] * d * d * d / 6;
+  }
+  for (int n = 0; n < 4; ++n)
+    for (int t = 0; t < aw.count; ++t) aw.w[n][t] /= moment[n];
+  return aw;
+}
+
+Jet gaussian_jet(const openvdb::FloatGrid& grid, const GridFrame& frame, const openvdb::Vec3d& p,
+                 double sigma, int order) {
+  const openvdb::Vec3d q = frame.to_index(p);
+  AxisWeights w[3];
+  for (int a = 0; a < 3; ++a) w[a] = axis_weights(q[a], sigma / frame.spacing[a]);
+  openvdb::FloatGrid::ConstAccessor acc = grid.getConstAccessor();
+  auto clamp = [&](int v, int a) {
+    return frame.clamp ? std::min(std::max(v, frame.lo[a]), frame.hi[a]) : v;
+  };
+
+  // d[nx][ny][nz]: the index-space derivative of orders (nx, ny, nz), nx + ny + nz <= order.
+  double d[4][4][4] = {};
+  for (int tz = 0; tz < w[2].count; ++tz) {
+    double dxy[4][4] = {};
+    for (int ty = 0; ty < w[1].count; ++ty) {
+      double dx[4] = {};
+      for (int tx = 0; tx < w[0].count; ++tx) {
+        const openvdb::Coord c(clamp(w[0].first + tx, 0), clamp(w[1].first + ty, 1),
+                               clamp(w[2].first + tz, 2));
+        const double f = acc.getValue(c);
+        for (int nx = 0; nx <= order; ++nx) dx[nx] += f * w[0].w[nx][tx];
+      }
+      for (int nx = 0; nx <= order; ++nx)
+        for (int ny = 0; nx + ny <= order; ++ny) dxy[nx][ny] += dx[nx] * w[1].w[ny][ty];
+    }
+    for (int nx = 0; nx <= order; ++nx)
+      for (int ny = 0; nx + ny <= order; ++ny)
+        for (int nz = 0; nx + ny + nz <= order; ++nz) d[nx][ny][nz] += dxy[nx][ny] * w[2].w[nz][tz];
+  }
+
+  // Index-space tensors by axis indices, then to world space: each index of a derivative tensor
+  // picks up B (d/dworld_k = sum_a B(a, k) d/dindex_a).
+  auto orders = [](std::initializer_list<int> axes) {
+    int n[3] = {0, 0, 0};
+    for (int a : axes) ++n[a];
+    return std::array<int, 3>{n[0], n[1], n[2]};
+  };
+  auto idx = [&](std::initializer_list<int> axes) {
+    const std::array<int, 3> n = orders(axes);
+    return d[n[0]][n[1]][n[2]];
+  };
+  const openvdb::Mat3d& B = frame.B;
+  Jet jet;
+  jet.value = d[0][0][0];
+  for (int k = 0; k < 3; ++k)
+    for (int a = 0; a < 3; ++a) jet.gradient[k] += B(a, k) * idx({a});
+  static const int kPairs[6][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
+  static const int kTriples[10][3] = {{0, 0, 0}, {0, 0, 1}, {0, 0, 2}, {0, 1, 1}, {0, 1, 2},
+                                      {0, 2, 2}, {1, 1, 1}, {1, 1, 2}, {1, 2, 2}, {2, 2, 2}};
+  if (order >= 2)
+    for (int e = 0; e < 6; ++e) {
+      const int k = kPairs[e][0], l = kPairs[e][1];
+      double sum = 0;
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) sum += B(a, k) * B(b, l) * idx({a, b});
+      jet.hessian[e] = sum;
+    }
+  if (order >= 3)
+    for (int e = 0; e < 10; ++e) {
+      const int k = kTriples[e][0], l = kTriples[e][1], m = kTriples[e][2];
+      double sum = 0;
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b)
+          for (int c = 0; c < 3; ++c) sum += B(a, k) * B(b, l) * B(c, m) * idx({a, b, c});
+      jet.third[e] = sum;
+    }
+  return jet;
+}
+
+}  // namespace isocurv::volume

@@ -1,0 +1,32 @@
+#pragma once
+// A robust estimate of a volume's voxel noise near a surface (for choosing a smoothing scale).
+#include <cstddef>
+
+#include "core/mesh.h"
+#include "volume/gaussian_jet.h"
+#include "volume/volume.h"
+
+namespace isocurv::volume {
+
+/// Voxels within this many voxels (along each axis) of an isovalue crossing are left out of the
+/// noise estimate: there the surface's own profile, not noise, dominates the residual.
+inline constexpr int kNoiseEdgeDistance = 3;
+
+/// The noise estimate and what it rests on.
+struct NoiseEstimate {
+  double sigma = 0;         ///< standard deviation of the voxel noise, in the volume's value units
+  std::size_t voxels = 0;   ///< voxels it was measured on
+};
+
+/// Noise of `grid` in the 8^3 blocks holding the points (up to `max_blocks` of them, taken
+/// evenly): the residual r = v - (mean of the 6 face neighbours) of every voxel there that is not
+/// within kNoiseEdgeDistance voxels of an `isovalue` crossing along an axis (nor, for a clamped
+/// dense frame, of the domain's border), and sigma = 1.4826 MAD(r) / sqrt(7/6) (the residual of
+/// white noise of deviation s has deviation s sqrt(7/6); MAD, the median absolute deviation from
+/// the median, ignores the few voxels structure still dominates). sigma = 0 when no voxel
+/// qualifies. Deterministic.
+NoiseEstimate estimate_noise(const openvdb::FloatGrid& grid, const GridFrame& frame,
+                             const Positions& points, float isovalue,
+                             std::size_t max_blocks = 256);
+
+}  // namespace isocurv::volume
