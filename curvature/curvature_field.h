@@ -10,7 +10,8 @@ namespace isocurv::curvature {
 
 /// Per-vertex curvature of a Mesh; every vector has one entry per mesh vertex. Units: world
 /// lengths; curvatures in 1/length. Sign: normals point out of the object, so a solid sphere of
-/// radius R has k1 = k2 = H = +1/R.
+/// radius R has k1 = k2 = H = +1/R. An array the estimator does not fill is empty (absent from
+/// output files), never zeros (curvature::arrays_filled).
 struct CurvatureField {
   std::vector<Vec3f> normals;                ///< "Normals": unit outward normal
   std::vector<float> area;                   ///< "Area": mixed Voronoi area (Meyer et al.)
@@ -22,6 +23,9 @@ struct CurvatureField {
   std::vector<float> curvedness;             ///< "Curvedness" = sqrt((k1^2+k2^2)/2)
   std::vector<float> ao;                     ///< "AO": curvature-based ambient occlusion in [0, 1]
   std::vector<std::uint8_t> boundary;        ///< "Boundary": 1 on open-boundary vertices
+  std::vector<std::uint8_t> unreliable;      ///< "Unreliable": 1 where the estimator could not
+                                             ///< measure (volume: vanishing gradient); absent for
+                                             ///< estimators that always can
 
   std::size_t size() const { return k1.size(); }
 };
