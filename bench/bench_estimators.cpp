@@ -10,6 +10,7 @@
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -264,60 +265,69 @@ void marching_cubes_protocol() {
   }
 }
 
-// The kernel paths' time on sphere meshes (marching cubes), beside estimate() and vtkCurvatures.
-void speed(bool quick) {
-  std::printf("\nSpeed (PoCL here), median ms: kernel paths on MC sphere meshes, mesh normals; "
-              "rusinkiewicz steps = normals + tensor + directions (+ derivative)\n");
-  openvdb::initialize();
+// One speed row: the kernel paths' median time on `m`, beside estimate() and vtkCurvatures.
+void speed_row(const char* name, const Mesh& m, int runs) {
   Device& dev = Device::default_device();
+  auto poly = io::to_polydata(m, nullptr);
+  auto vtk = [&](int type) {
+    vtkNew<vtkCurvatures> c;
+    c->SetInputData(poly);
+    c->SetCurvatureType(type);
+    c->Update();
+  };
+  const std::vector<double> t = bench::medians_ms(
+      {{[&] { curvature::estimate(m, dev); }, runs},
+       {[&] { curvature::estimate_batagelo(m, dev); }, runs},
+       {[&] { curvature::estimate_prantl(m, dev, {}, 3); }, runs},
+       {[&] { curvature::estimate_prantl(m, dev, {}, 2); }, runs},
+       {[&] {
+          vtk(VTK_CURVATURE_MEAN);
+          vtk(VTK_CURVATURE_GAUSS);
+        },
+        std::max(1, runs / 2)}});
+  curvature::Timings r, b, p3, p2;
+  curvature::estimate(m, dev, {}, &r);
+  curvature::estimate_batagelo(m, dev, {}, &b);
+  curvature::estimate_prantl(m, dev, {}, 3, curvature::PrantlAveraging::area, &p3);
+  curvature::estimate_prantl(m, dev, {}, 2, curvature::PrantlAveraging::area, &p2);
+  const double r_steps = r.normals_areas + r.tensor + r.directions;
+  const double b_steps = b.normals_areas + b.tensor + b.directions;
+  const double p3_steps = p3.normals_areas + p3.tensor + p3.directions;
+  const double p2_steps = p2.normals_areas + p2.tensor + p2.directions;
+  std::printf("  %-14s %8zu v: whole call rusinkiewicz %.1f | batagelo %.1f | prantl3 %.1f | "
+              "prantl2 %.1f | vtkCurvatures H+K %.1f\n",
+              name, m.vertex_count(), t[0], t[1], t[2], t[3], t[4]);
+  std::printf("  %-25s normals+tensor+directions: rusinkiewicz %.1f | batagelo %.1f (%.2fx) | "
+              "prantl3 %.1f (%.2fx) | prantl2 %.1f (%.2fx); derivative: rusinkiewicz %.1f, "
+              "batagelo %.1f; host adjacency: rusinkiewicz %.1f, batagelo %.1f\n",
+              "", r_steps, b_steps, b_steps / r_steps, p3_steps, p3_steps / r_steps, p2_steps,
+              p2_steps / r_steps, r.derivative, b.derivative, r.adjacency, b.adjacency);
+  const double per = 1048576.0 / double(m.vertex_count());
+  const double mem_r = bench::peak_extra_mib([&] { curvature::estimate(m, dev); });
+  const double mem_b = bench::peak_extra_mib([&] { curvature::estimate_batagelo(m, dev); });
+  const double mem_p = bench::peak_extra_mib([&] { curvature::estimate_prantl(m, dev); });
+  std::printf("  %-25s peak extra memory per vertex (bytes; PoCL's buffers are host memory): "
+              "rusinkiewicz %.0f | batagelo %.0f | prantl %.0f\n",
+              "", mem_r * per, mem_b * per, mem_p * per);
+  std::fflush(stdout);
+}
+
+void speed(bool quick) {
+  std::printf("\nSpeed (PoCL here), median ms, mesh normals (the step times drain the queue "
+              "after each step)\n");
+  openvdb::initialize();
   const auto field = datasets::make_field("sphere");
-  const int resolutions[] = {160, 360, 560};  // about 0.2M, 1M and 2.5M vertices
-  for (int res : resolutions) {
-    if (quick && res > 160) break;
-    const volume::Volume vol = datasets::sample(*field, res);
-    const Mesh m = mc::extract(vol, float(field->isovalue()), dev);
-    auto poly = io::to_polydata(m, nullptr);
-    auto vtk = [&](int type) {
-      vtkNew<vtkCurvatures> c;
-      c->SetInputData(poly);
-      c->SetCurvatureType(type);
-      c->Update();
-    };
-    const std::vector<double> t = bench::medians_ms(
-        {{[&] { curvature::estimate(m, dev); }, 5},
-         {[&] { curvature::estimate_batagelo(m, dev); }, 5},
-         {[&] { curvature::estimate_prantl(m, dev, {}, 3); }, 5},
-         {[&] { curvature::estimate_prantl(m, dev, {}, 2); }, 5},
-         {[&] {
-            vtk(VTK_CURVATURE_MEAN);
-            vtk(VTK_CURVATURE_GAUSS);
-          },
-          3}});
-    curvature::Timings r, b, p3, p2;
-    curvature::estimate(m, dev, {}, &r);
-    curvature::estimate_batagelo(m, dev, {}, &b);
-    curvature::estimate_prantl(m, dev, {}, 3, curvature::PrantlAveraging::area, &p3);
-    curvature::estimate_prantl(m, dev, {}, 2, curvature::PrantlAveraging::area, &p2);
-    const double r_steps = r.normals_areas + r.tensor + r.directions;
-    const double b_steps = b.normals_areas + b.tensor + b.directions;
-    const double p3_steps = p3.normals_areas + p3.tensor + p3.directions;
-    const double p2_steps = p2.normals_areas + p2.tensor + p2.directions;
-    std::printf("  %7zu v: total rusinkiewicz %.1f batagelo %.1f prantl3 %.1f prantl2 %.1f "
-                "vtkCurvatures(H+K) %.1f\n",
-                m.vertex_count(), t[0], t[1], t[2], t[3], t[4]);
-    std::printf("            steps normals+tensor+directions: rusinkiewicz %.1f | batagelo %.1f "
-                "(%.2fx; + derivative %.1f vs %.1f) | prantl3 %.1f (%.2fx) | prantl2 %.1f "
-                "(%.2fx); normals step alone %.1f\n",
-                r_steps, b_steps, b_steps / r_steps, b.derivative, r.derivative, p3_steps,
-                p3_steps / r_steps, p2_steps, p2_steps / r_steps, r.normals_areas);
-    const double mem_r = bench::peak_extra_mib([&] { curvature::estimate(m, dev); });
-    const double mem_b = bench::peak_extra_mib([&] { curvature::estimate_batagelo(m, dev); });
-    const double mem_p = bench::peak_extra_mib([&] { curvature::estimate_prantl(m, dev); });
-    const double per = 1048576.0 / double(m.vertex_count());
-    std::printf("            peak extra host memory per vertex (bytes; PoCL buffers are host "
-                "memory): rusinkiewicz %.0f batagelo %.0f prantl %.0f\n",
-                mem_r * per, mem_b * per, mem_p * per);
-    std::fflush(stdout);
+  const volume::Volume vol = datasets::sample(*field, 160);
+  speed_row("MC sphere 160^3", mc::extract(vol, float(field->isovalue()), Device::default_device()),
+            5);
+  struct Grid {
+    int nu, nv;
+  };
+  const Grid grids[] = {{1000, 200}, {2236, 448}, {3536, 708}};  // 0.2M, 1M, 2.5M vertices
+  for (const Grid& g : grids) {
+    if (quick && g.nu > 1000) break;
+    const test::Torus t = test::torus(1, 0.4, g.nu, g.nv, 0.2);
+    speed_row("jittered torus", t.mesh, g.nu > 2000 ? 3 : 5);
   }
 }
 

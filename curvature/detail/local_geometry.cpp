@@ -71,26 +71,30 @@ std::vector<V3> vertex_normals(const Mesh& mesh, const Options& options, NormalS
 }
 
 Neighbours vertex_neighbours(const Mesh& mesh) {
+  VertexCorners corners;
+  build_vertex_corners(mesh, corners);
+  return vertex_neighbours(mesh, corners);
+}
+
+Neighbours vertex_neighbours(const Mesh& mesh, const VertexCorners& corners) {
   const std::size_t nv = mesh.positions.size();
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;  // (vertex, neighbour)
-  pairs.reserve(mesh.triangles.size() * 6);
-  for (const Tri& t : mesh.triangles) {
-    if (repeated_index(t)) continue;
-    for (int j = 0; j < 3; ++j) {
-      pairs.emplace_back(t[j], t[next(j)]);
-      pairs.emplace_back(t[next(j)], t[j]);
-    }
-  }
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   Neighbours n;
   n.offsets.assign(nv + 1, 0);
-  n.ids.reserve(pairs.size());
-  for (const auto& [v, q] : pairs) {
-    ++n.offsets[v + 1];
-    n.ids.push_back(q);
+  n.ids.reserve(corners.corners.size() + nv);  // closed fans: as many neighbours as corners
+  std::vector<std::uint32_t> ring;
+  for (std::size_t v = 0; v < nv; ++v) {
+    ring.clear();
+    for (std::uint32_t k = corners.offsets[v]; k < corners.offsets[v + 1]; ++k) {
+      const std::uint32_t c = corners.corners[k], f = c / 3, j = c % 3;
+      const Tri& t = mesh.triangles[f];
+      ring.push_back(t[next(int(j))]);
+      ring.push_back(t[prev(int(j))]);
+    }
+    std::sort(ring.begin(), ring.end());
+    ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+    n.ids.insert(n.ids.end(), ring.begin(), ring.end());
+    n.offsets[v + 1] = std::uint32_t(n.ids.size());
   }
-  for (std::size_t i = 0; i < nv; ++i) n.offsets[i + 1] += n.offsets[i];
   return n;
 }
 

@@ -11,6 +11,7 @@
 #include "core/mesh.h"
 #include "curvature/curvature_field.h"
 #include "curvature/options.h"
+#include "curvature/vertex_corners.h"
 
 namespace isocurv::curvature::detail {
 
@@ -40,6 +41,8 @@ struct Neighbours {
   std::vector<std::uint32_t> ids;
 };
 Neighbours vertex_neighbours(const Mesh& mesh);
+/// The same from an adjacency already built for the mesh (build_vertex_corners): linear time.
+Neighbours vertex_neighbours(const Mesh& mesh, const VertexCorners& corners);
 
 /// Per vertex the sum of Meyer et al.'s mixed corner areas (the "Area" array).
 std::vector<double> mixed_vertex_areas(const Mesh& mesh);

@@ -98,7 +98,7 @@ void upload_and_normals(MeshPassSession& s, Device& device, const Mesh& mesh,
   for (std::size_t v = 0; v < nv; ++v)
     if (s.adjacency.offsets[v + 1] - s.adjacency.offsets[v] > kMaxFan)
       s.large.push_back(std::uint32_t(v));
-  if (with_neighbours) s.neighbours = vertex_neighbours(mesh);
+  if (with_neighbours) s.neighbours = vertex_neighbours(mesh, s.adjacency);
   t.adjacency = lap_ms(clock);
 
   upload(q, ctx, s.positions, mesh.positions);
