@@ -10,6 +10,7 @@ void register_commands(CLI::App& app) {
   register_render(app);
   register_view(app);
   register_check(app);
+  register_compare(app);
   register_devices(app);
 }
 
