@@ -11,6 +11,7 @@ void register_commands(CLI::App& app) {
   register_render(app);
   register_view(app);
   register_check(app);
+  register_compare(app);
   register_devices(app);
 }
 

@@ -1,0 +1,240 @@
+// isocurv compare VOLUME|MESH: every mesh curvature estimator on the same surface, side by side.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/commands.h"
+#include "app/pipeline.h"
+#include "core/error.h"
+#include "core/mesh_measures.h"
+#include "curvature/ao_scale.h"
+#include "curvature/mesh_estimators.h"
+#include "datasets/exact_curvature.h"
+#include "datasets/field.h"
+#include "volume/gradient_normals.h"
+
+namespace isocurv::app {
+namespace {
+
+using curvature::CurvatureField;
+
+constexpr double kPercentiles[3] = {1, 50, 99};
+
+// Vertices every statistic counts for one estimator: finite, not flagged Unreliable, not on an
+// open boundary, and with max(|k1|, |k2|) at most 1 / (half the mean edge length), the rule of
+// the other commands' statistics (curvature/field_stats.h).
+std::vector<bool> counted(const CurvatureField& f, double limit) {
+  std::vector<bool> keep(f.size());
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    const bool finite = std::isfinite(f.H[i]) && std::isfinite(f.K[i]) &&
+                        std::isfinite(f.k1[i]) && std::isfinite(f.k2[i]);
+    const bool flagged = !f.unreliable.empty() && f.unreliable[i];
+    const bool edge = !f.boundary.empty() && f.boundary[i];
+    keep[i] = finite && !flagged && !edge &&
+              std::max(std::abs(f.k1[i]), std::abs(f.k2[i])) <= limit;
+  }
+  return keep;
+}
+
+// p1, p50, p99 of x over the kept vertices (nearest rank); NaN when none is kept.
+std::array<double, 3> percentiles(const std::vector<float>& x, const std::vector<bool>& keep) {
+  std::vector<float> v;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (keep[i]) v.push_back(x[i]);
+  std::array<double, 3> p;
+  p.fill(std::nan(""));
+  if (v.empty()) return p;
+  std::sort(v.begin(), v.end());
+  for (int k = 0; k < 3; ++k)
+    p[k] = v[std::min(v.size() - 1, std::size_t(kPercentiles[k] / 100 * double(v.size())))];
+  return p;
+}
+
+// sqrt(sum (a - b)^2 / sum b^2) over the kept vertices.
+double relative_rms(const std::vector<float>& a, const std::vector<double>& b,
+                    const std::vector<bool>& keep) {
+  double num = 0, den = 0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (keep[i]) num += (a[i] - b[i]) * (a[i] - b[i]), den += b[i] * b[i];
+  return den > 0 ? std::sqrt(num / den) : std::nan("");
+}
+
+// Agreement of two estimators: RMS(a - b) / RMS of both, over vertices counted for both.
+double disagreement(const std::vector<float>& a, const std::vector<float>& b,
+                    const std::vector<bool>& ka, const std::vector<bool>& kb) {
+  double diff = 0, scale = 0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (ka[i] && kb[i])
+      diff += double(a[i] - b[i]) * (a[i] - b[i]), scale += 0.5 * (double(a[i]) * a[i] + double(b[i]) * b[i]);
+  return scale > 0 ? std::sqrt(diff / scale) : std::nan("");
+}
+
+nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(); }
+
+// The analytic field a bundled dataset was sampled from (its "field" metadata), when the volume's
+// placement is the file's own (no --spacing or --origin).
+std::unique_ptr<datasets::Field> analytic_source(const Surface& s, const CommonOptions& o) {
+  if (!s.volume || s.volume->format != "vdb" || !o.volume.spacing.empty() ||
+      !o.volume.origin.empty())
+    return nullptr;
+  const auto meta = s.volume->grid->getMetadata<openvdb::StringMetadata>("field");
+  if (!meta) return nullptr;
+  const std::vector<std::string> names = datasets::field_names();
+  if (std::find(names.begin(), names.end(), meta->value()) == names.end()) return nullptr;
+  return datasets::make_field(meta->value());
+}
+
+}  // namespace
+
+void register_compare(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "compare",
+      "Run every mesh curvature estimator on one surface: time, H and K percentiles, pairwise "
+      "agreement, and the error against the exact values on the bundled analytic datasets");
+  cmd->footer(
+      "Example: isocurv compare build/datasets/torus.vdb\n"
+      "         isocurv compare mesh.ply --json\n"
+      "Estimators: rusinkiewicz, batagelo, prantl3, prantl2 (OpenCL, or their references with\n"
+      "--device reference), quadric, cubic, sampling, meyer (double references, single-threaded).\n"
+      "Statistics leave out boundary vertices, vertices an estimator flags Unreliable and those\n"
+      "with max(|k1|,|k2|) above 1 / (half the mean edge length). Agreement: RMS(a - b) over the\n"
+      "RMS of both, for H and K, over vertices counted for both.");
+  static CommonOptions o;
+  static std::string in;
+  cmd->add_option("VOLUME_OR_MESH", in, "Volume or mesh file (.vtp .ply .obj .stl)")->required();
+  add_common_options(*cmd, o);
+  add_curvature_options(*cmd, o, /*mesh_input=*/true);
+  cmd->callback([] {
+    StageTimer timer;
+    Surface s = load_surface(in, o, timer);
+    prepare_mesh_for_curvature(s, in, o);
+    const Mesh& mesh = s.mesh;
+    curvature::Options co;
+    const std::string source = o.normals.empty() ? (s.volume ? "volume" : "mesh") : o.normals;
+    volume::MeshNormals normals;
+    if (source == "volume") {
+      if (!s.volume) throw Error("--normals volume needs a volume input, not a mesh file");
+      normals = volume::gradient_normals_for_mesh(*s.volume, mesh, o.cap);
+      co.vertex_normals = &normals.normals;
+    }
+    co.ao_scale = o.ao_scale > 0 ? o.ao_scale : curvature::default_ao_scale(mesh);
+    Device* device = reference_device(o) ? nullptr : &device_for(o);
+    const double limit = 2 / mean_edge_length(mesh);
+
+    const std::unique_ptr<datasets::Field> field = analytic_source(s, o);
+    std::vector<double> exact_h, exact_k;
+    if (field) {
+      timer.start("exact");
+      for (const Vec3f& p : mesh.positions) {
+        const datasets::SurfaceCurvature c = datasets::exact_curvature(
+            *field, datasets::project_to_surface(*field, Eigen::Vector3d(p[0], p[1], p[2])));
+        exact_h.push_back(c.H), exact_k.push_back(c.K);
+      }
+      timer.stop();
+    }
+
+    struct Row {
+      const curvature::MeshEstimatorInfo* info;
+      CurvatureField f;
+      std::vector<bool> keep;
+      double ms = 0;
+      std::size_t flagged = 0;
+    };
+    std::vector<Row> rows;
+    for (const curvature::MeshEstimatorInfo& e : curvature::mesh_estimators()) {
+      Row r{&e, {}, {}, 0, 0};
+      Device* d = e.kernels ? device : nullptr;
+      if (d) curvature::estimate_mesh(e.id, mesh, d, co);  // warm: program build, buffers
+      timer.start(e.name);
+      const auto t0 = std::chrono::steady_clock::now();
+      r.f = curvature::estimate_mesh(e.id, mesh, d, co);
+      r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      timer.stop();
+      r.keep = counted(r.f, limit);
+      for (std::uint8_t u : r.f.unreliable) r.flagged += u;
+      rows.push_back(std::move(r));
+    }
+
+    nlohmann::json j;
+    j["input"] = in;
+    j["vertices"] = mesh.vertex_count();
+    j["triangles"] = mesh.triangle_count();
+    j["normals"] = source;
+    j["device"] = device_name(o);
+    j["analytic_field"] = field ? nlohmann::json(field->name()) : nlohmann::json();
+    j["unreliable_above"] = limit;
+    nlohmann::json list = nlohmann::json::array();
+    for (const Row& r : rows) {
+      nlohmann::json e;
+      e["estimator"] = r.info->name;
+      e["path"] = (r.info->kernels && device) ? "opencl" : "reference";
+      e["time_ms"] = r.ms;
+      e["unreliable"] = r.flagged;
+      e["counted"] = std::count(r.keep.begin(), r.keep.end(), true);
+      const auto ph = percentiles(r.f.H, r.keep), pk = percentiles(r.f.K, r.keep);
+      e["H"] = {{"p1", number(ph[0])}, {"p50", number(ph[1])}, {"p99", number(ph[2])}};
+      e["K"] = {{"p1", number(pk[0])}, {"p50", number(pk[1])}, {"p99", number(pk[2])}};
+      if (field) {
+        e["exact_error"] = {{"H_relative_rms", number(relative_rms(r.f.H, exact_h, r.keep))},
+                            {"K_relative_rms", number(relative_rms(r.f.K, exact_k, r.keep))}};
+      }
+      list.push_back(e);
+    }
+    j["estimators"] = list;
+    nlohmann::json agree;
+    for (const Row& a : rows)
+      for (const Row& b : rows)
+        agree[a.info->name][b.info->name] = {
+            number(disagreement(a.f.H, b.f.H, a.keep, b.keep)),
+            number(disagreement(a.f.K, b.f.K, a.keep, b.keep))};
+    j["agreement_H_K"] = agree;
+    j["timings_ms"] = timer.json();
+
+    if (o.json) {
+      std::cout << j.dump(2) << "\n";
+      return;
+    }
+    std::printf("%s: %zu vertices, %zu triangles, %s normals, %s%s\n", in.c_str(),
+                mesh.vertex_count(), mesh.triangle_count(), source.c_str(),
+                device_name(o).c_str(),
+                field ? (", exact values of the analytic field " + field->name()).c_str() : "");
+    std::printf("%-13s %-9s %9s %6s %10s %10s %10s  %10s %10s %10s%s\n", "estimator", "path",
+                "ms", "flags", "H p1", "H p50", "H p99", "K p1", "K p50", "K p99",
+                field ? "   rel. RMS error H     K" : "");
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const nlohmann::json& e = list[i];
+      auto g = [](const nlohmann::json& x) { return x.is_null() ? std::nan("") : x.get<double>(); };
+      std::printf("%-13s %-9s %9.1f %6zu %10.4g %10.4g %10.4g  %10.4g %10.4g %10.4g",
+                  rows[i].info->name, e["path"].get<std::string>().c_str(), rows[i].ms,
+                  rows[i].flagged, g(e["H"]["p1"]), g(e["H"]["p50"]), g(e["H"]["p99"]),
+                  g(e["K"]["p1"]), g(e["K"]["p50"]), g(e["K"]["p99"]));
+      if (field)
+        std::printf("   %10.4g %10.4g", g(e["exact_error"]["H_relative_rms"]),
+                    g(e["exact_error"]["K_relative_rms"]));
+      std::printf("\n");
+    }
+    std::printf("\nagreement: RMS difference over RMS, H (upper right) and K (lower left)\n%-13s",
+                "");
+    for (const Row& r : rows) std::printf(" %12s", r.info->name);
+    std::printf("\n");
+    for (std::size_t a = 0; a < rows.size(); ++a) {
+      std::printf("%-13s", rows[a].info->name);
+      for (std::size_t b = 0; b < rows.size(); ++b) {
+        if (a == b) {
+          std::printf(" %12s", "-");
+          continue;
+        }
+        const nlohmann::json& v = agree[rows[a].info->name][rows[b].info->name][a < b ? 0 : 1];
+        std::printf(" %12.4g", v.is_null() ? std::nan("") : v.get<double>());
+      }
+      std::printf("\n");
+    }
+  });
+}
+
+}  // namespace isocurv::app

@@ -1,0 +1,67 @@
+#pragma once
+// Device state shared by the one-pass mesh estimators' kernel paths (batagelo, prantl): the
+// program (curvature_math.cl + curvature_kernels.cl + mesh_estimator_kernels.cl), buffers kept
+// between calls, and the first step they share with Rusinkiewicz's path (normals, mixed areas,
+// boundary flags by the kernels of curvature_kernels.cl).
+#include <chrono>
+#include <cstdint>
+#include <mutex>
+#include <vector>
+
+#include "core/cl_device.h"
+#include "core/mesh.h"
+#include "curvature/curvature_field.h"
+#include "curvature/detail/local_geometry.h"
+#include "curvature/estimate.h"
+#include "curvature/options.h"
+#include "curvature/vertex_corners.h"
+
+namespace isocurv::curvature::detail {
+
+/// A device buffer kept between calls, reallocated (with 50% headroom) only when too small.
+struct ClBuffer {
+  cl::Buffer buffer;
+  std::size_t bytes = 0;
+  cl::Buffer& reserve(cl::Context& context, std::size_t need);
+};
+
+/// One per OpenCL context; `mutex` serialises calls (kernel arguments are shared state).
+struct MeshPassSession {
+  cl::Context context;
+  std::mutex mutex;
+  cl::Kernel corner_normals_areas, vertex_normals_areas, vertex_boundary, vertex_boundary_large;
+  cl::Kernel batagelo_tensor, batagelo_dcurv, prantl_faces, prantl_vertices;
+  ClBuffer positions, triangles, offsets, corners, large_fans, given_normals, corner;
+  ClBuffer nb_offsets, nb_ids, normals, area, boundary, k1, k2, dir1, dir2, H, K, shape, curved,
+      ao, dcurv, no_tensor, unreliable;
+  VertexCorners adjacency;
+  std::vector<std::uint32_t> large;  ///< vertices with more than kMaxFan corners
+  Neighbours neighbours;             ///< host copy of the distinct 1-ring (batagelo)
+};
+
+/// The session of device's context, created (program built, kernels made) on first use.
+MeshPassSession& mesh_pass_session(Device& device);
+
+constexpr std::size_t kGroup = 64;  ///< work-group size of every launch
+
+/// Builds the adjacency (and, when with_neighbours, the distinct 1-ring), uploads the mesh and
+/// given normals, reserves the per-vertex output buffers, and runs the normal, area and boundary
+/// kernels. `t` receives adjacency, upload and normals_areas (the latter only when `timed`).
+/// nv > 0. Call with s.mutex held.
+void upload_and_normals(MeshPassSession& s, Device& device, const Mesh& mesh,
+                        const Options& options, bool with_neighbours, bool timed, Timings& t);
+
+/// Copies a device buffer of n elements into v (non-blocking; finish the queue before use).
+template <class T>
+void download(cl::CommandQueue& q, ClBuffer& b, std::vector<T>& v, std::size_t n) {
+  v.resize(n);
+  if (n) q.enqueueReadBuffer(b.buffer, CL_FALSE, 0, n * sizeof(T), v.data());
+}
+
+/// Milliseconds since `since`, which then moves to now.
+double lap_ms(std::chrono::steady_clock::time_point& since);
+
+/// Rethrows an OpenCL failure of `device` as isocurv::Error naming `what`.
+[[noreturn]] void rethrow_cl(Device& device, const char* what, const cl::Error& e);
+
+}  // namespace isocurv::curvature::detail

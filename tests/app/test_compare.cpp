@@ -1,0 +1,50 @@
+// isocurv compare end to end: every estimator on a bundled analytic dataset and on a mesh file.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <string>
+
+#include "cli.h"
+
+using namespace isocurv::test;
+using nlohmann::json;
+
+TEST(CliCompare, AnalyticDatasetJson) {
+  const auto r = run_isocurv({"compare", dataset("torus"), "--json"}, 120);
+  ASSERT_TRUE(r.ok()) << r.describe();
+  const json j = parse_json(r.out, "compare --json");
+  EXPECT_EQ(j["analytic_field"], "torus");
+  EXPECT_EQ(j["normals"], "volume");
+  ASSERT_EQ(j["estimators"].size(), 8u) << j.dump(2);
+  std::map<std::string, json> by_name;
+  for (const json& e : j["estimators"]) by_name[e["estimator"].get<std::string>()] = e;
+  for (const char* n : {"rusinkiewicz", "batagelo", "prantl3", "prantl2", "quadric", "cubic",
+                        "sampling", "meyer"}) {
+    ASSERT_TRUE(by_name.count(n)) << n;
+    EXPECT_GT(by_name[n]["counted"].get<int>(), 1000) << n;
+    EXPECT_GE(by_name[n]["time_ms"].get<double>(), 0.0) << n;
+  }
+  // The torus's mean curvature lies in [1/(R+r) .. 1/r] / 2-ish; p50 H is positive.
+  EXPECT_GT(by_name["rusinkiewicz"]["H"]["p50"].get<double>(), 0);
+  const double rk = by_name["rusinkiewicz"]["exact_error"]["K_relative_rms"].get<double>();
+  EXPECT_LT(rk, 0.1);
+  EXPECT_LT(by_name["batagelo"]["exact_error"]["K_relative_rms"].get<double>(), rk);
+  // prantl2 and prantl3 have the same H (a property of the method), so they agree closely.
+  EXPECT_LT(j["agreement_H_K"]["prantl3"]["prantl2"][0].get<double>(), 1e-4);
+  EXPECT_GT(j["agreement_H_K"]["rusinkiewicz"]["quadric"][0].get<double>(), 0.1);
+}
+
+TEST(CliCompare, MeshFileAndReferenceDevice) {
+  TempDir dir("compare");
+  const std::string mesh = dir / "torus.ply";
+  ASSERT_TRUE(run_isocurv({"extract", dataset("torus"), "-o", mesh, "--quiet"}).ok());
+  const auto r = run_isocurv({"compare", mesh, "--device", "reference"}, 120);
+  ASSERT_TRUE(r.ok()) << r.describe();
+  EXPECT_NE(r.out.find("mesh normals"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("batagelo      reference"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("analytic field"), std::string::npos) << r.out;
+  const auto bad = run_isocurv({"compare", mesh, "--iso", "3"});
+  EXPECT_EQ(bad.exit_code, 1) << bad.describe();
+  ASSERT_EQ(bad.err_lines().size(), 1u) << bad.describe();
+  EXPECT_EQ(bad.err_lines()[0].rfind("isocurv:", 0), 0u) << bad.describe();
+}
