@@ -13,7 +13,6 @@
 #include <iostream>
 #include <map>
 #include <memory>
-#include <set>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -81,7 +80,8 @@ Loaded load_input(const Input& in, BatchKind kind, const CommonOptions& o, bool 
     StageTimer timer;
     if (is_mesh_path(in.path)) {
       if (kind != BatchKind::curvature)
-        throw Error(in.path, std::string("isocurv ") + (kind == BatchKind::run ? "run" : "extract") +
+        throw Error(in.path, std::string("isocurv ") +
+                                 (kind == BatchKind::run ? "run" : "extract") +
                                  " takes a volume, and this is a mesh file");
       if (sweep) throw Error(in.path, "--iso applies to volumes only, and this is a mesh file");
       l.mesh_file = load_surface(in.path, o, timer);  // also refuses volume options
@@ -129,7 +129,8 @@ void write_outputs(Pending& p, BatchKind kind, const BatchRequest& rq, const Com
   r["compression"] = io::to_string(o.compress);
   r["device"] = device_name(o);
   r["timings_ms"] = p.timer.json();
-  outputs.write(p.stats_path, [&](const std::string& tmp) { write_text_file(tmp, r.dump(2) + "\n"); });
+  outputs.write(p.stats_path,
+                [&](const std::string& tmp) { write_text_file(tmp, r.dump(2) + "\n"); });
   outputs.commit();
   p.entry["status"] = "ok";
   p.entry["mesh"] = p.mesh_path;
@@ -145,10 +146,14 @@ void write_outputs(Pending& p, BatchKind kind, const BatchRequest& rq, const Com
 void require_writable_folder(const std::string& dir) {
   std::error_code ec;
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
-    throw Error(dir, "the output (-o) must be a folder for several inputs or isovalues, and this is a file");
+    throw Error(
+        dir,
+        "the output (-o) must be a folder for several inputs or isovalues, and this is a file");
   fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir)) throw Error(dir, "cannot create the output folder: " + ec.message());
-  const std::string probe = (fs::path(dir) / (".isocurv-probe-" + std::to_string(getpid()))).string();
+  if (ec || !fs::is_directory(dir))
+    throw Error(dir, "cannot create the output folder: " + ec.message());
+  const std::string probe =
+      (fs::path(dir) / (".isocurv-probe-" + std::to_string(getpid()))).string();
   std::FILE* f = std::fopen(probe.c_str(), "wb");
   if (!f) throw Error(dir, "the output folder is not writable");
   std::fclose(f);
@@ -168,11 +173,13 @@ std::vector<float> parse_isovalues(const std::string& text) {
   std::size_t start = 0;
   while (start <= text.size()) {
     const std::size_t comma = text.find(',', start);
-    const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    const std::string item =
+        text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
     char* end = nullptr;
     const float v = std::strtof(item.c_str(), &end);
     if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(v))
-      throw Error("--iso '" + text + "': '" + item + "' is not a finite number (expected V or V1,V2,...)");
+      throw Error("--iso '" + text + "': '" + item +
+                  "' is not a finite number (expected V or V1,V2,...)");
     for (float seen : out)
       if (seen == v) throw Error("--iso '" + text + "': " + item + " is given twice");
     out.push_back(v);
@@ -191,12 +198,14 @@ bool is_batch(const std::vector<std::string>& inputs, const std::vector<float>& 
 void add_batch_options(CLI::App& cmd, BatchCli& b, const std::string& input_name,
                        const std::string& input_help, const std::vector<std::string>& formats) {
   cmd.add_option(input_name, b.inputs,
-                 input_help + "; several files or globs make a batch: -o is then a folder, each "
-                              "input written under DIR/<stem>/, and DIR/summary.json lists them")
+                 input_help +
+                     "; several files or globs make a batch: -o is then a folder, each "
+                     "input written under DIR/<stem>/, and DIR/summary.json lists them")
       ->required();
-  cmd.add_option("--iso", b.iso,
-                 "Isovalue (default: the volume's suggested isovalue, see isocurv info); several, "
-                 "V1,V2,..., make a sweep of one loaded volume (outputs suffixed _iso<V>, -o a folder)")
+  cmd.add_option(
+         "--iso", b.iso,
+         "Isovalue (default: the volume's suggested isovalue, see isocurv info); several, "
+         "V1,V2,..., make a sweep of one loaded volume (outputs suffixed _iso<V>, -o a folder)")
       ->check([](const std::string& text) -> std::string {
         try {
           parse_isovalues(text);
@@ -209,10 +218,12 @@ void add_batch_options(CLI::App& cmd, BatchCli& b, const std::string& input_name
                  "Batches: 2 or more loads the next input and writes the last one's mesh while the "
                  "current one is computed (1: one step at a time)")
       ->check(CLI::Range(1, 64))
+      ->each([&b](const std::string&) { b.jobs_given = true; })
       ->capture_default_str();
   if (!formats.empty())
     cmd.add_option("--format", b.format, "Batches: the mesh format written under DIR/<stem>/")
         ->check(CLI::IsMember(formats))
+        ->each([&b](const std::string&) { b.format_given = true; })
         ->capture_default_str();
 }
 
@@ -220,6 +231,11 @@ bool run_as_batch(const BatchCli& b, CommonOptions& o, BatchKind kind, const std
                   const RenderCli* render, const std::string& format) {
   const std::vector<float> isos = b.iso.empty() ? std::vector<float>{} : parse_isovalues(b.iso);
   if (!is_batch(b.inputs, isos)) {
+    if (b.format_given)
+      throw Error(
+          "--format applies to batches (several inputs or isovalues); for one output the "
+          "extension of -o chooses the format");
+    if (b.jobs_given) throw Error("--jobs applies to batches (several inputs or isovalues)");
     if (!isos.empty()) o.iso = isos[0];
     return false;
   }
@@ -242,7 +258,8 @@ std::string iso_suffix(float iso) { return "_iso" + format_number(iso); }
 void run_batch(const BatchRequest& rq, const CommonOptions& o) {
   const auto t_start = std::chrono::steady_clock::now();
   if (rq.kind != BatchKind::extract) require_curvature_format("x." + rq.format);
-  if (rq.kind == BatchKind::run && !rq.render) throw Error("internal: run batch without render options");
+  if (rq.kind == BatchKind::run && !rq.render)
+    throw Error("internal: run batch without render options");
   require_writable_folder(rq.dir);  // before any work
   const std::vector<Input> inputs = expand_inputs(rq.inputs);
   const bool sweep = rq.isovalues.size() > 1;
@@ -330,8 +347,9 @@ void run_batch(const BatchRequest& rq, const CommonOptions& o) {
             s.mesh = mesher->extract(s.isovalue, mo);
           }
           p->timer.stop();
-          handle_empty_surface(s, in.path, o,
-                               rq.kind == BatchKind::extract ? EmptySurface::warn : EmptySurface::error);
+          handle_empty_surface(
+              s, in.path, o,
+              rq.kind == BatchKind::extract ? EmptySurface::warn : EmptySurface::error);
         }
         if (rq.kind != BatchKind::extract)
           s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, p->timer,
@@ -355,7 +373,8 @@ void run_batch(const BatchRequest& rq, const CommonOptions& o) {
       if (overlap && rq.kind != BatchKind::run) {
         in_flight = std::move(p);
         Pending* raw = in_flight.get();
-        writing = std::async(std::launch::async, [raw, &rq, &o] { write_outputs(*raw, rq.kind, rq, o); });
+        writing =
+            std::async(std::launch::async, [raw, &rq, &o] { write_outputs(*raw, rq.kind, rq, o); });
       } else {
         try {
           write_outputs(*p, rq.kind, rq, o);
@@ -376,18 +395,19 @@ void run_batch(const BatchRequest& rq, const CommonOptions& o) {
 
   const double total_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_start).count();
-  nlohmann::json summary = {{"command", rq.kind == BatchKind::extract     ? "extract"
-                                        : rq.kind == BatchKind::curvature ? "curvature"
-                                                                          : "run"},
-                            {"inputs", inputs.size()},
-                            {"entries", entries},
-                            {"ok", entries.size() - failed},
-                            {"failed", failed},
-                            {"compression", io::to_string(o.compress)},
-                            {"jobs", rq.jobs},
-                            {"device", reference_device(o) ? device_name(o) : device_for(o).info().name},
-                            {"programs", program_report()},
-                            {"wall_ms", std::round(total_ms * 1000) / 1000}};
+  nlohmann::json summary = {
+      {"command", rq.kind == BatchKind::extract     ? "extract"
+                  : rq.kind == BatchKind::curvature ? "curvature"
+                                                    : "run"},
+      {"inputs", inputs.size()},
+      {"entries", entries},
+      {"ok", entries.size() - failed},
+      {"failed", failed},
+      {"compression", io::to_string(o.compress)},
+      {"jobs", rq.jobs},
+      {"device", reference_device(o) ? device_name(o) : device_for(o).info().name},
+      {"programs", program_report()},
+      {"wall_ms", std::round(total_ms * 1000) / 1000}};
   const std::string summary_path = (fs::path(rq.dir) / "summary.json").string();
   write_text_file(summary_path, summary.dump(2) + "\n");
   if (o.json) {

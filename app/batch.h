@@ -29,10 +29,11 @@ struct BatchRequest {
 
 /// The command-line state of a command that can run as a batch.
 struct BatchCli {
-  std::vector<std::string> inputs;  ///< the positional inputs
-  std::string iso;                  ///< --iso text: V or V1,V2,...
-  std::string format = "vtp";       ///< --format (batch mesh format)
-  int jobs = 1;                     ///< --jobs
+  std::vector<std::string> inputs;                ///< the positional inputs
+  std::string iso;                                ///< --iso text: V or V1,V2,...
+  std::string format = "vtp";                     ///< --format (batch mesh format)
+  int jobs = 1;                                   ///< --jobs
+  bool format_given = false, jobs_given = false;  ///< given on the command line
 };
 
 /// Adds the positional INPUT... (named `input_name`), --iso V[,V2,...] and --jobs, and --format
@@ -41,8 +42,9 @@ void add_batch_options(CLI::App& cmd, BatchCli& b, const std::string& input_name
                        const std::string& input_help, const std::vector<std::string>& formats);
 
 /// Called first in the command's callback: parses --iso; for one input at one isovalue sets o.iso
-/// and returns false (the command goes on as for a single file); otherwise runs the batch with
-/// -o `dir` as the folder and returns true. `format` overrides b.format when not empty.
+/// and returns false (the command goes on as for a single file; --format and --jobs, which apply
+/// to batches only, are then an Error); otherwise runs the batch with -o `dir` as the folder and
+/// returns true. `format` overrides b.format when not empty.
 bool run_as_batch(const BatchCli& b, CommonOptions& o, BatchKind kind, const std::string& dir,
                   const RenderCli* render = nullptr, const std::string& format = "");
 

@@ -25,10 +25,14 @@ int main(int argc, char** argv) {
   bool iso_given = false;
   int runs = 9;
   for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--volume") && i + 1 < argc) path = argv[++i];
-    else if (!std::strcmp(argv[i], "--iso") && i + 1 < argc) iso = std::strtof(argv[++i], nullptr), iso_given = true;
-    else if (!std::strcmp(argv[i], "--runs") && i + 1 < argc) runs = std::atoi(argv[++i]);
-    else path.clear(), i = argc;
+    if (!std::strcmp(argv[i], "--volume") && i + 1 < argc)
+      path = argv[++i];
+    else if (!std::strcmp(argv[i], "--iso") && i + 1 < argc)
+      iso = std::strtof(argv[++i], nullptr), iso_given = true;
+    else if (!std::strcmp(argv[i], "--runs") && i + 1 < argc)
+      runs = std::atoi(argv[++i]);
+    else
+      path.clear(), i = argc;
   }
   if (path.empty()) {
     std::fprintf(stderr, "usage: bench_library --volume PATH [--iso V] [--runs N]\n");

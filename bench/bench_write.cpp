@@ -2,11 +2,13 @@
 // compressor (zlib at VTK's default level 5 is what isocurv wrote before --compress existed), and
 // as .ply for comparison; medians from the same run, with file sizes. Not a test: prints a table.
 //
-//   bench_write [--volume PATH] [--iso V] [--runs N]     (default: the lobster CT at its Otsu value)
+//   bench_write [--volume PATH] [--iso V] [--runs N]     (default: the lobster CT at its Otsu
+//   value)
+#include <unistd.h>
+
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <unistd.h>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -30,9 +32,12 @@ int main(int argc, char** argv) {
   bool iso_given = false;
   int runs = 7;
   for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--volume") && i + 1 < argc) path = argv[++i];
-    else if (!std::strcmp(argv[i], "--iso") && i + 1 < argc) iso = std::strtof(argv[++i], nullptr), iso_given = true;
-    else if (!std::strcmp(argv[i], "--runs") && i + 1 < argc) runs = std::atoi(argv[++i]);
+    if (!std::strcmp(argv[i], "--volume") && i + 1 < argc)
+      path = argv[++i];
+    else if (!std::strcmp(argv[i], "--iso") && i + 1 < argc)
+      iso = std::strtof(argv[++i], nullptr), iso_given = true;
+    else if (!std::strcmp(argv[i], "--runs") && i + 1 < argc)
+      runs = std::atoi(argv[++i]);
     else {
       std::fprintf(stderr, "usage: bench_write [--volume PATH] [--iso V] [--runs N]\n");
       return 2;
@@ -48,7 +53,8 @@ int main(int argc, char** argv) {
   std::printf("%s at %g: %zu vertices, %zu triangles, every curvature array; medians of %d\n",
               path.c_str(), iso, mesh.positions.size(), mesh.triangles.size(), runs);
 
-  const fs::path dir = fs::temp_directory_path() / ("isocurv_bench_write_" + std::to_string(getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("isocurv_bench_write_" + std::to_string(getpid()));
   fs::create_directories(dir);
   struct Case {
     std::string label, file;
@@ -65,7 +71,8 @@ int main(int argc, char** argv) {
   std::vector<bench::Timed> methods;
   for (const Case& k : cases) {
     const std::string out = (dir / k.file).string();
-    methods.push_back({[&mesh, &field, out, c = k.c] { io::write_mesh(out, mesh, &field, c); }, runs});
+    methods.push_back(
+        {[&mesh, &field, out, c = k.c] { io::write_mesh(out, mesh, &field, c); }, runs});
   }
   const std::vector<double> t = bench::medians_ms(methods);
   std::printf("%-22s %9s %10s %12s\n", "format", "ms", "MB", "before / it");

@@ -47,7 +47,8 @@ void put_u64(std::string& out, std::uint64_t v) {
 bool get_u64(const std::string& in, std::size_t& pos, std::uint64_t& v) {
   if (in.size() < pos + 8) return false;
   v = 0;
-  for (int i = 0; i < 8; ++i) v |= std::uint64_t(static_cast<unsigned char>(in[pos + i])) << (8 * i);
+  for (int i = 0; i < 8; ++i)
+    v |= std::uint64_t(static_cast<unsigned char>(in[pos + i])) << (8 * i);
   pos += 8;
   return true;
 }
@@ -72,8 +73,10 @@ void warn_once(const std::string& dir, const std::string& why) {
 
 std::string program_cache_dir() {
   if (const char* d = std::getenv("ISOCURV_CACHE_DIR")) return d;  // "" turns it off
-  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return (fs::path(x) / "isocurv").string();
-  if (const char* h = std::getenv("HOME"); h && *h) return (fs::path(h) / ".cache" / "isocurv").string();
+  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x)
+    return (fs::path(x) / "isocurv").string();
+  if (const char* h = std::getenv("HOME"); h && *h)
+    return (fs::path(h) / ".cache" / "isocurv").string();
   return "";
 }
 
@@ -87,11 +90,13 @@ ProgramBuildStats program_build_stats() {
 namespace detail {
 
 std::string ProgramKey::text() const {
-  return "name=" + name + "\nsource=" + source_hash + "\noptions=" + options + "\nplatform=" +
-         platform + "\ndevice=" + device + "\ndriver=" + driver + "\n";
+  return "name=" + name + "\nsource=" + source_hash + "\noptions=" + options +
+         "\nplatform=" + platform + "\ndevice=" + device + "\ndriver=" + driver + "\n";
 }
 
-std::string ProgramKey::file_name() const { return name + "-" + hash_hex(text()).substr(0, 16) + ".bin"; }
+std::string ProgramKey::file_name() const {
+  return name + "-" + hash_hex(text()).substr(0, 16) + ".bin";
+}
 
 std::string hash_hex(const std::string& data) {
   const auto* p = reinterpret_cast<const unsigned char*>(data.data());
@@ -103,7 +108,8 @@ std::string hash_hex(const std::string& data) {
 }
 
 std::optional<std::vector<unsigned char>> load_program_binary(const std::string& dir,
-                                                              const ProgramKey& key, bool* rejected) {
+                                                              const ProgramKey& key,
+                                                              bool* rejected) {
   if (rejected) *rejected = false;
   if (dir.empty()) return std::nullopt;
   const fs::path path = fs::path(dir) / key.file_name();
@@ -127,7 +133,8 @@ std::optional<std::vector<unsigned char>> load_program_binary(const std::string&
     return reject();
   if (data.compare(pos, key_len, want) != 0) return reject();
   pos += key_len;
-  if (!get_u64(data, pos, bin_len) || bin_len == 0 || data.size() != pos + bin_len + 8) return reject();
+  if (!get_u64(data, pos, bin_len) || bin_len == 0 || data.size() != pos + bin_len + 8)
+    return reject();
   std::vector<unsigned char> bin(data.begin() + std::ptrdiff_t(pos),
                                  data.begin() + std::ptrdiff_t(pos + bin_len));
   pos += bin_len;

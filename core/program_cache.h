@@ -31,10 +31,10 @@ void set_program_cache_warnings(bool enabled);
 /// Process-wide totals of Device::program: wall time spent getting programs ready (compiling, or
 /// loading from the cache and finishing the build), and how many came each way.
 struct ProgramBuildStats {
-  double ms = 0;                ///< total milliseconds in Device::program builds
-  std::uint64_t compiled = 0;   ///< programs compiled from source
-  std::uint64_t from_cache = 0; ///< programs built from a cached binary
-  std::uint64_t rejected = 0;   ///< cache entries found but not trusted (rebuilt from source)
+  double ms = 0;                 ///< total milliseconds in Device::program builds
+  std::uint64_t compiled = 0;    ///< programs compiled from source
+  std::uint64_t from_cache = 0;  ///< programs built from a cached binary
+  std::uint64_t rejected = 0;    ///< cache entries found but not trusted (rebuilt from source)
 };
 ProgramBuildStats program_build_stats();
 

@@ -17,9 +17,12 @@ Compression parse_compression(const std::string& text) {
     c.level = 0;
     return c;
   }
-  if (name == "lz4") c.compressor = Compressor::lz4;
-  else if (name == "zlib") c.compressor = Compressor::zlib;
-  else throw Error("--compress '" + text + "': " + forms);
+  if (name == "lz4")
+    c.compressor = Compressor::lz4;
+  else if (name == "zlib")
+    c.compressor = Compressor::zlib;
+  else
+    throw Error("--compress '" + text + "': " + forms);
   c.level = 1;
   if (colon != std::string::npos) {
     const std::string level = text.substr(colon + 1);
@@ -32,9 +35,12 @@ Compression parse_compression(const std::string& text) {
 
 std::string to_string(const Compression& c) {
   switch (c.compressor) {
-    case Compressor::none: return "none";
-    case Compressor::lz4: return "lz4:" + std::to_string(c.level);
-    case Compressor::zlib: return "zlib:" + std::to_string(c.level);
+    case Compressor::none:
+      return "none";
+    case Compressor::lz4:
+      return "lz4:" + std::to_string(c.level);
+    case Compressor::zlib:
+      return "zlib:" + std::to_string(c.level);
   }
   return "none";
 }

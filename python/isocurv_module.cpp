@@ -93,7 +93,8 @@ std::array<double, 3> triple(const py::object& o, const char* name) {
   std::array<double, 3> v{};
   try {
     const auto seq = o.cast<std::vector<double>>();
-    if (seq.size() != 3) throw py::value_error(std::string(name) + ": expected 3 numbers (x, y, z)");
+    if (seq.size() != 3)
+      throw py::value_error(std::string(name) + ": expected 3 numbers (x, y, z)");
     for (int i = 0; i < 3; ++i) v[i] = seq[i];
   } catch (const py::cast_error&) {
     throw py::type_error(std::string(name) + ": expected a sequence of 3 numbers (x, y, z)");
@@ -110,16 +111,18 @@ std::vector<float> to_floats(const py::array& a) {
   return out;
 }
 
-volume::Volume from_array(const py::array& array, const py::object& spacing, const py::object& origin,
-                          const std::string& inside) {
+volume::Volume from_array(const py::array& array, const py::object& spacing,
+                          const py::object& origin, const std::string& inside) {
   if (array.ndim() != 3)
-    throw py::value_error("array: expected a 3-D array indexed [z, y, x], got " + std::to_string(array.ndim()) +
-                          " dimensions");
+    throw py::value_error("array: expected a 3-D array indexed [z, y, x], got " +
+                          std::to_string(array.ndim()) + " dimensions");
   if (!(array.flags() & py::array::c_style))
-    throw py::value_error("array: must be C-contiguous (numpy.ascontiguousarray(array) makes a copy that is)");
+    throw py::value_error(
+        "array: must be C-contiguous (numpy.ascontiguousarray(array) makes a copy that is)");
   const std::array<double, 3> s = triple(spacing, "spacing"), o = triple(origin, "origin");
   for (double x : s)
-    if (!(x > 0) || !std::isfinite(x)) throw py::value_error("spacing: every value must be positive and finite");
+    if (!(x > 0) || !std::isfinite(x))
+      throw py::value_error("spacing: every value must be positive and finite");
   for (double x : o)
     if (!std::isfinite(x)) throw py::value_error("origin: every value must be finite");
   const volume::Inside side = inside_of(inside);
@@ -128,18 +131,29 @@ volume::Volume from_array(const py::array& array, const py::object& spacing, con
   std::string type;
   const char kind = dt.kind();
   const auto size = dt.itemsize();
-  if (kind == 'u' && size == 1) values = to_floats<std::uint8_t>(array), type = "uint8";
-  else if (kind == 'i' && size == 1) values = to_floats<std::int8_t>(array), type = "int8";
-  else if (kind == 'u' && size == 2) values = to_floats<std::uint16_t>(array), type = "uint16";
-  else if (kind == 'i' && size == 2) values = to_floats<std::int16_t>(array), type = "int16";
-  else if (kind == 'u' && size == 4) values = to_floats<std::uint32_t>(array), type = "uint32";
-  else if (kind == 'i' && size == 4) values = to_floats<std::int32_t>(array), type = "int32";
-  else if (kind == 'f' && size == 4) values = to_floats<float>(array), type = "float";
-  else if (kind == 'f' && size == 8) values = to_floats<double>(array), type = "double";
+  if (kind == 'u' && size == 1)
+    values = to_floats<std::uint8_t>(array), type = "uint8";
+  else if (kind == 'i' && size == 1)
+    values = to_floats<std::int8_t>(array), type = "int8";
+  else if (kind == 'u' && size == 2)
+    values = to_floats<std::uint16_t>(array), type = "uint16";
+  else if (kind == 'i' && size == 2)
+    values = to_floats<std::int16_t>(array), type = "int16";
+  else if (kind == 'u' && size == 4)
+    values = to_floats<std::uint32_t>(array), type = "uint32";
+  else if (kind == 'i' && size == 4)
+    values = to_floats<std::int32_t>(array), type = "int32";
+  else if (kind == 'f' && size == 4)
+    values = to_floats<float>(array), type = "float";
+  else if (kind == 'f' && size == 8)
+    values = to_floats<double>(array), type = "double";
   else
-    throw py::type_error("array: voxel type " + py::str(py::object(dt)).cast<std::string>() +
-                         " is not one isocurv loads (uint8 int8 uint16 int16 uint32 int32 float32 float64)");
-  if (!dt.attr("isnative").cast<bool>()) throw py::type_error("array: byte order must be the machine's (use array.astype(native dtype))");
+    throw py::type_error(
+        "array: voxel type " + py::str(py::object(dt)).cast<std::string>() +
+        " is not one isocurv loads (uint8 int8 uint16 int16 uint32 int32 float32 float64)");
+  if (!dt.attr("isnative").cast<bool>())
+    throw py::type_error(
+        "array: byte order must be the machine's (use array.astype(native dtype))");
   const std::array<int, 3> dims = {int(array.shape(2)), int(array.shape(1)), int(array.shape(0))};
   py::gil_scoped_release release;
   auto xform = openvdb::math::Transform::createLinearTransform(1.0);
@@ -201,8 +215,9 @@ curvature::CurvatureField field_from_dict(const py::dict& arrays, std::size_t ve
     const bool ok = comps == 1 ? (a.ndim() == 1 || (a.ndim() == 2 && a.shape(1) == 1))
                                : (a.ndim() == 2 && a.shape(1) == comps);
     if (!ok || std::size_t(a.shape(0)) != vertices)
-      throw py::value_error(std::string("arrays['") + name + "']: expected shape (" + std::to_string(vertices) +
-                            (comps == 1 ? "," : ", " + std::to_string(comps)) + ") (one per vertex)");
+      throw py::value_error(
+          std::string("arrays['") + name + "']: expected shape (" + std::to_string(vertices) +
+          (comps == 1 ? "," : ", " + std::to_string(comps)) + ") (one per vertex)");
     v.resize(vertices);
     std::memcpy(static_cast<void*>(v.data()), a.data(), vertices * sizeof(E));
   });
@@ -212,8 +227,9 @@ curvature::CurvatureField field_from_dict(const py::dict& arrays, std::size_t ve
       bool known = false;
       io::for_each_array(f, [&](const char* name, auto&) { known = known || key == name; });
       if (!known)
-        throw py::value_error("arrays: unknown array '" + key +
-                              "' (names: Normals Area k1 k2 dir1 dir2 H K dcurv ShapeIndex Curvedness AO Boundary)");
+        throw py::value_error(
+            "arrays: unknown array '" + key +
+            "' (names: Normals Area k1 k2 dir1 dir2 H K dcurv ShapeIndex Curvedness AO Boundary)");
     }
   }
   return f;
@@ -248,8 +264,8 @@ std::shared_ptr<PyMesh> mesh_from_arrays(const py::object& vertices, const py::o
     for (int k = 0; k < 3; ++k) {
       const std::int64_t idx = ti[3 * i + k];
       if (idx < 0 || std::uint64_t(idx) >= n)
-        throw py::value_error("triangles: index " + std::to_string(idx) + " out of range (" + std::to_string(n) +
-                              " vertices)");
+        throw py::value_error("triangles: index " + std::to_string(idx) + " out of range (" +
+                              std::to_string(n) + " vertices)");
       m->mesh.triangles[i][k] = std::uint32_t(idx);
     }
   return m;
@@ -260,11 +276,15 @@ std::shared_ptr<PyMesh> mesh_from_arrays(const py::object& vertices, const py::o
 PYBIND11_MODULE(isocurv, m) {
   m.doc() =
       "isocurv: isosurfaces and their curvature from volumes (OpenVDB, OpenCL, VTK).\n\n"
-      "  v = isocurv.load('ct.nrrd')                 # or isocurv.from_array(a, spacing=(1, 1, 1.4))\n"
-      "  mesh = isocurv.extract(v, iso=40)           # mesh.vertices (n, 3) float32, mesh.triangles (m, 3) uint32\n"
-      "  arrays = isocurv.curvature(mesh, volume=v)  # {'H': ..., 'K': ..., 'k1': ..., 'dir1': ..., ...}\n"
+      "  v = isocurv.load('ct.nrrd')                 # or isocurv.from_array(a, spacing=(1, 1, "
+      "1.4))\n"
+      "  mesh = isocurv.extract(v, iso=40)           # mesh.vertices (n, 3) float32, "
+      "mesh.triangles (m, 3) uint32\n"
+      "  arrays = isocurv.curvature(mesh, volume=v)  # {'H': ..., 'K': ..., 'k1': ..., 'dir1': "
+      "..., ...}\n"
       "  isocurv.write_mesh('ct.vtp', mesh, arrays)\n\n"
-      "Errors raise isocurv.Error (a RuntimeError) with the command line's one-line message; wrong\n"
+      "Errors raise isocurv.Error (a RuntimeError) with the command line's one-line message; "
+      "wrong\n"
       "argument types raise TypeError, wrong shapes or values ValueError, naming the argument.";
   static py::exception<Error> error_type(m, "Error", PyExc_RuntimeError);
   py::register_exception_translator([](std::exception_ptr p) {
@@ -273,37 +293,53 @@ PYBIND11_MODULE(isocurv, m) {
     } catch (const Error& e) {
       error_type(e.what());
     } catch (const cl::Error& e) {
-      error_type((std::string("OpenCL: ") + e.what() + " (" + cl_error_name(e.err()) + ")").c_str());
+      error_type(
+          (std::string("OpenCL: ") + e.what() + " (" + cl_error_name(e.err()) + ")").c_str());
     }
   });
   set_program_cache_warnings(true);
 
-  py::class_<volume::Volume>(m, "Volume",
-                             "A loaded volume (an OpenVDB float grid with its spacing, origin and value "
-                             "statistics). Made by isocurv.load or isocurv.from_array.")
+  py::class_<volume::Volume>(
+      m, "Volume",
+      "A loaded volume (an OpenVDB float grid with its spacing, origin and value "
+      "statistics). Made by isocurv.load or isocurv.from_array.")
       .def_property_readonly(
-          "shape", [](const volume::Volume& v) {
+          "shape",
+          [](const volume::Volume& v) {
             const auto d = v.domain.dim();
             return py::make_tuple(d.z(), d.y(), d.x());
           },
           "Voxel counts (z, y, x) of the data domain, as numpy indexes it")
       .def_property_readonly(
-          "spacing", [](const volume::Volume& v) { const auto s = v.spacing(); return py::make_tuple(s.x(), s.y(), s.z()); },
+          "spacing",
+          [](const volume::Volume& v) {
+            const auto s = v.spacing();
+            return py::make_tuple(s.x(), s.y(), s.z());
+          },
           "World units per voxel along x, y, z")
       .def_property_readonly(
-          "origin", [](const volume::Volume& v) { const auto o = v.origin(); return py::make_tuple(o.x(), o.y(), o.z()); },
+          "origin",
+          [](const volume::Volume& v) {
+            const auto o = v.origin();
+            return py::make_tuple(o.x(), o.y(), o.z());
+          },
           "World position of voxel (0, 0, 0)")
       .def_property_readonly(
-          "value_range", [](const volume::Volume& v) { return py::make_tuple(v.stats.min, v.stats.max); },
+          "value_range",
+          [](const volume::Volume& v) { return py::make_tuple(v.stats.min, v.stats.max); },
           "(min, max) of the finite voxel values")
       .def_property_readonly(
           "suggested_isovalue", [](const volume::Volume& v) { return v.stats.suggested_isovalue; },
           "0 for level sets, else Otsu's threshold (the default iso of extract)")
       .def_property_readonly(
-          "inside", [](const volume::Volume& v) { return v.inside == volume::Inside::Above ? "above" : "below"; },
+          "inside",
+          [](const volume::Volume& v) {
+            return v.inside == volume::Inside::Above ? "above" : "below";
+          },
           "'above': the object is where values exceed the isovalue; 'below' for level sets")
-      .def_property_readonly("voxel_type", [](const volume::Volume& v) { return v.voxel_type; },
-                             "The voxel type in the file or array, e.g. 'uint16'")
+      .def_property_readonly(
+          "voxel_type", [](const volume::Volume& v) { return v.voxel_type; },
+          "The voxel type in the file or array, e.g. 'uint16'")
       .def_property_readonly("path", [](const volume::Volume& v) { return v.path; })
       .def("__repr__", [](const volume::Volume& v) {
         const auto d = v.domain.dim();
@@ -313,7 +349,8 @@ PYBIND11_MODULE(isocurv, m) {
 
   py::class_<PyMesh, std::shared_ptr<PyMesh>>(
       m, "Mesh",
-      "A fused, indexed triangle mesh in world coordinates. Mesh(vertices, triangles) copies (n, 3) "
+      "A fused, indexed triangle mesh in world coordinates. Mesh(vertices, triangles) copies (n, "
+      "3) "
       "vertices and (m, 3) vertex indices; .vertices and .triangles are numpy views of the mesh "
       "(no copy; writing to them changes the mesh; they keep it alive).")
       .def(py::init(&mesh_from_arrays), py::arg("vertices"), py::arg("triangles"))
@@ -329,7 +366,8 @@ PYBIND11_MODULE(isocurv, m) {
           "triangles",
           [](py::object self) {
             auto& me = self.cast<PyMesh&>();
-            const std::uint32_t* p = me.mesh.triangles.empty() ? nullptr : me.mesh.triangles.data()->data();
+            const std::uint32_t* p =
+                me.mesh.triangles.empty() ? nullptr : me.mesh.triangles.data()->data();
             return view(p, me.mesh.triangles.size(), 3, self);
           },
           "(m, 3) uint32 view of the triangles' vertex indices (normals point out of the object)")
@@ -340,8 +378,8 @@ PYBIND11_MODULE(isocurv, m) {
 
   m.def(
       "load",
-      [](const std::string& path, py::object spacing, py::object origin, py::object inside, std::string grid,
-         py::object dims, std::string type, py::object endian) {
+      [](const std::string& path, py::object spacing, py::object origin, py::object inside,
+         std::string grid, py::object dims, std::string type, py::object endian) {
         volume::LoadOptions lo;
         lo.grid = grid;
         if (!spacing.is_none()) lo.spacing = triple(spacing, "spacing");
@@ -354,32 +392,43 @@ PYBIND11_MODULE(isocurv, m) {
         lo.raw.type = type;
         if (!endian.is_none()) {
           const std::string e = endian.cast<std::string>();
-          if (e != "little" && e != "big") throw py::value_error("endian: expected 'little' or 'big'");
+          if (e != "little" && e != "big")
+            throw py::value_error("endian: expected 'little' or 'big'");
           lo.raw.big_endian = e == "big";
         }
         py::gil_scoped_release release;
         return volume::load(path, lo);
       },
-      py::arg("path"), py::kw_only(), py::arg("spacing") = py::none(), py::arg("origin") = py::none(),
-      py::arg("inside") = py::none(), py::arg("grid") = "", py::arg("dims") = py::none(), py::arg("type") = "",
-      py::arg("endian") = py::none(),
-      "Loads a volume file (.vdb .nrrd/.nhdr .mhd/.mha .nii/.nii.gz .vti .vtk .vol .raw), as the command line "
-      "does. spacing/origin (x, y, z) replace the file's; inside='above'|'below' overrides which side is the "
-      "object; grid names a .vdb grid; dims (x, y, z), type ('uint8' 'int16' 'uint16' 'int32' 'float' "
-      "'double'...) and endian ('little'|'big') describe a raw file. Raises isocurv.Error for a bad file.");
+      py::arg("path"), py::kw_only(), py::arg("spacing") = py::none(),
+      py::arg("origin") = py::none(), py::arg("inside") = py::none(), py::arg("grid") = "",
+      py::arg("dims") = py::none(), py::arg("type") = "", py::arg("endian") = py::none(),
+      "Loads a volume file (.vdb .nrrd/.nhdr .mhd/.mha .nii/.nii.gz .vti .vtk .vol .raw), as the "
+      "command line "
+      "does. spacing/origin (x, y, z) replace the file's; inside='above'|'below' overrides which "
+      "side is the "
+      "object; grid names a .vdb grid; dims (x, y, z), type ('uint8' 'int16' 'uint16' 'int32' "
+      "'float' "
+      "'double'...) and endian ('little'|'big') describe a raw file. Raises isocurv.Error for a "
+      "bad file.");
 
-  m.def("from_array", &from_array, py::arg("array"), py::arg("spacing") = py::make_tuple(1.0, 1.0, 1.0),
-        py::arg("origin") = py::make_tuple(0.0, 0.0, 0.0), py::arg("inside") = "above",
-        "A volume from a C-contiguous 3-D numpy array indexed [z, y, x] (x fastest, as files store voxels) "
-        "of uint8, int8, uint16, int16, uint32, int32, float32 or float64. spacing: world units per voxel "
-        "along x, y, z; origin: world position of array[0, 0, 0]; inside: 'above' (densities, CT) or "
-        "'below' (signed distances). The values are copied. TypeError for another dtype, ValueError for "
-        "another shape or a non-contiguous array.");
+  m.def(
+      "from_array", &from_array, py::arg("array"),
+      py::arg("spacing") = py::make_tuple(1.0, 1.0, 1.0),
+      py::arg("origin") = py::make_tuple(0.0, 0.0, 0.0), py::arg("inside") = "above",
+      "A volume from a C-contiguous 3-D numpy array indexed [z, y, x] (x fastest, as files store "
+      "voxels) "
+      "of uint8, int8, uint16, int16, uint32, int32, float32 or float64. spacing: world units per "
+      "voxel "
+      "along x, y, z; origin: world position of array[0, 0, 0]; inside: 'above' (densities, CT) or "
+      "'below' (signed distances). The values are copied. TypeError for another dtype, ValueError "
+      "for "
+      "another shape or a non-contiguous array.");
 
   m.def(
       "extract",
       [](const volume::Volume& v, py::object iso, bool cap, float snap, py::object device) {
-        if (!(snap >= 0 && snap <= 0.5f)) throw py::value_error("snap: expected 0..0.5 (a fraction of a voxel)");
+        if (!(snap >= 0 && snap <= 0.5f))
+          throw py::value_error("snap: expected 0..0.5 (a fraction of a voxel)");
         const DeviceChoice dc = device_choice(device);
         const float value = iso.is_none() ? float(v.stats.suggested_isovalue) : iso.cast<float>();
         if (!std::isfinite(value)) throw py::value_error("iso: must be a finite number");
@@ -389,24 +438,32 @@ PYBIND11_MODULE(isocurv, m) {
         mo.snap = snap;
         py::gil_scoped_release release;
         std::lock_guard<std::mutex> lock(device_lock);
-        out->mesh = dc.reference ? mc::extract_reference(v, value, mo) : mc::extract(v, value, opened_device(dc), mo);
+        out->mesh = dc.reference ? mc::extract_reference(v, value, mo)
+                                 : mc::extract(v, value, opened_device(dc), mo);
         return out;
       },
       py::arg("volume"), py::arg("iso") = py::none(), py::kw_only(), py::arg("cap") = false,
       py::arg("snap") = mc::kDefaultSnap, py::arg("device") = py::none(),
-      "The isosurface of `volume` at `iso` (default: volume.suggested_isovalue) as a Mesh: fused (every "
-      "crossed voxel edge one vertex), triangles wound so normals point out of the object. cap=True closes "
-      "surfaces cut by the volume's box; snap as the CLI's --snap; device: None (a GPU, else PoCL), a "
-      "device number, or 'reference' (the C++ mesher). An iso that gives no surface returns an empty mesh.");
+      "The isosurface of `volume` at `iso` (default: volume.suggested_isovalue) as a Mesh: fused "
+      "(every "
+      "crossed voxel edge one vertex), triangles wound so normals point out of the object. "
+      "cap=True closes "
+      "surfaces cut by the volume's box; snap as the CLI's --snap; device: None (a GPU, else "
+      "PoCL), a "
+      "device number, or 'reference' (the C++ mesher). An iso that gives no surface returns an "
+      "empty mesh.");
 
   m.def(
       "curvature",
       [](const std::shared_ptr<PyMesh>& mesh, const volume::Volume* volume, py::object normals,
          py::object ao_scale, bool cap, py::object device) {
         const DeviceChoice dc = device_choice(device);
-        std::string source = normals.is_none() ? (volume ? "volume" : "mesh") : normals.cast<std::string>();
-        if (source != "volume" && source != "mesh") throw py::value_error("normals: expected 'volume' or 'mesh'");
-        if (source == "volume" && !volume) throw py::value_error("normals: 'volume' needs the volume argument");
+        std::string source =
+            normals.is_none() ? (volume ? "volume" : "mesh") : normals.cast<std::string>();
+        if (source != "volume" && source != "mesh")
+          throw py::value_error("normals: expected 'volume' or 'mesh'");
+        if (source == "volume" && !volume)
+          throw py::value_error("normals: 'volume' needs the volume argument");
         if (mesh->mesh.triangles.empty()) throw py::value_error("mesh: has no triangles");
         curvature::CurvatureField field;
         {
@@ -417,7 +474,8 @@ PYBIND11_MODULE(isocurv, m) {
             vn = volume::gradient_normals_for_mesh(*volume, mesh->mesh, cap);
             co.vertex_normals = &vn.normals;
           }
-          co.ao_scale = ao_scale.is_none() ? curvature::default_ao_scale(mesh->mesh) : ao_scale.cast<float>();
+          co.ao_scale =
+              ao_scale.is_none() ? curvature::default_ao_scale(mesh->mesh) : ao_scale.cast<float>();
           std::lock_guard<std::mutex> lock(device_lock);
           field = dc.reference ? curvature::estimate_reference(mesh->mesh, co)
                                : curvature::estimate(mesh->mesh, opened_device(dc), co);
@@ -426,12 +484,17 @@ PYBIND11_MODULE(isocurv, m) {
       },
       py::arg("mesh"), py::arg("volume") = nullptr, py::kw_only(), py::arg("normals") = py::none(),
       py::arg("ao_scale") = py::none(), py::arg("cap") = false, py::arg("device") = py::none(),
-      "Per-vertex curvature of `mesh` as a dict of numpy arrays named as in the files: Normals (n, 3), Area, "
-      "k1, k2 (k1 >= k2), dir1, dir2 (n, 3), H, K, dcurv (n, 4), ShapeIndex, Curvedness, AO (n,), Boundary "
+      "Per-vertex curvature of `mesh` as a dict of numpy arrays named as in the files: Normals (n, "
+      "3), Area, "
+      "k1, k2 (k1 >= k2), dir1, dir2 (n, 3), H, K, dcurv (n, 4), ShapeIndex, Curvedness, AO (n,), "
+      "Boundary "
       "(n,) uint8. With `volume` (the one the mesh came from) the normals come from its gradient "
-      "(normals='volume', the default then; face normals where the gradient cannot be trusted), else from the "
-      "faces; cap=True when the mesh was extracted with cap=True. ao_scale: ambient-occlusion radius in world "
-      "units (default 4 mean edge lengths). Normals point out of the object, so a solid sphere of radius R "
+      "(normals='volume', the default then; face normals where the gradient cannot be trusted), "
+      "else from the "
+      "faces; cap=True when the mesh was extracted with cap=True. ao_scale: ambient-occlusion "
+      "radius in world "
+      "units (default 4 mean edge lengths). Normals point out of the object, so a solid sphere of "
+      "radius R "
       "has k1 = k2 = H = +1/R.");
 
   m.def(
@@ -448,16 +511,19 @@ PYBIND11_MODULE(isocurv, m) {
         return py::make_tuple(out, arrays);
       },
       py::arg("path"),
-      "Reads a mesh file (.vtp .ply .obj .stl); returns (Mesh, dict of the curvature arrays it carries, by "
+      "Reads a mesh file (.vtp .ply .obj .stl); returns (Mesh, dict of the curvature arrays it "
+      "carries, by "
       "name; empty when none). Raises isocurv.Error for a missing or malformed file.");
 
   m.def(
       "write_mesh",
-      [](const std::string& path, const std::shared_ptr<PyMesh>& mesh, py::object arrays, const std::string& compress) {
+      [](const std::string& path, const std::shared_ptr<PyMesh>& mesh, py::object arrays,
+         const std::string& compress) {
         const io::Compression c = io::parse_compression(compress);
         std::optional<curvature::CurvatureField> field;
         if (!arrays.is_none()) {
-          if (!py::isinstance<py::dict>(arrays)) throw py::type_error("arrays: expected a dict of numpy arrays");
+          if (!py::isinstance<py::dict>(arrays))
+            throw py::type_error("arrays: expected a dict of numpy arrays");
           field = field_from_dict(arrays.cast<py::dict>(), mesh->mesh.positions.size());
         }
         py::gil_scoped_release release;
@@ -465,8 +531,10 @@ PYBIND11_MODULE(isocurv, m) {
       },
       py::arg("path"), py::arg("mesh"), py::arg("arrays") = py::none(), py::kw_only(),
       py::arg("compress") = "lz4:1",
-      "Writes `mesh` and the named arrays (a dict as curvature() returns; any subset) to `path`, the format "
-      "by extension (.vtp .ply .obj .stl; .obj and .stl keep only the geometry and Normals), atomically. "
+      "Writes `mesh` and the named arrays (a dict as curvature() returns; any subset) to `path`, "
+      "the format "
+      "by extension (.vtp .ply .obj .stl; .obj and .stl keep only the geometry and Normals), "
+      "atomically. "
       "compress: 'none', 'lz4[:LEVEL]' or 'zlib[:LEVEL]' for .vtp.");
 
   m.def(
@@ -497,8 +565,11 @@ PYBIND11_MODULE(isocurv, m) {
         return d;
       },
       py::arg("mesh"),
-      "Fusion and topology report of `mesh` (as isocurv check): counts of duplicate and unreferenced "
-      "vertices, degenerate triangles, boundary, non-manifold and misoriented edges, components, Euler "
-      "characteristic, area, watertight, oriented, genus (None unless closed and oriented) and the closed "
+      "Fusion and topology report of `mesh` (as isocurv check): counts of duplicate and "
+      "unreferenced "
+      "vertices, degenerate triangles, boundary, non-manifold and misoriented edges, components, "
+      "Euler "
+      "characteristic, area, watertight, oriented, genus (None unless closed and oriented) and the "
+      "closed "
       "part's signed volume (negative: oriented inward).");
 }

@@ -69,7 +69,8 @@ TEST(Batch, EachInputInItsFolderOneBadInputReportedOthersRun) {
   }
   EXPECT_EQ(failed, 2);
   // The batch's output is what a single call writes.
-  const auto single = run_isocurv({"curvature", dataset("torus"), "-o", dir / "torus.vtp", "--quiet"});
+  const auto single =
+      run_isocurv({"curvature", dataset("torus"), "-o", dir / "torus.vtp", "--quiet"});
   ASSERT_TRUE(single.ok()) << single.describe();
   expect_same(dir / "out/torus/torus.vtp", dir / "torus.vtp");
   const nlohmann::json st = parse_json(read_file(dir / "out/torus/stats.json"), "stats.json");
@@ -90,7 +91,8 @@ TEST(Batch, SweepWritesEachIsovalueAsASingleCallWould) {
     const std::string mesh = dir / ("out/torus/torus_iso" + std::string(iso) + ".ply");
     ASSERT_TRUE(fs::exists(mesh)) << mesh;
     EXPECT_TRUE(fs::exists(dir / ("out/torus/stats_iso" + std::string(iso) + ".json")));
-    const auto one = run_isocurv({"extract", dataset("torus"), "--iso", iso, "-o", dir / "one.ply", "--quiet"});
+    const auto one =
+        run_isocurv({"extract", dataset("torus"), "--iso", iso, "-o", dir / "one.ply", "--quiet"});
     ASSERT_TRUE(one.ok()) << one.describe();
     expect_same(mesh, dir / "one.ply");
   }
@@ -107,14 +109,16 @@ TEST(Batch, JobsTwoWritesTheSameFilesAsJobsOne) {
     ASSERT_TRUE(r.ok()) << r.describe();
   }
   for (const char* name : {"sphere/sphere.vtp", "torus/torus.vtp", "gyroid/gyroid.vtp"})
-    EXPECT_EQ(read_file(dir / ("j1/" + std::string(name))), read_file(dir / ("j2/" + std::string(name))))
+    EXPECT_EQ(read_file(dir / ("j1/" + std::string(name))),
+              read_file(dir / ("j2/" + std::string(name))))
         << name;
 }
 
 TEST(Batch, UnwritableOutputIsCaughtBeforeAnyWork) {
   TempDir dir("unwritable");
   write_file(dir / "file", "x");
-  const auto r = run_isocurv({"curvature", dataset("sphere"), dataset("torus"), "-o", dir / "file/out"});
+  const auto r =
+      run_isocurv({"curvature", dataset("sphere"), dataset("torus"), "-o", dir / "file/out"});
   expect_clean_failure(r, "file/out");
   const auto f = run_isocurv({"extract", dataset("sphere"), dataset("torus"), "-o", dir / "file"});
   expect_clean_failure(f, "must be a folder");
@@ -122,8 +126,20 @@ TEST(Batch, UnwritableOutputIsCaughtBeforeAnyWork) {
 
 TEST(Batch, MalformedIsovalueListIsAUsageError) {
   TempDir dir("badiso");
-  expect_usage_error(run_isocurv({"extract", dataset("sphere"), "--iso", "0,x", "-o", dir / "o"}), "--iso");
-  expect_usage_error(run_isocurv({"extract", dataset("sphere"), "--iso", "0,0", "-o", dir / "o"}), "--iso");
+  expect_usage_error(run_isocurv({"extract", dataset("sphere"), "--iso", "0,x", "-o", dir / "o"}),
+                     "--iso");
+  expect_usage_error(run_isocurv({"extract", dataset("sphere"), "--iso", "0,0", "-o", dir / "o"}),
+                     "--iso");
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(Batch, BatchOnlyOptionsOnOneOutputAreAnError) {
+  TempDir dir("batchonly");
+  expect_clean_failure(
+      run_isocurv({"extract", dataset("sphere"), "--format", "ply", "-o", dir / "a.vtp"}),
+      "--format");
+  expect_clean_failure(
+      run_isocurv({"curvature", dataset("sphere"), "--jobs", "2", "-o", dir / "a.vtp"}), "--jobs");
   EXPECT_TRUE(dir.entries().empty());
 }
 
@@ -132,7 +148,8 @@ TEST(Compress, EveryCompressorReadsBackTheSameArraysAndSizesDiffer) {
   std::map<std::string, std::uint64_t> bytes;
   for (const char* c : {"none", "lz4", "zlib:6"}) {
     const std::string out = dir / (std::string(c).substr(0, 4) + ".vtp");
-    const auto r = run_isocurv({"curvature", dataset("torus"), "--compress", c, "-o", out, "--json"});
+    const auto r =
+        run_isocurv({"curvature", dataset("torus"), "--compress", c, "-o", out, "--json"});
     ASSERT_TRUE(r.ok()) << r.describe();
     const nlohmann::json j = parse_json(r.out, "stdout");
     EXPECT_EQ(j["output_bytes"], fs::file_size(out));
@@ -142,18 +159,22 @@ TEST(Compress, EveryCompressorReadsBackTheSameArraysAndSizesDiffer) {
   expect_same(dir / "none.vtp", dir / "zlib.vtp");
   EXPECT_GT(bytes["none"], bytes["lz4"]);
   EXPECT_GT(bytes["lz4"], bytes["zlib:6"]);
-  expect_usage_error(run_isocurv({"curvature", dataset("torus"), "--compress", "zlib:0", "-o", dir / "x.vtp"}),
-                     "--compress");
-  expect_usage_error(run_isocurv({"extract", dataset("torus"), "--compress", "gzip", "-o", dir / "x.vtp"}),
-                     "--compress");
+  expect_usage_error(
+      run_isocurv({"curvature", dataset("torus"), "--compress", "zlib:0", "-o", dir / "x.vtp"}),
+      "--compress");
+  expect_usage_error(
+      run_isocurv({"extract", dataset("torus"), "--compress", "gzip", "-o", dir / "x.vtp"}),
+      "--compress");
 }
 
 TEST(ProgramCacheCli, SecondProcessLoadsProgramsAndWritesTheSameMesh) {
   TempDir dir("cache");
   const std::vector<std::string> env = {"ISOCURV_CACHE_DIR=" + (dir / "cache")};
-  const auto first = run_isocurv({"curvature", dataset("sphere"), "-o", dir / "a.vtp", "--json"}, 60, env);
+  const auto first =
+      run_isocurv({"curvature", dataset("sphere"), "-o", dir / "a.vtp", "--json"}, 60, env);
   ASSERT_TRUE(first.ok()) << first.describe();
-  const auto second = run_isocurv({"curvature", dataset("sphere"), "-o", dir / "b.vtp", "--json"}, 60, env);
+  const auto second =
+      run_isocurv({"curvature", dataset("sphere"), "-o", dir / "b.vtp", "--json"}, 60, env);
   ASSERT_TRUE(second.ok()) << second.describe();
   const nlohmann::json a = parse_json(first.out, "first"), b = parse_json(second.out, "second");
   EXPECT_GT(a["programs"]["compiled"].get<int>(), 0);

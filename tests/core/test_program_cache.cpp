@@ -36,7 +36,8 @@ std::vector<float> run_affine(Device& dev, const std::string& options = "") {
   cl::Kernel k(p, "affine");
   std::vector<float> in(kItems), out(kItems, -1.0f);
   for (std::size_t i = 0; i < kItems; ++i) in[i] = float(i) * 0.25f;
-  cl::Buffer a(dev.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, kItems * sizeof(float), in.data());
+  cl::Buffer a(dev.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, kItems * sizeof(float),
+               in.data());
   cl::Buffer b(dev.context(), CL_MEM_WRITE_ONLY, kItems * sizeof(float));
   k.setArg(0, a);
   k.setArg(1, b);
@@ -55,8 +56,9 @@ std::vector<float> reference_affine() {
 class ProgramCache : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("isocurv_program_cache_" + std::to_string(getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = fs::temp_directory_path() /
+           ("isocurv_program_cache_" + std::to_string(getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     setenv("ISOCURV_CACHE_DIR", dir_.c_str(), 1);
     set_program_cache_warnings(false);
@@ -83,7 +85,8 @@ TEST_F(ProgramCache, SecondBuildLoadsTheStoredBinary) {
   EXPECT_EQ(s1.compiled, s0.compiled + 1);
   EXPECT_EQ(s1.from_cache, s0.from_cache);
   ASSERT_EQ(entries().size(), 1u);
-  const std::vector<float> cached = run_affine(*Device::open());  // a new device: a new process's view
+  const std::vector<float> cached =
+      run_affine(*Device::open());  // a new device: a new process's view
   const ProgramBuildStats s2 = program_build_stats();
   EXPECT_EQ(s2.compiled, s1.compiled);
   EXPECT_EQ(s2.from_cache, s1.from_cache + 1);
