@@ -41,8 +41,8 @@ TEST(VolumeEstimatorCli, JsonFieldDataAndTighterStatistics) {
   const double R = 12;
   const std::string ball = write_noisy_ball(dir, 34, R);
   const std::string vtp = dir / "ball.vtp";
-  const auto v = run_isocurv({"curvature", ball, "--iso", "120.5", "-o", vtp, "--estimator",
-                              "volume", "--json"}, 120);
+  const auto v = run_isocurv(
+      {"curvature", ball, "--iso", "120.5", "-o", vtp, "--estimator", "volume", "--json"}, 120);
   ASSERT_TRUE(v.ok()) << v.describe();
   const json s = parse_json(v.out, "curvature --json");
   ASSERT_TRUE(s.contains("estimator")) << s.dump(2);
@@ -54,8 +54,8 @@ TEST(VolumeEstimatorCli, JsonFieldDataAndTighterStatistics) {
   EXPECT_EQ(e["unreliable_vertices"].get<int>(), 0) << e.dump(2);
   EXPECT_EQ(s.value("normals", ""), "volume estimator");
 
-  const auto m = run_isocurv({"curvature", ball, "--iso", "120.5", "-o", dir / "mesh.vtp",
-                              "--json"}, 120);
+  const auto m =
+      run_isocurv({"curvature", ball, "--iso", "120.5", "-o", dir / "mesh.vtp", "--json"}, 120);
   ASSERT_TRUE(m.ok()) << m.describe();
   const json sm = parse_json(m.out, "curvature --json");
   EXPECT_EQ(sm["estimator"].value("name", ""), "rusinkiewicz");
@@ -74,7 +74,8 @@ TEST(VolumeEstimatorCli, JsonFieldDataAndTighterStatistics) {
 
   // A given scale is reported as given.
   const auto g = run_isocurv({"curvature", ball, "--iso", "120.5", "-o", dir / "g.vtp",
-                              "--estimator", "volume", "--scale", "1.5", "--json"}, 120);
+                              "--estimator", "volume", "--scale", "1.5", "--json"},
+                             120);
   ASSERT_TRUE(g.ok()) << g.describe();
   const json sg = parse_json(g.out, "curvature --json");
   EXPECT_EQ(sg["estimator"].value("scale_chosen", ""), "given");
@@ -94,9 +95,13 @@ TEST(VolumeEstimatorCli, UsageErrors) {
       {{"curvature", ball, "-o", out, "--estimator", "nope"}, 2, "--estimator"},
       {{"curvature", ball, "-o", out, "--estimator", "volume", "--scale", "-1"}, 2, "--scale"},
       {{"curvature", ball, "-o", out, "--estimator", "volume", "--scale", "nan"}, 2, "--scale"},
-      {{"curvature", ball, "-o", out, "--estimator", "volume", "--scale", "1e6"}, 1, "larger than the volume"},
+      {{"curvature", ball, "-o", out, "--estimator", "volume", "--scale", "1e6"},
+       1,
+       "larger than the volume"},
       {{"curvature", ball, "-o", out, "--scale", "2"}, 1, "--estimator volume"},
-      {{"curvature", ball, "-o", out, "--estimator", "volume", "--normals", "mesh"}, 1, "--normals"},
+      {{"curvature", ball, "-o", out, "--estimator", "volume", "--normals", "mesh"},
+       1,
+       "--normals"},
   };
   for (const Bad& b : bad) {
     const auto r = run_isocurv(b.args);
