@@ -86,7 +86,7 @@ void add_curvature_options(CLI::App& cmd, CommonOptions& o, bool mesh_input) {
         char* end = nullptr;
         const double v = std::strtod(s.c_str(), &end);
         if (s.empty() || *end != 0 || !std::isfinite(v) || !(v > 0))
-          return "--scale takes a positive number (world units) or auto, not '" + s + "'";
+          return "a positive number (world units) or auto, not '" + s + "'";
         return "";
       });
   cmd.add_option("--normals", o.normals,

@@ -117,7 +117,9 @@ void run(const Case& c, bool quick) {
   }
   std::printf("%s: %zu vertices, voxel type %s\n", c.name.c_str(), mesh.vertex_count(),
               c.volume.voxel_type.c_str());
-  auto as_double = [](const std::vector<float>& v) { return std::vector<double>(v.begin(), v.end()); };
+  auto as_double = [](const std::vector<float>& v) {
+    return std::vector<double>(v.begin(), v.end());
+  };
   const float ao = curvature::default_ao_scale(mesh);
   Err best_fixed{1e9, 1e9};
   {
@@ -126,14 +128,17 @@ void run(const Case& c, bool quick) {
     curvature::estimate(mesh, dev, o);  // warm-up (program build)
     auto t0 = Clock::now();
     const auto f = curvature::estimate(mesh, dev, o);
-    print("rusinkiewicz, mesh normals", errors(as_double(f.H), as_double(f.K), eH, eK, ms_since(t0)));
+    print("rusinkiewicz, mesh normals",
+          errors(as_double(f.H), as_double(f.K), eH, eK, ms_since(t0)));
     t0 = Clock::now();
     const volume::MeshNormals n = volume::gradient_normals_for_mesh(c.volume, mesh);
     o.vertex_normals = &n.normals;
     const auto g = curvature::estimate(mesh, dev, o);
-    print("rusinkiewicz, volume normals", errors(as_double(g.H), as_double(g.K), eH, eK, ms_since(t0)));
+    print("rusinkiewicz, volume normals",
+          errors(as_double(g.H), as_double(g.K), eH, eK, ms_since(t0)));
   }
-  const std::vector<double> voxels = quick ? std::vector<double>{1, 2} : std::vector<double>{0.7, 1, 1.5, 2, 2.5, 3};
+  const std::vector<double> voxels =
+      quick ? std::vector<double>{1, 2} : std::vector<double>{0.7, 1, 1.5, 2, 2.5, 3};
   curvature::Options o;
   o.estimator = curvature::Estimator::volume;
   o.ao_scale = ao;
@@ -223,10 +228,13 @@ int main(int argc, char** argv) {
   const int n = quick ? 64 : 128;
   const double R = quick ? 20 : 40;  // sphere radius, voxels
   const Eigen::Vector3d c0(n / 2 + 0.31, n / 2 - 0.17, n / 2 + 0.07);
-  auto sphere_exact = [R](const Eigen::Vector3d&, double& h, double& k) { h = 1 / R, k = 1 / (R * R); };
+  auto sphere_exact = [R](const Eigen::Vector3d&, double& h, double& k) {
+    h = 1 / R, k = 1 / (R * R);
+  };
   // Torus about z through tc: tube radius r, core radius Rt (voxels).
   const double Rt = quick ? 18 : 36, r = quick ? 7 : 14;
-  const std::array<int, 3> tdims = {int(2 * (Rt + r) + 16), int(2 * (Rt + r) + 16), int(2 * r + 16)};
+  const std::array<int, 3> tdims = {int(2 * (Rt + r) + 16), int(2 * (Rt + r) + 16),
+                                    int(2 * r + 16)};
   const Eigen::Vector3d tc(tdims[0] / 2 + 0.23, tdims[1] / 2 - 0.11, tdims[2] / 2 + 0.17);
   auto torus_sd = [=](const Eigen::Vector3d& p) {
     const Eigen::Vector3d d = p - tc;
@@ -251,14 +259,17 @@ int main(int argc, char** argv) {
                    0.0f, torus_exact});
   cases.push_back({"sphere CT-like uint8, noise 3",
                    ct_like(sphere_sd, {n, n, n}, "uint8", 20, 220, 3, 1), 120.0f, sphere_exact});
-  cases.push_back({"torus CT-like uint8, noise 3",
-                   ct_like(torus_sd, tdims, "uint8", 20, 220, 3, 2), 120.0f, torus_exact});
+  cases.push_back({"torus CT-like uint8, noise 3", ct_like(torus_sd, tdims, "uint8", 20, 220, 3, 2),
+                   120.0f, torus_exact});
   cases.push_back({"sphere CT-like uint8, no noise",
                    ct_like(sphere_sd, {n, n, n}, "uint8", 20, 220, 0, 3), 120.0f, sphere_exact});
   cases.push_back({"sphere CT-like uint16, noise 40",
-                   ct_like(sphere_sd, {n, n, n}, "uint16", 1000, 4000, 40, 4), 2500.0f, sphere_exact});
-  std::printf("device: %s; errors relative to the RMS of the exact value; p99 of the per-vertex "
-              "relative error\n\n", Device::default_device().info().name.c_str());
+                   ct_like(sphere_sd, {n, n, n}, "uint16", 1000, 4000, 40, 4), 2500.0f,
+                   sphere_exact});
+  std::printf(
+      "device: %s; errors relative to the RMS of the exact value; p99 of the per-vertex "
+      "relative error\n\n",
+      Device::default_device().info().name.c_str());
   for (const Case& c : cases) run(c, quick);
   return 0;
 }

@@ -16,8 +16,8 @@ ScaleChoice auto_scale(const volume::Volume& volume, const Mesh& mesh, float iso
   c.scale = c.voxel;
   if (mesh.positions.empty() || !volume.grid) return c;
   const std::string& t = volume.voxel_type;
-  const bool integer = t == "uint8" || t == "int8" || t == "int16" || t == "uint16" ||
-                       t == "int32" || t == "uint32";
+  const bool integer =
+      t == "uint8" || t == "int8" || t == "int16" || t == "uint16" || t == "int32" || t == "uint32";
   c.quantisation = integer ? 1 / std::sqrt(12.0) : 0.0;
   c.measured_noise = volume::estimate_noise(*volume.grid, frame, mesh.positions, isovalue).sigma;
   c.noise = std::max(c.measured_noise, c.quantisation);

@@ -20,13 +20,13 @@ inline constexpr double kAutoMinVoxels = 1.0, kAutoMaxVoxels = 4.0;
 
 /// How the scale was chosen (reported in the JSON).
 struct ScaleChoice {
-  double scale = 0;          ///< the chosen sigma, world units
-  double voxel = 0;          ///< the largest spacing, world units
-  double noise = 0;          ///< voxel noise, value units: max(measured, quantisation)
-  double measured_noise = 0; ///< volume::estimate_noise's
-  double quantisation = 0;   ///< step / sqrt(12) for integer voxel types (step 1), else 0
-  double edge_step = 0;      ///< median over the vertices of |gradient| per voxel, value units
-  double noise_level = 0;    ///< noise / edge_step
+  double scale = 0;           ///< the chosen sigma, world units
+  double voxel = 0;           ///< the largest spacing, world units
+  double noise = 0;           ///< voxel noise, value units: max(measured, quantisation)
+  double measured_noise = 0;  ///< volume::estimate_noise's
+  double quantisation = 0;    ///< step / sqrt(12) for integer voxel types (step 1), else 0
+  double edge_step = 0;       ///< median over the vertices of |gradient| per voxel, value units
+  double noise_level = 0;     ///< noise / edge_step
 };
 
 /// The scale for the volume estimator on `mesh` (extracted from `volume` at `isovalue`):

@@ -12,8 +12,10 @@ namespace isocurv::curvature {
 
 const char* estimator_name(Estimator e) {
   switch (e) {
-    case Estimator::rusinkiewicz: return "rusinkiewicz";
-    case Estimator::volume: return "volume";
+    case Estimator::rusinkiewicz:
+      return "rusinkiewicz";
+    case Estimator::volume:
+      return "volume";
   }
   return "?";
 }
@@ -27,8 +29,9 @@ std::optional<Estimator> estimator_from_name(const std::string& name) {
 std::vector<std::string> estimator_names() { return {"rusinkiewicz", "volume"}; }
 
 std::vector<std::string> arrays_filled(Estimator e) {
-  std::vector<std::string> all = {"Normals", "Area", "k1", "k2", "dir1", "dir2", "H", "K",
-                                  "dcurv", "ShapeIndex", "Curvedness", "AO", "Boundary"};
+  std::vector<std::string> all = {"Normals",    "Area", "k1",      "k2",    "dir1",
+                                  "dir2",       "H",    "K",       "dcurv", "ShapeIndex",
+                                  "Curvedness", "AO",   "Boundary"};
   if (e == Estimator::volume) all.push_back("Unreliable");
   return all;
 }
@@ -47,8 +50,9 @@ CurvatureField estimate_field(const Mesh& mesh, const VolumeSource& source, Devi
       break;
     case Estimator::volume: {
       if (!source.volume)
-        throw Error("the volume estimator needs a volume (the one the mesh was extracted from), "
-                    "not a mesh file; use --estimator rusinkiewicz for meshes");
+        throw Error(
+            "the volume estimator needs a volume (the one the mesh was extracted from), "
+            "not a mesh file; use --estimator rusinkiewicz for meshes");
       double scale = options.scale;
       if (scale == 0) {
         const ScaleChoice c = auto_scale(*source.volume, mesh, source.isovalue);

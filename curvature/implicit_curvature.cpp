@@ -1,7 +1,6 @@
 #include "curvature/implicit_curvature.h"
 
 #include <Eigen/Geometry>
-
 #include <cmath>
 
 namespace isocurv::curvature {
@@ -59,8 +58,8 @@ PointCurvature implicit_curvature(const volume::Jet& jet, volume::Inside inside)
   r.gradient_norm = len;
   const V3 Hm = Hs * m;
   auto C = [&](const V3& x, const V3& y, const V3& z) {
-    const double quad = (x.dot(Hs * z) * Hm.dot(y) + y.dot(Hs * z) * Hm.dot(x) +
-                         x.dot(Hs * y) * Hm.dot(z)) / len;
+    const double quad =
+        (x.dot(Hs * z) * Hm.dot(y) + y.dot(Hs * z) * Hm.dot(x) + x.dot(Hs * y) * Hm.dot(z)) / len;
     return s / len * (cubic(jet.third, x, y, z) - quad);
   };
   const V3 &e1 = r.dir1, &e2 = r.dir2;

@@ -1,9 +1,8 @@
 #pragma once
 // Curvature of an implicit surface at one point from the field's derivatives there (the volume
 // estimator's per-vertex step; double precision, the specification of volume_kernels.cl).
-#include <array>
-
 #include <Eigen/Core>
+#include <array>
 
 #include "volume/gaussian_jet.h"
 #include "volume/volume.h"

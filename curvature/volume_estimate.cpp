@@ -24,8 +24,24 @@ namespace isocurv::curvature {
 namespace {
 
 enum Slot : std::size_t {
-  kPositions, kPool, kTable, kFrame, kNormals, kK1, kK2, kDir1, kDir2, kH, kK, kDcurv, kShape,
-  kCurved, kAo, kGradientNorm, kMissed, kSlots
+  kPositions,
+  kPool,
+  kTable,
+  kFrame,
+  kNormals,
+  kK1,
+  kK2,
+  kDir1,
+  kDir2,
+  kH,
+  kK,
+  kDcurv,
+  kShape,
+  kCurved,
+  kAo,
+  kGradientNorm,
+  kMissed,
+  kSlots
 };
 
 constexpr std::size_t kGroup = 64;  // work-group size of the launch (core/cl_launch.h)
@@ -109,8 +125,8 @@ CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalu
   cl::Buffer& pool = upload(q, s, kPool, gather.samples);
   cl::Buffer& table = upload(q, s, kTable, gather.table);
   cl::Buffer& params = upload(q, s, kFrame, frame);
-  cl::Buffer* f1[] = {&s.get(kK1, nv * 4), &s.get(kK2, nv * 4), &s.get(kH, nv * 4),
-                      &s.get(kK, nv * 4), &s.get(kShape, nv * 4), &s.get(kCurved, nv * 4),
+  cl::Buffer* f1[] = {&s.get(kK1, nv * 4), &s.get(kK2, nv * 4),          &s.get(kH, nv * 4),
+                      &s.get(kK, nv * 4),  &s.get(kShape, nv * 4),       &s.get(kCurved, nv * 4),
                       &s.get(kAo, nv * 4), &s.get(kGradientNorm, nv * 4)};
   cl::Buffer& normals = s.get(kNormals, nv * sizeof(Vec3f));
   cl::Buffer& dir1 = s.get(kDir1, nv * sizeof(Vec3f));

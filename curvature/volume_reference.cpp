@@ -35,9 +35,8 @@ VolumeSetup volume_setup(const Mesh& mesh, const volume::Volume& volume, double 
     double extent = 0;
     for (int a = 0; a < 3; ++a) extent = std::max(extent, dim[a] * s.frame.spacing[a]);
     if (sigma > extent)
-      throw Error(volume.path, "scale " + std::to_string(sigma) +
-                                   " is larger than the volume (" + std::to_string(extent) +
-                                   " world units across)");
+      throw Error(volume.path, "scale " + std::to_string(sigma) + " is larger than the volume (" +
+                                   std::to_string(extent) + " world units across)");
   }
   if (sigma / finest > volume::kMaxDeviation)
     throw Error(volume.path, "scale " + std::to_string(sigma) + " is " +
@@ -75,8 +74,8 @@ std::size_t finish_volume_field(const Mesh& mesh, const RawVertex& raw, float ao
     ++count;
     const Vec3f a = faces[i];
     const double len = std::sqrt(double(a[0]) * a[0] + double(a[1]) * a[1] + double(a[2]) * a[2]);
-    field.normals[i] = len > 0 ? Vec3f{float(a[0] / len), float(a[1] / len), float(a[2] / len)}
-                               : Vec3f{0, 0, 0};
+    field.normals[i] =
+        len > 0 ? Vec3f{float(a[0] / len), float(a[1] / len), float(a[2] / len)} : Vec3f{0, 0, 0};
     field.k1[i] = field.k2[i] = field.H[i] = field.K[i] = 0;
     field.dir1[i] = field.dir2[i] = Vec3f{0, 0, 0};
     field.dcurv[i] = {0, 0, 0, 0};

@@ -64,7 +64,8 @@ BrickGather gather_bricks(const openvdb::FloatGrid& grid, const GridFrame& frame
   for (std::size_t c = 0; c < out.table.size(); ++c)
     if (out.table[c] == 0) {
       out.table[c] = next++;
-      const std::size_t x = c % dims[0], y = (c / dims[0]) % dims[1], z = c / (std::size_t(dims[0]) * dims[1]);
+      const std::size_t x = c % dims[0], y = (c / dims[0]) % dims[1],
+                        z = c / (std::size_t(dims[0]) * dims[1]);
       bricks.push_back(all.min() + openvdb::Coord(int(x), int(y), int(z)));
     }
   out.samples.resize(bricks.size() * 512);

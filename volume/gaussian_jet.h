@@ -3,9 +3,9 @@
 // derivatives of the volume's samples convolved with a Gaussian of standard deviation sigma
 // (world units), evaluated at any world point. The double-precision specification that the
 // curvature stage's OpenCL kernel (curvature/volume_kernels.cl) follows.
-#include <array>
-
 #include <openvdb/openvdb.h>
+
+#include <array>
 
 #include "volume/volume.h"
 
@@ -31,12 +31,12 @@ struct Jet {
 /// as NIfTI, NRRD and MetaImage direction matrices are), so that a Gaussian isotropic in world
 /// space is separable along the index axes with per-axis deviation sigma / |column|.
 struct GridFrame {
-  openvdb::Mat3d A;         ///< index -> world linear part (column a: index axis a in world space)
-  openvdb::Mat3d B;         ///< A^-1 (world -> index)
-  openvdb::Vec3d origin;    ///< world position of index (0, 0, 0)
-  openvdb::Vec3d spacing;   ///< |column a| of A
-  bool clamp = false;       ///< true for dense volumes: indices are clamped to the domain
-  openvdb::Coord lo, hi;    ///< the domain (inclusive) when clamping
+  openvdb::Mat3d A;        ///< index -> world linear part (column a: index axis a in world space)
+  openvdb::Mat3d B;        ///< A^-1 (world -> index)
+  openvdb::Vec3d origin;   ///< world position of index (0, 0, 0)
+  openvdb::Vec3d spacing;  ///< |column a| of A
+  bool clamp = false;      ///< true for dense volumes: indices are clamped to the domain
+  openvdb::Coord lo, hi;   ///< the domain (inclusive) when clamping
 
   openvdb::Vec3d to_index(const openvdb::Vec3d& world) const { return B * (world - origin); }
   openvdb::Vec3d to_world(const openvdb::Vec3d& index) const { return origin + A * index; }

@@ -19,7 +19,8 @@ NoiseEstimate estimate_noise(const openvdb::FloatGrid& grid, const GridFrame& fr
   std::vector<openvdb::Coord> chosen(blocks.begin(), blocks.end());
   if (chosen.size() > max_blocks) {
     std::vector<openvdb::Coord> even;
-    for (std::size_t k = 0; k < max_blocks; ++k) even.push_back(chosen[k * chosen.size() / max_blocks]);
+    for (std::size_t k = 0; k < max_blocks; ++k)
+      even.push_back(chosen[k * chosen.size() / max_blocks]);
     chosen.swap(even);
   }
   const int m = kNoiseEdgeDistance;

@@ -14,8 +14,8 @@ inline constexpr int kNoiseEdgeDistance = 3;
 
 /// The noise estimate and what it rests on.
 struct NoiseEstimate {
-  double sigma = 0;         ///< standard deviation of the voxel noise, in the volume's value units
-  std::size_t voxels = 0;   ///< voxels it was measured on
+  double sigma = 0;        ///< standard deviation of the voxel noise, in the volume's value units
+  std::size_t voxels = 0;  ///< voxels it was measured on
 };
 
 /// Noise of `grid` in the 8^3 blocks holding the points (up to `max_blocks` of them, taken
@@ -26,7 +26,6 @@ struct NoiseEstimate {
 /// the median, ignores the few voxels structure still dominates). sigma = 0 when no voxel
 /// qualifies. Deterministic.
 NoiseEstimate estimate_noise(const openvdb::FloatGrid& grid, const GridFrame& frame,
-                             const Positions& points, float isovalue,
-                             std::size_t max_blocks = 256);
+                             const Positions& points, float isovalue, std::size_t max_blocks = 256);
 
 }  // namespace isocurv::volume

@@ -1,5 +1,6 @@
 #pragma once
-// Internals the volume estimator's device path and its reference share (curvature/volume_estimate.h).
+// Internals the volume estimator's device path and its reference share
+// (curvature/volume_estimate.h).
 #include <cstdint>
 #include <vector>
 

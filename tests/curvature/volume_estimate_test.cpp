@@ -2,10 +2,11 @@
 // reference, accuracy against the exact curvature of analytic fields (second-order convergence,
 // signs, density versus level set, anisotropic and rotated grids), CT-like volumes (blurred,
 // quantised, noisy) at the automatic scale, and bad input.
+#include "curvature/volume_estimate.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
-
 #include <cmath>
 #include <functional>
 #include <random>
@@ -14,7 +15,6 @@
 #include "core/cl_device.h"
 #include "curvature/auto_scale.h"
 #include "curvature/estimator.h"
-#include "curvature/volume_estimate.h"
 #include "datasets/exact_curvature.h"
 #include "datasets/field.h"
 #include "datasets/sample.h"
@@ -116,8 +116,8 @@ TEST(VolumeEstimator, KernelMatchesReference) {
     EXPECT_TRUE(d.same_boundary);
     EXPECT_EQ(dev.unreliable, ref.unreliable);
     // Deterministic: a second run is bit-identical.
-    const curvature::CurvatureField again = curvature::volume_estimate(
-        c.mesh, c.volume, c.iso, sigma, 0.1f, Device::default_device());
+    const curvature::CurvatureField again =
+        curvature::volume_estimate(c.mesh, c.volume, c.iso, sigma, 0.1f, Device::default_device());
     EXPECT_EQ(again.H, dev.H);
     EXPECT_EQ(again.dcurv, dev.dcurv);
   }
@@ -204,7 +204,8 @@ TEST(VolumeEstimator, AnisotropicAndRotatedGrids) {
   for (const Grid& g : grids) {
     // The rotated grid's box covers the ellipsoid: origin at the box centre minus half its span.
     const Eigen::Vector3d half =
-        g.R * g.spacing.cwiseProduct(Eigen::Vector3d(g.dims[0] - 1, g.dims[1] - 1, g.dims[2] - 1)) / 2;
+        g.R * g.spacing.cwiseProduct(Eigen::Vector3d(g.dims[0] - 1, g.dims[1] - 1, g.dims[2] - 1)) /
+        2;
     const volume::Volume v =
         sample_affine(ellipsoid, g.dims, g.spacing, c - half, g.R, volume::Inside::Above);
     const Mesh m = mc::extract(v, 0.0f, Device::default_device());
@@ -256,8 +257,8 @@ volume::Volume ct_sphere(double R, double noise, unsigned seed) {
         const double v = 20 + 200 * edge + noise * gauss(rng);
         return noise > 0 ? std::clamp(std::round(v), 0.0, 255.0) : v;
       },
-      {49, 49, 49}, Eigen::Vector3d::Ones(), Eigen::Vector3d::Zero(),
-      Eigen::Matrix3d::Identity(), volume::Inside::Above, noise > 0 ? "uint8" : "float");
+      {49, 49, 49}, Eigen::Vector3d::Ones(), Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(),
+      volume::Inside::Above, noise > 0 ? "uint8" : "float");
 }
 
 TEST(VolumeEstimator, CtLikeSphereAtAutoScale) {
@@ -277,8 +278,8 @@ TEST(VolumeEstimator, CtLikeSphereAtAutoScale) {
   curvature::Options o;
   o.estimator = curvature::Estimator::volume;
   curvature::EstimatorReport report;
-  const curvature::CurvatureField f = curvature::estimate_field(
-      mn, {&noisy, iso}, &Device::default_device(), o, &report);
+  const curvature::CurvatureField f =
+      curvature::estimate_field(mn, {&noisy, iso}, &Device::default_device(), o, &report);
   EXPECT_EQ(report.estimator, "volume");
   EXPECT_EQ(report.parameters.front().first, "scale");
   EXPECT_DOUBLE_EQ(report.parameters.front().second, cn.scale);
@@ -310,7 +311,8 @@ TEST(VolumeEstimator, VanishingGradientIsUnreliable) {
   const volume::Volume v = ct_sphere(8, 0, 1);
   Mesh m = mc::extract(v, 120.0f, Device::default_device());
   const std::uint32_t base = std::uint32_t(m.vertex_count());
-  m.positions.push_back({2, 2, 2}), m.positions.push_back({3, 2, 2}), m.positions.push_back({2, 3, 2});
+  m.positions.push_back({2, 2, 2}), m.positions.push_back({3, 2, 2}),
+      m.positions.push_back({2, 3, 2});
   m.triangles.push_back({base, base + 1, base + 2});
   for (Device* d : {&Device::default_device(), static_cast<Device*>(nullptr)}) {
     curvature::Options o;
