@@ -9,6 +9,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "io/mesh_file.h"
+#include "viz/camera_file.h"
 #include "viz/direction_glyphs.h"
 #include "viz/render.h"
 
@@ -36,7 +37,7 @@ void register_run(CLI::App& app) {
     if (is_mesh_path(in)) throw Error(in, "isocurv run takes a volume; use isocurv curvature or render for meshes");
     if (!ro.dirs_out.empty() && !ro.opts.dirs) throw Error(ro.dirs_out, "--dirs-out needs --dirs");
     if (!ro.dirs_out.empty()) viz::check_glyphs_path(ro.dirs_out);
-    const viz::RenderOptions opts_check = render_options_for(ro, in, 0.f, kEstimatorName);  // a bad --camera fails early
+    if (!ro.camera_file.empty()) viz::load_camera(ro.camera_file);  // a bad --camera fails early
     StageTimer timer;
     Surface s =
         load_surface(in, o, timer);  // fails (no surface, ...) before any output folder is made
@@ -64,8 +65,8 @@ void register_run(CLI::App& app) {
     outputs.write(mesh_path,
                   [&](const std::string& tmp) { io::write_mesh(tmp, s.mesh, &*s.field); });
     timer.start("render");
-    viz::RenderOptions opts = opts_check;
-    if (ro.title.empty()) opts.title = picture_title(in, opts.color, s.isovalue, kEstimatorName);
+    const viz::RenderOptions opts =
+        render_options_for(ro, in, s.isovalue, kEstimatorName, s.volume ? s.volume->format : "");
     outputs.write(png_path,
                   [&](const std::string& tmp) { viz::render_png(tmp, s.mesh, *s.field, opts); });
     if (!ro.dirs_out.empty())

@@ -63,20 +63,29 @@ void add_render_options(CLI::App& cmd, RenderCli& r, bool files) {
   cmd.add_option("--unit", opts.length_unit,
                  "The volume's length unit for the legend, e.g. mm (default: 'length': 1/length)")
       ->group("Rendering");
-  add_camera_options(cmd, opts.view);
+  add_camera_options(cmd, opts.view, &r.anatomical_view);
   cmd.add_option("--camera", r.camera_file,
                  "Camera JSON saved by the explorer ('k'); replaces --view and the fitting")
       ->check(CLI::ExistingFile)->group("Camera");
 }
 
-void add_camera_options(CLI::App& cmd, ViewSpec& view) {
-  cmd.add_option_function<std::string>("--view", [&view](const std::string& s) {
+void add_camera_options(CLI::App& cmd, ViewSpec& view, std::string* anatomical) {
+  cmd.add_option_function<std::string>("--view", [&view, anatomical](const std::string& s) {
+    if (anatomical && is_anatomical_view(s)) {
+      *anatomical = s;
+      return;
+    }
     try {
       view.view = parse_named_view(s);
     } catch (const Error& e) {
-      throw CLI::ValidationError("--view", e.what());
+      throw CLI::ValidationError(
+          "--view", std::string(e.what()) +
+                        (anatomical ? "; for NIfTI and MetaImage volumes also anterior, posterior, left, "
+                                      "right, superior or inferior"
+                                    : ""));
     }
-  }, "Viewpoint: iso (three-quarter view from above, the default), or +x -x +y -y +z -z (the camera on that side of the centre, looking at it)")->group("Camera");
+  }, std::string("Viewpoint: iso (three-quarter view from above, the default), or +x -x +y -y +z -z (the camera on that side of the centre, looking at it)") +
+     (anatomical ? "; NIfTI (world RAS) and MetaImage (world LPS) volumes also take anterior, posterior, left, right, superior, inferior" : ""))->group("Camera");
   cmd.add_option("--azimuth", view.azimuth_deg, "Then turn the camera this many degrees about the view up")
       ->check(CLI::Range(-360.0, 360.0))->group("Camera");
   cmd.add_option("--elevation", view.elevation_deg, "Then raise the camera this many degrees")
@@ -86,9 +95,24 @@ void add_camera_options(CLI::App& cmd, ViewSpec& view) {
   cmd.add_flag("--ortho", view.ortho, "Parallel projection instead of perspective")->group("Camera");
 }
 
+std::optional<AnatomicalFrame> anatomical_frame(const std::string& volume_format) {
+  if (volume_format == "nifti") return AnatomicalFrame::ras;
+  if (volume_format == "metaimage") return AnatomicalFrame::lps;
+  return std::nullopt;
+}
+
 viz::RenderOptions render_options_for(const RenderCli& r, const std::string& input,
-                                      std::optional<float> isovalue, const std::string& estimator) {
+                                      std::optional<float> isovalue, const std::string& estimator,
+                                      const std::string& volume_format) {
   viz::RenderOptions o = r.opts;
+  if (!r.anatomical_view.empty()) {
+    const auto frame = anatomical_frame(volume_format);
+    if (!frame)
+      throw Error(input, "--view " + r.anatomical_view +
+                             " needs a volume whose world axes are anatomical (NIfTI: RAS, MetaImage: "
+                             "LPS); use iso, +x, -x, +y, -y, +z or -z");
+    o.view.axes = anatomical_axes(r.anatomical_view, *frame);
+  }
   if (!r.camera_file.empty()) o.camera = viz::load_camera(r.camera_file);
   o.title = r.title.empty() ? picture_title(input, o.color, isovalue, estimator) : r.title;
   return o;
