@@ -1,7 +1,6 @@
 #pragma once
 // The rendering options shared by isocurv render, run and view.
 #include <CLI/CLI.hpp>
-
 #include <optional>
 #include <string>
 
@@ -12,9 +11,9 @@ namespace isocurv::app {
 /// What the rendering options fill in: the viz options, and the files named on the command line.
 struct RenderCli {
   viz::RenderOptions opts;
-  std::string camera_file;  ///< --camera FILE: a camera saved by the explorer ('k')
-  std::string dirs_out;     ///< --dirs-out FILE.vtp: the direction glyphs as line cells
-  std::string title;        ///< --title TEXT: replaces the title scheme (picture_title)
+  std::string camera_file;      ///< --camera FILE: a camera saved by the explorer ('k')
+  std::string dirs_out;         ///< --dirs-out FILE.vtp: the direction glyphs as line cells
+  std::string title;            ///< --title TEXT: replaces the title scheme (picture_title)
   std::string anatomical_view;  ///< --view anterior|posterior|left|right|superior|inferior
 };
 
