@@ -38,7 +38,8 @@ void register_render(CLI::App& app) {
     }
     const viz::RenderOptions opts =
         render_options_for(ro, in, s.volume ? std::optional<float>(s.isovalue) : std::nullopt,
-                           estimated ? estimator_title(s.estimator) : "curvature from the file");
+                           estimated ? estimator_title(s.estimator) : "curvature from the file",
+                           s.volume ? s.volume->format : "");
     timer.start("render");
     AtomicFileSet outputs;  // the PNG and the glyphs together or not at all
     outputs.write(out, [&](const std::string& tmp) { viz::render_png(tmp, s.mesh, *s.field, opts); });

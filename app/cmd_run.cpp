@@ -10,6 +10,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "io/mesh_file.h"
+#include "viz/camera_file.h"
 #include "viz/direction_glyphs.h"
 #include "viz/render.h"
 
@@ -42,7 +43,7 @@ void register_run(CLI::App& app) {
     if (!ro.dirs_out.empty() && !ro.opts.dirs) throw Error(ro.dirs_out, "--dirs-out needs --dirs");
     if (!ro.dirs_out.empty()) viz::check_glyphs_path(ro.dirs_out);
     // A bad --camera fails early, before any batch entry or output folder.
-    const viz::RenderOptions opts_check = render_options_for(ro, b.inputs.front(), 0.f, "");
+    if (!ro.camera_file.empty()) viz::load_camera(ro.camera_file);
     if (run_as_batch(b, o, BatchKind::run, dir, &ro, format)) return;
     const std::string& in = b.inputs.front();
     StageTimer timer;
@@ -76,8 +77,8 @@ void register_run(CLI::App& app) {
       mesh_bytes = file_bytes(tmp);
     });
     timer.start("render");
-    viz::RenderOptions opts = opts_check;
-    if (ro.title.empty()) opts.title = picture_title(in, opts.color, s.isovalue, estimator_title(s.estimator));
+    const viz::RenderOptions opts = render_options_for(ro, in, s.isovalue, estimator_title(s.estimator),
+                                                       s.volume ? s.volume->format : "");
     outputs.write(png_path,
                   [&](const std::string& tmp) { viz::render_png(tmp, s.mesh, *s.field, opts); });
     if (!ro.dirs_out.empty())

@@ -45,7 +45,7 @@ void register_view(CLI::App& app) {
     setup.isovalue = iso;
     setup.min_value = static_cast<float>(vol->stats.min);
     setup.max_value = static_cast<float>(vol->stats.max);
-    setup.view = render_options_for(ro, in, iso, estimator_title(o));
+    setup.view = render_options_for(ro, in, iso, estimator_title(o), vol->format);
     if (ro.title.empty())
       setup.title_for = [](float value, const std::string& quantity) {
         return picture_title(in, quantity, value, estimator_title(o));

@@ -1,7 +1,6 @@
 #pragma once
 // The rendering options shared by isocurv render, run and view.
 #include <CLI/CLI.hpp>
-
 #include <optional>
 #include <string>
 
@@ -12,9 +11,10 @@ namespace isocurv::app {
 /// What the rendering options fill in: the viz options, and the files named on the command line.
 struct RenderCli {
   viz::RenderOptions opts;
-  std::string camera_file;  ///< --camera FILE: a camera saved by the explorer ('k')
-  std::string dirs_out;     ///< --dirs-out FILE.vtp: the direction glyphs as line cells
-  std::string title;        ///< --title TEXT: replaces the title scheme (picture_title)
+  std::string camera_file;      ///< --camera FILE: a camera saved by the explorer ('k')
+  std::string dirs_out;         ///< --dirs-out FILE.vtp: the direction glyphs as line cells
+  std::string title;            ///< --title TEXT: replaces the title scheme (picture_title)
+  std::string anatomical_view;  ///< --view anterior|posterior|left|right|superior|inferior
 };
 
 /// Adds --color, --cmap, --range, --percentile, --shading, --ao, --dirs, --dirs-count,
@@ -22,12 +22,21 @@ struct RenderCli {
 /// --dirs-out (render and run).
 void add_render_options(CLI::App& cmd, RenderCli& r, bool files = true);
 
-/// Adds --view iso|+x|-x|+y|-y|+z|-z, --azimuth DEG, --elevation DEG, --zoom F and --ortho.
-void add_camera_options(CLI::App& cmd, ViewSpec& view);
+/// Adds --view iso|+x|-x|+y|-y|+z|-z, --azimuth DEG, --elevation DEG, --zoom F and --ortho;
+/// with `anatomical`, --view also takes anterior, posterior, left, right, superior, inferior
+/// (stored there, resolved by render_options_for).
+void add_camera_options(CLI::App& cmd, ViewSpec& view, std::string* anatomical = nullptr);
 
-/// The options to render with: r.opts with --camera loaded and the title set (r.title, else
-/// picture_title(input, quantity, isovalue, estimator)). @throw Error for a bad camera file.
+/// The anatomical frame of a volume's world coordinates, from its format: NIfTI RAS,
+/// MetaImage LPS (ITK's convention); none for the others.
+std::optional<AnatomicalFrame> anatomical_frame(const std::string& volume_format);
+
+/// The options to render with: r.opts with --camera loaded, an anatomical --view resolved for
+/// `volume_format` (the input volume's format; empty for a mesh file), and the title set
+/// (r.title, else picture_title(input, quantity, isovalue, estimator)). @throw Error for a bad
+/// camera file or an anatomical view of an input without an anatomical frame.
 viz::RenderOptions render_options_for(const RenderCli& r, const std::string& input,
-                                      std::optional<float> isovalue, const std::string& estimator);
+                                      std::optional<float> isovalue, const std::string& estimator,
+                                      const std::string& volume_format = "");
 
 }  // namespace isocurv::app

@@ -76,9 +76,32 @@ std::array<double, 3> Camera::view_vector(const std::array<double, 3>& p) const 
   return ortho ? toward_camera() : normalized(sub(position, p));
 }
 
+bool is_anatomical_view(const std::string& name) {
+  for (const char* n : {"anterior", "posterior", "left", "right", "superior", "inferior"})
+    if (name == n) return true;
+  return false;
+}
+
+std::pair<Vec, Vec> anatomical_axes(const std::string& name, AnatomicalFrame frame) {
+  // World directions of the patient's right, anterior and superior.
+  const double s = frame == AnatomicalFrame::ras ? 1 : -1;  // LPS flips x and y
+  const Vec right{s, 0, 0}, anterior{0, s, 0}, superior{0, 0, 1};
+  if (name == "anterior") return {anterior, superior};
+  if (name == "posterior") return {scale(anterior, -1), superior};
+  if (name == "right") return {right, superior};
+  if (name == "left") return {scale(right, -1), superior};
+  if (name == "superior") return {superior, anterior};
+  if (name == "inferior") return {scale(superior, -1), anterior};
+  throw Error("unknown anatomical view '" + name +
+              "' (expected anterior, posterior, left, right, superior or inferior)");
+}
+
 void view_axes(const ViewSpec& spec, Vec& toward, Vec& up) {
   const Vec z{0, 0, 1}, y{0, 1, 0};
-  switch (spec.view) {
+  if (spec.axes) {
+    toward = spec.axes->first;
+    up = spec.axes->second;
+  } else switch (spec.view) {
     case NamedView::iso:
       toward = {0, -1, 0};
       up = z;

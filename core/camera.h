@@ -5,7 +5,9 @@
 // that a line drawing and a rendered PNG of the same options see the same thing. No VTK here;
 // viz/ applies a Camera to a vtkCamera.
 #include <array>
+#include <optional>
 #include <string>
+#include <utility>
 
 namespace isocurv {
 
@@ -26,6 +28,9 @@ struct ViewSpec {
   double elevation_deg = 0;  ///< then raised about the horizontal axis (as vtkCamera::Elevation)
   double zoom = 1;           ///< > 1 magnifies (narrows the view angle, or the parallel scale)
   bool ortho = false;        ///< parallel projection instead of perspective
+  /// When set: (toward camera, view up), unit and perpendicular, replacing `view` (anatomical
+  /// views, anatomical_axes).
+  std::optional<std::pair<std::array<double, 3>, std::array<double, 3>>> axes{};
 };
 
 /// A camera in world units. Perspective: `view_angle_deg` is the full vertical angle (as VTK's).
@@ -44,8 +49,23 @@ struct Camera {
   std::array<double, 3> view_vector(const std::array<double, 3>& p) const;
 };
 
+/// The anatomical frame of a volume's world coordinates. RAS: +x towards the patient's right,
+/// +y anterior, +z superior (NIfTI). LPS: +x left, +y posterior, +z superior (DICOM, ITK,
+/// MetaImage).
+enum class AnatomicalFrame { ras, lps };
+
+/// The names anatomical_axes accepts: anterior, posterior, left, right, superior, inferior.
+bool is_anatomical_view(const std::string& name);
+
+/// The (toward camera, view up) of an anatomical view in `frame`: "anterior" puts the camera in
+/// front of the patient (looking at the face) with superior up; "posterior" behind; "left" and
+/// "right" on that side (lateral views), superior up; "superior" above, "inferior" below, with
+/// anterior up. @throw Error for another name.
+std::pair<std::array<double, 3>, std::array<double, 3>> anatomical_axes(const std::string& name,
+                                                                       AnatomicalFrame frame);
+
 /// Unit vector from the object's centre towards the camera, and the view up, for `spec` (its
-/// named view turned by its azimuth and elevation).
+/// named view, or its axes, turned by its azimuth and elevation).
 void view_axes(const ViewSpec& spec, std::array<double, 3>& toward_camera,
                std::array<double, 3>& view_up);
 

@@ -2,9 +2,8 @@
 
 #include <cmath>
 #include <fstream>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -19,9 +18,11 @@ std::array<double, 3> vec3(const nlohmann::json& j, const char* name, const std:
     throw Error(path, std::string("camera file needs \"") + name + "\": [x, y, z]");
   std::array<double, 3> v{};
   for (int i = 0; i < 3; ++i) {
-    if (!j[name][i].is_number()) throw Error(path, std::string("camera \"") + name + "\" holds a non-number");
+    if (!j[name][i].is_number())
+      throw Error(path, std::string("camera \"") + name + "\" holds a non-number");
     v[i] = j[name][i].get<double>();
-    if (!std::isfinite(v[i])) throw Error(path, std::string("camera \"") + name + "\" is not finite");
+    if (!std::isfinite(v[i]))
+      throw Error(path, std::string("camera \"") + name + "\" is not finite");
   }
   return v;
 }
@@ -29,9 +30,12 @@ std::array<double, 3> vec3(const nlohmann::json& j, const char* name, const std:
 }  // namespace
 
 void save_camera(const std::string& path, const Camera& cam) {
-  const nlohmann::json j = {{"position", cam.position},           {"focal_point", cam.focal_point},
-                            {"view_up", cam.view_up},             {"ortho", cam.ortho},
-                            {"view_angle_deg", cam.view_angle_deg}, {"parallel_scale", cam.parallel_scale}};
+  const nlohmann::json j = {{"position", cam.position},
+                            {"focal_point", cam.focal_point},
+                            {"view_up", cam.view_up},
+                            {"ortho", cam.ortho},
+                            {"view_angle_deg", cam.view_angle_deg},
+                            {"parallel_scale", cam.parallel_scale}};
   write_atomically(path, [&](const std::string& tmp) {
     std::ofstream out(tmp, std::ios::binary);
     out << j.dump(2) << "\n";
@@ -65,7 +69,8 @@ Camera load_camera(const std::string& path) {
   for (auto [name, field] : {std::pair{"view_angle_deg", &cam.view_angle_deg},
                              std::pair{"parallel_scale", &cam.parallel_scale}}) {
     if (!j.contains(name)) continue;
-    if (!j[name].is_number()) throw Error(path, std::string("camera \"") + name + "\" must be a number");
+    if (!j[name].is_number())
+      throw Error(path, std::string("camera \"") + name + "\" must be a number");
     *field = j[name].get<double>();
   }
   if (!(cam.view_angle_deg > 0 && cam.view_angle_deg < 180))
@@ -78,7 +83,8 @@ Camera load_camera(const std::string& path) {
   const auto& u = cam.view_up;
   const double ul = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
   const double along = std::fabs(u[0] * d[0] + u[1] * d[1] + u[2] * d[2]);
-  if (!(ul > 0) || along > 0.999 * ul) throw Error(path, "camera view_up is parallel to the view direction");
+  if (!(ul > 0) || along > 0.999 * ul)
+    throw Error(path, "camera view_up is parallel to the view direction");
   // keep view_up perpendicular to the view direction, as Camera documents
   const double a = (u[0] * d[0] + u[1] * d[1] + u[2] * d[2]);
   std::array<double, 3> up{u[0] - a * d[0], u[1] - a * d[1], u[2] - a * d[2]};

@@ -1,11 +1,11 @@
 #include "viz/color_map.h"
 
+#include <vtkColorTransferFunction.h>
+#include <vtkUnsignedCharArray.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
-
-#include <vtkColorTransferFunction.h>
-#include <vtkUnsignedCharArray.h>
 
 #include "core/error.h"
 #include "viz/quantity.h"
@@ -43,7 +43,8 @@ const std::vector<Rgb>& stops(const std::string& cmap) {
 double percentile(std::vector<double>& v, double q) {
   if (v.empty()) return 0;
   q = std::clamp(q, 0.0, 100.0);
-  const auto k = static_cast<std::size_t>(std::llround(q / 100.0 * static_cast<double>(v.size() - 1)));
+  const auto k =
+      static_cast<std::size_t>(std::llround(q / 100.0 * static_cast<double>(v.size() - 1)));
   std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
   return v[k];
 }
@@ -129,8 +130,10 @@ vtkSmartPointer<vtkColorTransferFunction> make_color_map(const ColorRange& range
   return map;
 }
 
-vtkSmartPointer<vtkUnsignedCharArray> vertex_colors(const std::vector<float>& values, const ColorRange& range,
-                                                    vtkColorTransferFunction* map, const std::vector<float>* ao) {
+vtkSmartPointer<vtkUnsignedCharArray> vertex_colors(const std::vector<float>& values,
+                                                    const ColorRange& range,
+                                                    vtkColorTransferFunction* map,
+                                                    const std::vector<float>* ao) {
   std::vector<double> table(3 * kTableSize);
   map->GetTable(range.lo, range.hi, kTableSize, table.data());
   auto colors = vtkSmartPointer<vtkUnsignedCharArray>::New();
@@ -149,7 +152,8 @@ vtkSmartPointer<vtkUnsignedCharArray> vertex_colors(const std::vector<float>& va
     double shade = 1;
     if (ao) shade = std::isfinite((*ao)[i]) ? std::clamp(double((*ao)[i]), 0.0, 1.0) : 1.0;
     for (int c = 0; c < 3; ++c)
-      out[3 * i + static_cast<std::size_t>(c)] = static_cast<unsigned char>(std::lround(255 * rgb[c] * shade));
+      out[3 * i + static_cast<std::size_t>(c)] =
+          static_cast<unsigned char>(std::lround(255 * rgb[c] * shade));
   }
   return colors;
 }

@@ -6,11 +6,11 @@
 // "grey" (black to white) and "bgr" (the papers' blue-green-red, green at the centre). "auto"
 // picks diverging for signed quantities (H, K, k1, k2, ShapeIndex), grey for AO and viridis for
 // the other unsigned ones (Curvedness).
+#include <vtkSmartPointer.h>
+
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <vtkSmartPointer.h>
 
 class vtkColorTransferFunction;
 class vtkUnsignedCharArray;
@@ -58,7 +58,8 @@ vtkSmartPointer<vtkColorTransferFunction> make_color_map(const ColorRange& range
 /// RGB colours (unsigned char, 3 components, named "Colors") for `values` through `map` over
 /// `range` (1024 steps); when `ao` is non-null each colour is multiplied by the vertex's AO
 /// (clamped to [0, 1]; --shading both). Non-finite values are mid grey.
-vtkSmartPointer<vtkUnsignedCharArray> vertex_colors(const std::vector<float>& values, const ColorRange& range,
+vtkSmartPointer<vtkUnsignedCharArray> vertex_colors(const std::vector<float>& values,
+                                                    const ColorRange& range,
                                                     vtkColorTransferFunction* map,
                                                     const std::vector<float>* ao = nullptr);
 

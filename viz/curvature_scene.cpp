@@ -1,8 +1,5 @@
 #include "viz/curvature_scene.h"
 
-#include <algorithm>
-#include <cmath>
-
 #include <vtkActor.h>
 #include <vtkCamera.h>
 #include <vtkColorTransferFunction.h>
@@ -17,6 +14,9 @@
 #include <vtkShaderProperty.h>
 #include <vtkSmartPointer.h>
 #include <vtkUnsignedCharArray.h>
+
+#include <algorithm>
+#include <cmath>
 
 #include "core/error.h"
 #include "io/field_arrays.h"
@@ -44,16 +44,18 @@ void set_ambient_ao(vtkActor* actor, vtkPolyDataMapper* mapper, bool on) {
   sp->ClearAllShaderReplacements();
   mapper->RemoveAllVertexAttributeMappings();
   if (!on) return;
-  mapper->MapDataArrayToVertexAttribute(kAoAttribute, "AO", vtkDataObject::FIELD_ASSOCIATION_POINTS, -1);
-  sp->AddVertexShaderReplacement("//VTK::Normal::Dec", true,
-                                 "//VTK::Normal::Dec\nin float isocurvAO;\nout float isocurvAOVS;\n", false);
+  mapper->MapDataArrayToVertexAttribute(kAoAttribute, "AO", vtkDataObject::FIELD_ASSOCIATION_POINTS,
+                                        -1);
+  sp->AddVertexShaderReplacement(
+      "//VTK::Normal::Dec", true,
+      "//VTK::Normal::Dec\nin float isocurvAO;\nout float isocurvAOVS;\n", false);
   sp->AddVertexShaderReplacement("//VTK::Normal::Impl", true,
                                  "//VTK::Normal::Impl\n  isocurvAOVS = isocurvAO;\n", false);
   sp->AddFragmentShaderReplacement("//VTK::Normal::Dec", true,
                                    "//VTK::Normal::Dec\nin float isocurvAOVS;\n", false);
-  sp->AddFragmentShaderReplacement("//VTK::Light::Impl", true,
-                                   "  ambientColor *= clamp(isocurvAOVS, 0.0, 1.0);\n//VTK::Light::Impl\n",
-                                   false);
+  sp->AddFragmentShaderReplacement(
+      "//VTK::Light::Impl", true,
+      "  ambientColor *= clamp(isocurvAOVS, 0.0, 1.0);\n//VTK::Light::Impl\n", false);
 }
 
 }  // namespace
@@ -98,8 +100,9 @@ struct CurvatureScene::Impl {
     p->SetSpecularPower(kSpecularPower);
     renderer->AddActor(surface_actor);
 
-    for (auto [mapper, actor, array] : {std::tuple{halo_mapper.Get(), halo_actor.Get(), "Halo"},
-                                        std::tuple{glyph_mapper.Get(), glyph_actor.Get(), "Colors"}}) {
+    for (auto [mapper, actor, array] :
+         {std::tuple{halo_mapper.Get(), halo_actor.Get(), "Halo"},
+          std::tuple{glyph_mapper.Get(), glyph_actor.Get(), "Colors"}}) {
       mapper->SetScalarModeToUseCellFieldData();
       mapper->SelectColorArray(array);
       mapper->SetColorModeToDirectScalars();
@@ -124,8 +127,9 @@ struct CurvatureScene::Impl {
   void relayout() {
     const std::string q = canonical_quantity(options.color);
     const std::string unit = quantity_unit(q, options.length_unit);
-    layout = layout_picture(options.width, options.height, options.title,
-                            unit.empty() ? q : q + "\n" + unit, range.lo, range.hi, bottom_reserved);
+    layout =
+        layout_picture(options.width, options.height, options.title,
+                       unit.empty() ? q : q + "\n" + unit, range.lo, range.hi, bottom_reserved);
     const PixelBox& s = layout.surface;
     const double w = std::max(1, options.width), h = std::max(1, options.height);
     renderer->SetViewport(s.x0 / w, s.y0 / h, s.x1 / w, s.y1 / h);
@@ -169,8 +173,8 @@ struct CurvatureScene::Impl {
     auto map = make_color_map(range, cmap);
     vtkPointData* pd = surface->GetPointData();
     pd->RemoveArray("Colors");
-    pd->AddArray(vertex_colors(values, range, map,
-                               options.shading == Shading::both ? &field.ao : nullptr));
+    pd->AddArray(
+        vertex_colors(values, range, map, options.shading == Shading::both ? &field.ao : nullptr));
     pd->RemoveArray("AO");
     const bool ambient_ao = options.shading == Shading::ambient_ao;
     if (ambient_ao) {
@@ -217,7 +221,8 @@ void CurvatureScene::set_surface(const Mesh& mesh, const curvature::CurvatureFie
     throw;
   }
   s.mesh.edge_keys.clear();
-  curvature::CurvatureField shading;  // the surface polydata carries normals (for lighting) and colours
+  curvature::CurvatureField
+      shading;  // the surface polydata carries normals (for lighting) and colours
   shading.normals = s.field.normals;
   s.surface = io::to_polydata(s.mesh, &shading);
   s.surface_mapper->SetInputData(s.surface);
@@ -268,7 +273,8 @@ Camera CurvatureScene::frame_camera() {
   double b[6];
   impl_->surface->GetBounds(b);
   const PixelBox& s = impl_->layout.surface;
-  const double aspect = s.empty() ? double(o.width) / double(o.height) : double(s.x1 - s.x0) / double(s.y1 - s.y0);
+  const double aspect =
+      s.empty() ? double(o.width) / double(o.height) : double(s.x1 - s.x0) / double(s.y1 - s.y0);
   const Camera cam = fit_camera({b[0], b[1], b[2], b[3], b[4], b[5]}, o.view, aspect);
   apply_camera(impl_->renderer, cam);
   return cam;

@@ -1,9 +1,5 @@
 #include "viz/direction_glyphs.h"
 
-#include <algorithm>
-#include <cmath>
-#include <unordered_set>
-
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkNew.h>
@@ -12,6 +8,10 @@
 #include <vtkUnsignedCharArray.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include <algorithm>
+#include <cmath>
+#include <unordered_set>
+
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "io/vtk_errors.h"
@@ -19,13 +19,15 @@
 namespace isocurv::viz {
 namespace {
 
-constexpr double kPixelsPerSite = 36;     // default density: one site per 36x36 pixels
-constexpr double kMinSpacingEdges = 2.5;  // never denser than this many mean edges
-constexpr double kLengthOfSpacing = 0.7;  // default segment length
-constexpr double kLiftEdges = 0.15;       // off the surface along the normal
+constexpr double kPixelsPerSite = 36;         // default density: one site per 36x36 pixels
+constexpr double kMinSpacingEdges = 2.5;      // never denser than this many mean edges
+constexpr double kLengthOfSpacing = 0.7;      // default segment length
+constexpr double kLiftEdges = 0.15;           // off the surface along the normal
 constexpr double kMaxCellsPerAxis = 1 << 20;  // the cell key holds 21 bits per axis
 
-double length(const Vec3f& v) { return std::sqrt(double(v[0]) * v[0] + double(v[1]) * v[1] + double(v[2]) * v[2]); }
+double length(const Vec3f& v) {
+  return std::sqrt(double(v[0]) * v[0] + double(v[1]) * v[1] + double(v[2]) * v[2]);
+}
 
 bool usable(const Vec3f& v) {
   const double l = length(v);
@@ -48,7 +50,8 @@ int default_glyph_count(int image_width, int image_height) {
   return std::max(16, static_cast<int>(px / (kPixelsPerSite * kPixelsPerSite)));
 }
 
-vtkSmartPointer<vtkPolyData> direction_glyphs(const Mesh& mesh, const curvature::CurvatureField& field,
+vtkSmartPointer<vtkPolyData> direction_glyphs(const Mesh& mesh,
+                                              const curvature::CurvatureField& field,
                                               const GlyphOptions& options) {
   auto glyphs = vtkSmartPointer<vtkPolyData>::New();
   auto points = vtkSmartPointer<vtkPoints>::New();
@@ -69,14 +72,18 @@ vtkSmartPointer<vtkPolyData> direction_glyphs(const Mesh& mesh, const curvature:
 
   const std::size_t n = mesh.positions.size();
   const double edge = mean_edge_length(mesh);
-  if (n == 0 || edge <= 0 || !std::isfinite(edge) || field.dir1.size() != n || field.dir2.size() != n) return glyphs;
+  if (n == 0 || edge <= 0 || !std::isfinite(edge) || field.dir1.size() != n ||
+      field.dir2.size() != n)
+    return glyphs;
 
   double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
   for (const Vec3f& p : mesh.positions)
-    for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], double(p[c])), hi[c] = std::max(hi[c], double(p[c]));
+    for (int c = 0; c < 3; ++c)
+      lo[c] = std::min(lo[c], double(p[c])), hi[c] = std::max(hi[c], double(p[c]));
   const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-  const int count = options.count > 0 ? options.count
-                                      : default_glyph_count(options.image_width, options.image_height);
+  const int count = options.count > 0
+                        ? options.count
+                        : default_glyph_count(options.image_width, options.image_height);
   const double area = surface_area(mesh);
   double spacing = std::max(kMinSpacingEdges * edge, std::sqrt(area / count));
   spacing = std::max(spacing, extent / kMaxCellsPerAxis);
@@ -88,14 +95,17 @@ vtkSmartPointer<vtkPolyData> direction_glyphs(const Mesh& mesh, const curvature:
   auto cell_key = [&](const Vec3f& p) {
     std::uint64_t key = 0;  // at most 2^20 cells per axis: 21 bits each is exact
     for (int c = 0; c < 3; ++c)
-      key = (key << 21) | (static_cast<std::uint64_t>(std::floor((p[c] - lo[c]) / spacing)) & 0x1fffff);
+      key = (key << 21) |
+            (static_cast<std::uint64_t>(std::floor((p[c] - lo[c]) / spacing)) & 0x1fffff);
     return key;
   };
   auto add_segment = [&](const double centre[3], const Vec3f& d, const unsigned char* rgb,
                          const unsigned char* halo_rgb, unsigned char direction) {
     const double s = half / length(d);
-    const vtkIdType a = points->InsertNextPoint(centre[0] - s * d[0], centre[1] - s * d[1], centre[2] - s * d[2]);
-    const vtkIdType b = points->InsertNextPoint(centre[0] + s * d[0], centre[1] + s * d[1], centre[2] + s * d[2]);
+    const vtkIdType a =
+        points->InsertNextPoint(centre[0] - s * d[0], centre[1] - s * d[1], centre[2] - s * d[2]);
+    const vtkIdType b =
+        points->InsertNextPoint(centre[0] + s * d[0], centre[1] + s * d[1], centre[2] + s * d[2]);
     const vtkIdType ids[2] = {a, b};
     lines->InsertNextCell(2, ids);
     colors->InsertNextTypedTuple(rgb);
@@ -118,7 +128,8 @@ vtkSmartPointer<vtkPolyData> direction_glyphs(const Mesh& mesh, const curvature:
 
 void check_glyphs_path(const std::string& path) {
   std::string lower = path;
-  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   if (lower.size() < 4 || lower.compare(lower.size() - 4, 4, ".vtp") != 0)
     throw Error(path, "direction glyphs are written as .vtp (line cells for ParaView)");
 }

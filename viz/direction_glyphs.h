@@ -1,9 +1,9 @@
 #pragma once
 // Principal directions drawn as short line segments on an even subsample of the vertices.
-#include <string>
-
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
+
+#include <string>
 
 #include "core/mesh.h"
 #include "core/mesh_measures.h"
@@ -21,8 +21,8 @@ constexpr unsigned char kDir2Halo[3] = {255, 255, 255};
 
 /// How many glyphs and how long.
 struct GlyphOptions {
-  int count = 0;          ///< about this many glyph sites over the whole surface; 0: from the image size
-  double length = 0;      ///< segment length in world units; 0: 0.7 x the spacing of the sites
+  int count = 0;  ///< about this many glyph sites over the whole surface; 0: from the image size
+  double length = 0;  ///< segment length in world units; 0: 0.7 x the spacing of the sites
   int image_width = 1024, image_height = 768;  ///< the picture they are drawn in (for count = 0)
 };
 
@@ -42,7 +42,8 @@ int default_glyph_count(int image_width, int image_height);
 /// "Colors" (RGB: kDir1Color / kDir2Color), "Halo" (kDir1Halo / kDir2Halo) and "Direction"
 /// (1 or 2). Vertices without finite non-zero directions are skipped; empty when the field has
 /// no dir1/dir2. Deterministic: the first vertex (by index) in each cell is chosen.
-vtkSmartPointer<vtkPolyData> direction_glyphs(const Mesh& mesh, const curvature::CurvatureField& field,
+vtkSmartPointer<vtkPolyData> direction_glyphs(const Mesh& mesh,
+                                              const curvature::CurvatureField& field,
                                               const GlyphOptions& options = {});
 
 /// Throws Error naming `path` unless it ends in .vtp (the format write_glyphs writes).

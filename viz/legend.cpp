@@ -1,7 +1,5 @@
 #include "viz/legend.h"
 
-#include <vector>
-
 #include <vtkActor2D.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -15,6 +13,8 @@
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
 #include <vtkUnsignedCharArray.h>
+
+#include <vector>
 
 namespace isocurv::viz {
 namespace {
@@ -84,8 +84,10 @@ void Legend::update(const PictureLayout& layout, const std::string& cmap, const 
   show(s.legend_title, layout.legend_title, show_bar);
   while (s.labels.size() < layout.labels.size()) s.labels.push_back(make_text(s.renderer));
   for (std::size_t i = 0; i < s.labels.size(); ++i)
-    if (i < layout.labels.size()) show(s.labels[i], layout.labels[i], show_bar);
-    else s.labels[i]->VisibilityOff();
+    if (i < layout.labels.size())
+      show(s.labels[i], layout.labels[i], show_bar);
+    else
+      s.labels[i]->VisibilityOff();
 
   // The bar: kBarSteps quads, each the map's colour at its middle value.
   const PixelBox& b = layout.bar;

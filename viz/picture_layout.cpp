@@ -1,13 +1,13 @@
 #include "viz/picture_layout.h"
 
-#include <algorithm>
-#include <cmath>
-#include <cstdio>
-
 #include <vtkNew.h>
 #include <vtkStdString.h>
 #include <vtkTextProperty.h>
 #include <vtkTextRenderer.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 
 namespace isocurv::viz {
 namespace {
@@ -15,12 +15,12 @@ namespace {
 constexpr int kTicks = 5;
 constexpr int kMinFontPx = 7;
 constexpr int kMaxFontPx = 48;
-constexpr double kFontPerPixel = 1.0 / 36;     // font size per pixel of the image's smaller side
-constexpr double kTitleFontScale = 1.25;       // the title's font beside the labels'
-constexpr double kMaxLegendWidth = 0.40;       // of the image width
-constexpr double kBarHeightFraction = 0.65;    // of the height left free for the legend
+constexpr double kFontPerPixel = 1.0 / 36;   // font size per pixel of the image's smaller side
+constexpr double kTitleFontScale = 1.25;     // the title's font beside the labels'
+constexpr double kMaxLegendWidth = 0.40;     // of the image width
+constexpr double kBarHeightFraction = 0.65;  // of the height left free for the legend
 constexpr double kBarWidthPerFont = 1.1;
-constexpr int kDpi = 72;                        // vtkTextActor's default: points are pixels
+constexpr int kDpi = 72;  // vtkTextActor's default: points are pixels
 
 int width_of(const PixelBox& b) { return b.x1 - b.x0; }
 int height_of(const PixelBox& b) { return b.y1 - b.y0; }

@@ -32,13 +32,13 @@ struct PlacedText {
 /// The picture's parts for an image of width x height pixels.
 struct PictureLayout {
   int width = 0, height = 0;
-  PixelBox surface;        ///< the free part the surface is framed in (viewport of its renderer)
-  PlacedText title;        ///< empty text when there is no title; shortened to fit the width
-  PlacedText legend_title; ///< quantity and unit, one or two lines, above the bar
-  PixelBox bar;            ///< the colour bar, lo at the bottom, hi at the top
+  PixelBox surface;         ///< the free part the surface is framed in (viewport of its renderer)
+  PlacedText title;         ///< empty text when there is no title; shortened to fit the width
+  PlacedText legend_title;  ///< quantity and unit, one or two lines, above the bar
+  PixelBox bar;             ///< the colour bar, lo at the bottom, hi at the top
   std::vector<PlacedText> labels;  ///< one per tick, beside the bar
   std::vector<double> ticks;       ///< the tick values, bottom to top
-  PixelBox legend;         ///< everything of the legend (title, bar, labels)
+  PixelBox legend;                 ///< everything of the legend (title, bar, labels)
 };
 
 /// The ink extents of `text` (UTF-8, lines split at '\n') at `font_px` (Arial, as drawn by

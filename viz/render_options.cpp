@@ -13,9 +13,12 @@ Shading parse_shading(const std::string& name) {
 
 std::string to_string(Shading s) {
   switch (s) {
-    case Shading::lambert: return "lambert";
-    case Shading::ambient_ao: return "ambient-ao";
-    case Shading::both: return "both";
+    case Shading::lambert:
+      return "lambert";
+    case Shading::ambient_ao:
+      return "ambient-ao";
+    case Shading::both:
+      return "both";
   }
   return "lambert";
 }

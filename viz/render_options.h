@@ -25,19 +25,20 @@ inline bool uses_ao(Shading s) { return s != Shading::lambert; }
 
 /// What to show and how.
 struct RenderOptions {
-  std::string color = "H";          ///< colour quantity: H, K, k1, k2, ShapeIndex, Curvedness or AO
-  std::string cmap = "auto";        ///< colour map (color_map_names; auto: by quantity)
-  std::optional<ColorRange> range;  ///< --range MIN MAX: exactly this range instead of color_range's
-  double clamp_percentile = 2;      ///< --percentile: outliers ignored by color_range (each end)
+  std::string color = "H";    ///< colour quantity: H, K, k1, k2, ShapeIndex, Curvedness or AO
+  std::string cmap = "auto";  ///< colour map (color_map_names; auto: by quantity)
+  std::optional<ColorRange>
+      range;                    ///< --range MIN MAX: exactly this range instead of color_range's
+  double clamp_percentile = 2;  ///< --percentile: outliers ignored by color_range (each end)
   Shading shading = Shading::lambert;
-  bool dirs = false;                ///< draw principal-direction glyphs (direction_glyphs)
-  int dirs_count = 0;               ///< about this many glyph sites over the surface; 0: from the image size
-  double dirs_length = 0;           ///< glyph length in world units; 0: 0.7 x their spacing
-  int width = 1024, height = 768;   ///< image (or window) size in pixels
-  std::string title;                ///< text at the top of the image; none when empty
-  std::string length_unit;          ///< the volume's length unit for the legend ("mm"); empty: "length"
-  ViewSpec view;                    ///< viewpoint, turns, zoom and projection (fit_camera)
-  std::optional<Camera> camera;     ///< when set, used as it is instead of fitting `view`
+  bool dirs = false;       ///< draw principal-direction glyphs (direction_glyphs)
+  int dirs_count = 0;      ///< about this many glyph sites over the surface; 0: from the image size
+  double dirs_length = 0;  ///< glyph length in world units; 0: 0.7 x their spacing
+  int width = 1024, height = 768;  ///< image (or window) size in pixels
+  std::string title;               ///< text at the top of the image; none when empty
+  std::string length_unit;  ///< the volume's length unit for the legend ("mm"); empty: "length"
+  ViewSpec view;            ///< viewpoint, turns, zoom and projection (fit_camera)
+  std::optional<Camera> camera;  ///< when set, used as it is instead of fitting `view`
 };
 
 }  // namespace isocurv::viz

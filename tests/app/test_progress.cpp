@@ -18,8 +18,8 @@ namespace {
 
 /// Runs isocurv with stderr on the slave side of a pseudo-terminal (stdout to /dev/null) and
 /// returns what arrived on the master side; DISPLAY unset, `env` set.
-std::string stderr_on_a_terminal(const std::vector<std::string>& args, const std::vector<std::string>& env,
-                                 int* exit_code) {
+std::string stderr_on_a_terminal(const std::vector<std::string>& args,
+                                 const std::vector<std::string>& env, int* exit_code) {
   int master = -1, slave = -1;
   if (openpty(&master, &slave, nullptr, nullptr, nullptr) != 0) return "openpty failed";
   const std::string exe = isocurv_exe();
@@ -71,7 +71,8 @@ TEST(Progress, BarsOnATerminalNoneWhenPipedOrQuiet) {
   TempDir dir("progress");
   // A zero delay makes every stage show its bar (normally only those over half a second).
   const std::vector<std::string> env = {"ISOCURV_PROGRESS_DELAY_MS=0"};
-  const std::vector<std::string> args = {"run", dataset("gyroid"), "-o", dir / "out", "--size", "160x120"};
+  const std::vector<std::string> args = {"run",       dataset("gyroid"), "-o",
+                                         dir / "out", "--size",          "160x120"};
   int code = -1;
   const std::string tty = stderr_on_a_terminal(args, env, &code);
   EXPECT_EQ(code, 0) << tty;
@@ -80,13 +81,14 @@ TEST(Progress, BarsOnATerminalNoneWhenPipedOrQuiet) {
     EXPECT_NE(tty.find(stage), std::string::npos) << stage << " has no bar: " << tty;
   EXPECT_NE(tty.find(" s"), std::string::npos) << "bars show the elapsed time";
 
-  const auto piped = run_isocurv({"run", dataset("gyroid"), "-o", dir / "piped", "--size", "160x120"}, 120, env);
+  const auto piped =
+      run_isocurv({"run", dataset("gyroid"), "-o", dir / "piped", "--size", "160x120"}, 120, env);
   EXPECT_TRUE(piped.ok()) << piped.describe();
   EXPECT_EQ(piped.err.find('\r'), std::string::npos) << "a bar went into a pipe: " << piped.err;
   EXPECT_EQ(piped.err.find('['), std::string::npos) << piped.err;
 
-  const std::string quiet =
-      stderr_on_a_terminal({"run", dataset("gyroid"), "-o", dir / "quiet", "--size", "160x120", "--quiet"}, env, &code);
+  const std::string quiet = stderr_on_a_terminal(
+      {"run", dataset("gyroid"), "-o", dir / "quiet", "--size", "160x120", "--quiet"}, env, &code);
   EXPECT_EQ(code, 0) << quiet;
   EXPECT_EQ(quiet.find('\r'), std::string::npos) << "--quiet drew a bar: " << quiet;
 }

@@ -268,3 +268,18 @@ TEST(RenderOptions, ColourMapRangeShadingGlyphsAndCameraFile) {
   EXPECT_EQ(broken.exit_code, 1) << broken.describe();
   EXPECT_NE(broken.err.find("broken.json"), std::string::npos) << broken.describe();
 }
+
+TEST(RenderOptions, AnatomicalViewsNeedAnAnatomicalFrame) {
+  TempDir dir("anatomical");
+  const auto bad = run_isocurv({"render", dataset("torus"), "--view", "anterior", "-o", dir / "a.png"});
+  EXPECT_EQ(bad.exit_code, 1) << bad.describe();
+  EXPECT_NE(bad.err.find("anatomical"), std::string::npos) << bad.describe();
+  EXPECT_FALSE(fs::exists(dir / "a.png"));
+  const std::string nifti = std::string(ISOCURV_SHARED_DATASETS) + "/mni152_t1/avg152T1_RL_nifti.nii.gz";
+  if (!fs::exists(nifti)) GTEST_SKIP() << "no " << nifti;
+  // NIfTI's world is RAS: anterior is the +y side, superior up, as --view +y
+  const auto ant = run_isocurv({"render", nifti, "--view", "anterior", "--size", "120x90", "-o", dir / "ant.png", "--quiet"});
+  const auto plus_y = run_isocurv({"render", nifti, "--view", "+y", "--size", "120x90", "-o", dir / "y.png", "--quiet"});
+  ASSERT_TRUE(ant.ok() && plus_y.ok()) << ant.describe() << plus_y.describe();
+  EXPECT_EQ(read_file(dir / "ant.png"), read_file(dir / "y.png"));
+}

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
 
 #include "core/error.h"
 
@@ -137,6 +138,32 @@ TEST(Camera, ViewVectorIsPerPointInPerspectiveAndConstantInOrtho) {
   s.ortho = true;
   const Camera ortho = fit_camera(box, s, 1);
   expect_vec(ortho.view_vector({1, 0, 0}), {0, 0, 1});
+}
+
+TEST(Camera, AnatomicalViewsInRasAndLps) {
+  // RAS: anterior is +y; LPS: anterior is -y. Superior is +z in both; superior views have
+  // anterior up.
+  auto [t, u] = anatomical_axes("anterior", AnatomicalFrame::ras);
+  expect_vec(t, {0, 1, 0});
+  expect_vec(u, {0, 0, 1});
+  std::tie(t, u) = anatomical_axes("anterior", AnatomicalFrame::lps);
+  expect_vec(t, {0, -1, 0});
+  std::tie(t, u) = anatomical_axes("left", AnatomicalFrame::lps);
+  expect_vec(t, {1, 0, 0});
+  std::tie(t, u) = anatomical_axes("right", AnatomicalFrame::ras);
+  expect_vec(t, {1, 0, 0});
+  std::tie(t, u) = anatomical_axes("superior", AnatomicalFrame::ras);
+  expect_vec(t, {0, 0, 1});
+  expect_vec(u, {0, 1, 0});
+  EXPECT_TRUE(is_anatomical_view("inferior"));
+  EXPECT_FALSE(is_anatomical_view("+x"));
+  EXPECT_THROW(anatomical_axes("front", AnatomicalFrame::ras), Error);
+  // a ViewSpec with axes uses them (then its turns)
+  ViewSpec s;
+  s.axes = anatomical_axes("posterior", AnatomicalFrame::ras);
+  Vec toward, up;
+  view_axes(s, toward, up);
+  expect_vec(toward, {0, -1, 0});
 }
 
 }  // namespace

@@ -20,7 +20,8 @@ void expect_fits(const viz::PictureLayout& l, const std::string& what) {
   EXPECT_FALSE(l.surface.overlaps(l.title.box)) << what;
   EXPECT_FALSE(l.surface.overlaps(l.legend)) << what;
   EXPECT_FALSE(l.title.box.overlaps(l.legend)) << what;
-  EXPECT_GT(l.surface.x1 - l.surface.x0, l.width / 2) << what << ": the surface keeps most of the width";
+  EXPECT_GT(l.surface.x1 - l.surface.x0, l.width / 2)
+      << what << ": the surface keeps most of the width";
   EXPECT_GT(l.surface.y1 - l.surface.y0, l.height / 2) << what;
   for (std::size_t i = 1; i < l.labels.size(); ++i)
     EXPECT_FALSE(l.labels[i].box.overlaps(l.labels[i - 1].box)) << what << ": labels overlap";
@@ -30,7 +31,8 @@ void expect_fits(const viz::PictureLayout& l, const std::string& what) {
 
 TEST(VizPictureLayout, TextIsMeasured) {
   const viz::PixelBox a = viz::measure_text("H", 20), b = viz::measure_text("Curvedness", 20),
-                      c = viz::measure_text("Curvedness", 40), two = viz::measure_text("K\n1/mm", 20);
+                      c = viz::measure_text("Curvedness", 40),
+                      two = viz::measure_text("K\n1/mm", 20);
   EXPECT_GT(a.x1 - a.x0, 3);
   EXPECT_GT(b.x1 - b.x0, 3 * (a.x1 - a.x0));
   EXPECT_NEAR(double(c.x1 - c.x0) / (b.x1 - b.x0), 2.0, 0.25);
@@ -40,10 +42,11 @@ TEST(VizPictureLayout, TextIsMeasured) {
 
 TEST(VizPictureLayout, LegendAndTitleFitFrom300x300To4k) {
   const std::string long_title =
-      "a_rather_long_volume_file_name_from_a_scanner_0001.nii.gz  |  k2 (smaller principal curvature)  |  "
+      "a_rather_long_volume_file_name_from_a_scanner_0001.nii.gz  |  k2 (smaller principal "
+      "curvature)  |  "
       "iso 1234.5  |  Rusinkiewicz";
-  for (auto [w, h] : {std::pair{300, 300}, std::pair{320, 240}, std::pair{1024, 768}, std::pair{3840, 2160},
-                      std::pair{2160, 3840}}) {
+  for (auto [w, h] : {std::pair{300, 300}, std::pair{320, 240}, std::pair{1024, 768},
+                      std::pair{3840, 2160}, std::pair{2160, 3840}}) {
     for (const auto& legend : {std::string("Curvedness\n1/length"), std::string("K\n1/mm\u00b2"),
                                std::string("ShapeIndex")}) {
       const std::string what = std::to_string(w) + "x" + std::to_string(h) + " " + legend;
