@@ -1,9 +1,12 @@
 // isocurv render VOLUME|MESH -o PNG: a headless picture coloured by curvature.
 #include <iostream>
+#include <optional>
 
 #include "app/commands.h"
+#include "app/line_options_cli.h"
 #include "app/pipeline.h"
 #include "app/render_options_cli.h"
+#include "core/error.h"
 #include "viz/render.h"
 
 namespace isocurv::app {
@@ -11,6 +14,7 @@ namespace isocurv::app {
 void register_render(CLI::App& app) {
   auto* cmd = app.add_subcommand("render", "Render a volume's isosurface or a mesh to a PNG, coloured by curvature (no display needed)");
   cmd->footer("Example: isocurv render torus.vdb --color K --ao --dirs -o torus.png\n"
+              "        isocurv render bunny.vdb --lines contours,suggestive --view +x -o bunny.png\n"
               "A mesh without curvature arrays gets them estimated first.");
   static CommonOptions o;
   static viz::RenderOptions ro;
@@ -20,17 +24,32 @@ void register_render(CLI::App& app) {
   add_common_options(*cmd, o);
   add_curvature_options(*cmd, o, true);
   add_render_options(*cmd, ro);
+  static LineCli lc;
+  add_line_options(*cmd, lc, "");
   cmd->callback([] {
+    lines::Options lo;
+    try {
+      lo = line_options(lc);
+    } catch (const Error& e) {
+      throw CLI::ValidationError("--lines", e.what());
+    }
     StageTimer timer;
     Surface s = load_surface(in, o, timer);
-    if (o.flip || !s.field || s.field->H.size() != s.mesh.positions.size()) {
+    const std::size_t nv = s.mesh.positions.size();
+    if (o.flip || !s.field || s.field->H.size() != nv ||
+        (lo.lines.any() && (s.field->dir1.size() != nv || s.field->dcurv.size() != nv))) {
       prepare_mesh_for_curvature(s, in, o);
       s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, o, timer, &s.normals);
     }
-    timer.start("render");
     viz::RenderOptions opts = ro;
+    std::optional<lines::Polylines> poly;
+    if (lo.lines.any()) {
+      const Camera cam = picture_camera(s.mesh, opts.view, opts.width, opts.height);
+      poly = lines::join_segments(extract_lines(s.mesh, *s.field, cam, lo, o, timer));
+    }
+    timer.start("render");
     if (opts.title.empty()) opts.title = in;
-    viz::render_png(out, s.mesh, *s.field, opts);
+    viz::render_png(out, s.mesh, *s.field, opts, poly ? &*poly : nullptr);
     timer.stop();
     if (o.json) {
       nlohmann::json r = surface_report(s);

@@ -1,13 +1,16 @@
 // isocurv run VOLUME -o DIR: the headless pipeline in one go (mesh with curvature, PNG, stats.json).
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include "app/commands.h"
+#include "app/line_options_cli.h"
 #include "app/pipeline.h"
 #include "app/render_options_cli.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "io/mesh_file.h"
+#include "lines/line_files.h"
 #include "viz/render.h"
 
 namespace isocurv::app {
@@ -29,13 +32,26 @@ void register_run(CLI::App& app) {
   add_common_options(*cmd, o);
   add_curvature_options(*cmd, o);
   add_render_options(*cmd, ro);
+  static LineCli lc;
+  add_line_options(*cmd, lc, "");
   cmd->callback([] {
     namespace fs = std::filesystem;
+    lines::Options lo;
+    try {
+      lo = line_options(lc);
+    } catch (const Error& e) {
+      throw CLI::ValidationError("--lines", e.what());
+    }
     if (is_mesh_path(in)) throw Error(in, "isocurv run takes a volume; use isocurv curvature or render for meshes");
     StageTimer timer;
     Surface s =
         load_surface(in, o, timer);  // fails (no surface, ...) before any output folder is made
     s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, o, timer, &s.normals);
+    std::optional<lines::Polylines> poly;  // drawn on the PNG and written as <name>-lines.vtp
+    if (lo.lines.any()) {
+      const Camera cam = picture_camera(s.mesh, ro.view, ro.width, ro.height);
+      poly = lines::join_segments(extract_lines(s.mesh, *s.field, cam, lo, o, timer));
+    }
     // The folder is made now, and removed again if it was new and the outputs fail; the outputs
     // appear together or not at all.
     const bool new_folder = !fs::exists(dir);
@@ -54,6 +70,7 @@ void register_run(CLI::App& app) {
     const std::string mesh_path = (fs::path(dir) / (stem + "." + format)).string();
     const std::string png_path = (fs::path(dir) / (stem + ".png")).string();
     const std::string stats_path = (fs::path(dir) / "stats.json").string();
+    const std::string lines_path = (fs::path(dir) / (stem + "-lines.vtp")).string();
     AtomicFileSet outputs;
     timer.start("write");
     outputs.write(mesh_path,
@@ -61,13 +78,22 @@ void register_run(CLI::App& app) {
     timer.start("render");
     viz::RenderOptions opts = ro;
     if (opts.title.empty()) opts.title = fs::path(in).filename().string() + "  (" + opts.color + ")";
-    outputs.write(png_path,
-                  [&](const std::string& tmp) { viz::render_png(tmp, s.mesh, *s.field, opts); });
+    outputs.write(png_path, [&](const std::string& tmp) {
+      viz::render_png(tmp, s.mesh, *s.field, opts, poly ? &*poly : nullptr);
+    });
+    if (poly) {
+      timer.start("write_lines");
+      outputs.write(lines_path, [&](const std::string& tmp) { lines::write_vtp(tmp, *poly); });
+    }
     timer.stop();
     nlohmann::json r = surface_report(s);
     r["input"] = in;
     r["mesh"] = mesh_path;
     r["png"] = png_path;
+    if (poly) {
+      r["lines"] = lines_path;
+      r["polylines"] = poly->line_count();
+    }
     r["device"] = device_name(o);
     r["timings_ms"] = timer.json();
     outputs.write(stats_path,
@@ -80,6 +106,7 @@ void register_run(CLI::App& app) {
       std::cout << "isosurface at " << s.isovalue << ": " << r["vertices"] << " vertices, " << r["triangles"]
                 << " triangles\n  mesh with curvature: " << mesh_path << "\n  picture:             " << png_path
                 << "\n  statistics:          " << stats_path << "\n";
+      if (poly) std::cout << "  lines:               " << lines_path << "\n";
     }
   });
 }

@@ -8,6 +8,7 @@ void register_commands(CLI::App& app) {
   register_curvature(app);
   register_run(app);
   register_render(app);
+  register_lines(app);
   register_view(app);
   register_check(app);
   register_devices(app);

@@ -13,5 +13,6 @@ void register_curvature(CLI::App& app); ///< isocurv curvature VOLUME_OR_MESH -o
 void register_render(CLI::App& app);    ///< isocurv render VOLUME_OR_MESH -o PNG
 void register_run(CLI::App& app);       ///< isocurv run VOLUME -o DIR
 void register_view(CLI::App& app);      ///< isocurv view VOLUME
+void register_lines(CLI::App& app);     ///< isocurv lines VOLUME_OR_MESH -o VTP|SVG
 
 }  // namespace isocurv::app

@@ -8,6 +8,7 @@
 
 #include "core/cl_launch.h"
 #include "core/error.h"
+#include "curvature/vertex_corners.h"
 
 namespace isocurv::kernels {
 extern const char* const lines_kernels_cl;
@@ -44,8 +45,11 @@ struct Buffer {
 struct Session {
   cl::Context context;
   std::mutex mutex;
-  cl::Kernel vertex_view, face_count, face_emit;
-  Buffer triangles, positions, normals, dir1, dir2, k1, k2, dcurv, view, counts, faces, offsets;
+  cl::Kernel vertex_view, vertex_smooth, face_count, face_emit;
+  Buffer triangles, positions, normals, dir1, dir2, k1, k2, dcurv, view, view2, counts, faces, offsets;
+  Buffer ring_offsets, ring_corners;  // the vertex -> corner adjacency, for the smoothing
+  curvature::VertexCorners adjacency;
+  bool uploaded_adjacency = false;
   Buffer out_a, out_b, out_edges, out_face_type;
   std::size_t uploaded_vertices = 0, uploaded_faces = 0;
   bool uploaded_dcurv = false;
@@ -76,6 +80,7 @@ Session& session_for(Device& device) {
   s->context = device.context();
   cl::Program& program = device.program("lines", kernels::lines_kernels_cl, build_options());
   s->vertex_view = cl::Kernel(program, "line_vertex_view");
+  s->vertex_smooth = cl::Kernel(program, "line_vertex_smooth");
   s->face_count = cl::Kernel(program, "line_face_count");
   s->face_emit = cl::Kernel(program, "line_face_emit");
   sessions.push_back(std::move(s));
@@ -120,8 +125,17 @@ Segments run(const Mesh& mesh, const curvature::CurvatureField& field, const Cam
     if (with_dcurv) upload(q, ctx, s.dcurv, field.dcurv);
     else s.dcurv.reserve(ctx, 16);
     s.uploaded_vertices = nv, s.uploaded_faces = nf, s.uploaded_dcurv = with_dcurv;
+    s.uploaded_adjacency = false;
+  }
+  const bool smooth = options.lines.suggestive && options.smoothing_steps > 0;
+  if (smooth && !s.uploaded_adjacency) {
+    curvature::build_vertex_corners(mesh, s.adjacency);
+    upload(q, ctx, s.ring_offsets, s.adjacency.offsets);
+    upload(q, ctx, s.ring_corners, s.adjacency.corners);
+    s.uploaded_adjacency = true;
   }
   s.view.reserve(ctx, nv * sizeof(cl_float4));
+  if (smooth) s.view2.reserve(ctx, nv * sizeof(cl_float4));
   s.counts.reserve(ctx, nf);
   if (timings) q.finish();
   t.upload = lap(clock);
@@ -139,8 +153,18 @@ Segments run(const Mesh& mesh, const curvature::CurvatureField& field, const Cam
              towards, s.view.buffer);
     launch(q, s.vertex_view, nv, kGroup);
   }
+  Buffer* view = &s.view;  // where the final per-vertex quantities are
+  if (smooth) {
+    Buffer* other = &s.view2;
+    for (int step = 0; step < options.smoothing_steps; ++step) {
+      set_args(s.vertex_smooth, s.ring_offsets.buffer, s.ring_corners.buffer, s.triangles.buffer,
+               view->buffer, cl_uint(nv), other->buffer);
+      launch(q, s.vertex_smooth, nv, kGroup);
+      std::swap(view, other);
+    }
+  }
   set_args(s.face_count, s.triangles.buffer, s.positions.buffer, s.normals.buffer, s.dir1.buffer,
-           s.dir2.buffer, s.k1.buffer, s.k2.buffer, s.dcurv.buffer, s.view.buffer, selection,
+           s.dir2.buffer, s.k1.buffer, s.k2.buffer, s.dcurv.buffer, view->buffer, selection,
            thresholds, cl_uint(nf), s.counts.buffer);
   launch(q, s.face_count, nf, kGroup);
   s.counts_host.resize(nf);
@@ -167,7 +191,7 @@ Segments run(const Mesh& mesh, const curvature::CurvatureField& field, const Cam
     s.out_edges.reserve(ctx, total * sizeof(cl_ulong2));
     s.out_face_type.reserve(ctx, total * sizeof(cl_uint2));
     set_args(s.face_emit, s.triangles.buffer, s.positions.buffer, s.normals.buffer, s.dir1.buffer,
-             s.dir2.buffer, s.k1.buffer, s.k2.buffer, s.dcurv.buffer, s.view.buffer, selection,
+             s.dir2.buffer, s.k1.buffer, s.k2.buffer, s.dcurv.buffer, view->buffer, selection,
              thresholds, s.faces.buffer, s.offsets.buffer, cl_uint(listed), s.out_a.buffer,
              s.out_b.buffer, s.out_edges.buffer, s.out_face_type.buffer);
     launch(q, s.face_emit, listed, kGroup);

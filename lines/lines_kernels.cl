@@ -59,6 +59,26 @@ __kernel void line_vertex_view(__global const float* positions, __global const f
   view[i] = (float4)(ndotv, kr, num, 0);
 }
 
+// One smoothing pass over kr and num (view .y, .z): the mean over the vertex and the two other
+// corners of each of its triangles (offsets/corners: curvature::VertexCorners). n.v is kept.
+__kernel void line_vertex_smooth(__global const uint* offsets, __global const uint* corners,
+                                 __global const uint* triangles, __global const float4* view_in,
+                                 uint vertex_count, __global float4* view_out) {
+  const uint i = get_global_id(0);
+  if (i >= vertex_count) return;
+  const float4 self = view_in[i];
+  float kr = self.y, num = self.z, w = 1;
+  for (uint k = offsets[i]; k < offsets[i + 1]; ++k) {
+    const uint c = corners[k], t = c / 3, j = c % 3;
+    const uint a = triangles[3 * t + (j + 1) % 3], b = triangles[3 * t + (j + 2) % 3];
+    const float4 va = view_in[a], vb = view_in[b];
+    kr += va.y + vb.y;
+    num += va.z + vb.z;
+    w += 2;
+  }
+  view_out[i] = (float4)(self.x, kr / w, num / w, 0);
+}
+
 typedef struct {
   uint lo, hi;  // the edge's vertices, lo < hi
   float t;      // from lo towards hi

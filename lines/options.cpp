@@ -16,6 +16,8 @@ Thresholds resolve_thresholds(const curvature::CurvatureField& field, const Opti
   check(options.ridge_threshold, "the ridge threshold");
   if (!(options.suggestive_angle_deg >= 0 && options.suggestive_angle_deg < 90))
     throw Error("lines: the suggestive-contour angle must lie in [0, 90) degrees");
+  if (options.smoothing_steps < 0 || options.smoothing_steps > 100)
+    throw Error("lines: the smoothing steps must lie in 0..100");
   std::vector<float> k;
   k.reserve(field.k1.size());
   for (std::size_t i = 0; i < field.k1.size() && i < field.k2.size(); ++i) {

@@ -21,6 +21,12 @@ struct Options {
   /// Ridges and valleys: kept where |k| (k1 on ridges, k2 on valleys) at the line exceeds
   /// t_r = ridge_threshold * m; faded in over [t_r, 2 t_r].
   double ridge_threshold = 1.5;
+  /// Suggestive contours: passes of 1-ring averaging (each vertex with its neighbours, every
+  /// corner's two other vertices counted) over kr and num before the faces are cut. Marching-cubes
+  /// meshes carry curvature ripples a few voxels long whose kr zero crossings have large
+  /// derivatives (no threshold on the derivative removes them); a few passes flatten them and
+  /// barely move the zero sets of features many edges wide. n.v (the contours) is never smoothed.
+  int smoothing_steps = 4;
 };
 
 /// The absolute thresholds of `options` on `field` (units: t_d 1/length^2, t_r 1/length).
@@ -32,7 +38,7 @@ struct Thresholds {
 };
 
 /// Resolves `options` on `field` (finite values only; the median is exact). @throw Error for a
-/// negative or non-finite threshold, or an angle outside [0, 90).
+/// negative or non-finite threshold, an angle outside [0, 90) or smoothing steps outside 0..100.
 Thresholds resolve_thresholds(const curvature::CurvatureField& field, const Options& options);
 
 }  // namespace isocurv::lines

@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include "curvature/vertex_corners.h"
+
 namespace isocurv::lines {
 namespace {
 
@@ -106,6 +108,27 @@ Segments extract_reference(const Mesh& mesh, const curvature::CurvatureField& fi
   std::vector<VertexView> view(sel.view_dependent() ? nv : 0);
   for (std::size_t i = 0; i < view.size(); ++i)
     view[i] = vertex_view(mesh, field, camera, i, sel.suggestive);
+
+  // Suggestive contours: kr and num averaged over 1-rings (Options::smoothing_steps).
+  if (sel.suggestive && options.smoothing_steps > 0) {
+    curvature::VertexCorners vc;
+    curvature::build_vertex_corners(mesh, vc);
+    std::vector<VertexView> next(nv);
+    for (int step = 0; step < options.smoothing_steps; ++step) {
+      for (std::size_t i = 0; i < nv; ++i) {
+        double kr = view[i].kr, num = view[i].num, w = 1;
+        for (std::uint32_t k = vc.offsets[i]; k < vc.offsets[i + 1]; ++k) {
+          const Tri& t = mesh.triangles[vc.corners[k] / 3];
+          const std::uint32_t j = vc.corners[k] % 3, a = t[(j + 1) % 3], b = t[(j + 2) % 3];
+          kr += view[a].kr + view[b].kr;
+          num += view[a].num + view[b].num;
+          w += 2;
+        }
+        next[i] = {view[i].ndotv, kr / w, num / w};
+      }
+      view.swap(next);
+    }
+  }
 
   Segments out;
   for (std::size_t fi = 0; fi < mesh.triangles.size(); ++fi) {

@@ -12,6 +12,8 @@ namespace isocurv::lines {
 ///   ndotv = n.v;  kr = k1 u^2 + k2 w^2 (the radial curvature times sin^2 theta);
 ///   num = [u^2 (u C111 + 3 w C112) + w^2 (3 u C122 + w C222)] / (u^2 + w^2) - 2 ndotv tau^2,
 ///   tau = (k2 - k1) u w / (u^2 + w^2) (num = 0 where u = w = 0); den = ndotv.
+/// Then, for suggestive contours, options.smoothing_steps passes replace kr and num at every
+/// vertex by their mean over the vertex and the two other corners of each of its triangles.
 /// Per face, a zero set is cut where the values at an edge's ends differ in sign (> 0 against
 /// <= 0), at p_lo + t (p_hi - p_lo), t = f_lo / (f_lo - f_hi), interpolating from the edge's
 /// lower vertex index (so neighbouring faces give bit-identical shared endpoints; an endpoint

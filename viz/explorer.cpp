@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include <vtkCallbackCommand.h>
+#include <vtkCamera.h>
 #include <vtkCommand.h>
 #include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkNew.h>
@@ -23,6 +24,7 @@
 #include "core/error.h"
 #include "viz/curvature_scene.h"
 #include "viz/headless_display.h"
+#include "viz/line_overlay.h"
 #include "viz/quantity.h"
 #include "viz/screenshot.h"
 
@@ -55,6 +57,7 @@ class Explorer {
     scene_.set_options(setup_.view);
     scene_.set_surface(first.mesh, first.field);
     note_update(first);
+    current_ = std::move(first);
 
     window_->SetSize(setup_.view.width, setup_.view.height);
     window_->SetWindowName(("isocurv explorer" + (setup_.view.title.empty() ? "" : " - " + setup_.view.title)).c_str());
@@ -71,6 +74,14 @@ class Explorer {
     status_->GetPositionCoordinate()->SetValue(0.01, 0.01);  // bottom left, under the slider
     scene_.renderer()->AddViewProp(status_);
     make_slider();
+    if (setup_.lines) {
+      lines_on_ = setup_.show_lines;
+      overlay_.add_to(scene_.renderer());
+      overlay_.set_visible(lines_on_);
+      render_start_->SetCallback(&Explorer::on_render_start);
+      render_start_->SetClientData(this);
+      scene_.renderer()->AddObserver(vtkCommand::StartEvent, render_start_);
+    }
     scene_.frame_camera();
     refresh_status();
 
@@ -106,6 +117,11 @@ class Explorer {
       case 'a': o.ao = !o.ao; try_options(o); break;
       case 'd': o.dirs = !o.dirs; try_options(o); break;
       case 's': screenshot(next_screenshot_name()); break;
+      case 'l':
+        if (!setup_.lines) return false;
+        lines_on_ = !lines_on_;
+        overlay_.set_visible(lines_on_);
+        break;
       default: return false;
     }
     refresh_status();
@@ -149,6 +165,8 @@ class Explorer {
       scene_.set_surface(s.mesh, s.field);
       iso_ = iso;
       note_update(s);
+      current_ = std::move(s);
+      lines_surface_stale_ = true;
     } catch (const Error& e) {
       message_ = "isovalue " + format(iso) + ": " + e.what();
     }
@@ -175,6 +193,7 @@ class Explorer {
     if (!detail_.empty()) line += "   (" + detail_ + ")";
     line += "\n[c] colour: " + canonical_quantity(o.color) + "   [a] AO: " + (o.ao ? "on" : "off") +
             "   [d] directions: " + (o.dirs ? "on" : "off") + "   [s] screenshot";
+    if (setup_.lines) line += std::string("   [l] lines: ") + (lines_on_ ? "on" : "off");
     if (!message_.empty()) line += "\n" + message_;
     status_->SetInput(line.c_str());
   }
@@ -217,6 +236,23 @@ class Explorer {
   }
 
   static void on_timer(vtkObject*, unsigned long, void* self, void*) { static_cast<Explorer*>(self)->step(); }
+
+  /// Before each frame: new lines when they are on and the camera or the surface changed.
+  static void on_render_start(vtkObject*, unsigned long, void* self, void*) {
+    auto* e = static_cast<Explorer*>(self);
+    vtkCamera* cam = e->scene_.renderer()->GetActiveCamera();
+    if (!e->lines_on_ || (!e->lines_surface_stale_ && cam->GetMTime() == e->lines_camera_time_)) return;
+    try {
+      e->overlay_.set_lines(e->setup_.lines(e->current_, camera_of(cam), e->lines_surface_stale_));
+    } catch (const Error& err) {
+      e->message_ = std::string("lines: ") + err.what();
+      e->lines_on_ = false;
+      e->overlay_.set_visible(false);
+      e->refresh_status();
+    }
+    e->lines_surface_stale_ = false;
+    e->lines_camera_time_ = cam->GetMTime();
+  }
 
   void step() {
     if (next_action_ >= setup_.script.size()) {
@@ -270,6 +306,12 @@ class Explorer {
   vtkNew<vtkTextActor> status_;
   vtkNew<vtkCallbackCommand> slider_callback_;
   vtkNew<vtkCallbackCommand> timer_callback_;
+  vtkNew<vtkCallbackCommand> render_start_;
+  LineOverlay overlay_;
+  Surface current_;                      // the surface shown, for the lines
+  bool lines_on_ = false;
+  bool lines_surface_stale_ = true;      // the surface changed since the lines were made
+  vtkMTimeType lines_camera_time_ = 0;   // the camera's MTime when they were made
   float iso_ = 0;        // isovalue of the surface shown
   float attempted_ = 0;  // last isovalue the callback was asked for
   std::size_t vertices_ = 0, triangles_ = 0;

@@ -7,7 +7,9 @@
 #include <vector>
 
 #include "core/mesh.h"
+#include "core/camera.h"
 #include "curvature/curvature_field.h"
+#include "lines/polylines.h"
 #include "viz/render_options.h"
 
 namespace isocurv::viz {
@@ -40,13 +42,18 @@ struct ExplorerSetup {
   std::function<Surface(float iso)> surface;  ///< re-extracts and re-estimates; may throw Error
   RenderOptions view;                       ///< initial colour, AO, glyphs, window size, title
   std::string screenshot_prefix = "isocurv-screenshot";  ///< 's' writes <prefix>-NNN.png
+  /// Feature lines of the surface shown as `camera` sees it, drawn while the 'l' key has them on
+  /// and recomputed before a frame whenever the camera moved or the surface changed since the
+  /// last call (`surface_changed` false: only the camera moved). Empty: 'l' does nothing.
+  std::function<lines::Polylines(const Surface& surface, const Camera& camera, bool surface_changed)> lines;
+  bool show_lines = false;  ///< lines on from the start (needs `lines`)
   /// When non-empty: run these actions (one per timer tick, ~100 ms apart) and close the window.
   std::vector<ExplorerAction> script;
 };
 
 /// Opens the explorer and returns when its window is closed (or 'q'/'e' pressed, or the script is
 /// done). Keys: c cycles the colour quantity (H, K, k1, k2, ShapeIndex, Curvedness, AO), a toggles
-/// AO shading, d toggles direction glyphs, s saves a screenshot (name printed on stdout), r
+/// AO shading, d toggles direction glyphs, l toggles the feature lines (when setup.lines is given), s saves a screenshot (name printed on stdout), r
 /// re-frames the camera; the mouse rotates, pans and zooms. Dragging the slider re-runs the callback
 /// live while updates take under 150 ms, otherwise on release. A failed update (Error from the
 /// callback) is shown on the status line and the previous surface stays. Interactive use needs an X

@@ -7,12 +7,13 @@
 #include "core/error.h"
 #include "viz/curvature_scene.h"
 #include "viz/headless_display.h"
+#include "viz/line_overlay.h"
 #include "viz/screenshot.h"
 
 namespace isocurv::viz {
 
 void render_png(const std::string& path, const Mesh& mesh, const curvature::CurvatureField& field,
-                const RenderOptions& options) {
+                const RenderOptions& options, const lines::Polylines* lines) {
   if (mesh.positions.empty() || mesh.triangles.empty()) throw Error(path, "nothing to render: the mesh is empty");
   if (options.width < 16 || options.height < 16 || options.width > 16384 || options.height > 16384)
     throw Error(path, "image size " + std::to_string(options.width) + "x" + std::to_string(options.height) +
@@ -27,6 +28,11 @@ void render_png(const std::string& path, const Mesh& mesh, const curvature::Curv
   window->SetMultiSamples(8);
   check_opengl(window);
   window->AddRenderer(scene.renderer());
+  LineOverlay overlay;
+  if (lines) {
+    overlay.add_to(scene.renderer());
+    overlay.set_lines(*lines);
+  }
   scene.frame_camera();
   save_png(window, path);
   window->Finalize();
