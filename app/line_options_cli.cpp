@@ -24,6 +24,10 @@ void add_line_options(CLI::App& cmd, LineCli& cli, const std::string& default_li
   cmd.add_option("--suggestive-angle", cli.options.suggestive_angle_deg,
                  "Suggestive contours: only where the view is at least this many degrees from the normal")
       ->check(CLI::Range(0.0, 89.9))->capture_default_str()->group("Lines");
+  cmd.add_option("--line-smoothing", cli.options.smoothing_steps,
+                 "Suggestive contours: passes of 1-ring averaging of the radial curvature and its derivative "
+                 "(removes the marching-cubes ripples; 0: none)")
+      ->check(CLI::Range(0, 100))->capture_default_str()->group("Lines");
   cmd.add_option("--ridge-threshold", cli.options.ridge_threshold,
                  "Ridges and valleys: only where |k| exceeds this times m")
       ->check(CLI::Range(0.0, 1e6))->capture_default_str()->group("Lines");

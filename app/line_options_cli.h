@@ -16,11 +16,11 @@ namespace isocurv::app {
 /// The command line's line options (before parsing --lines).
 struct LineCli {
   std::string list;          ///< --lines: comma list (lines::parse_line_selection); empty: none
-  lines::Options options;    ///< thresholds (--suggestive-threshold, --suggestive-angle, --ridge-threshold)
+  lines::Options options;    ///< --suggestive-threshold, --suggestive-angle, --line-smoothing, --ridge-threshold
 };
 
 /// Adds --lines (with `default_list` shown as its default; empty: no lines unless given),
-/// --suggestive-threshold, --suggestive-angle and --ridge-threshold to `cmd`.
+/// --suggestive-threshold, --suggestive-angle, --line-smoothing and --ridge-threshold to `cmd`.
 void add_line_options(CLI::App& cmd, LineCli& cli, const std::string& default_list);
 
 /// cli.options with the parsed --lines selection. @throw Error for a bad list.

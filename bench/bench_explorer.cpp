@@ -209,7 +209,7 @@ Row run_volume(const std::string& name, const volume::Volume& v, const Config& c
     row.ours_render = sweep([&](std::size_t i) { ours_update(i, true); });
   }
   // With the lines: the camera is the explorer's first (fit_camera, iso view) for each surface.
-  lines::Options lo;  // contours and suggestive contours, the explorer's default
+  lines::Options line_opts;  // contours and suggestive contours, the explorer's default
   auto bounds_of = [](const Mesh& m) {
     std::array<double, 6> b = {1e30, -1e30, 1e30, -1e30, 1e30, -1e30};
     for (const Vec3f& p : m.positions)
@@ -223,7 +223,7 @@ Row run_volume(const std::string& name, const volume::Volume& v, const Config& c
     co.ao_scale = curvature::default_ao_scale(mesh);
     curvature::CurvatureField field = curvature::estimate(mesh, dev, co);
     const Camera cam = fit_camera(bounds_of(mesh), ViewSpec{}, aspect);
-    lines::join_segments(lines::extract(mesh, field, cam, lo, dev));
+    lines::join_segments(lines::extract(mesh, field, cam, line_opts, dev));
   });
   {
     const Mesh mesh = mesher.extract(isos[isos.size() / 2]);
@@ -231,12 +231,12 @@ Row run_volume(const std::string& name, const volume::Volume& v, const Config& c
     co.ao_scale = curvature::default_ao_scale(mesh);
     const curvature::CurvatureField field = curvature::estimate(mesh, dev, co);
     const std::array<double, 6> box = bounds_of(mesh);
-    lines::extract(mesh, field, fit_camera(box, ViewSpec{}, aspect), lo, dev);  // uploads the mesh
+    lines::extract(mesh, field, fit_camera(box, ViewSpec{}, aspect), line_opts, dev);  // uploads the mesh
     row.camera_lines = sweep([&](std::size_t i) {
       ViewSpec turned;
       turned.azimuth_deg = 360.0 * double(i) / double(isos.size());
       const Camera cam = fit_camera(box, turned, aspect);
-      lines::join_segments(lines::extract(mesh, field, cam, lo, dev, nullptr, false));
+      lines::join_segments(lines::extract(mesh, field, cam, line_opts, dev, nullptr, false));
     });
   }
   row.vtk = sweep([&](std::size_t i) { vtk_update(i, false); });

@@ -66,11 +66,15 @@ void run_case(const std::string& name, const Mesh& mesh, int runs) {
   t0 = std::chrono::steady_clock::now();
   const std::vector<bool> visible = vis.visible_segments(segs, cam);
   const double t_vis = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  lines::Timings steps;
+  lines::extract(mesh, field, cam, cs, dev, &steps);
   std::size_t n_visible = 0;
   for (bool v : visible) n_visible += v;
-  std::printf("%-20s %9zu %8.1f | %7.1f %6.3f %7.1f %6.3f %7.1f %6.3f | %7zu %6.1f %7.1f | %6.0f %6.0f %6zu\n",
+  std::printf("%-20s %9zu %8.1f | %7.1f %6.3f %7.1f %6.3f %7.1f %6.3f | %7zu %6.1f %7.1f | %6.0f %6.0f %6zu"
+              " | %6.1f %6.1f %6.1f %6.1f\n",
               name.c_str(), mesh.positions.size(), t[0], t[1], t[1] / t[0], t[2], t[2] / t[0], t[3],
-              t[3] / t[0], n_cs, t_join, t_ref, t_locator, t_vis, n_visible);
+              t[3] / t[0], n_cs, t_join, t_ref, t_locator, t_vis, n_visible, steps.upload, steps.view,
+              steps.count, steps.emit);
   std::fflush(stdout);
   (void)joined;
 }
@@ -93,11 +97,11 @@ int main(int argc, char** argv) {
   std::printf("device: %s; medians of %d runs; iso view; 'c+s' = contours and suggestive contours,\n"
               "'moved' = the same with the mesh already on the device (explorer camera move), 'all' = all four\n"
               "types; ratios are to the curvature estimate of the same run. Join, reference (1 thread), locator\n"
-              "build and ray-cast visibility (SVG) once each.\n",
+              "build and ray-cast visibility (SVG) once each; then the steps of one c+s call (queue drained between).\n",
               Device::default_device().info().name.c_str(), runs);
-  std::printf("%-20s %9s %8s | %7s %6s %7s %6s %7s %6s | %7s %6s %7s | %6s %6s %6s\n", "mesh", "vertices",
-              "curv ms", "c+s ms", "/curv", "moved", "/curv", "all ms", "/curv", "segs", "join", "ref ms",
-              "locate", "rays", "vis");
+  std::printf("%-20s %9s %8s | %7s %6s %7s %6s %7s %6s | %7s %6s %7s | %6s %6s %6s | %6s %6s %6s %6s\n",
+              "mesh", "vertices", "curv ms", "c+s ms", "/curv", "moved", "/curv", "all ms", "/curv", "segs",
+              "join", "ref ms", "locate", "rays", "vis", "upload", "view", "count", "emit");
   auto sphere = datasets::make_field("sphere");
   run_case("sphere 256^3", mesh_of(datasets::sample(*sphere, 256), float(sphere->isovalue())), runs);
   if (quick) return 0;

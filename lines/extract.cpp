@@ -163,13 +163,15 @@ Segments run(const Mesh& mesh, const curvature::CurvatureField& field, const Cam
       std::swap(view, other);
     }
   }
+  if (timings) q.finish();
+  t.view = lap(clock);
   set_args(s.face_count, s.triangles.buffer, s.positions.buffer, s.normals.buffer, s.dir1.buffer,
            s.dir2.buffer, s.k1.buffer, s.k2.buffer, s.dcurv.buffer, view->buffer, selection,
            thresholds, cl_uint(nf), s.counts.buffer);
   launch(q, s.face_count, nf, kGroup);
   s.counts_host.resize(nf);
   q.enqueueReadBuffer(s.counts.buffer, CL_TRUE, 0, nf, s.counts_host.data());
-  t.kernels = lap(clock);
+  t.count = lap(clock);
 
   // Faces with segments, in order, and where their segments go.
   s.faces_host.clear();

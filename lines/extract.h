@@ -5,10 +5,12 @@
 
 namespace isocurv::lines {
 
-/// Wall-clock time of one extract() call, in milliseconds.
+/// Wall-clock time of one extract() call, in milliseconds (the queue is drained between the steps
+/// only when timings are asked for).
 struct Timings {
-  double upload = 0;   ///< host -> device copies of the mesh and field
-  double kernels = 0;  ///< per-vertex view quantities and the per-face count
+  double upload = 0;   ///< host -> device copies of the mesh and field (and the adjacency)
+  double view = 0;     ///< per-vertex view quantities and their smoothing
+  double count = 0;    ///< the per-face count and its download
   double emit = 0;     ///< host scan of the counts, the emitting pass and the download
   double total = 0;
 };

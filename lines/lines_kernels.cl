@@ -251,6 +251,32 @@ int face_segments(uint f, __global const uint* triangles, __global const float* 
   return kept;
 }
 
+// Whether face f can have a segment at all: a sign change of n.v (contours) or kr (suggestive)
+// over its corners, or, for ridges and valleys, of the aligned derivative. face_segments gives
+// nothing where this is false, so the count can skip the rest (nearly every face).
+bool face_may_have_lines(uint f, __global const uint* triangles, __global const float* dir1s,
+                         __global const float* dir2s, __global const float4* dcurv,
+                         __global const float4* view, const Params P) {
+  const uint v0 = triangles[3 * f], v1 = triangles[3 * f + 1], v2 = triangles[3 * f + 2];
+  if (P.contours || P.suggestive) {
+    const float4 a = view[v0], b = view[v1], c = view[v2];
+    if (P.contours && !((a.x > 0) == (b.x > 0) && (b.x > 0) == (c.x > 0))) return true;
+    if (P.suggestive && !((a.y > 0) == (b.y > 0) && (b.y > 0) == (c.y > 0))) return true;
+  }
+  for (int kind = 0; kind < 2; ++kind) {
+    const bool ridge = kind == 0;
+    if (!(ridge ? P.ridges : P.valleys)) continue;
+    const float3 d0 = ridge ? vload3(v0, dir1s) : vload3(v0, dir2s);
+    const float3 d1 = ridge ? vload3(v1, dir1s) : vload3(v1, dir2s);
+    const float3 d2 = ridge ? vload3(v2, dir1s) : vload3(v2, dir2s);
+    const float e0 = ridge ? dcurv[v0].x : dcurv[v0].w;
+    const float e1 = (dot(d1, d0) < 0 ? -1.0f : 1.0f) * (ridge ? dcurv[v1].x : dcurv[v1].w);
+    const float e2 = (dot(d2, d0) < 0 ? -1.0f : 1.0f) * (ridge ? dcurv[v2].x : dcurv[v2].w);
+    if (!((e0 > 0) == (e1 > 0) && (e1 > 0) == (e2 > 0))) return true;
+  }
+  return false;
+}
+
 // Pass 1: the number of segments of every face.
 __kernel void line_face_count(__global const uint* triangles, __global const float* positions,
                               __global const float* normals, __global const float* dir1s,
@@ -261,6 +287,10 @@ __kernel void line_face_count(__global const uint* triangles, __global const flo
   const uint f = get_global_id(0);
   if (f >= face_count) return;
   const Params P = make_params(selection, thresholds);
+  if (!face_may_have_lines(f, triangles, dir1s, dir2s, dcurv, view, P)) {
+    counts[f] = 0;
+    return;
+  }
   Seg s[MAX_SEGMENTS];
   counts[f] = (uchar)face_segments(f, triangles, positions, normals, dir1s, dir2s, k1s, k2s, dcurv,
                                    view, P, s);
