@@ -5,12 +5,14 @@
 
 namespace isocurv::lines {
 
-void check_input(const Mesh& mesh, const curvature::CurvatureField& field, const Options& options) {
+void check_input(const Mesh &mesh, const curvature::CurvatureField &field,
+                 const Options &options) {
   const std::size_t nv = mesh.vertex_count();
-  auto need = [&](std::size_t n, const char* name) {
+  auto need = [&](std::size_t n, const char *name) {
     if (n != nv)
-      throw Error(std::string("lines: the curvature field's ") + name + " has " + std::to_string(n) +
-                  " values for " + std::to_string(nv) + " vertices");
+      throw Error(std::string("lines: the curvature field's ") + name +
+                  " has " + std::to_string(n) + " values for " +
+                  std::to_string(nv) + " vertices");
   };
   need(field.normals.size(), "Normals");
   need(field.k1.size(), "k1");
@@ -22,15 +24,17 @@ void check_input(const Mesh& mesh, const curvature::CurvatureField& field, const
       LineSelection need_d = options.lines;
       need_d.contours = false;
       throw Error("lines: " + need_d.to_string() +
-                  " need the curvature derivative (dcurv), which this curvature field lacks "
+                  " need the curvature derivative (dcurv), which this "
+                  "curvature field lacks "
                   "(an estimator without it?); only contours can be drawn");
     }
     need(field.dcurv.size(), "dcurv");
   }
-  for (const Tri& t : mesh.triangles)
+  for (const Tri &t : mesh.triangles)
     for (std::uint32_t i : t)
       if (i >= nv)
-        throw Error("lines: a triangle uses vertex " + std::to_string(i) + " of " + std::to_string(nv));
+        throw Error("lines: a triangle uses vertex " + std::to_string(i) +
+                    " of " + std::to_string(nv));
 }
 
-}  // namespace isocurv::lines
+} // namespace isocurv::lines

@@ -1,4 +1,5 @@
-// Hidden-line removal by ray casting and the SVG drawing: only visible lines are drawn.
+// Hidden-line removal by ray casting and the SVG drawing: only visible lines
+// are drawn.
 #include <gtest/gtest.h>
 
 #include <vtkCellData.h>
@@ -13,21 +14,25 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "line_surfaces.h"
 #include "lines/line_files.h"
 #include "lines/polylines.h"
 #include "lines/reference.h"
 #include "lines/visibility.h"
-#include "line_surfaces.h"
 
 namespace isocurv::lines {
 namespace {
 
-// A unit sphere at the origin and a small one (radius 0.3) right behind it, seen from +z.
+// A unit sphere at the origin and a small one (radius 0.3) right behind it,
+// seen from +z.
 test::Surface two_spheres() {
-  Mesh big = test::icosphere(4), small = test::icosphere(3, {0.3, 0.3, 0.3}, {0, 0, -3});
+  Mesh big = test::icosphere(4),
+       small = test::icosphere(3, {0.3, 0.3, 0.3}, {0, 0, -3});
   const auto base = std::uint32_t(big.positions.size());
-  for (const Vec3f& p : small.positions) big.positions.push_back(p);
-  for (const Tri& t : small.triangles) big.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  for (const Vec3f &p : small.positions)
+    big.positions.push_back(p);
+  for (const Tri &t : small.triangles)
+    big.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
   return test::with_curvature(std::move(big));
 }
 
@@ -38,8 +43,10 @@ Camera front() {
   return cam;
 }
 
-std::string temp_path(const char* name) {
-  return (std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + name)).string();
+std::string temp_path(const char *name) {
+  return (std::filesystem::temp_directory_path() /
+          (std::to_string(::getpid()) + name))
+      .string();
 }
 
 TEST(Visibility, TheSphereBehindIsHidden) {
@@ -57,7 +64,8 @@ TEST(Visibility, TheSphereBehindIsHidden) {
   }
   ASSERT_GT(small, 20u);
   EXPECT_EQ(small_visible, 0u);
-  EXPECT_EQ(big_visible, big);  // the silhouette of the front sphere is all visible
+  EXPECT_EQ(big_visible,
+            big); // the silhouette of the front sphere is all visible
   // Seen from the side, both are.
   Camera side;
   side.position = {6, 0, -1.5};
@@ -66,7 +74,8 @@ TEST(Visibility, TheSphereBehindIsHidden) {
   const Segments side_segs = extract_reference(s.mesh, s.field, side, o);
   const std::vector<bool> side_keep = vis.visible_segments(side_segs, side);
   std::size_t side_small = 0;
-  for (std::size_t i = 0; i < side_segs.size(); ++i) side_small += side_keep[i] && side_segs[i].a[2] < -1.5;
+  for (std::size_t i = 0; i < side_segs.size(); ++i)
+    side_small += side_keep[i] && side_segs[i].a[2] < -1.5;
   EXPECT_GT(side_small, 20u);
 }
 
@@ -76,7 +85,8 @@ TEST(Svg, ParsesAndHoldsOnlyTheVisibleLines) {
   o.lines = parse_line_selection("contours");
   const Camera cam = front();
   const Segments segs = extract_reference(s.mesh, s.field, cam, o);
-  const Segments visible = select_segments(segs, VisibilityTester(s.mesh).visible_segments(segs, cam));
+  const Segments visible = select_segments(
+      segs, VisibilityTester(s.mesh).visible_segments(segs, cam));
   const std::string path = temp_path("-lines.svg");
   const int W = 400, H = 300;
   write_svg(path, join_segments(visible), cam, W, H);
@@ -84,18 +94,21 @@ TEST(Svg, ParsesAndHoldsOnlyTheVisibleLines) {
   vtkNew<vtkXMLDataParser> parser;
   parser->SetFileName(path.c_str());
   ASSERT_EQ(parser->Parse(), 1);
-  vtkXMLDataElement* root = parser->GetRootElement();
+  vtkXMLDataElement *root = parser->GetRootElement();
   ASSERT_NE(root, nullptr);
   EXPECT_STREQ(root->GetName(), "svg");
-  // The big sphere's silhouette projects to a circle of radius tan(asin(1/5)) / tan(15 deg) of
-  // the half height; the small one's (hidden) would be far smaller.
-  const double expect_r = std::tan(std::asin(0.2)) / std::tan(15 * test::kPi / 180) * H / 2;
+  // The big sphere's silhouette projects to a circle of radius tan(asin(1/5)) /
+  // tan(15 deg) of the half height; the small one's (hidden) would be far
+  // smaller.
+  const double expect_r =
+      std::tan(std::asin(0.2)) / std::tan(15 * test::kPi / 180) * H / 2;
   std::size_t polylines = 0, points = 0;
   for (int g = 0; g < root->GetNumberOfNestedElements(); ++g) {
-    vtkXMLDataElement* group = root->GetNestedElement(g);
-    if (std::string(group->GetName()) != "g") continue;
+    vtkXMLDataElement *group = root->GetNestedElement(g);
+    if (std::string(group->GetName()) != "g")
+      continue;
     for (int l = 0; l < group->GetNumberOfNestedElements(); ++l) {
-      vtkXMLDataElement* line = group->GetNestedElement(l);
+      vtkXMLDataElement *line = group->GetNestedElement(l);
       ASSERT_STREQ(line->GetName(), "polyline");
       EXPECT_STREQ(group->GetAttribute("id"), "contours");
       ++polylines;
@@ -121,7 +134,8 @@ TEST(Svg, ProjectMatchesTheCamera) {
   EXPECT_NEAR(c[0], 100, 1e-9);
   EXPECT_NEAR(c[1], 50, 1e-9);
   EXPECT_NEAR(c[2], 4, 1e-9);
-  // the top edge of the picture: tan(20 deg) * depth above the axis; +x to the right
+  // the top edge of the picture: tan(20 deg) * depth above the axis; +x to the
+  // right
   auto top = project(cam, {0, 4 * std::tan(20 * test::kPi / 180), 0}, 200, 100);
   EXPECT_NEAR(top[1], 0, 1e-9);
   EXPECT_GT(project(cam, {1, 0, 0}, 200, 100)[0], 100);
@@ -132,13 +146,15 @@ TEST(Svg, ProjectMatchesTheCamera) {
 }
 
 TEST(Svg, BadSizeIsAnError) {
-  EXPECT_THROW(write_svg(temp_path("-bad.svg"), Polylines{}, Camera{}, 4, 4000), Error);
+  EXPECT_THROW(write_svg(temp_path("-bad.svg"), Polylines{}, Camera{}, 4, 4000),
+               Error);
   EXPECT_FALSE(std::filesystem::exists(temp_path("-bad.svg")));
 }
 
 TEST(Vtp, WritesLinesWithTheirArrays) {
   const test::Surface s = test::with_curvature(test::icosphere(3));
-  const Polylines p = join_segments(extract_reference(s.mesh, s.field, front(), Options{}));
+  const Polylines p =
+      join_segments(extract_reference(s.mesh, s.field, front(), Options{}));
   const auto poly = to_polydata(p);
   EXPECT_EQ(poly->GetNumberOfLines(), vtkIdType(p.line_count()));
   ASSERT_NE(poly->GetCellData()->GetArray("LineType"), nullptr);
@@ -149,5 +165,5 @@ TEST(Vtp, WritesLinesWithTheirArrays) {
   std::filesystem::remove(path);
 }
 
-}  // namespace
-}  // namespace isocurv::lines
+} // namespace
+} // namespace isocurv::lines
