@@ -1,7 +1,9 @@
 // isocurv render VOLUME|MESH -o PNG: a headless picture coloured by curvature.
 #include <iostream>
+#include <optional>
 
 #include "app/commands.h"
+#include "app/line_options_cli.h"
 #include "app/pipeline.h"
 #include "app/picture_title.h"
 #include "app/render_options_cli.h"
@@ -15,6 +17,7 @@ namespace isocurv::app {
 void register_render(CLI::App& app) {
   auto* cmd = app.add_subcommand("render", "Render a volume's isosurface or a mesh to a PNG, coloured by curvature (no display needed)");
   cmd->footer("Example: isocurv render torus.vdb --color K --shading ambient-ao --dirs -o torus.png\n"
+              "        isocurv render bunny.vdb --lines contours,suggestive --view +x -o bunny.png\n"
               "A mesh without curvature arrays gets them estimated first.");
   static CommonOptions o;
   static RenderCli ro;
@@ -24,13 +27,23 @@ void register_render(CLI::App& app) {
   add_common_options(*cmd, o);
   add_curvature_options(*cmd, o, true);
   add_render_options(*cmd, ro);
+  static LineCli lc;
+  add_line_options(*cmd, lc, "");
   cmd->callback([] {
+    lines::Options lo;
+    try {
+      lo = line_options(lc);
+    } catch (const Error& e) {
+      throw CLI::ValidationError("--lines", e.what());
+    }
     StageTimer timer;
     if (!ro.dirs_out.empty() && !ro.opts.dirs) throw Error(ro.dirs_out, "--dirs-out needs --dirs");
     if (!ro.dirs_out.empty()) viz::check_glyphs_path(ro.dirs_out);
     Surface s = load_surface(in, o, timer);
     bool estimated = false;
-    if (o.flip || !s.field || s.field->H.size() != s.mesh.positions.size()) {
+    const std::size_t nv = s.mesh.positions.size();
+    if (o.flip || !s.field || s.field->H.size() != nv ||
+        (lo.lines.any() && (s.field->dir1.size() != nv || s.field->dcurv.size() != nv))) {
       prepare_mesh_for_curvature(s, in, o);
       s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer,
                                    &s.normals, &s.estimator);
@@ -40,9 +53,14 @@ void register_render(CLI::App& app) {
         render_options_for(ro, in, s.volume ? std::optional<float>(s.isovalue) : std::nullopt,
                            estimated ? estimator_title(s.estimator) : "curvature from the file",
                            s.volume ? s.volume->format : "");
+    viz::LinesForCamera lines_for;
+    if (lo.lines.any())
+      lines_for = [&](const Camera& cam) {
+        return lines::join_segments(extract_lines(s.mesh, *s.field, cam, lo, o, timer));
+      };
     timer.start("render");
     AtomicFileSet outputs;  // the PNG and the glyphs together or not at all
-    outputs.write(out, [&](const std::string& tmp) { viz::render_png(tmp, s.mesh, *s.field, opts); });
+    outputs.write(out, [&](const std::string& tmp) { viz::render_png(tmp, s.mesh, *s.field, opts, lines_for); });
     if (!ro.dirs_out.empty())
       outputs.write(ro.dirs_out, [&](const std::string& tmp) {
         viz::write_glyphs(tmp, viz::direction_glyphs(s.mesh, *s.field, viz::glyph_options(opts)));

@@ -1,15 +1,18 @@
 // isocurv run VOLUME -o DIR: the headless pipeline in one go (mesh with curvature, PNG, stats.json).
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include "app/batch.h"
 #include "app/commands.h"
+#include "app/line_options_cli.h"
 #include "app/pipeline.h"
 #include "app/picture_title.h"
 #include "app/render_options_cli.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "io/mesh_file.h"
+#include "lines/line_files.h"
 #include "viz/camera_file.h"
 #include "viz/direction_glyphs.h"
 #include "viz/render.h"
@@ -35,8 +38,16 @@ void register_run(CLI::App& app) {
   add_curvature_options(*cmd, o);
   add_compress_option(*cmd, o);
   add_render_options(*cmd, ro);
+  static LineCli lc;
+  add_line_options(*cmd, lc, "");
   cmd->callback([] {
     namespace fs = std::filesystem;
+    lines::Options lo;
+    try {
+      lo = line_options(lc);
+    } catch (const Error& e) {
+      throw CLI::ValidationError("--lines", e.what());
+    }
     for (const std::string& input : b.inputs)
       if (is_mesh_path(input))
         throw Error(input, "isocurv run takes a volume; use isocurv curvature or render for meshes");
@@ -44,6 +55,8 @@ void register_run(CLI::App& app) {
     if (!ro.dirs_out.empty()) viz::check_glyphs_path(ro.dirs_out);
     // A bad --camera fails early, before any batch entry or output folder.
     if (!ro.camera_file.empty()) viz::load_camera(ro.camera_file);
+    if (lo.lines.any() && (b.inputs.size() > 1 || b.iso.find(',') != std::string::npos))
+      throw Error("--lines: one input at one isovalue (not in batches)");
     if (run_as_batch(b, o, BatchKind::run, dir, &ro, format)) return;
     const std::string& in = b.inputs.front();
     StageTimer timer;
@@ -51,6 +64,7 @@ void register_run(CLI::App& app) {
         load_surface(in, o, timer);  // fails (no surface, ...) before any output folder is made
     s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer,
                                  &s.normals, &s.estimator);
+    std::optional<lines::Polylines> poly;  // drawn on the PNG and written as <name>-lines.vtp
     // The folder is made now, and removed again if it was new and the outputs fail; the outputs
     // appear together or not at all.
     const bool new_folder = !fs::exists(dir);
@@ -69,6 +83,7 @@ void register_run(CLI::App& app) {
     const std::string mesh_path = (fs::path(dir) / (stem + "." + format)).string();
     const std::string png_path = (fs::path(dir) / (stem + ".png")).string();
     const std::string stats_path = (fs::path(dir) / "stats.json").string();
+    const std::string lines_path = (fs::path(dir) / (stem + "-lines.vtp")).string();
     AtomicFileSet outputs;
     timer.start("write");
     std::uint64_t mesh_bytes = 0;
@@ -79,12 +94,22 @@ void register_run(CLI::App& app) {
     timer.start("render");
     const viz::RenderOptions opts = render_options_for(ro, in, s.isovalue, estimator_title(s.estimator),
                                                        s.volume ? s.volume->format : "");
+    viz::LinesForCamera lines_for;
+    if (lo.lines.any())
+      lines_for = [&](const Camera& cam) {
+        poly = lines::join_segments(extract_lines(s.mesh, *s.field, cam, lo, o, timer));
+        return *poly;
+      };
     outputs.write(png_path,
-                  [&](const std::string& tmp) { viz::render_png(tmp, s.mesh, *s.field, opts); });
+                  [&](const std::string& tmp) { viz::render_png(tmp, s.mesh, *s.field, opts, lines_for); });
     if (!ro.dirs_out.empty())
       outputs.write(ro.dirs_out, [&](const std::string& tmp) {
         viz::write_glyphs(tmp, viz::direction_glyphs(s.mesh, *s.field, viz::glyph_options(opts)));
       });
+    if (poly) {
+      timer.start("write_lines");
+      outputs.write(lines_path, [&](const std::string& tmp) { lines::write_vtp(tmp, *poly); });
+    }
     timer.stop();
     nlohmann::json r = surface_report(s);
     r["input"] = in;
@@ -92,6 +117,10 @@ void register_run(CLI::App& app) {
     r["png"] = png_path;
     r["mesh_bytes"] = mesh_bytes;
     r["compression"] = io::to_string(o.compress);
+    if (poly) {
+      r["lines"] = lines_path;
+      r["polylines"] = poly->line_count();
+    }
     r["device"] = device_name(o);
     r["programs"] = program_report();
     r["timings_ms"] = timer.json();
@@ -105,6 +134,7 @@ void register_run(CLI::App& app) {
       std::cout << "isosurface at " << s.isovalue << ": " << r["vertices"] << " vertices, " << r["triangles"]
                 << " triangles\n  mesh with curvature: " << mesh_path << "\n  picture:             " << png_path
                 << "\n  statistics:          " << stats_path << "\n";
+      if (poly) std::cout << "  lines:               " << lines_path << "\n";
     }
   });
 }

@@ -4,12 +4,15 @@
 #include <memory>
 
 #include "app/commands.h"
+#include "app/line_options_cli.h"
 #include "app/pipeline.h"
 #include "app/picture_title.h"
 #include "app/render_options_cli.h"
 #include "core/error.h"
 #include "io/mesh_file.h"
 #include "curvature/estimate.h"
+#include "lines/extract.h"
+#include "lines/reference.h"
 #include "mc/extract.h"
 #include "viz/explorer.h"
 
@@ -18,9 +21,10 @@ namespace isocurv::app {
 void register_view(CLI::App& app) {
   auto* cmd = app.add_subcommand("view", "Explore a volume interactively: isovalue slider, surface coloured by curvature");
   cmd->footer("Example: isocurv view headsq.raw --dims 64 64 93 --type int16 --iso 500\n"
-              "Keys: c cycles the colour quantity, a toggles AO, d toggles direction glyphs, v cycles the views,\n"
-              "r resets the camera, i types an isovalue, o opens a mesh file, w saves the surface shown, k saves\n"
-              "the camera (for render --camera), s saves a screenshot, q quits. Needs an X display.");
+              "Keys: c cycles the colour quantity, a toggles AO, d toggles direction glyphs, l toggles the feature\n"
+              "lines (--lines; they follow the camera and the isovalue), v cycles the views, r resets the camera,\n"
+              "i types an isovalue, o opens a mesh file, w saves the surface shown, k saves the camera (for\n"
+              "render --camera), s saves a screenshot, q quits. Needs an X display.");
   static CommonOptions o;
   static RenderCli ro;
   static std::string in, screenshots = "isocurv-screenshot", camera_out = "isocurv-camera.json",
@@ -33,7 +37,17 @@ void register_view(CLI::App& app) {
   add_common_options(*cmd, o);
   add_curvature_options(*cmd, o);
   add_render_options(*cmd, ro, false);
+  static LineCli lc;
+  add_line_options(*cmd, lc, "contours,suggestive");
+  static bool show_lines = false;
+  cmd->add_flag("--show-lines", show_lines, "Start with the lines on (else press l)")->group("Lines");
   cmd->callback([] {
+    lines::Options lo;
+    try {
+      lo = line_options(lc);
+    } catch (const Error& e) {
+      throw CLI::ValidationError("--lines", e.what());
+    }
     StageTimer timer;
     float iso = 0;
     auto vol = std::make_shared<volume::Volume>(load_volume(in, o, timer, &iso));
@@ -89,6 +103,15 @@ void register_view(CLI::App& app) {
                    " bricks), curvature " + std::to_string(int(ms(t1, t2))) + " ms";
       return out;
     };
+    if (lo.lines.any()) {
+      setup.show_lines = show_lines;
+      setup.lines = [lo](const viz::Surface& s, const Camera& cam, bool surface_changed) {
+        const lines::Segments segs =
+            reference_device(o) ? lines::extract_reference(s.mesh, s.field, cam, lo)
+                                : lines::extract(s.mesh, s.field, cam, lo, device_for(o), nullptr, surface_changed);
+        return lines::join_segments(segs);
+      };
+    }
     viz::run_explorer(setup);
   });
 }

@@ -3,7 +3,10 @@
 // then the scene's set_surface + an offscreen re-render as viz's explorer does), swept over 20
 // isovalues on 128^3 volumes. Beside it, from the same run, VTK's equivalent update on the same
 // dense image: vtkFlyingEdges3D + vtkCurvatures (mean) + vtkCurvatures (Gaussian), then a re-render
-// of the result. Target: at least 10 updates per second. Not a test: prints a table.
+// of the result. Target: at least 10 updates per second. With the feature lines on (the explorer's
+// 'l': contours and suggestive contours, lines::extract + join_segments), the update with lines
+// after an isovalue change, and the lines alone after a camera move (20 azimuth steps around the
+// middle isovalue's surface, the mesh already on the device). Not a test: prints a table.
 //
 //   bench_explorer [--passes N] [--isovalues N] [--no-render] [--size WxH] [--datasets DIR]
 #include <tbb/global_control.h>
@@ -34,6 +37,8 @@
 #include "curvature/estimate.h"
 #include "datasets/field.h"
 #include "datasets/sample.h"
+#include "lines/extract.h"
+#include "lines/polylines.h"
 #include "mc/extract.h"
 #include "viz/curvature_scene.h"
 #include "viz/headless_display.h"
@@ -100,6 +105,7 @@ struct Windows {
 struct Row {
   std::string name;
   Summary ours, ours_render, vtk, vtk_render;
+  Summary ours_lines, camera_lines;  // update + lines; lines alone after a camera move
   double setup_ms = 0;
   std::size_t tri_median = 0, tri_max = 0;
 };
@@ -112,6 +118,7 @@ void print_header(bool render) {
   if (render) std::printf(" %8s %7s", "+rnd med", "+rnd/s");
   std::printf(" %8s %7s", "VTK/ours", "10/s");
   if (render) std::printf(" %8s", "10/s+rnd");
+  std::printf(" | %8s %7s %8s %7s", "+lin med", "+lin/s", "cam med", "cam/s");
   std::printf("\n");
 }
 
@@ -128,6 +135,8 @@ void print_row(const Row& r, bool render) {
   auto verdict = [](const Summary& s) { return s.max <= 100.0 ? "met" : s.median <= 100.0 ? "median" : "MISSED"; };
   std::printf(" %8.2f %7s", r.ours.median > 0 ? r.vtk.median / r.ours.median : 0.0, verdict(r.ours));
   if (render) std::printf(" %8s", verdict(r.ours_render));
+  std::printf(" | %8.1f %7.1f %8.1f %7.1f", r.ours_lines.median, ups(r.ours_lines.median), r.camera_lines.median,
+              ups(r.camera_lines.median));
   std::printf("\n");
   std::fflush(stdout);
 }
@@ -198,6 +207,37 @@ Row run_volume(const std::string& name, const volume::Volume& v, const Config& c
   if (c.render && win) {
     win->scene.frame_camera();
     row.ours_render = sweep([&](std::size_t i) { ours_update(i, true); });
+  }
+  // With the lines: the camera is the explorer's first (fit_camera, iso view) for each surface.
+  lines::Options line_opts;  // contours and suggestive contours, the explorer's default
+  auto bounds_of = [](const Mesh& m) {
+    std::array<double, 6> b = {1e30, -1e30, 1e30, -1e30, 1e30, -1e30};
+    for (const Vec3f& p : m.positions)
+      for (int k = 0; k < 3; ++k) b[2 * k] = std::min(b[2 * k], double(p[k])), b[2 * k + 1] = std::max(b[2 * k + 1], double(p[k]));
+    return b;
+  };
+  const double aspect = double(c.width) / double(c.height);
+  row.ours_lines = sweep([&](std::size_t i) {
+    Mesh mesh = mesher.extract(isos[i]);
+    curvature::Options co;
+    co.ao_scale = curvature::default_ao_scale(mesh);
+    curvature::CurvatureField field = curvature::estimate(mesh, dev, co);
+    const Camera cam = fit_camera(bounds_of(mesh), ViewSpec{}, aspect);
+    lines::join_segments(lines::extract(mesh, field, cam, line_opts, dev));
+  });
+  {
+    const Mesh mesh = mesher.extract(isos[isos.size() / 2]);
+    curvature::Options co;
+    co.ao_scale = curvature::default_ao_scale(mesh);
+    const curvature::CurvatureField field = curvature::estimate(mesh, dev, co);
+    const std::array<double, 6> box = bounds_of(mesh);
+    lines::extract(mesh, field, fit_camera(box, ViewSpec{}, aspect), line_opts, dev);  // uploads the mesh
+    row.camera_lines = sweep([&](std::size_t i) {
+      ViewSpec turned;
+      turned.azimuth_deg = 360.0 * double(i) / double(isos.size());
+      const Camera cam = fit_camera(box, turned, aspect);
+      lines::join_segments(lines::extract(mesh, field, cam, line_opts, dev, nullptr, false));
+    });
   }
   row.vtk = sweep([&](std::size_t i) { vtk_update(i, false); });
   if (c.render && win) row.vtk_render = sweep([&](std::size_t i) { vtk_update(i, true); });
@@ -275,7 +315,9 @@ int main(int argc, char** argv) {
   }
   std::printf("\n10/s (update alone) and 10/s+rnd (with the re-render): met = every isovalue within 100 ms; median = the\n"
               "median within 100 ms but not the slowest isovalue; MISSED = the median above 100 ms.\n"
-              "VTK/ours = VTK's median update over ours (no render; above 1 means ours is faster).\n");
+              "VTK/ours = VTK's median update over ours (no render; above 1 means ours is faster).\n"
+              "+lin = ours + contours and suggestive contours (lines::extract + join_segments, no render);\n"
+              "cam = those lines alone after a camera move (20 azimuths round the middle isovalue's surface).\n");
   std::printf("Mesher setup (once per volume, before the first update), ms:");
   for (const Row& r : rows) std::printf("  %s %.0f", r.name.c_str(), r.setup_ms);
   std::printf("\n");

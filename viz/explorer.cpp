@@ -9,6 +9,7 @@
 #include <iostream>
 
 #include <vtkCallbackCommand.h>
+#include <vtkCamera.h>
 #include <vtkCommand.h>
 #include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkNew.h>
@@ -25,6 +26,7 @@
 #include "viz/camera_file.h"
 #include "viz/curvature_scene.h"
 #include "viz/headless_display.h"
+#include "viz/line_overlay.h"
 #include "viz/quantity.h"
 #include "viz/screenshot.h"
 
@@ -79,6 +81,14 @@ class Explorer {
     scene_.overlay()->AddViewProp(status_);
     make_slider();
     relayout(setup_.view.width, setup_.view.height);
+    if (setup_.lines) {
+      lines_on_ = setup_.show_lines;
+      overlay_.add_to(scene_.renderer());
+      overlay_.set_visible(lines_on_);
+      render_start_->SetCallback(&Explorer::on_render_start);
+      render_start_->SetClientData(this);
+      scene_.renderer()->AddObserver(vtkCommand::StartEvent, render_start_);
+    }
     scene_.frame_camera();
     refresh_status();
     resize_callback_->SetCallback(&Explorer::on_resize);
@@ -141,6 +151,11 @@ class Explorer {
         else message_ = "saving the surface is not available here";
         break;
       case 'k': save_camera_file(); break;
+      case 'l':
+        if (!setup_.lines) return false;
+        lines_on_ = !lines_on_;
+        overlay_.set_visible(lines_on_);
+        break;
       default: return false;
     }
     refresh_status();
@@ -260,6 +275,7 @@ class Explorer {
   void note_update(const Surface& s) {
     current_.mesh = s.mesh;
     current_.field = s.field;
+    lines_surface_stale_ = true;
     vertices_ = s.mesh.vertex_count();
     triangles_ = s.mesh.triangle_count();
     last_ms_ = s.update_ms;
@@ -329,6 +345,10 @@ class Explorer {
       line += "\n" + std::string(kPrompts[static_cast<int>(entry_)]) + typed_ + "_   (Enter / Escape)";
     else if (!message_.empty())
       line += "\n" + message_;
+    line += "\n[c] colour: " + canonical_quantity(o.color) + "   [a] AO: " + (o.ao ? "on" : "off") +
+            "   [d] directions: " + (o.dirs ? "on" : "off") + "   [s] screenshot";
+    if (setup_.lines) line += std::string("   [l] lines: ") + (lines_on_ ? "on" : "off");
+    if (!message_.empty()) line += "\n" + message_;
     status_->SetInput(line.c_str());
   }
 
@@ -371,6 +391,23 @@ class Explorer {
   }
 
   static void on_timer(vtkObject*, unsigned long, void* self, void*) { static_cast<Explorer*>(self)->step(); }
+
+  /// Before each frame: new lines when they are on and the camera or the surface changed.
+  static void on_render_start(vtkObject*, unsigned long, void* self, void*) {
+    auto* e = static_cast<Explorer*>(self);
+    vtkCamera* cam = e->scene_.renderer()->GetActiveCamera();
+    if (!e->lines_on_ || (!e->lines_surface_stale_ && cam->GetMTime() == e->lines_camera_time_)) return;
+    try {
+      e->overlay_.set_lines(e->setup_.lines(e->current_, camera_of(cam), e->lines_surface_stale_));
+    } catch (const Error& err) {
+      e->message_ = std::string("lines: ") + err.what();
+      e->lines_on_ = false;
+      e->overlay_.set_visible(false);
+      e->refresh_status();
+    }
+    e->lines_surface_stale_ = false;
+    e->lines_camera_time_ = cam->GetMTime();
+  }
 
   void step() {
     if (next_action_ >= setup_.script.size()) {
@@ -436,11 +473,16 @@ class Explorer {
   vtkNew<vtkCallbackCommand> slider_callback_;
   vtkNew<vtkCallbackCommand> timer_callback_;
   vtkNew<vtkCallbackCommand> resize_callback_;
-  Surface current_;            // the surface shown (for 'w')
+  Surface current_;            // the surface shown (for 'w' and the lines)
   std::string shown_;          // the mesh file shown, empty for the volume's isosurface
   NamedView view_ = NamedView::iso;
   Entry entry_ = Entry::none;  // what is being typed
   std::string typed_;
+  vtkNew<vtkCallbackCommand> render_start_;
+  LineOverlay overlay_;
+  bool lines_on_ = false;
+  bool lines_surface_stale_ = true;      // the surface changed since the lines were made
+  vtkMTimeType lines_camera_time_ = 0;   // the camera's MTime when they were made
   float iso_ = 0;        // isovalue of the surface shown
   float attempted_ = 0;  // last isovalue the callback was asked for
   std::size_t vertices_ = 0, triangles_ = 0;

@@ -7,7 +7,9 @@
 #include <vector>
 
 #include "core/mesh.h"
+#include "core/camera.h"
 #include "curvature/curvature_field.h"
+#include "lines/polylines.h"
 #include "viz/render_options.h"
 
 namespace isocurv::viz {
@@ -53,6 +55,11 @@ struct ExplorerSetup {
   std::string screenshot_prefix = "isocurv-screenshot";  ///< 's' writes <prefix>-NNN.png
   std::string camera_path = "isocurv-camera.json";       ///< 'k' writes the camera here (--camera)
   std::string surface_path = "isocurv-surface.vtp";      ///< 'w' proposes this path
+  /// Feature lines of the surface shown as `camera` sees it, drawn while the 'l' key has them on
+  /// and recomputed before a frame whenever the camera moved or the surface changed since the
+  /// last call (`surface_changed` false: only the camera moved). Empty: 'l' does nothing.
+  std::function<lines::Polylines(const Surface& surface, const Camera& camera, bool surface_changed)> lines;
+  bool show_lines = false;  ///< lines on from the start (needs `lines`)
   /// When non-empty: run these actions (one per timer tick, ~100 ms apart) and close the window.
   std::vector<ExplorerAction> script;
 };
@@ -61,7 +68,7 @@ struct ExplorerSetup {
 /// done). The surface is framed beside the legend and above the status line and the isovalue
 /// slider, which have a strip of their own. Keys: c cycles the colour quantity (H, K, k1, k2,
 /// ShapeIndex, Curvedness, AO), a toggles AO shading (lambert / ambient-ao), d toggles direction
-/// glyphs, v cycles the named views (iso, +x, -x, +y, -y, +z, -z) and r resets the camera to the
+/// glyphs, l toggles the feature lines (when setup.lines is given), v cycles the named views (iso, +x, -x, +y, -y, +z, -z) and r resets the camera to the
 /// current one, i types an isovalue, o types a mesh file to open, w types a path to save the
 /// surface shown (proposing surface_path), k saves the camera to camera_path, s saves a
 /// screenshot (name printed on stdout). While typing, Enter applies, Escape cancels, BackSpace

@@ -1,10 +1,13 @@
 // viz::run_explorer driven by a script under a private Xvfb when there is no display.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
 #include "core/error.h"
+#include "lines/polylines.h"
+#include "lines/reference.h"
 #include "png_stats.h"
 #include "test_surfaces.h"
 #include "viz/camera_file.h"
@@ -189,5 +192,36 @@ TEST(VizCameraFile, RoundTripAndBadFiles) {
     EXPECT_THROW(viz::load_camera(b), Error) << bad;
   }
   EXPECT_THROW(viz::load_camera((dir / "missing.json").string()), Error);
+TEST(VizExplorer, LinesKeyDrawsLinesThatFollowSurfaceAndCamera) {
+  const fs::path dir = fresh_dir("lines");
+  viz::ExplorerSetup setup;
+  setup.isovalue = 0.3f;
+  setup.min_value = 0.1f;
+  setup.max_value = 0.6f;
+  setup.view.width = 480;
+  setup.view.height = 360;
+  setup.surface = [&](float iso) {
+    auto t = test::torus(1.f, iso, 64, 32);
+    return viz::Surface{std::move(t.mesh), std::move(t.field), 0, ""};
+  };
+  std::vector<bool> changed;  // surface_changed of each lines call
+  setup.lines = [&](const viz::Surface& s, const Camera& cam, bool surface_changed) {
+    changed.push_back(surface_changed);
+    lines::Options o;
+    o.lines = lines::parse_line_selection("contours");
+    return lines::join_segments(lines::extract_reference(s.mesh, s.field, cam, o));
+  };
+  const std::string off = (dir / "off.png").string(), on = (dir / "on.png").string(),
+                    iso = (dir / "iso.png").string();
+  using A = viz::ExplorerAction;
+  setup.script = {A::screenshot(off), A::press('l'), A::screenshot(on), A::set_isovalue(0.45f),
+                  A::screenshot(iso), A::press('r'), A::press('l'), A::press('l')};
+  viz::run_explorer(setup);
+  ASSERT_GE(changed.size(), 2u);
+  EXPECT_TRUE(changed[0]);                                           // first lines: a new surface
+  EXPECT_NE(std::find(changed.begin() + 1, changed.end(), true), changed.end());  // the slider moved
+  EXPECT_NE(std::find(changed.begin() + 1, changed.end(), false), changed.end()) << "'r' moved the camera";
+  EXPECT_GT(test::pixel_difference(off, on), 300) << "'l' drew no lines";
+  EXPECT_GT(test::pixel_difference(on, iso), 1000);
   fs::remove_all(dir);
 }

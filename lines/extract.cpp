@@ -1,0 +1,276 @@
+#include "lines/extract.h"
+
+#include <chrono>
+#include <cstdio>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "core/cl_launch.h"
+#include "core/error.h"
+#include "curvature/vertex_corners.h"
+
+namespace isocurv::kernels {
+extern const char *const lines_kernels_cl;
+} // namespace isocurv::kernels
+
+namespace isocurv::lines {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr std::size_t kGroup =
+    64; // work-group size of every launch (core/cl_launch.h)
+constexpr int kMaxSegmentsPerFace = 4; // one per line type
+
+double lap(Clock::time_point &since) {
+  const Clock::time_point now = Clock::now();
+  const double ms =
+      std::chrono::duration<double, std::milli>(now - since).count();
+  since = now;
+  return ms;
+}
+
+// A device buffer kept between calls, reallocated (with 50% headroom) only when
+// too small.
+struct Buffer {
+  cl::Buffer buffer;
+  std::size_t bytes = 0;
+  cl::Buffer &reserve(cl::Context &context, std::size_t need) {
+    need = std::max<std::size_t>(need, 16);
+    if (need > bytes) {
+      bytes = std::max(need, bytes + bytes / 2);
+      buffer = cl::Buffer(context, CL_MEM_READ_WRITE, bytes);
+    }
+    return buffer;
+  }
+};
+
+struct Session {
+  cl::Context context;
+  std::mutex mutex;
+  cl::Kernel vertex_view, vertex_smooth, face_count, face_emit;
+  Buffer triangles, positions, normals, dir1, dir2, k1, k2, dcurv, view, view2,
+      counts, faces, offsets;
+  Buffer ring_offsets,
+      ring_corners; // the vertex -> corner adjacency, for the smoothing
+  curvature::VertexCorners adjacency;
+  bool uploaded_adjacency = false;
+  Buffer out_a, out_b, out_edges, out_face_type;
+  std::size_t uploaded_vertices = 0, uploaded_faces = 0;
+  bool uploaded_dcurv = false;
+  std::vector<std::uint8_t> counts_host;
+  std::vector<std::uint32_t> faces_host, offsets_host;
+  std::vector<cl_float4> a_host, b_host;
+  std::vector<cl_ulong2> edges_host;
+  std::vector<cl_uint2> face_type_host;
+};
+
+std::string build_options() {
+  char buf[256];
+  std::snprintf(
+      buf, sizeof buf,
+      "-DTYPE_CONTOUR=%d -DTYPE_SUGGESTIVE=%d -DTYPE_RIDGE=%d -DTYPE_VALLEY=%d "
+      "-DMAX_SEGMENTS=%d -DNO_EDGE=0x%llxUL -DVERTEX_SNAP=%.9gf",
+      int(LineType::contour), int(LineType::suggestive), int(LineType::ridge),
+      int(LineType::valley), kMaxSegmentsPerFace,
+      (unsigned long long)kInsideFace, kVertexSnap);
+  return buf;
+}
+
+Session &session_for(Device &device) {
+  static std::mutex registry_mutex;
+  static std::vector<std::unique_ptr<Session>> sessions;
+  std::lock_guard<std::mutex> lock(registry_mutex);
+  for (auto &s : sessions)
+    if (s->context() == device.context()())
+      return *s;
+  auto s = std::make_unique<Session>();
+  s->context = device.context();
+  cl::Program &program =
+      device.program("lines", kernels::lines_kernels_cl, build_options());
+  s->vertex_view = cl::Kernel(program, "line_vertex_view");
+  s->vertex_smooth = cl::Kernel(program, "line_vertex_smooth");
+  s->face_count = cl::Kernel(program, "line_face_count");
+  s->face_emit = cl::Kernel(program, "line_face_emit");
+  sessions.push_back(std::move(s));
+  return *sessions.back();
+}
+
+template <class T, class A>
+void upload(cl::CommandQueue &q, cl::Context &ctx, Buffer &b,
+            const std::vector<T, A> &v) {
+  b.reserve(ctx, v.size() * sizeof(T));
+  if (!v.empty())
+    q.enqueueWriteBuffer(b.buffer, CL_FALSE, 0, v.size() * sizeof(T), v.data());
+}
+
+Segments run(const Mesh &mesh, const curvature::CurvatureField &field,
+             const Camera &camera, const Options &options, Device &device,
+             Timings *timings, bool upload_mesh) {
+  Clock::time_point clock = Clock::now();
+  const Clock::time_point start = clock;
+  Timings t;
+  check_input(mesh, field, options);
+  const Thresholds th = resolve_thresholds(field, options);
+  const std::size_t nv = mesh.vertex_count(), nf = mesh.triangle_count();
+  Segments out;
+  if (nv == 0 || nf == 0 || !options.lines.any()) {
+    if (timings)
+      *timings = t;
+    return out;
+  }
+  Session &s = session_for(device);
+  std::lock_guard<std::mutex> lock(s.mutex);
+  cl::Context &ctx = device.context();
+  cl::CommandQueue &q = device.queue();
+  const bool with_dcurv = options.lines.needs_dcurv();
+  if (!upload_mesh && (s.uploaded_vertices != nv || s.uploaded_faces != nf ||
+                       (with_dcurv && !s.uploaded_dcurv)))
+    upload_mesh = true; // nothing (or something else) is on the device
+  if (upload_mesh) {
+    upload(q, ctx, s.triangles, mesh.triangles);
+    upload(q, ctx, s.positions, mesh.positions);
+    upload(q, ctx, s.normals, field.normals);
+    upload(q, ctx, s.dir1, field.dir1);
+    upload(q, ctx, s.dir2, field.dir2);
+    upload(q, ctx, s.k1, field.k1);
+    upload(q, ctx, s.k2, field.k2);
+    if (with_dcurv)
+      upload(q, ctx, s.dcurv, field.dcurv);
+    else
+      s.dcurv.reserve(ctx, 16);
+    s.uploaded_vertices = nv, s.uploaded_faces = nf,
+    s.uploaded_dcurv = with_dcurv;
+    s.uploaded_adjacency = false;
+  }
+  const bool smooth = options.lines.suggestive && options.smoothing_steps > 0;
+  if (smooth && !s.uploaded_adjacency) {
+    curvature::build_vertex_corners(mesh, s.adjacency);
+    upload(q, ctx, s.ring_offsets, s.adjacency.offsets);
+    upload(q, ctx, s.ring_corners, s.adjacency.corners);
+    s.uploaded_adjacency = true;
+  }
+  s.view.reserve(ctx, nv * sizeof(cl_float4));
+  if (smooth)
+    s.view2.reserve(ctx, nv * sizeof(cl_float4));
+  s.counts.reserve(ctx, nf);
+  if (timings)
+    q.finish();
+  t.upload = lap(clock);
+
+  const cl_float4 eye = {{float(camera.position[0]), float(camera.position[1]),
+                          float(camera.position[2]),
+                          camera.ortho ? 1.0f : 0.0f}};
+  const auto toward = camera.toward_camera();
+  const cl_float4 towards = {
+      {float(toward[0]), float(toward[1]), float(toward[2]), 0}};
+  const LineSelection &sel = options.lines;
+  const cl_int4 selection = {
+      {sel.contours, sel.suggestive, sel.ridges, sel.valleys}};
+  const cl_float4 thresholds = {
+      {float(th.suggestive), float(th.cos_angle), float(th.ridge), 0}};
+  if (sel.view_dependent()) {
+    set_args(s.vertex_view, s.positions.buffer, s.normals.buffer, s.dir1.buffer,
+             s.dir2.buffer, s.k1.buffer, s.k2.buffer, s.dcurv.buffer,
+             cl_int(sel.suggestive), cl_uint(nv), eye, towards, s.view.buffer);
+    launch(q, s.vertex_view, nv, kGroup);
+  }
+  Buffer *view = &s.view; // where the final per-vertex quantities are
+  if (smooth) {
+    Buffer *other = &s.view2;
+    for (int step = 0; step < options.smoothing_steps; ++step) {
+      set_args(s.vertex_smooth, s.ring_offsets.buffer, s.ring_corners.buffer,
+               s.triangles.buffer, view->buffer, cl_uint(nv), other->buffer);
+      launch(q, s.vertex_smooth, nv, kGroup);
+      std::swap(view, other);
+    }
+  }
+  if (timings)
+    q.finish();
+  t.view = lap(clock);
+  set_args(s.face_count, s.triangles.buffer, s.positions.buffer,
+           s.normals.buffer, s.dir1.buffer, s.dir2.buffer, s.k1.buffer,
+           s.k2.buffer, s.dcurv.buffer, view->buffer, selection, thresholds,
+           cl_uint(nf), s.counts.buffer);
+  launch(q, s.face_count, nf, kGroup);
+  s.counts_host.resize(nf);
+  q.enqueueReadBuffer(s.counts.buffer, CL_TRUE, 0, nf, s.counts_host.data());
+  t.count = lap(clock);
+
+  // Faces with segments, in order, and where their segments go.
+  s.faces_host.clear();
+  s.offsets_host.clear();
+  std::uint32_t total = 0;
+  for (std::size_t f = 0; f < nf; ++f) {
+    const std::uint8_t c = s.counts_host[f];
+    if (c == 0)
+      continue;
+    s.faces_host.push_back(std::uint32_t(f));
+    s.offsets_host.push_back(total);
+    total += c;
+  }
+  if (total > 0) {
+    const std::size_t listed = s.faces_host.size();
+    upload(q, ctx, s.faces, s.faces_host);
+    upload(q, ctx, s.offsets, s.offsets_host);
+    s.out_a.reserve(ctx, total * sizeof(cl_float4));
+    s.out_b.reserve(ctx, total * sizeof(cl_float4));
+    s.out_edges.reserve(ctx, total * sizeof(cl_ulong2));
+    s.out_face_type.reserve(ctx, total * sizeof(cl_uint2));
+    set_args(s.face_emit, s.triangles.buffer, s.positions.buffer,
+             s.normals.buffer, s.dir1.buffer, s.dir2.buffer, s.k1.buffer,
+             s.k2.buffer, s.dcurv.buffer, view->buffer, selection, thresholds,
+             s.faces.buffer, s.offsets.buffer, cl_uint(listed), s.out_a.buffer,
+             s.out_b.buffer, s.out_edges.buffer, s.out_face_type.buffer);
+    launch(q, s.face_emit, listed, kGroup);
+    s.a_host.resize(total);
+    s.b_host.resize(total);
+    s.edges_host.resize(total);
+    s.face_type_host.resize(total);
+    q.enqueueReadBuffer(s.out_a.buffer, CL_FALSE, 0, total * sizeof(cl_float4),
+                        s.a_host.data());
+    q.enqueueReadBuffer(s.out_b.buffer, CL_FALSE, 0, total * sizeof(cl_float4),
+                        s.b_host.data());
+    q.enqueueReadBuffer(s.out_edges.buffer, CL_FALSE, 0,
+                        total * sizeof(cl_ulong2), s.edges_host.data());
+    q.enqueueReadBuffer(s.out_face_type.buffer, CL_FALSE, 0,
+                        total * sizeof(cl_uint2), s.face_type_host.data());
+    q.finish();
+    out.resize(total);
+    for (std::uint32_t i = 0; i < total; ++i) {
+      Segment &g = out[i];
+      const cl_float4 &a = s.a_host[i], &b = s.b_host[i];
+      g.a = {a.s[0], a.s[1], a.s[2]};
+      g.b = {b.s[0], b.s[1], b.s[2]};
+      g.strength = a.s[3];
+      g.edge_a = s.edges_host[i].s[0];
+      g.edge_b = s.edges_host[i].s[1];
+      g.face = s.face_type_host[i].s[0];
+      g.type = LineType(s.face_type_host[i].s[1]);
+    }
+  }
+  t.emit = lap(clock);
+  t.total = std::chrono::duration<double, std::milli>(clock - start).count();
+  if (timings)
+    *timings = t;
+  return out;
+}
+
+} // namespace
+
+Segments extract(const Mesh &mesh, const curvature::CurvatureField &field,
+                 const Camera &camera, const Options &options, Device &device,
+                 Timings *timings, bool upload_mesh) {
+  try {
+    return run(mesh, field, camera, options, device, timings, upload_mesh);
+  } catch (const cl::Error &e) {
+    try {
+      device.queue().finish();
+    } catch (const cl::Error &) {
+    }
+    throw Error(std::string("lines: OpenCL call ") + e.what() + " failed on " +
+                device.info().name + ": " + cl_error_name(e.err()));
+  }
+}
+
+} // namespace isocurv::lines

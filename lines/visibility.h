@@ -1,0 +1,38 @@
+#pragma once
+// Hidden-line removal for vector output: an exact ray cast against the surface.
+#include <memory>
+#include <vector>
+
+#include "core/camera.h"
+#include "core/mesh.h"
+#include "lines/segments.h"
+
+namespace isocurv::lines {
+
+/// Casts rays from points on the surface towards the eye against the mesh's
+/// triangles (VTK's vtkStaticCellLocator). Built once per mesh; the mesh is
+/// copied. Not thread-safe.
+class VisibilityTester {
+public:
+  explicit VisibilityTester(const Mesh &mesh);
+  ~VisibilityTester();
+  VisibilityTester(const VisibilityTester &) = delete;
+  VisibilityTester &operator=(const VisibilityTester &) = delete;
+
+  /// True when no triangle lies between the point `p` of face `face` and the
+  /// eye (for an orthographic camera: along toward_camera() out of the mesh's
+  /// box). The ray starts one mean edge length towards the eye and a twentieth
+  /// of one along the face's normal (so the point's own and neighbouring
+  /// facets, which a contour's ray grazes, do not hide it).
+  bool visible(const Vec3f &p, std::uint32_t face, const Camera &camera) const;
+
+  /// visible() at each segment's midpoint.
+  std::vector<bool> visible_segments(const Segments &segments,
+                                     const Camera &camera) const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+} // namespace isocurv::lines

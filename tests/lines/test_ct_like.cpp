@@ -1,0 +1,69 @@
+// Lines on a CT-like volume: a ball with blurred edges, quantised to 8 bits
+// with noise, through the real pipeline (marching cubes, gradient normals,
+// curvature), not a smooth analytic mesh.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "core/cl_device.h"
+#include "curvature/estimate.h"
+#include "line_surfaces.h"
+#include "lines/extract.h"
+#include "lines/polylines.h"
+#include "mc/extract.h"
+#include "tests/mc/volumes.h"
+#include "volume/gradient_normals.h"
+
+namespace isocurv::lines {
+namespace {
+
+TEST(LinesCtLike, BallContourIsItsSilhouetteAndNoiseGivesFewSuggestiveLines) {
+  const double R = 12, c = 20; // voxels
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0, 3);
+  const volume::Volume v = test::sampled(
+      [&](double x, double y, double z) {
+        const double d = R - std::sqrt((x - c) * (x - c) + (y - c) * (y - c) +
+                                       (z - c) * (z - c));
+        return float(
+            std::clamp(std::round(255 / (1 + std::exp(-d / 0.8)) + noise(rng)),
+                       0.0, 255.0));
+      },
+      {40, 40, 40});
+  Device &dev = Device::default_device();
+  const Mesh mesh = mc::extract(v, 127.5f, dev);
+  const volume::MeshNormals normals =
+      volume::gradient_normals_for_mesh(v, mesh);
+  curvature::Options co;
+  co.vertex_normals = &normals.normals;
+  const curvature::CurvatureField field = curvature::estimate(mesh, dev, co);
+  Camera cam;
+  cam.ortho = true;
+  cam.focal_point = {c, c, c};
+  cam.position = {c, c, c + 100};
+  const Segments segs = extract(mesh, field, cam, Options{}, dev);
+  const Polylines p = join_segments(segs);
+  // The contour: near the equator z = c on the circle of radius R (within a
+  // voxel: noise moves the surface by a fraction of one), its length 2 pi R
+  // within 5%.
+  std::size_t near = 0, contours = 0;
+  for (const Segment &g : segs) {
+    if (g.type != LineType::contour)
+      continue;
+    ++contours;
+    const double r = std::hypot(g.a[0] - c, g.a[1] - c);
+    near += std::fabs(g.a[2] - c) <= 1.5 && std::fabs(r - R) <= 1.0;
+  }
+  ASSERT_GT(contours, 50u);
+  EXPECT_GE(double(near), 0.95 * double(contours));
+  EXPECT_NEAR(p.length(LineType::contour), 2 * test::kPi * R,
+              0.05 * 2 * test::kPi * R);
+  // A ball has no suggestive contours: what the noise leaves is short beside
+  // the contour.
+  EXPECT_LT(p.length(LineType::suggestive), 0.1 * p.length(LineType::contour));
+}
+
+} // namespace
+} // namespace isocurv::lines
