@@ -6,6 +6,7 @@ void register_commands(CLI::App& app) {
   register_info(app);
   register_extract(app);
   register_curvature(app);
+  register_features(app);
   register_run(app);
   register_render(app);
   register_view(app);

@@ -13,6 +13,7 @@ void register_curvature(CLI::App& app); ///< isocurv curvature VOLUME_OR_MESH -o
 void register_render(CLI::App& app);    ///< isocurv render VOLUME_OR_MESH -o PNG
 void register_run(CLI::App& app);       ///< isocurv run VOLUME -o DIR
 void register_view(CLI::App& app);      ///< isocurv view VOLUME
+void register_features(CLI::App& app);  ///< isocurv features VOLUME_OR_MESH --radius R -o MESH
 void register_compare(CLI::App& app);   ///< isocurv compare VOLUME_OR_MESH
 
 }  // namespace isocurv::app

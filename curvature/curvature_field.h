@@ -2,6 +2,7 @@
 // The per-vertex curvature arrays the curvature stage produces (names as in DESIGN.md).
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/mesh.h"
@@ -26,6 +27,13 @@ struct CurvatureField {
   std::vector<std::uint8_t> unreliable;      ///< "Unreliable": 1 where the estimator could not
                                              ///< measure (volume: vanishing gradient); absent for
                                              ///< estimators that always can
+  /// More per-vertex scalar arrays, by name, from the stages after curvature (features/: "LBE",
+  /// "H_ii_r4", ...), written after the arrays above; each empty or one value per vertex.
+  struct Named {
+    std::string name;
+    std::vector<float> values;
+  };
+  std::vector<Named> extra;
 
   std::size_t size() const { return k1.size(); }
 };

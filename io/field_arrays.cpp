@@ -14,6 +14,13 @@ void check_field_sizes(const curvature::CurvatureField& field, std::size_t verte
   });
 }
 
+bool is_curvature_array(const std::string& name) {
+  static const curvature::CurvatureField empty;
+  bool found = false;
+  for_each_array(empty, [&](const char* n, const auto&) { found = found || name == n; });
+  return found;
+}
+
 bool field_is_empty(const curvature::CurvatureField& field) {
   bool empty = true;
   for_each_array(field, [&](const char*, const auto& values) { empty = empty && values.empty(); });

@@ -21,7 +21,7 @@ constexpr int components_of() {
 /// Calls fn(name, vector) for every array of the field in the canonical order: Normals, Area, k1,
 /// k2, dir1, dir2, H, K, dcurv, ShapeIndex, Curvedness, AO, Boundary. The vector is a
 /// std::vector<float>, <Vec3f>, <std::array<float, 4>> or <std::uint8_t>; fn is usually a generic
-/// lambda. Works on const and non-const fields.
+/// lambda. Works on const and non-const fields. The field's `extra` arrays come last, in order.
 template <class Field, class Fn>
 void for_each_array(Field& f, Fn&& fn) {
   static_assert(std::is_same_v<std::remove_const_t<Field>, curvature::CurvatureField>);
@@ -38,12 +38,16 @@ void for_each_array(Field& f, Fn&& fn) {
   fn("Curvedness", f.curvedness);
   fn("AO", f.ao);
   fn("Boundary", f.boundary);
+  for (auto& e : f.extra) fn(e.name.c_str(), e.values);
 }
 
 /// Checks that every array of `field` holds either `vertex_count` entries or none (absent);
 /// throws Error(path, ...) naming the first array of another length.
 void check_field_sizes(const curvature::CurvatureField& field, std::size_t vertex_count,
                        const std::string& path);
+
+/// True when `name` is one of the fixed arrays above (not an `extra` one).
+bool is_curvature_array(const std::string& name);
 
 /// True when no array of the field holds any entries.
 bool field_is_empty(const curvature::CurvatureField& field);

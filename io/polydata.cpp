@@ -151,6 +151,18 @@ MeshFile from_polydata(vtkPolyData* poly, const std::string& source) {
     read_array(array, name, n, values, source);
     any = true;
   });
+  // Other one-component float arrays (features/ writes LBE, H_ii, ...) come back as extras.
+  for (int i = 0; i < pd->GetNumberOfArrays(); ++i) {
+    vtkDataArray* array = pd->GetArray(i);
+    const char* name = array ? array->GetName() : nullptr;
+    if (!name || is_curvature_array(name) || array->GetNumberOfComponents() != 1 ||
+        array->GetDataType() != VTK_FLOAT)
+      continue;
+    curvature::CurvatureField::Named e{name, {}};
+    read_array(array, name, n, e.values, source);
+    field.extra.push_back(std::move(e));
+    any = true;
+  }
   if (any) out.field = std::move(field);
   return out;
 }

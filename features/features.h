@@ -1,0 +1,116 @@
+#pragma once
+// features::compute: neighbourhood features of a surface at a radius of support
+// (Andreadis et al. 2015, seed 004, section 5.1; SEEDS-SPEC.md section 6.3):
+// quantities that integrate over a ball around each vertex instead of
+// differentiating at it, so they measure shape at a chosen scale and are far
+// less sensitive to voxel-scale noise than per-vertex curvature.
+#include <string>
+#include <vector>
+
+#include "core/mesh.h"
+#include "curvature/curvature_field.h"
+#include "volume/volume.h"
+
+namespace isocurv::features {
+
+/// The features, by the array name they are written under.
+///  LBE    local bending energy (eq. 5): sum A_i |n - n_i|^2 / |p - q_i|^2 /
+///  sum A_i over the
+///         vertices q_i within Euclidean distance r (reached along mesh edges),
+///         A_i their Area. 1/length^2; exactly 1/R^2 on a sphere, 0 on a plane,
+///         Curvedness^2 as r -> 0.
+///  NSV    normalised sphere volume by horizon sampling, the paper's form (eq.
+///  6 with its minus
+///         signs restored): mean over the same samples of (1 - (q_i - p).n /
+///         |q_i - p|) / 2, area-weighted. In [0, 1]; 1/2 on a plane. Kept
+///         faithful for comparison: the mean curvature it implies is 8/9 of the
+///         true one on a sphere (the paper's bias).
+///  Vr     the volume integral invariant: volume of the solid inside the ball
+///  B(p, r), length^3,
+///         from the volume's trilinear field (volume input only).
+///  H_ii   mean curvature from the volume integral invariant (Hulin-Troyanov,
+///  eq. 7: Vr =
+///         2 pi r^3 / 3 - pi H r^4 / 4 + O(r^5)), resolved by radius: the
+///         quadrature's per-radius terms are fitted as d + H t^2 / 2, which
+///         removes the vertex's offset d from the surface (eq. 7 at one radius,
+///         8/(3r) - 4 Vr / (pi r^4), turns it into an error of 4 d / r^2: noise
+///         on CT data); exact on spheres. On mesh input (no volume), the same
+///         integral from the surface samples, the "mean height" form -(4/r^2)
+///         sum A_i (q_i - p).n / sum A_i.
+///  K_ii   Gaussian curvature from the geodesic disc's area GA_r
+///  (Bertrand-Diquet-Puiseux,
+///         eq. 10: 12 (pi r^2 - GA_r) / (pi r^4) + O(r^2)), solved from the
+///         constant-curvature disc area 2 pi (1 - cos(r sqrt K)) / K instead,
+///         which is exact on spheres. GA_r is the area of the mesh where the
+///         geodesic distance (fast marching over the triangles, piecewise
+///         linear) is at most r.
+///  SI_ii  shape index from H_ii and K_ii (eq. 8-9): k = H_ii +- sqrt(max(0,
+///  H_ii^2 - K_ii)),
+///         (2/pi) atan2(k1 + k2, k1 - k2): +1 on a cap, the project's
+///         convention.
+/// Sign convention as everywhere: normals point out of the object, convex is
+/// positive.
+enum class Feature { LBE, NSV, Vr, H_ii, K_ii, SI_ii };
+
+/// "LBE", "NSV", "Vr", "H_ii", "K_ii", "SI_ii".
+const char *feature_name(Feature f);
+/// Parses a comma-separated list of names (case-sensitive, as written above);
+/// "all" gives every feature. @throw Error naming an unknown entry.
+std::vector<Feature> parse_features(const std::string &list);
+
+/// What to compute.
+struct Options {
+  /// Radii of support, world units, each > 0. Several radii give one set of
+  /// arrays per radius.
+  std::vector<double> radii;
+  /// Their names as the user wrote them ("4", "0.5", "4%"), used for the array
+  /// suffixes "_r<name>" when there are several radii; empty: the radii printed
+  /// with %g.
+  std::vector<std::string> radius_names;
+  /// Which features; empty (the default): every one the input allows (Vr needs
+  /// a volume).
+  std::vector<Feature> features;
+  /// Volume quadrature of Vr (SEEDS-SPEC.md A-VR (i)): azimuths around the
+  /// normal and Gauss-Legendre radii. Exact on spheres for any counts; more
+  /// resolve rougher surfaces.
+  int azimuths = 16;
+  int radial = 6;
+  /// The isovalue the mesh was extracted at (volume features read the field's
+  /// inside side).
+  double isovalue = 0;
+};
+
+/// One named per-vertex array.
+struct Array {
+  std::string name;          ///< e.g. "H_ii", or "H_ii_r4" with several radii
+  std::vector<float> values; ///< one value per vertex
+};
+
+/// The output: arrays in the order of options.radii, then options.features; and
+/// per vertex whether some neighbourhood left what is known (the volume's
+/// domain, or an open boundary of the mesh within r): its values are finite but
+/// biased.
+struct FeatureField {
+  std::vector<Array> arrays;
+  std::vector<std::uint8_t>
+      boundary; ///< 1 where a ball of some radius was incomplete
+};
+
+/// Computes the features at every vertex of `mesh`.
+/// @param mesh    the surface (world units), consistently oriented outwards
+/// @param field   its curvature: `normals` (unit, outward) and `area`
+/// (per-vertex Area) are used
+/// @param volume  the volume it came from, or nullptr for a mesh file (then Vr
+/// is unavailable and
+///                H_ii uses the surface form; asking for Vr is an error)
+/// @param options radii, features, quadrature
+/// @throw Error for a radius that is not positive and finite, a field without
+/// normals or areas
+///        of the mesh's size, or Vr without a volume.
+/// Threading: parallel over vertices (TBB); deterministic (no random sampling,
+/// sums in a fixed order). Cost: vertices x (neighbours within r, plus azimuths
+/// x radial x ~16 field samples for Vr/H_ii on a volume).
+FeatureField compute(const Mesh &mesh, const curvature::CurvatureField &field,
+                     const volume::Volume *volume, const Options &options);
+
+} // namespace isocurv::features

@@ -1,0 +1,67 @@
+// isocurv features end to end: arrays written and read back, radii in % of the diagonal, suffixes
+// for several radii, and one-line errors for bad radii and for Vr without a volume.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "cli.h"
+#include "io/mesh_file.h"
+
+using namespace isocurv;
+using namespace isocurv::test;
+using nlohmann::json;
+
+namespace {
+
+const std::vector<float>* extra(const io::MeshFile& m, const std::string& name) {
+  if (!m.field) return nullptr;
+  for (const auto& e : m.field->extra)
+    if (e.name == name) return &e.values;
+  return nullptr;
+}
+
+TEST(CliFeatures, SphereArraysAndSeveralRadii) {
+  TempDir dir("features");
+  const auto r = run_isocurv({"features", dataset("sphere"), "--radius", "10%,0.3", "-o", dir / "s.vtp", "--json"});
+  ASSERT_TRUE(r.ok()) << r.describe();
+  const json j = parse_json(r.out, "features --json");
+  EXPECT_EQ(j["features"]["radii"][1]["world"].get<double>(), 0.3);
+  EXPECT_EQ(j["features"]["mean_curvature_from"], "volume integral invariant");
+  ASSERT_TRUE(j["timings_ms"].contains("features"));
+  const io::MeshFile m = io::read_mesh(dir / "s.vtp");
+  for (const char* name : {"LBE_r10%", "NSV_r10%", "Vr_r10%", "H_ii_r10%", "K_ii_r10%", "SI_ii_r10%", "H_ii_r0.3",
+                           "FeatureBoundary"})
+    ASSERT_NE(extra(m, name), nullptr) << name;
+  ASSERT_FALSE(m.field->H.empty()) << "the curvature arrays are written too";
+  // The bundled sphere has R = 0.8: H_ii = 1.25 away from the flagged vertices.
+  const auto& h = *extra(m, "H_ii_r0.3");
+  const auto& flag = *extra(m, "FeatureBoundary");
+  double sum = 0;
+  std::size_t count = 0;
+  for (std::size_t v = 0; v < h.size(); ++v)
+    if (flag[v] == 0) sum += h[v], ++count;
+  ASSERT_GT(count, h.size() / 2);
+  EXPECT_NEAR(sum / double(count), 1.25, 0.02);
+}
+
+TEST(CliFeatures, MeshInputAndBadRadii) {
+  TempDir dir("features_bad");
+  ASSERT_TRUE(run_isocurv({"curvature", dataset("sphere"), "-o", dir / "s.vtp", "--quiet"}).ok());
+  const auto mesh = run_isocurv({"features", dir / "s.vtp", "--radius", "0.2", "-o", dir / "f.ply", "--json"});
+  ASSERT_TRUE(mesh.ok()) << mesh.describe();
+  EXPECT_EQ(parse_json(mesh.out, "features --json")["features"]["mean_curvature_from"], "surface samples");
+  expect_clean_failure(run_isocurv({"features", dir / "s.vtp", "--radius", "0.2", "--features", "Vr", "-o",
+                                    dir / "v.vtp"}),
+                       "Vr");
+  expect_clean_failure(run_isocurv({"features", dataset("sphere"), "--radius", "-1", "-o", dir / "n.vtp"}),
+                       "--radius");
+  expect_clean_failure(run_isocurv({"features", dataset("sphere"), "--radius", "50", "-o", dir / "n.vtp"}),
+                       "larger than the surface");
+  expect_clean_failure(run_isocurv({"features", dataset("sphere"), "--radius", "0.2", "--features", "LBE,foo", "-o",
+                                    dir / "n.vtp"}),
+                       "foo");
+  EXPECT_FALSE(fs::exists(dir / "v.vtp"));
+  EXPECT_FALSE(fs::exists(dir / "n.vtp"));
+}
+
+}  // namespace

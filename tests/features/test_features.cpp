@@ -1,0 +1,354 @@
+// Neighbourhood features (features/features.h) against closed forms: spheres, a
+// plane, a torus, and a CT-like ball (blurred edge, uint8, noise), on analytic
+// meshes and marching-cubes meshes.
+#include "features/features.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+
+#include "core/error.h"
+#include "curvature/reference.h"
+#include "datasets/exact_curvature.h"
+#include "datasets/field.h"
+#include "datasets/sample.h"
+#include "mc/extract_reference.h"
+#include "tests/curvature/test_meshes.h"
+#include "volume/from_dense.h"
+#include "volume/gradient_normals.h"
+
+namespace isocurv {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+const std::vector<float> &array(const features::FeatureField &f,
+                                const std::string &name) {
+  for (const auto &a : f.arrays)
+    if (a.name == name)
+      return a.values;
+  ADD_FAILURE() << "no array " << name;
+  static const std::vector<float> none;
+  return none;
+}
+
+/// Mean and relative RMS of `values` against `exact` over the vertices not
+/// flagged Boundary.
+struct Error2 {
+  double mean = 0, rel_rms = 0;
+  std::size_t count = 0;
+};
+Error2 compare(const std::vector<float> &values,
+               const std::vector<double> &exact,
+               const std::vector<std::uint8_t> &boundary) {
+  Error2 e;
+  double se = 0, sr = 0;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (boundary[i])
+      continue;
+    e.mean += values[i];
+    se += (values[i] - exact[i]) * (values[i] - exact[i]);
+    sr += exact[i] * exact[i];
+    ++e.count;
+  }
+  if (e.count)
+    e.mean /= double(e.count);
+  e.rel_rms = sr > 0 ? std::sqrt(se / sr)
+                     : std::sqrt(se / std::max<std::size_t>(1, e.count));
+  return e;
+}
+
+/// An icosphere of radius R with exact normals and the reference's Voronoi
+/// areas.
+struct SphereMesh {
+  Mesh mesh;
+  curvature::CurvatureField field;
+};
+SphereMesh sphere_mesh(int level, float R) {
+  SphereMesh s{test::icosphere(level, R), {}};
+  std::vector<Vec3f> normals;
+  for (const Vec3f &p : s.mesh.positions)
+    normals.push_back({p[0] / R, p[1] / R, p[2] / R});
+  curvature::Options o;
+  o.vertex_normals = &normals;
+  s.field = curvature::estimate_reference(s.mesh, o);
+  return s;
+}
+
+TEST(Features, SphereMeshLbeIsExactAndTheHorizonFormHasThePapersBias) {
+  const float R = 2;
+  const SphereMesh s = sphere_mesh(6, R); // 40962 vertices, edge ~0.017 R
+  for (double f : {0.25, 0.5}) {
+    features::Options o;
+    o.radii = {f * R};
+    o.features = {features::Feature::LBE, features::Feature::NSV,
+                  features::Feature::H_ii};
+    const features::FeatureField out =
+        features::compute(s.mesh, s.field, nullptr, o);
+    const std::vector<double> inv_r2(s.mesh.vertex_count(), 1 / (R * R)),
+        inv_r(s.mesh.vertex_count(), 1 / R);
+    const Error2 lbe = compare(array(out, "LBE"), inv_r2, out.boundary);
+    const Error2 hmesh = compare(array(out, "H_ii"), inv_r, out.boundary);
+    // H implied by the horizon NSV: Vr = (4 pi r^3 / 3)(1 - NSV), H = 8/(3r) -
+    // 4 Vr / (pi r^4).
+    const double r = f * R;
+    double nsv = 0;
+    for (float v : array(out, "NSV"))
+      nsv += v;
+    nsv /= double(s.mesh.vertex_count());
+    const double vr = 4 * kPi * r * r * r / 3 * (1 - nsv);
+    const double h_horizon = 8 / (3 * r) - 4 * vr / (kPi * r * r * r * r);
+    std::printf("sphere mesh r=%.2fR: LBE rel.rms %.2e, H_ii(surface) rel.rms "
+                "%.4f, H(horizon NSV)*R %.4f\n",
+                f, lbe.rel_rms, hmesh.rel_rms, h_horizon * R);
+    EXPECT_EQ(lbe.count, s.mesh.vertex_count())
+        << "a closed sphere has no boundary";
+    EXPECT_LT(lbe.rel_rms, 1e-4);
+    EXPECT_LT(hmesh.rel_rms, 0.02);
+    EXPECT_NEAR(h_horizon * R, 8.0 / 9.0, 0.005)
+        << "the paper's known 8/9 bias";
+  }
+}
+
+TEST(Features, PlaneGivesZeroBendingHalfVolumeAndZeroCurvature) {
+  const Mesh plane = test::quadric_patch(41, 1.0f, 0, 0);
+  curvature::CurvatureField field = curvature::estimate_reference(plane);
+  features::Options o;
+  o.radii = {0.3};
+  const features::FeatureField out =
+      features::compute(plane, field, nullptr, o);
+  const auto &lbe = array(out, "LBE");
+  const auto &nsv = array(out, "NSV");
+  const auto &h = array(out, "H_ii");
+  const auto &k = array(out, "K_ii");
+  std::size_t inner = 0;
+  for (std::size_t v = 0; v < plane.vertex_count(); ++v) {
+    if (out.boundary[v])
+      continue;
+    ++inner;
+    EXPECT_NEAR(lbe[v], 0, 1e-6);
+    EXPECT_NEAR(nsv[v], 0.5, 1e-6);
+    EXPECT_NEAR(h[v], 0, 1e-5);
+    EXPECT_NEAR(k[v], 0, 0.02 / (0.3 * 0.3))
+        << "flat: the geodesic disc is the plane disc";
+  }
+  EXPECT_GT(inner, plane.vertex_count() / 4)
+      << "vertices farther than r from the border";
+  EXPECT_LT(inner, plane.vertex_count())
+      << "vertices near the open border are flagged";
+}
+
+TEST(Features, GeodesicDiscGivesGaussianCurvatureOnASphere) {
+  const float R = 1;
+  const SphereMesh s = sphere_mesh(5, R);
+  features::Options o;
+  o.radii = {0.5 * R};
+  o.features = {features::Feature::K_ii, features::Feature::SI_ii};
+  const features::FeatureField out =
+      features::compute(s.mesh, s.field, nullptr, o);
+  // On the sphere GA = 2 pi R^2 (1 - cos(r/R)): the series 12 (pi r^2 - GA) /
+  // (pi r^4) would give 1/R^2 - r^2/(30 R^4) (0.992 here); solving the disc
+  // formula gives 1/R^2.
+  const double r = 0.5 * R, ga = 2 * kPi * R * R * (1 - std::cos(r / R));
+  const double k_series = 12 * (kPi * r * r - ga) / (kPi * r * r * r * r);
+  const Error2 k = compare(
+      array(out, "K_ii"),
+      std::vector<double>(s.mesh.vertex_count(), 1 / (R * R)), out.boundary);
+  const Error2 si =
+      compare(array(out, "SI_ii"),
+              std::vector<double>(s.mesh.vertex_count(), 1.0), out.boundary);
+  std::printf("sphere mesh r=0.5R: K_ii mean %.4f (series %.4f, 1/R^2 = 1), "
+              "rel.rms %.3f; SI_ii mean %.4f\n",
+              k.mean, k_series, k.rel_rms, si.mean);
+  EXPECT_LT(k.rel_rms, 0.03);
+  EXPECT_LT(std::abs(k.mean - 1), std::abs(1 - k_series) + 0.02);
+  // The shape index of an umbilic point is as sensitive as it gets: K a
+  // fraction e below H^2 gives SI = 1 - (2/pi) sqrt(e), so K's 2% costs about
+  // 0.09 here.
+  EXPECT_GT(si.mean, 0.85);
+}
+
+/// The mesh, volume normals and areas of a volume's isosurface.
+struct VolumeSurface {
+  volume::Volume volume;
+  Mesh mesh;
+  curvature::CurvatureField field;
+  double iso = 0;
+};
+VolumeSurface surface_of(volume::Volume v, double iso) {
+  VolumeSurface s{std::move(v), {}, {}, iso};
+  s.mesh = mc::extract_reference(s.volume, float(iso));
+  const volume::MeshNormals n =
+      volume::gradient_normals_for_mesh(s.volume, s.mesh);
+  curvature::Options o;
+  o.vertex_normals = &n.normals;
+  s.field = curvature::estimate_reference(s.mesh, o);
+  return s;
+}
+
+TEST(Features, VolumeIntegralInvariantGivesMeanCurvatureOnTheSphereField) {
+  const auto field = datasets::make_field("sphere"); // |p| - 0.8, a level set
+  VolumeSurface s = surface_of(datasets::sample(*field, 64), field->isovalue());
+  const double R = 0.8; // 25 voxels
+  for (double f : {0.1, 0.25, 0.5}) {
+    features::Options o;
+    o.radii = {f * R};
+    o.features = {features::Feature::Vr, features::Feature::H_ii};
+    o.isovalue = s.iso;
+    const features::FeatureField out =
+        features::compute(s.mesh, s.field, &s.volume, o);
+    const Error2 h = compare(array(out, "H_ii"),
+                             std::vector<double>(s.mesh.vertex_count(), 1 / R),
+                             out.boundary);
+    std::printf("sphere field 64^3 r=%.2fR: H_ii*R %.5f, rel.rms %.4f\n", f,
+                h.mean * R, h.rel_rms);
+    EXPECT_NEAR(h.mean * R, 1, 0.01);
+    EXPECT_LT(h.rel_rms, 0.02);
+    // Vr itself: the lens volume 2 pi r^3 / 3 - pi r^4 / (4R), within the
+    // trilinear surface's error.
+    const double r = f * R,
+                 lens = 2 * kPi * r * r * r / 3 - kPi * r * r * r * r / (4 * R);
+    const Error2 vr =
+        compare(array(out, "Vr"),
+                std::vector<double>(s.mesh.vertex_count(), lens), out.boundary);
+    EXPECT_LT(vr.rel_rms, 0.01);
+  }
+}
+
+TEST(Features, TorusFieldMeanCurvatureAtSmallRadius) {
+  const auto field =
+      datasets::make_field("torus"); // tube 0.25 about a circle of radius 0.6
+  VolumeSurface s = surface_of(datasets::sample(*field, 96), field->isovalue());
+  std::vector<double> exact(s.mesh.vertex_count());
+  for (std::size_t v = 0; v < exact.size(); ++v) {
+    const Vec3f &p = s.mesh.positions[v];
+    exact[v] =
+        datasets::exact_curvature(
+            *field, datasets::project_to_surface(*field, {p[0], p[1], p[2]}))
+            .H;
+  }
+  for (double r : {0.05, 0.1}) {
+    features::Options o;
+    o.radii = {r};
+    o.features = {features::Feature::H_ii, features::Feature::LBE};
+    o.isovalue = s.iso;
+    const features::FeatureField out =
+        features::compute(s.mesh, s.field, &s.volume, o);
+    const Error2 h = compare(array(out, "H_ii"), exact, out.boundary);
+    std::printf(
+        "torus field 96^3 r=%.2f: H_ii rel.rms %.4f (bias grows with r)\n", r,
+        h.rel_rms);
+    EXPECT_LT(h.rel_rms, 0.05);
+  }
+}
+
+/// A CT-like ball: radius R voxels in an n^3 volume, edge blurred (Gaussian,
+/// sigma 1 voxel), 20 outside and 220 inside, uniform noise of +-4 grey levels,
+/// quantised to uint8.
+volume::Volume ct_ball(int n, double R) {
+  std::vector<float> data(std::size_t(n) * n * n);
+  std::uint32_t seed = 12345;
+  std::size_t i = 0;
+  const double c = 0.5 * (n - 1);
+  for (int z = 0; z < n; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const double r = std::sqrt((x - c) * (x - c) + (y - c) * (y - c) +
+                                   (z - c) * (z - c));
+        seed = seed * 1664525u + 1013904223u;
+        const double noise = (double(seed >> 8) / double(1u << 24) - 0.5) * 8;
+        const double v =
+            20 + 200 * 0.5 * (1 + std::erf((R - r) / std::sqrt(2.0))) + noise;
+        data[i++] = float(std::lround(std::clamp(v, 0.0, 255.0)));
+      }
+  volume::DenseSource src{"generated:ct_ball", "generated", "uint8", "density",
+                          volume::Inside::Above};
+  return volume::from_dense(
+      data.data(), {n, n, n},
+      openvdb::math::Transform::createLinearTransform(1.0), src);
+}
+
+TEST(Features, CtLikeBallMeanCurvatureBeatsPerVertexCurvature) {
+  const double R = 20;
+  VolumeSurface s = surface_of(ct_ball(56, R), 120);
+  std::vector<double> exact(s.mesh.vertex_count(), 1 / R);
+  std::vector<float> per_vertex(s.field.H.begin(), s.field.H.end());
+  const Error2 pv =
+      compare(per_vertex, exact, std::vector<std::uint8_t>(exact.size(), 0));
+  for (double r : {4.0, 6.0}) {
+    features::Options o;
+    o.radii = {r};
+    o.features = {features::Feature::H_ii};
+    o.isovalue = s.iso;
+    const features::FeatureField out =
+        features::compute(s.mesh, s.field, &s.volume, o);
+    const Error2 h = compare(array(out, "H_ii"), exact, out.boundary);
+    std::printf("CT-like ball R=20 voxels, uint8, noise +-4: H_ii (r = %g "
+                "voxels) rel.rms %.4f, per-vertex H "
+                "(volume normals) rel.rms %.4f\n",
+                r, h.rel_rms, pv.rel_rms);
+    EXPECT_LT(h.rel_rms, 0.05);
+    EXPECT_LT(h.rel_rms, 0.25 * pv.rel_rms);
+  }
+}
+
+TEST(Features, SeveralRadiiGetSuffixesAndRunsAreDeterministic) {
+  const SphereMesh s = sphere_mesh(3, 1);
+  features::Options o;
+  o.radii = {0.2, 0.4};
+  o.radius_names = {"0.2", "0.4"};
+  o.features = {features::Feature::LBE, features::Feature::SI_ii};
+  const features::FeatureField a =
+      features::compute(s.mesh, s.field, nullptr, o);
+  const features::FeatureField b =
+      features::compute(s.mesh, s.field, nullptr, o);
+  ASSERT_EQ(a.arrays.size(), 4u);
+  EXPECT_EQ(a.arrays[0].name, "LBE_r0.2");
+  EXPECT_EQ(a.arrays[1].name, "SI_ii_r0.2");
+  EXPECT_EQ(a.arrays[3].name, "SI_ii_r0.4");
+  for (std::size_t i = 0; i < a.arrays.size(); ++i)
+    EXPECT_EQ(a.arrays[i].values, b.arrays[i].values);
+}
+
+TEST(Features, BadRequestsAreErrors) {
+  const SphereMesh s = sphere_mesh(2, 1);
+  features::Options o;
+  o.radii = {0};
+  EXPECT_THROW(features::compute(s.mesh, s.field, nullptr, o), Error);
+  o.radii = {10}; // larger than the sphere's bounding box diagonal (2 sqrt 3)
+  EXPECT_THROW(features::compute(s.mesh, s.field, nullptr, o), Error);
+  o.radii = {0.3};
+  o.features = {features::Feature::Vr};
+  EXPECT_THROW(features::compute(s.mesh, s.field, nullptr, o), Error)
+      << "Vr needs a volume";
+  EXPECT_THROW(features::parse_features("LBE,curvature"), Error);
+  EXPECT_EQ(features::parse_features("all").size(), 6u);
+  curvature::CurvatureField empty;
+  o.features = {features::Feature::LBE};
+  EXPECT_THROW(features::compute(s.mesh, empty, nullptr, o), Error);
+}
+
+TEST(Features, DegenerateInputStaysFinite) {
+  Mesh m;
+  m.positions = {{0, 0, 0},
+                 {1, 0, 0},
+                 {0, 1, 0},
+                 {0.5f, 0.5f, 0},
+                 {5, 5, 5}}; // a triangle, a
+  m.triangles = {{0, 1, 2},
+                 {1, 3, 3}}; // degenerate one, and an isolated vertex
+  const curvature::CurvatureField f = curvature::estimate_reference(m);
+  features::Options o;
+  o.radii = {0.5};
+  const features::FeatureField out = features::compute(m, f, nullptr, o);
+  for (const auto &a : out.arrays)
+    for (float v : a.values)
+      EXPECT_TRUE(std::isfinite(v)) << a.name;
+  EXPECT_EQ(out.boundary[4], 1) << "the isolated vertex is flagged";
+  EXPECT_EQ(out.boundary[0], 1) << "an open triangle's corners are flagged";
+}
+
+} // namespace
+} // namespace isocurv
