@@ -340,15 +340,12 @@ class Explorer {
     line += "\n[c] colour: " + canonical_quantity(o.color) + "  [a] AO: " + (uses_ao(o.shading) ? "on" : "off") +
             "  [d] directions: " + (o.dirs ? "on" : "off") + "  [v] view: " + to_string(view_) +
             "\n[r] reset view  [i] isovalue  [o] open  [w] save  [k] camera  [s] screenshot";
+    if (setup_.lines) line += std::string("  [l] lines: ") + (lines_on_ ? "on" : "off");
     static const char* kPrompts[] = {"", "isovalue: ", "open mesh: ", "save surface as: "};
     if (entry_ != Entry::none)
       line += "\n" + std::string(kPrompts[static_cast<int>(entry_)]) + typed_ + "_   (Enter / Escape)";
     else if (!message_.empty())
       line += "\n" + message_;
-    line += "\n[c] colour: " + canonical_quantity(o.color) + "   [a] AO: " + (o.ao ? "on" : "off") +
-            "   [d] directions: " + (o.dirs ? "on" : "off") + "   [s] screenshot";
-    if (setup_.lines) line += std::string("   [l] lines: ") + (lines_on_ ? "on" : "off");
-    if (!message_.empty()) line += "\n" + message_;
     status_->SetInput(line.c_str());
   }
 

@@ -134,7 +134,8 @@ TEST(Prantl, SphereWithExactNormalsAtRoundingLevel) {
     }
 }
 
-// P-EV2: f1 and f2 from random points, exact normals; MSE against App. A4 and falling with N.
+// P-EV2: f1 and f2 from random points, exact normals; MSE against App. A4 and falling with N
+// (f1 at 15k points and both at 60k are in bench_estimators).
 TEST(Prantl, HeightfieldsConvergeWithPointCount) {
   struct Row {
     const char* f;
@@ -143,7 +144,6 @@ TEST(Prantl, HeightfieldsConvergeWithPointCount) {
   };
   const Row rows[] = {{"f1", 1000, 1.72e-2, 2.58e-3, 2.83e-3},
                       {"f1", 4000, 5.55e-3, 4.32e-3, 3.73e-3},
-                      {"f1", 15000, 1.34e-3, 1.75e-3, 1.56e-3},
                       {"f2", 1000, 8.00e-3, 6.53e-3, 6.34e-3},
                       {"f2", 4000, 1.87e-3, 1.56e-3, 1.49e-3},
                       {"f2", 15000, 4.81e-4, 3.97e-4, 3.77e-4}};
