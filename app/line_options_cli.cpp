@@ -93,8 +93,8 @@ void ensure_curvature(Surface &s, const std::string &path,
     return;
   const bool had_some = s.field.has_value();
   prepare_mesh_for_curvature(s, path, o);
-  s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, o,
-                               timer, &s.normals);
+  s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer,
+                               &s.normals, &s.estimator);
   if (!s.volume && !o.quiet)
     std::cerr << "isocurv: note: " << path
               << (had_some ? " lacks some curvature arrays the lines need"

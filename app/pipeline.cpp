@@ -74,8 +74,10 @@ void add_compress_option(CLI::App& cmd, CommonOptions& o) {
 
 void add_curvature_options(CLI::App& cmd, CommonOptions& o, bool mesh_input) {
   cmd.add_option("--estimator", o.estimator,
-                 "Curvature estimator: rusinkiewicz (from the mesh; the default) or volume (from the "
-                 "volume's derivatives at --scale; volume input only)")
+                 "Curvature estimator: rusinkiewicz (from the mesh; the default), volume (from the "
+                 "volume's derivatives at --scale; volume input only), or the other mesh estimators "
+                 "batagelo, prantl3, prantl2, quadric, cubic, sampling, meyer (isocurv compare "
+                 "runs them all)")
       ->check(CLI::IsMember(curvature::estimator_names()));
   cmd.add_option("--scale", o.scale,
                  "Volume estimator: the Gaussian's standard deviation in world units, or auto (the "
@@ -295,12 +297,12 @@ curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Vol
   curvature::Options co;
   co.estimator = o.estimator.empty() ? curvature::Estimator::rusinkiewicz
                                      : *curvature::estimator_from_name(o.estimator);
-  const bool mesh_estimator = co.estimator == curvature::Estimator::rusinkiewicz;
+  const bool mesh_estimator = !curvature::needs_volume(co.estimator);
   if (!mesh_estimator && !volume)
     throw Error("--estimator " + o.estimator +
                 " needs a volume input (it reads the volume's derivatives), not a mesh file");
   if (!mesh_estimator && !o.normals.empty())
-    throw Error("--normals applies to the rusinkiewicz estimator; --estimator " + o.estimator +
+    throw Error("--normals applies to the mesh estimators; --estimator " + o.estimator +
                 " takes its normals from the volume's gradient at --scale");
   if (mesh_estimator && o.scale != "auto")
     throw Error("--scale applies to --estimator volume");

@@ -5,34 +5,69 @@
 #include "core/error.h"
 #include "curvature/auto_scale.h"
 #include "curvature/estimate.h"
+#include "curvature/mesh_estimators.h"
 #include "curvature/reference.h"
 #include "curvature/volume_estimate.h"
 
 namespace isocurv::curvature {
 
-const char* estimator_name(Estimator e) {
+namespace {
+
+constexpr Estimator kAll[] = {Estimator::rusinkiewicz, Estimator::volume,  Estimator::batagelo,
+                              Estimator::prantl3,      Estimator::prantl2, Estimator::quadric,
+                              Estimator::cubic,        Estimator::sampling, Estimator::meyer};
+
+/// The mesh_estimators.h entry of a mesh estimator other than Rusinkiewicz's.
+std::optional<MeshEstimator> as_mesh_estimator(Estimator e) {
   switch (e) {
-    case Estimator::rusinkiewicz:
-      return "rusinkiewicz";
-    case Estimator::volume:
-      return "volume";
+    case Estimator::batagelo: return MeshEstimator::batagelo;
+    case Estimator::prantl3: return MeshEstimator::prantl3;
+    case Estimator::prantl2: return MeshEstimator::prantl2;
+    case Estimator::quadric: return MeshEstimator::quadric;
+    case Estimator::cubic: return MeshEstimator::cubic;
+    case Estimator::sampling: return MeshEstimator::sampling;
+    case Estimator::meyer: return MeshEstimator::meyer;
+    default: return std::nullopt;
   }
+}
+
+}  // namespace
+
+const char* estimator_name(Estimator e) {
+  if (e == Estimator::rusinkiewicz) return "rusinkiewicz";
+  if (e == Estimator::volume) return "volume";
+  if (const auto m = as_mesh_estimator(e)) return mesh_estimator_info(*m).name;
   return "?";
 }
 
 std::optional<Estimator> estimator_from_name(const std::string& name) {
-  for (Estimator e : {Estimator::rusinkiewicz, Estimator::volume})
+  for (Estimator e : kAll)
     if (name == estimator_name(e)) return e;
   return std::nullopt;
 }
 
-std::vector<std::string> estimator_names() { return {"rusinkiewicz", "volume"}; }
+std::vector<std::string> estimator_names() {
+  std::vector<std::string> names;
+  for (Estimator e : kAll) names.push_back(estimator_name(e));
+  return names;
+}
 
 std::vector<std::string> arrays_filled(Estimator e) {
   std::vector<std::string> all = {"Normals",    "Area", "k1",      "k2",    "dir1",
                                   "dir2",       "H",    "K",       "dcurv", "ShapeIndex",
                                   "Curvedness", "AO",   "Boundary"};
   if (e == Estimator::volume) all.push_back("Unreliable");
+  if (const auto m = as_mesh_estimator(e)) {
+    const MeshEstimatorInfo& info = mesh_estimator_info(*m);
+    std::vector<std::string> some;
+    for (const std::string& a : all) {
+      if (!info.directions && (a == "dir1" || a == "dir2")) continue;
+      if (!info.derivative && a == "dcurv") continue;
+      some.push_back(a);
+    }
+    some.push_back("Unreliable");
+    return some;
+  }
   return all;
 }
 
@@ -48,6 +83,19 @@ CurvatureField estimate_field(const Mesh& mesh, const VolumeSource& source, Devi
       field = device ? estimate(mesh, *device, options) : estimate_reference(mesh, options);
       r.parameters.emplace_back("ao_scale", options.ao_scale);
       break;
+    case Estimator::batagelo:
+    case Estimator::prantl3:
+    case Estimator::prantl2:
+    case Estimator::quadric:
+    case Estimator::cubic:
+    case Estimator::sampling:
+    case Estimator::meyer: {
+      const MeshEstimator m = *as_mesh_estimator(options.estimator);
+      field = estimate_mesh(m, mesh, device, options);
+      r.parameters.emplace_back("ao_scale", options.ao_scale);
+      for (std::uint8_t u : field.unreliable) r.unreliable += u;
+      break;
+    }
     case Estimator::volume: {
       if (!source.volume)
         throw Error(

@@ -24,6 +24,17 @@ enum class Estimator {
   /// Curvature of the volume itself, reconstructed at a scale: gradient, Hessian and third
   /// derivatives by Gaussian derivative filters (curvature/volume_estimate.h). Needs the volume.
   volume,
+  /// The seeds' other mesh estimators and the classic ones they compare against
+  /// (curvature/mesh_estimators.h): Batagelo & Wu's one-pass tensor, Prantl et al.'s per-triangle
+  /// shape operator from 3 or 2 edges, quadric and cubic fits, normal-curvature sampling, Meyer
+  /// et al.'s discrete operators. Each fills only the arrays it can (arrays_filled).
+  batagelo,
+  prantl3,
+  prantl2,
+  quadric,
+  cubic,
+  sampling,
+  meyer,
 };
 
 struct Options {

@@ -192,6 +192,9 @@ TEST(VizCameraFile, RoundTripAndBadFiles) {
     EXPECT_THROW(viz::load_camera(b), Error) << bad;
   }
   EXPECT_THROW(viz::load_camera((dir / "missing.json").string()), Error);
+  fs::remove_all(dir);
+}
+
 TEST(VizExplorer, LinesKeyDrawsLinesThatFollowSurfaceAndCamera) {
   const fs::path dir = fresh_dir("lines");
   viz::ExplorerSetup setup;
