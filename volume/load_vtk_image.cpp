@@ -229,15 +229,26 @@ void check_legacy_attributes(const std::string& path, const std::string& head, s
     const std::string& k = w[i];
     std::string upper = k;  // for messages: the keyword as files write it
     for (char& ch : upper) ch = char(std::toupper(static_cast<unsigned char>(ch)));
-    if (k == "scalars" || k == "vectors" || k == "normals" || k == "tensors") numeric(i + 2, upper);
-    else if (k == "texture_coordinates") numeric(i + 3, upper);
-    else if (k == "point_data" || k == "cell_data") count(i + 1, upper, 1);
-    else if (k == "lookup_table" && !(i >= 3 && w[i - 3] == "scalars") && !(i >= 4 && w[i - 4] == "scalars"))
-      count(i + 2, upper, 4);  // a table of its own (name, size); the one naming the scalars' table has none
-    else if (k == "color_scalars") {
+    // Each keyword's arguments are passed over (a name may be a keyword: "SCALARS scalars float").
+    if (k == "scalars" || k == "vectors" || k == "normals" || k == "tensors") {
+      numeric(i + 2, upper);
+      i += 2;
+    } else if (k == "texture_coordinates") {
+      numeric(i + 3, upper);
+      i += 3;
+    } else if (k == "point_data" || k == "cell_data") {
+      count(i + 1, upper, 1);
+      i += 1;
+    } else if (k == "lookup_table") {
+      // A table of its own has a name and a size; the line naming the scalars' table just a name.
+      const bool of_scalars = (i >= 3 && w[i - 3] == "scalars") || (i >= 4 && w[i - 4] == "scalars");
+      if (!of_scalars) count(i + 2, upper, 4);
+      i += of_scalars ? 1 : 2;
+    } else if (k == "color_scalars") {
       count(i + 2, upper, 1);
       if (i + 2 < w.size() && std::strtold(w[i + 2].c_str(), nullptr) > 16)
         throw Error(path, "COLOR_SCALARS claims " + w[i + 2] + " values per point (at most 4 are meaningful)");
+      i += 2;
     }
   }
 }
@@ -253,9 +264,11 @@ void check_claim(const std::string& path, const std::string& format, std::uint64
   if (format == "vtk" && to_lower(head_text).find("field") != std::string::npos)
     throw Error(path, "legacy .vtk files with FIELD data (or the word 'field' in their header) are not "
                       "supported: VTK's reader can crash on them; save the image as .vti");
-  if (format == "vtk") check_legacy_attributes(path, to_lower(head_text), size);
   const Claim c = read_claim(head_text, format);
-  if (c.dims[0] == 0 && c.dims[1] == 0 && c.dims[2] == 0) return;  // the reader will complain
+  if (c.dims[0] == 0 && c.dims[1] == 0 && c.dims[2] == 0) {  // the reader will complain
+    if (format == "vtk") check_legacy_attributes(path, to_lower(head_text), size);
+    return;
+  }
   const std::string text = std::to_string(c.dims[0]) + " x " + std::to_string(c.dims[1]) + " x " +
                            std::to_string(c.dims[2]);
   for (long long d : c.dims)
@@ -266,6 +279,7 @@ void check_claim(const std::string& path, const std::string& format, std::uint64
     throw Error(path, "header claims " + text + " voxels" +
                           (c.components > 1 ? " of " + std::to_string(c.components) + " components" : "") +
                           " (" + bytes_text(values) + " at one byte each) but the file holds " + bytes_text(size));
+  if (format == "vtk") check_legacy_attributes(path, to_lower(head_text), size);
 }
 
 }  // namespace
