@@ -199,6 +199,8 @@ void check_compressed_blocks(const std::string& path) {
     };
     if (blocks > size / unsigned(word))
       refuse("claims " + std::to_string(blocks) + " blocks (a " + std::to_string(blocks * word) + "-byte header)");
+    if (block == 0)  // VTK divides by it (a floating-point exception, found by the VTP fuzzer)
+      throw Error(path, "compressed array '" + attribute(tag, "Name") + "' claims a block size of 0");
     const std::vector<unsigned char> all = header_bytes(pos, std::size_t((3 + blocks) * word), base64);
     if (all.size() < std::size_t((3 + blocks) * word)) continue;
     long double compressed = 0;

@@ -105,6 +105,7 @@ TEST_F(IoBadSizes, VtpCompressedBlockClaimingGigabytes) {
   };
   expect_refused("block.vtp", patched(2, 4000000000ULL), "claims a block of 4000000000 bytes from");
   expect_refused("blocks.vtp", patched(0, 1ULL << 40), "claims 1099511627776 blocks");
+  expect_refused("zero.vtp", patched(1, 0), "claims a block size of 0");  // VTK divided by it
   EXPECT_EQ(isocurv::io::read_mesh(good).mesh.triangles.size(), 4u);
 }
 
