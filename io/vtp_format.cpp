@@ -198,13 +198,19 @@ void check_compressed_blocks(const std::string& path) {
     const std::vector<unsigned char> first = header_bytes(pos, std::size_t(3 * word), base64);
     if (first.size() < std::size_t(3 * word)) continue;  // VTK reports the short header
     const unsigned long long blocks = word_at(first, 0), block = word_at(first, 1), last = word_at(first, 2);
-    if (blocks == 0) continue;
     auto refuse = [&](const std::string& what) {
       throw Error(path, "compressed array '" + attribute(tag, "Name") + "' " + what + " but the file holds " +
                             std::to_string(size) + " bytes");
     };
+    // VTK allocates a block's buffer even when there are no blocks (found by the VTP fuzzer).
+    const long double most = (long double)size * 1040 + 1024;
+    if ((long double)block > most || (long double)last > most)
+      refuse("claims blocks of " + std::to_string(std::max(block, last)) + " bytes");
+    if (blocks == 0) continue;
     if (blocks > size / unsigned(word))
       refuse("claims " + std::to_string(blocks) + " blocks (a " + std::to_string(blocks * word) + "-byte header)");
+    if (block == 0)  // VTK divides by it (a floating-point exception, found by the VTP fuzzer)
+      throw Error(path, "compressed array '" + attribute(tag, "Name") + "' claims a block size of 0");
     const std::vector<unsigned char> all = header_bytes(pos, std::size_t((3 + blocks) * word), base64);
     if (all.size() < std::size_t((3 + blocks) * word)) continue;
     long double compressed = 0;

@@ -502,9 +502,17 @@ std::vector<openvdb::Coord> BrickIndex::candidates(const Frame& f) const {
   const float iso = f.isovalue;
   // The brick's samples lie in its own block and in a lower face, line or corner of each block
   // one step up along some axes (Block::part).
-  auto test = [&](int bx, int by, int bz) {
+  auto sparse_test = [&](int bx, int by, int bz) {
     const Block* blk[8];
     for (int d = 0; d < 8; ++d) blk[d] = find(bx + (d & 1), by + ((d >> 1) & 1), bz + (d >> 2));
+    return may_straddle(blk, above, iso);
+  };
+  auto dense_test = [&](int bx, int by, int bz) {  // bx, by, bz >= 0: the frame lies in the index
+    const Block* blk[8];
+    for (int d = 0; d < 8; ++d) {
+      const int x = bx + (d & 1), y = by + ((d >> 1) & 1), z = bz + (d >> 2);
+      blk[d] = x < nx_ && y < ny_ && z < nz_ ? &blocks_[block_at(x, y, z)] : nullptr;
+    }
     return may_straddle(blk, above, iso);
   };
   std::vector<std::vector<openvdb::Coord>> parts;
@@ -516,7 +524,7 @@ std::vector<openvdb::Coord> BrickIndex::candidates(const Frame& f) const {
       for (std::size_t i = c * kChunk; i < std::min(bricks_.size(), (c + 1) * kChunk); ++i) {
         const openvdb::Coord& b = bricks_[i];
         if (b.x() < bx0 || b.x() > bx1 || b.y() < by0 || b.y() > by1 || b.z() < bz0 || b.z() > bz1) continue;
-        if (test(b.x(), b.y(), b.z())) parts[c].push_back(first_ + times8(b));
+        if (sparse_test(b.x(), b.y(), b.z())) parts[c].push_back(first_ + times8(b));
       }
     });
   } else {
@@ -528,7 +536,7 @@ std::vector<openvdb::Coord> BrickIndex::candidates(const Frame& f) const {
         std::vector<openvdb::Coord>& slice = parts[std::size_t(bx - bx0)];
         for (int by = by0; by <= by1; ++by)
           for (int bz = bz0; bz <= bz1; ++bz)
-            if (test(bx, by, bz)) slice.push_back(first_ + openvdb::Coord(bx * 8, by * 8, bz * 8));
+            if (dense_test(bx, by, bz)) slice.push_back(first_ + openvdb::Coord(bx * 8, by * 8, bz * 8));
       }
     });
   }
@@ -555,7 +563,10 @@ void BrickIndex::gather(const Frame& f, std::vector<openvdb::Coord>& origins, fl
       const float* data[8];
       const int bx = (o.x() - first_.x()) / 8, by = (o.y() - first_.y()) / 8, bz = (o.z() - first_.z()) / 8;
       for (int k = 0; k < 8; ++k) {
-        const Block* blk = find(bx + (k & 1), by + ((k >> 1) & 1), bz + (k >> 2));
+        const int x = bx + (k & 1), y = by + ((k >> 1) & 1), z = bz + (k >> 2);
+        const Block* blk = sparse_                            ? find(x, y, z)
+                           : x < nx_ && y < ny_ && z < nz_ ? &blocks_[block_at(x, y, z)]
+                                                              : nullptr;
         data[k] = blk ? blk->leaf : nullptr;
         if (data[k]) continue;
         const float value = blk ? blk->tile : background_;

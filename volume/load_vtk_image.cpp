@@ -19,10 +19,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cctype>
 #include <mutex>
 #include <optional>
 #include <sstream>
+#include <vector>
 
 #include "core/error.h"
 #include "volume/dense_image.h"
@@ -197,6 +199,60 @@ Claim read_claim(const std::string& head, const std::string& format) {
   return c;
 }
 
+/// Refuses, before VTK's legacy reader sees them, attribute declarations it would allocate for
+/// from unchecked words (it reads words, not lines, as in `head`, lowercased): a data type that is
+/// not numeric (VTK reads "string..." types as strings, each with a length taken from the data:
+/// the fuzzer made it ask for 2.9e17 bytes), and counts (POINT_DATA, CELL_DATA, a LOOKUP_TABLE's
+/// size, COLOR_SCALARS' values per point) beyond what the file can hold at a byte a value.
+void check_legacy_attributes(const std::string& path, const std::string& head, std::uint64_t size) {
+  static const char* const kNumeric[] = {"bit",  "unsigned_char", "char",         "signed_char",  "unsigned_short",
+                                         "short", "unsigned_int",  "int",          "unsigned_long", "long",
+                                         "float", "double",        "vtktypeint64", "vtktypeuint64", "vtkidtype"};
+  std::istringstream in(head);
+  std::vector<std::string> w;
+  for (std::string word; in >> word;) w.push_back(word);
+  auto numeric = [&](std::size_t i, const std::string& keyword) {
+    if (i >= w.size()) return;  // the reader reports a short header
+    for (const char* t : kNumeric)
+      if (w[i] == t) return;
+    throw Error(path, keyword + " data type '" + w[i] + "' is not a numeric VTK type");
+  };
+  auto count = [&](std::size_t i, const std::string& keyword, long double bytes_each) {
+    if (i >= w.size()) return;
+    char* end = nullptr;
+    const long double n = std::strtold(w[i].c_str(), &end);
+    if (end == w[i].c_str() || *end != '\0') return;  // not a count (the reader decides)
+    if (n * bytes_each > (long double)size)
+      throw Error(path, keyword + " claims " + w[i] + " entries but the file holds " + bytes_text(size));
+  };
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    const std::string& k = w[i];
+    std::string upper = k;  // for messages: the keyword as files write it
+    for (char& ch : upper) ch = char(std::toupper(static_cast<unsigned char>(ch)));
+    // Each keyword's arguments are passed over (a name may be a keyword: "SCALARS scalars float").
+    if (k == "scalars" || k == "vectors" || k == "normals" || k == "tensors") {
+      numeric(i + 2, upper);
+      i += 2;
+    } else if (k == "texture_coordinates") {
+      numeric(i + 3, upper);
+      i += 3;
+    } else if (k == "point_data" || k == "cell_data") {
+      count(i + 1, upper, 1);
+      i += 1;
+    } else if (k == "lookup_table") {
+      // A table of its own has a name and a size; the line naming the scalars' table just a name.
+      const bool of_scalars = (i >= 3 && w[i - 3] == "scalars") || (i >= 4 && w[i - 4] == "scalars");
+      if (!of_scalars) count(i + 2, upper, 4);
+      i += of_scalars ? 1 : 2;
+    } else if (k == "color_scalars") {
+      count(i + 2, upper, 1);
+      if (i + 2 < w.size() && std::strtold(w[i + 2].c_str(), nullptr) > 16)
+        throw Error(path, "COLOR_SCALARS claims " + w[i + 2] + " values per point (at most 4 are meaningful)");
+      i += 2;
+    }
+  }
+}
+
 /// Refuses, before VTK allocates for it, a header claiming more voxels than the file can hold:
 /// a .vtk stores at least a byte per value, a .vti at most ~1000 values per byte (deflate).
 void check_claim(const std::string& path, const std::string& format, std::uint64_t size) {
@@ -209,7 +265,10 @@ void check_claim(const std::string& path, const std::string& format, std::uint64
     throw Error(path, "legacy .vtk files with FIELD data (or the word 'field' in their header) are not "
                       "supported: VTK's reader can crash on them; save the image as .vti");
   const Claim c = read_claim(head_text, format);
-  if (c.dims[0] == 0 && c.dims[1] == 0 && c.dims[2] == 0) return;  // the reader will complain
+  if (c.dims[0] == 0 && c.dims[1] == 0 && c.dims[2] == 0) {  // the reader will complain
+    if (format == "vtk") check_legacy_attributes(path, to_lower(head_text), size);
+    return;
+  }
   const std::string text = std::to_string(c.dims[0]) + " x " + std::to_string(c.dims[1]) + " x " +
                            std::to_string(c.dims[2]);
   for (long long d : c.dims)
@@ -220,6 +279,7 @@ void check_claim(const std::string& path, const std::string& format, std::uint64
     throw Error(path, "header claims " + text + " voxels" +
                           (c.components > 1 ? " of " + std::to_string(c.components) + " components" : "") +
                           " (" + bytes_text(values) + " at one byte each) but the file holds " + bytes_text(size));
+  if (format == "vtk") check_legacy_attributes(path, to_lower(head_text), size);
 }
 
 }  // namespace

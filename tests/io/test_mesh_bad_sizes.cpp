@@ -103,8 +103,14 @@ TEST_F(IoBadSizes, VtpCompressedBlockClaimingGigabytes) {
     for (int k = 0; k < 8; ++k) b[data + 8 * word + k] = char((value >> (8 * k)) & 0xff);  // little-endian
     return b;
   };
-  expect_refused("block.vtp", patched(2, 4000000000ULL), "claims a block of 4000000000 bytes from");
+  expect_refused("huge.vtp", patched(2, 4000000000ULL), "claims blocks of 4000000000 bytes");
+  // Within what the whole file could inflate to, but not its block: 2 MB from a few dozen bytes.
+  expect_refused("block.vtp", patched(2, 2000000), "claims a block of 2000000 bytes from");
   expect_refused("blocks.vtp", patched(0, 1ULL << 40), "claims 1099511627776 blocks");
+  expect_refused("zero.vtp", patched(1, 0), "claims a block size of 0");  // VTK divided by it
+  std::string none = patched(0, 0);  // no blocks, but VTK still allocates one of the block size
+  for (int k = 0; k < 8; ++k) none[data + 8 + k] = char(k == 7 ? 0x60 : 0);
+  expect_refused("none.vtp", none, "claims blocks of 6917529027641081856 bytes");
   EXPECT_EQ(isocurv::io::read_mesh(good).mesh.triangles.size(), 4u);
 }
 

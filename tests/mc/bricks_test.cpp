@@ -52,7 +52,8 @@ Coords straddling(const volume::Volume& v, const mc::Frame& f) {
 class LoneVoxel : public ::testing::TestWithParam<std::tuple<int, int, int>> {};
 
 TEST_P(LoneVoxel, SelectsAndGathersExactlyTheStraddlingBricks) {
-  const auto [vx, vy, vz] = GetParam();
+  // Plain ints, not structured bindings: lambdas may capture those only from C++20 (clang).
+  const int vx = std::get<0>(GetParam()), vy = std::get<1>(GetParam()), vz = std::get<2>(GetParam());
   // 40^3 at 0 with one voxel at 1 (isovalue 0.5), and a NaN, a +Inf and a -Inf voxel far from it.
   const float inf = std::numeric_limits<float>::infinity();
   auto v = test::sampled([&](double x, double y, double z) {

@@ -147,6 +147,28 @@ TEST(VolumeBadInput, VtkFiles) {
   expect_error([&] { load(dir.file("short.vtk")); }, "short.vtk");
 }
 
+// Legacy attribute declarations VTK's reader would allocate for from unchecked words are refused
+// first (found by the VTK fuzzer: a "string..." scalar type made it read string lengths from the
+// binary data and ask for 2.9e17 bytes); an ordinary ASCII file with a lookup table still loads.
+TEST(VolumeBadInput, VtkAttributesVtkWouldAllocateFor) {
+  TempDir dir;
+  const std::string head = "# vtk DataFile Version 3.0\nx\nBINARY\nDATASET STRUCTURED_POINTS\nDIMENSIONS 2 2 2\n"
+                           "SPACING 1 1 1\nORIGIN 0 0 0\n";
+  write_file(dir.file("string.vtk"), head + "POINT_DATA 8\nSCALARS s stringunsigned_short\nLOOKUP_TABLE default\n" +
+                                         std::string(16, '\xff'));
+  expect_error([&] { load(dir.file("string.vtk")); }, "string.vtk",
+               "SCALARS data type 'stringunsigned_short' is not a numeric VTK type");
+  write_file(dir.file("points.vtk"), head + "POINT_DATA 90000000000\nSCALARS s float\n" + std::string(32, '\0'));
+  expect_error([&] { load(dir.file("points.vtk")); }, "points.vtk", "POINT_DATA claims 90000000000 entries");
+  write_file(dir.file("table.vtk"), head + "POINT_DATA 8\nSCALARS s unsigned_char\nLOOKUP_TABLE t\n" +
+                                        std::string(8, '\1') + "\nLOOKUP_TABLE t 1000000000\n");
+  expect_error([&] { load(dir.file("table.vtk")); }, "table.vtk", "LOOKUP_TABLE claims 1000000000 entries");
+  write_file(dir.file("ok.vtk"), "# vtk DataFile Version 3.0\nx\nASCII\nDATASET STRUCTURED_POINTS\nDIMENSIONS 2 2 2\n"
+                                 "SPACING 1 1 1\nORIGIN 0 0 0\nPOINT_DATA 8\nSCALARS s float 1\n"
+                                 "LOOKUP_TABLE default\n1e30 0 0 0 0 0 0 0\n");
+  EXPECT_FLOAT_EQ(float(load(dir.file("ok.vtk")).stats.max), 1e30f);
+}
+
 TEST(VolumeBadInput, VdbWithoutFloatGridOrEmpty) {
   openvdb::initialize();
   TempDir dir;
