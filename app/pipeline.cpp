@@ -1,5 +1,8 @@
 #include "app/pipeline.h"
 
+#include "core/mesh_measures.h"
+#include "curvature/face_average_normals.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -92,10 +95,12 @@ void add_curvature_options(CLI::App& cmd, CommonOptions& o, bool mesh_input) {
         return "";
       });
   cmd.add_option("--normals", o.normals,
-                 "Vertex normals: volume (from the volume's gradient, face normals where it points against the "
-                 "faces or vanishes; the default for volume input) or mesh (from the faces, as Rusinkiewicz; "
-                 "the default for mesh files)")
-      ->check(CLI::IsMember({"mesh", "volume"}));
+                 "Vertex normals for the mesh estimators: volume (from the volume's gradient, face normals "
+                 "where it points against the faces or vanishes; the default for volume input), mesh (from "
+                 "the faces with Max's weights, as Rusinkiewicz; the default for mesh files), area (face "
+                 "normals weighted by area) or face-average (the plain average of unit face normals, "
+                 "Batagelo's protocol)")
+      ->check(CLI::IsMember({"mesh", "area", "face-average", "volume"}));
   if (mesh_input)
     cmd.add_flag("--flip", o.flip,
                  "Reverse the triangles of a mesh file before estimating (for a closed mesh oriented inward)");
@@ -312,6 +317,11 @@ curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Vol
                   : o.normals.empty() ? (volume ? "volume" : "mesh")
                                       : o.normals;
   volume::MeshNormals normals;
+  std::vector<Vec3f> averaged;  // area / face-average: computed here, so every estimator gets them
+  if (mesh_estimator && (chosen.source == "area" || chosen.source == "face-average")) {
+    averaged = chosen.source == "area" ? area_weighted_normals(mesh) : curvature::face_average_normals(mesh);
+    co.vertex_normals = &averaged;
+  }
   if (mesh_estimator && chosen.source == "volume") {
     if (!volume) throw Error("--normals volume needs a volume input, not a mesh file");
     timer.start("normals");

@@ -37,6 +37,16 @@ TEST(CliEstimatorChoice, MeshEstimatorsFillWhatTheyCan) {
   }
   expect_usage_error(run_isocurv({"curvature", dataset("torus"), "--estimator", "guess", "-o", dir / "x.vtp"}),
                      "--estimator");
+  // Every normal source reaches every mesh estimator: the normals written are the ones asked for.
+  std::vector<std::vector<Vec3f>> normals;
+  for (const char* source : {"mesh", "area", "face-average", "volume"}) {
+    const std::string out = dir / (std::string("n_") + source + ".vtp");
+    const auto r = run_isocurv({"curvature", dataset("torus"), "--estimator", "batagelo", "--normals", source, "-o",
+                                out, "--quiet"});
+    ASSERT_TRUE(r.ok()) << r.describe();
+    normals.push_back(io::read_mesh(out).field->normals);
+  }
+  for (std::size_t i = 1; i < normals.size(); ++i) EXPECT_NE(normals[i], normals[0]) << "source " << i;
 }
 
 }  // namespace
