@@ -22,13 +22,14 @@ std::string picture_title(const std::string& input, const std::string& quantity,
 }
 
 std::string estimator_title(const curvature::EstimatorReport& report) {
+  // Only the parameter that changes what the picture shows (the volume estimator's scale).
   std::string t = report.estimator;
-  for (std::size_t i = 0; i < report.parameters.size(); ++i) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%s%s %g", i == 0 ? ", " : " ", report.parameters[i].first.c_str(),
-                  report.parameters[i].second);
-    t += buf;
-  }
+  for (const auto& [name, value] : report.parameters)
+    if (name == "scale") {
+      char buf[64];
+      std::snprintf(buf, sizeof buf, ", scale %g", value);
+      t += buf;
+    }
   return t;
 }
 

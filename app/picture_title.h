@@ -16,7 +16,7 @@ std::string picture_title(const std::string& input, const std::string& quantity,
                           std::optional<float> isovalue, const std::string& estimator);
 
 /// The estimator as titles name it, from what an estimate used: "rusinkiewicz", "volume, scale
-/// 1.5" (its parameters, %g); empty when nothing was estimated.
+/// 1.5" (the scale, %g); empty when nothing was estimated.
 std::string estimator_title(const curvature::EstimatorReport& report);
 
 /// The same from the options, before any estimate (the explorer's titles, checks): --estimator
