@@ -8,25 +8,12 @@
 #include "app/commands.h"
 #include "app/pipeline.h"
 #include "core/error.h"
+#include "core/mesh_measures.h"
 #include "features/features.h"
 #include "io/mesh_file.h"
 
 namespace isocurv::app {
 namespace {
-
-/// The diagonal of the mesh's bounding box (the paper gives radii as % of it).
-double diagonal_of(const Mesh &m) {
-  if (m.positions.empty())
-    return 0;
-  Vec3f lo = m.positions[0], hi = lo;
-  for (const Vec3f &p : m.positions)
-    for (int a = 0; a < 3; ++a)
-      lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
-  double d = 0;
-  for (int a = 0; a < 3; ++a)
-    d += double(hi[a] - lo[a]) * (hi[a] - lo[a]);
-  return std::sqrt(d);
-}
 
 /// "4,0.5,2%" -> radii in world units (a trailing % is of the bounding-box
 /// diagonal) and their names as written, for the array suffixes.
@@ -97,7 +84,7 @@ void register_features(CLI::App &app) {
         s.field->area.size() != s.mesh.vertex_count())
       s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o,
                                    timer, &s.normals);
-    parse_radii(radius, diagonal_of(s.mesh), fo);
+    parse_radii(radius, bounding_box_diagonal(s.mesh), fo);
     fo.isovalue = s.isovalue;
     timer.start("features");
     features::FeatureField f = features::compute(

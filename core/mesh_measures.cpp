@@ -1,9 +1,20 @@
 #include "core/mesh_measures.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
 namespace isocurv {
+
+double bounding_box_diagonal(const Mesh& mesh) {
+  if (mesh.positions.empty()) return 0;
+  Vec3f lo = mesh.positions[0], hi = lo;
+  for (const Vec3f& p : mesh.positions)
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
+  double d = 0;
+  for (int a = 0; a < 3; ++a) d += double(hi[a] - lo[a]) * (hi[a] - lo[a]);
+  return std::sqrt(d);
+}
 
 double mean_edge_length(const Mesh& mesh) {
   if (mesh.triangles.empty()) return 0;

@@ -11,6 +11,10 @@ namespace isocurv {
 /// world units; 0 for a mesh without triangles.
 double mean_edge_length(const Mesh& mesh);
 
+/// The length of the diagonal of the axis-aligned box around the mesh's vertices, in world
+/// units; 0 for a mesh without vertices.
+double bounding_box_diagonal(const Mesh& mesh);
+
 /// (b - a) x (c - a) in double precision for the triangle t = (a, b, c) of `mesh` (indices in
 /// range): twice its area, along its outward normal.
 std::array<double, 3> triangle_area_vector(const Mesh& mesh, const Tri& t);

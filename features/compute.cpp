@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "core/error.h"
+#include "core/mesh_measures.h"
 #include "core/progress.h"
 #include "features/detail/ball_samples.h"
 #include "features/detail/geodesic_disc.h"
@@ -41,19 +42,6 @@ double max_edge_length(const Mesh &mesh) {
       m = std::max(m, d0 * d0 + d1 * d1 + d2 * d2);
     }
   return std::sqrt(m);
-}
-
-double bbox_diagonal(const Mesh &mesh) {
-  if (mesh.positions.empty())
-    return 0;
-  Vec3f lo = mesh.positions[0], hi = lo;
-  for (const Vec3f &p : mesh.positions)
-    for (int a = 0; a < 3; ++a)
-      lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
-  double d = 0;
-  for (int a = 0; a < 3; ++a)
-    d += double(hi[a] - lo[a]) * (hi[a] - lo[a]);
-  return std::sqrt(d);
 }
 
 std::string radius_label(const Options &o, std::size_t i) {
@@ -143,7 +131,7 @@ FeatureField compute(const Mesh &mesh, const curvature::CurvatureField &field,
     throw Error("Vr (the volume integral invariant) needs a volume; mesh input "
                 "gives LBE, NSV, "
                 "H_ii (surface form), K_ii and SI_ii");
-  const double diagonal = bbox_diagonal(mesh);
+  const double diagonal = bounding_box_diagonal(mesh);
   for (std::size_t i = 0; i < o.radii.size(); ++i) {
     const double r = o.radii[i];
     if (!(r > 0) || !std::isfinite(r))
