@@ -254,6 +254,15 @@ bool run_as_batch(const BatchCli& b, CommonOptions& o, BatchKind kind, const std
   return true;
 }
 
+void require_series_cli(const BatchCli& b, CommonOptions& o) {
+  const std::vector<float> isos = b.iso.empty() ? std::vector<float>{} : parse_isovalues(b.iso);
+  if (isos.size() > 1)
+    throw Error("--iso: one isovalue with --time-series (every frame is cut at the same value)");
+  if (b.format_given) throw Error("--format: a time series writes .vtp frames (ParaView's .pvd)");
+  if (b.jobs_given) throw Error("--jobs applies to batches, not to --time-series");
+  if (!isos.empty()) o.iso = isos[0];
+}
+
 std::string iso_suffix(float iso) { return "_iso" + format_number(iso); }
 
 void run_batch(const BatchRequest& rq, const CommonOptions& o) {

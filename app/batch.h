@@ -48,6 +48,10 @@ void add_batch_options(CLI::App& cmd, BatchCli& b, const std::string& input_name
 bool run_as_batch(const BatchCli& b, CommonOptions& o, BatchKind kind, const std::string& dir,
                   const RenderCli* render = nullptr, const std::string& format = "");
 
+/// For --time-series (app/series.h), called first: --iso must be one value (it sets o.iso; every
+/// frame is cut there), and --format and --jobs, which are for batches, are an Error.
+void require_series_cli(const BatchCli& b, CommonOptions& o);
+
 /// Parses --iso "V1,V2,..." (finite numbers, at least one, no repeats). @throw Error naming the
 /// bad item.
 std::vector<float> parse_isovalues(const std::string& text);

@@ -4,9 +4,36 @@
 #include "app/batch.h"
 #include "app/commands.h"
 #include "app/pipeline.h"
+#include "app/series.h"
 #include "io/mesh_file.h"
 
 namespace isocurv::app {
+namespace {
+
+/// One input -> the mesh file `out` with every curvature array; the report --json prints.
+nlohmann::json curvature_one(const std::string& in, const std::string& out,
+                             const CommonOptions& o) {
+  require_curvature_format(out);  // before any work: .obj and .stl would drop the arrays
+  StageTimer timer;
+  Surface s = load_surface(in, o, timer);
+  prepare_mesh_for_curvature(s, in, o);
+  s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer,
+                               &s.normals, &s.estimator);
+  timer.start("write");
+  io::write_mesh(out, s.mesh, &*s.field, o.compress);
+  timer.stop();
+  nlohmann::json r = surface_report(s);
+  r["input"] = in;
+  r["output"] = out;
+  r["output_bytes"] = file_bytes(out);
+  r["compression"] = io::to_string(o.compress);
+  r["programs"] = program_report();
+  r["device"] = device_name(o);
+  r["timings_ms"] = timer.json();
+  return r;
+}
+
+}  // namespace
 
 void register_curvature(CLI::App& app) {
   auto* cmd = app.add_subcommand("curvature", "Estimate per-vertex curvature (k1 k2 dir1 dir2 H K dcurv ShapeIndex Curvedness AO) "
@@ -15,6 +42,7 @@ void register_curvature(CLI::App& app) {
               "Normals point out of the object, so a solid sphere of radius R has k1 = k2 = H = +1/R.");
   static CommonOptions o;
   static BatchCli b;
+  static SeriesCli series;
   static std::string out;
   add_batch_options(*cmd, b, "VOLUME_OR_MESH", "Volume or mesh file", {"vtp", "ply"});
   cmd->add_option("-o,--output", out,
@@ -24,32 +52,24 @@ void register_curvature(CLI::App& app) {
   add_common_options(*cmd, o, false);
   add_curvature_options(*cmd, o, true);
   add_compress_option(*cmd, o);
+  add_series_options(*cmd, series);
   cmd->callback([] {
+    if (series.enabled) {
+      require_series_cli(b, o);
+      run_series(b.inputs, series, {"curvature", out}, o,
+                 [](const SeriesFrame& f, CommonOptions& fo, const std::string& path) {
+                   return curvature_one(f.path, path, fo);
+                 });
+      return;
+    }
     if (run_as_batch(b, o, BatchKind::curvature, out)) return;
-    const std::string& in = b.inputs.front();
-    require_curvature_format(out);  // before any work: .obj and .stl would drop the arrays
-    StageTimer timer;
-    Surface s = load_surface(in, o, timer);
-    prepare_mesh_for_curvature(s, in, o);
-    s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer,
-                                 &s.normals, &s.estimator);
-    timer.start("write");
-    io::write_mesh(out, s.mesh, &*s.field, o.compress);
-    timer.stop();
-    nlohmann::json r = surface_report(s);
-    const std::uint64_t bytes = file_bytes(out);
+    const nlohmann::json r = curvature_one(b.inputs.front(), out, o);
     if (o.json) {
-      r["input"] = in;
-      r["output"] = out;
-      r["output_bytes"] = bytes;
-      r["compression"] = io::to_string(o.compress);
-      r["programs"] = program_report();
-      r["device"] = device_name(o);
-      r["timings_ms"] = timer.json();
       std::cout << r.dump(2) << "\n";
     } else if (!o.quiet) {
-      std::cout << "wrote " << out << " (" << format_bytes(bytes) << "): " << r["vertices"] << " vertices with curvature (curvature "
-                << timer.json().value("curvature", 0.0) << " ms)\n";
+      std::cout << "wrote " << out << " (" << format_bytes(r["output_bytes"]) << "): " << r["vertices"]
+                << " vertices with curvature (curvature " << r["timings_ms"].value("curvature", 0.0)
+                << " ms)\n";
     }
   });
 }

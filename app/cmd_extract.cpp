@@ -4,9 +4,31 @@
 #include "app/batch.h"
 #include "app/commands.h"
 #include "app/pipeline.h"
+#include "app/series.h"
 #include "io/mesh_file.h"
 
 namespace isocurv::app {
+namespace {
+
+/// One input -> the mesh file `out`; the report --json prints.
+nlohmann::json extract_one(const std::string& in, const std::string& out, const CommonOptions& o) {
+  StageTimer timer;
+  Surface s = load_surface(in, o, timer, EmptySurface::warn);
+  timer.start("write");
+  io::write_mesh(out, s.mesh, nullptr, o.compress);
+  timer.stop();
+  nlohmann::json r = surface_report(s);
+  r["input"] = in;
+  r["output"] = out;
+  r["output_bytes"] = file_bytes(out);
+  r["compression"] = io::to_string(o.compress);
+  r["programs"] = program_report();
+  r["device"] = device_name(o);
+  r["timings_ms"] = timer.json();
+  return r;
+}
+
+}  // namespace
 
 void register_extract(CLI::App& app) {
   auto* cmd = app.add_subcommand("extract", "Extract the isosurface of a volume as a fused, indexed triangle mesh");
@@ -17,34 +39,31 @@ void register_extract(CLI::App& app) {
       "gives no surface writes an empty mesh after a warning (the other commands refuse it).");
   static CommonOptions o;
   static BatchCli b;
+  static SeriesCli series;
   static std::string out;
   add_batch_options(*cmd, b, "VOLUME", "Volume file", {"vtp", "ply", "obj", "stl"});
   cmd->add_option("-o,--output", out, std::string("Mesh file to write (") + io::mesh_extensions() +
                                           "), or the folder of a batch")->required();
   add_common_options(*cmd, o, false);
   add_compress_option(*cmd, o);
+  add_series_options(*cmd, series);
   cmd->callback([] {
+    if (series.enabled) {
+      require_series_cli(b, o);
+      run_series(b.inputs, series, {"extract", out}, o,
+                 [](const SeriesFrame& f, CommonOptions& fo, const std::string& path) {
+                   return extract_one(f.path, path, fo);
+                 });
+      return;
+    }
     if (run_as_batch(b, o, BatchKind::extract, out)) return;
     const std::string& in = b.inputs.front();
-    StageTimer timer;
-    Surface s = load_surface(in, o, timer, EmptySurface::warn);
-    timer.start("write");
-    io::write_mesh(out, s.mesh, nullptr, o.compress);
-    timer.stop();
-    nlohmann::json r = surface_report(s);
-    const std::uint64_t bytes = file_bytes(out);
+    const nlohmann::json r = extract_one(in, out, o);
     if (o.json) {
-      r["input"] = in;
-      r["output"] = out;
-      r["output_bytes"] = bytes;
-      r["compression"] = io::to_string(o.compress);
-      r["programs"] = program_report();
-      r["device"] = device_name(o);
-      r["timings_ms"] = timer.json();
       std::cout << r.dump(2) << "\n";
     } else if (!o.quiet) {
-      std::cout << "wrote " << out << " (" << format_bytes(bytes) << "): " << r["vertices"] << " vertices, " << r["triangles"] << " triangles at isovalue "
-                << s.isovalue << " (extract " << timer.json().value("extract", 0.0) << " ms)\n";
+      std::cout << "wrote " << out << " (" << format_bytes(r["output_bytes"]) << "): " << r["vertices"] << " vertices, " << r["triangles"] << " triangles at isovalue "
+                << r.value("isovalue", 0.0f) << " (extract " << r["timings_ms"].value("extract", 0.0) << " ms)\n";
     }
   });
 }

@@ -7,6 +7,7 @@
 
 #include "app/commands.h"
 #include "app/pipeline.h"
+#include "app/series.h"
 #include "core/error.h"
 #include "core/mesh_measures.h"
 #include "features/features.h"
@@ -56,8 +57,12 @@ void register_features(CLI::App &app) {
       "With several radii each\n"
       "array is suffixed _r<radius as written> (H_ii_r2%). Vr needs a volume.");
   static CommonOptions o;
-  static std::string in, out, radius, list = "all";
-  cmd->add_option("VOLUME_OR_MESH", in, "Volume or mesh file")->required();
+  static std::string out, radius, list = "all";
+  static std::vector<std::string> ins;
+  static SeriesCli series;
+  cmd->add_option("VOLUME_OR_MESH", ins,
+                  "Volume or mesh file (several, or a quoted glob, with --time-series)")
+      ->required();
   cmd->add_option("-o,--output", out,
                   "Mesh file to write (.vtp or .ply), with the curvature and "
                   "feature arrays")
@@ -72,7 +77,11 @@ void register_features(CLI::App &app) {
       ->capture_default_str();
   add_common_options(*cmd, o);
   add_curvature_options(*cmd, o, true);
-  cmd->callback([] {
+  add_series_options(*cmd, series);
+  // One input -> `out`; prints its summary unless `quiet_summary` (a series frame). Returns the
+  // --json report.
+  static auto one = [](const std::string& in, const std::string& out, CommonOptions& o,
+                       bool quiet_summary) -> nlohmann::json {
     require_curvature_format(out);
     features::Options fo;
     if (list != "all")
@@ -126,10 +135,11 @@ void register_features(CLI::App &app) {
                                                  ? "volume integral invariant"
                                                  : "surface samples"},
                      {"boundary_vertices", boundary}};
-    if (o.json) {
-      r["input"] = in;
-      r["output"] = out;
-      r["timings_ms"] = timer.json();
+    r["input"] = in;
+    r["output"] = out;
+    r["timings_ms"] = timer.json();
+    if (quiet_summary) {
+    } else if (o.json) {
       std::cout << r.dump(2) << "\n";
     } else if (!o.quiet) {
       std::cout << "wrote " << out << ": " << s.mesh.vertex_count()
@@ -140,6 +150,19 @@ void register_features(CLI::App &app) {
                 << " vertices whose neighbourhood left the data flagged "
                    "FeatureBoundary)\n";
     }
+    return r;
+  };
+  cmd->callback([] {
+    if (series.enabled) {
+      run_series(ins, series, {"features", out}, o,
+                 [](const SeriesFrame& f, CommonOptions& fo, const std::string& path) {
+                   return one(f.path, path, fo, true);
+                 });
+      return;
+    }
+    if (ins.size() > 1)
+      throw Error("isocurv features takes one input (several are the frames of a series with --time-series)");
+    one(ins.front(), out, o, false);
   });
 }
 

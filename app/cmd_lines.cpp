@@ -8,6 +8,7 @@
 #include "app/commands.h"
 #include "app/line_options_cli.h"
 #include "app/pipeline.h"
+#include "app/series.h"
 #include "app/render_options_cli.h"
 #include "core/error.h"
 #include "lines/line_files.h"
@@ -33,8 +34,12 @@ void register_lines(CLI::App &app) {
   static LineCli lc;
   static ViewSpec view;
   static int width = 1024, height = 768;
-  static std::string in, out;
-  cmd->add_option("VOLUME_OR_MESH", in, "Volume or mesh file")->required();
+  static std::string out;
+  static std::vector<std::string> ins;
+  static SeriesCli series;
+  cmd->add_option("VOLUME_OR_MESH", ins,
+                  "Volume or mesh file (several, or a quoted glob, with --time-series)")
+      ->required();
   cmd->add_option("-o,--output", out,
                   "Lines file to write: .vtp (polylines) or .svg (drawing)")
       ->required();
@@ -58,7 +63,11 @@ void register_lines(CLI::App &app) {
          },
          "Drawing size WIDTHxHEIGHT (default 1024x768; also fits the camera)")
       ->group("Camera");
-  cmd->callback([] {
+  add_series_options(*cmd, series);
+  // One input -> `out`; prints its summary unless `quiet_summary` (a series frame). Returns the
+  // --json report.
+  static auto one = [](const std::string& in, const std::string& out, CommonOptions& o,
+                       bool quiet_summary) -> nlohmann::json {
     const std::string ext = std::filesystem::path(out).extension().string();
     const bool svg = ext == ".svg" || ext == ".SVG";
     if (!svg && ext != ".vtp" && ext != ".VTP")
@@ -103,17 +112,18 @@ void register_lines(CLI::App &app) {
       counts[lines::to_string(type)] = n;
       lengths[lines::to_string(type)] = poly.length(type);
     }
-    if (o.json) {
-      nlohmann::json r = surface_report(s);
-      r["input"] = in;
-      r["output"] = out;
-      r["lines"] = lo.lines.to_string();
-      r["segments"] = counts;
-      r["segments_before_visibility"] = all;
-      r["polylines"] = poly.line_count();
-      r["length"] = lengths;
-      r["device"] = device_name(o);
-      r["timings_ms"] = timer.json();
+    nlohmann::json r = surface_report(s);
+    r["input"] = in;
+    r["output"] = out;
+    r["lines"] = lo.lines.to_string();
+    r["segments"] = counts;
+    r["segments_before_visibility"] = all;
+    r["polylines"] = poly.line_count();
+    r["length"] = lengths;
+    r["device"] = device_name(o);
+    r["timings_ms"] = timer.json();
+    if (quiet_summary) {
+    } else if (o.json) {
       std::cout << r.dump(2) << "\n";
     } else if (!o.quiet) {
       std::cout << "wrote " << out << ": " << poly.line_count()
@@ -122,6 +132,19 @@ void register_lines(CLI::App &app) {
         std::cout << " (" << all - segs.size() << " hidden segments left out)";
       std::cout << "\n";
     }
+    return r;
+  };
+  cmd->callback([] {
+    if (series.enabled) {
+      run_series(ins, series, {"lines", out}, o,
+                 [](const SeriesFrame& f, CommonOptions& fo, const std::string& path) {
+                   return one(f.path, path, fo, true);
+                 });
+      return;
+    }
+    if (ins.size() > 1)
+      throw Error("isocurv lines takes one input (several are the frames of a series with --time-series)");
+    one(ins.front(), out, o, false);
   });
 }
 

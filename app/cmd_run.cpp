@@ -7,6 +7,7 @@
 #include "app/commands.h"
 #include "app/line_options_cli.h"
 #include "app/pipeline.h"
+#include "app/series.h"
 #include "app/picture_title.h"
 #include "app/render_options_cli.h"
 #include "core/atomic_file.h"
@@ -19,6 +20,89 @@
 
 namespace isocurv::app {
 
+namespace {
+
+/// One volume -> the folder `dir` with <stem>.<format> (every curvature array), <stem>.png,
+/// stats.json and, with --lines, <stem>-lines.vtp, written together or not at all; returns the
+/// stats.json report.
+nlohmann::json run_one(const std::string& in, const std::string& dir, const CommonOptions& o,
+                       const RenderCli& ro, const lines::Options& lo, const std::string& format) {
+  namespace fs = std::filesystem;
+  StageTimer timer;
+  Surface s =
+      load_surface(in, o, timer);  // fails (no surface, ...) before any output folder is made
+  s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer,
+                               &s.normals, &s.estimator);
+  std::optional<lines::Polylines> poly;  // drawn on the PNG and written as <name>-lines.vtp
+  // The folder is made now, and removed again if it was new and the outputs fail; the outputs
+  // appear together or not at all.
+  const bool new_folder = !fs::exists(dir);
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir)) throw Error(dir, "cannot create the output folder: " + ec.message());
+  struct RemoveIfNew {
+    bool armed;
+    std::string dir;
+    ~RemoveIfNew() {
+      std::error_code ignored;
+      if (armed) std::filesystem::remove(dir, ignored);  // only when still empty
+    }
+  } cleanup{new_folder, dir};
+  std::string stem = fs::path(in).filename().string();
+  stem = stem.substr(0, stem.find('.'));
+  const std::string mesh_path = (fs::path(dir) / (stem + "." + format)).string();
+  const std::string png_path = (fs::path(dir) / (stem + ".png")).string();
+  const std::string stats_path = (fs::path(dir) / "stats.json").string();
+  const std::string lines_path = (fs::path(dir) / (stem + "-lines.vtp")).string();
+  AtomicFileSet outputs;
+  timer.start("write");
+  std::uint64_t mesh_bytes = 0;
+  outputs.write(mesh_path, [&](const std::string& tmp) {
+    io::write_mesh(tmp, s.mesh, &*s.field, o.compress);
+    mesh_bytes = file_bytes(tmp);
+  });
+  timer.start("render");
+  const viz::RenderOptions opts = render_options_for(ro, in, s.isovalue, estimator_title(s.estimator),
+                                                     s.volume ? s.volume->format : "");
+  viz::LinesForCamera lines_for;
+  if (lo.lines.any())
+    lines_for = [&](const Camera& cam) {
+      poly = lines::join_segments(extract_lines(s.mesh, *s.field, cam, lo, o, timer));
+      return *poly;
+    };
+  outputs.write(png_path,
+                [&](const std::string& tmp) { viz::render_png(tmp, s.mesh, *s.field, opts, lines_for); });
+  if (!ro.dirs_out.empty())
+    outputs.write(ro.dirs_out, [&](const std::string& tmp) {
+      viz::write_glyphs(tmp, viz::direction_glyphs(s.mesh, *s.field, viz::glyph_options(opts)));
+    });
+  if (poly) {
+    timer.start("write_lines");
+    outputs.write(lines_path, [&](const std::string& tmp) { lines::write_vtp(tmp, *poly); });
+  }
+  timer.stop();
+  nlohmann::json r = surface_report(s);
+  r["input"] = in;
+  r["mesh"] = mesh_path;
+  r["png"] = png_path;
+  r["mesh_bytes"] = mesh_bytes;
+  r["compression"] = io::to_string(o.compress);
+  if (poly) {
+    r["lines"] = lines_path;
+    r["polylines"] = poly->line_count();
+  }
+  r["device"] = device_name(o);
+  r["programs"] = program_report();
+  r["timings_ms"] = timer.json();
+  outputs.write(stats_path,
+                [&](const std::string& tmp) { write_text_file(tmp, r.dump(2) + "\n"); });
+  outputs.commit();
+  cleanup.armed = false;
+  return r;
+}
+
+}  // namespace
+
 void register_run(CLI::App& app) {
   auto* cmd = app.add_subcommand("run", "Volume -> isosurface -> curvature -> DIR/<name>.vtp, DIR/<name>.png and DIR/stats.json");
   cmd->footer("Example: isocurv run lobster.vol --iso 40 -o out/\n"
@@ -27,6 +111,7 @@ void register_run(CLI::App& app) {
   static CommonOptions o;
   static RenderCli ro;
   static BatchCli b;
+  static SeriesCli series;
   static std::string dir, format = "vtp";
   add_batch_options(*cmd, b, "VOLUME", "Volume file", {});
   cmd->add_option("-o,--output", dir, "Output folder (created if missing)")->required();
@@ -40,6 +125,7 @@ void register_run(CLI::App& app) {
   add_render_options(*cmd, ro);
   static LineCli lc;
   add_line_options(*cmd, lc, "");
+  add_series_options(*cmd, series);
   cmd->callback([] {
     namespace fs = std::filesystem;
     lines::Options lo;
@@ -55,86 +141,30 @@ void register_run(CLI::App& app) {
     if (!ro.dirs_out.empty()) viz::check_glyphs_path(ro.dirs_out);
     // A bad --camera fails early, before any batch entry or output folder.
     if (!ro.camera_file.empty()) viz::load_camera(ro.camera_file);
+    if (series.enabled) {
+      if (!ro.dirs_out.empty())
+        throw Error(ro.dirs_out, "--dirs-out names one file: not with --time-series");
+      require_series_cli(b, o);
+      run_series(b.inputs, series, {"run", dir, /*folder_per_frame=*/true, format}, o,
+                 [&lo](const SeriesFrame& f, CommonOptions& fo, const std::string& path) {
+                   return run_one(f.path, path, fo, ro, lo, format);
+                 });
+      return;
+    }
     if (lo.lines.any() && (b.inputs.size() > 1 || b.iso.find(',') != std::string::npos))
       throw Error("--lines: one input at one isovalue (not in batches)");
     if (run_as_batch(b, o, BatchKind::run, dir, &ro, format)) return;
     const std::string& in = b.inputs.front();
-    StageTimer timer;
-    Surface s =
-        load_surface(in, o, timer);  // fails (no surface, ...) before any output folder is made
-    s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer,
-                                 &s.normals, &s.estimator);
-    std::optional<lines::Polylines> poly;  // drawn on the PNG and written as <name>-lines.vtp
-    // The folder is made now, and removed again if it was new and the outputs fail; the outputs
-    // appear together or not at all.
-    const bool new_folder = !fs::exists(dir);
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (ec || !fs::is_directory(dir)) throw Error(dir, "cannot create the output folder: " + ec.message());
-    struct RemoveIfNew {
-      bool armed;
-      ~RemoveIfNew() {
-        std::error_code ignored;
-        if (armed) fs::remove(dir, ignored);  // only when still empty
-      }
-    } cleanup{new_folder};
-    std::string stem = fs::path(in).filename().string();
-    stem = stem.substr(0, stem.find('.'));
-    const std::string mesh_path = (fs::path(dir) / (stem + "." + format)).string();
-    const std::string png_path = (fs::path(dir) / (stem + ".png")).string();
-    const std::string stats_path = (fs::path(dir) / "stats.json").string();
-    const std::string lines_path = (fs::path(dir) / (stem + "-lines.vtp")).string();
-    AtomicFileSet outputs;
-    timer.start("write");
-    std::uint64_t mesh_bytes = 0;
-    outputs.write(mesh_path, [&](const std::string& tmp) {
-      io::write_mesh(tmp, s.mesh, &*s.field, o.compress);
-      mesh_bytes = file_bytes(tmp);
-    });
-    timer.start("render");
-    const viz::RenderOptions opts = render_options_for(ro, in, s.isovalue, estimator_title(s.estimator),
-                                                       s.volume ? s.volume->format : "");
-    viz::LinesForCamera lines_for;
-    if (lo.lines.any())
-      lines_for = [&](const Camera& cam) {
-        poly = lines::join_segments(extract_lines(s.mesh, *s.field, cam, lo, o, timer));
-        return *poly;
-      };
-    outputs.write(png_path,
-                  [&](const std::string& tmp) { viz::render_png(tmp, s.mesh, *s.field, opts, lines_for); });
-    if (!ro.dirs_out.empty())
-      outputs.write(ro.dirs_out, [&](const std::string& tmp) {
-        viz::write_glyphs(tmp, viz::direction_glyphs(s.mesh, *s.field, viz::glyph_options(opts)));
-      });
-    if (poly) {
-      timer.start("write_lines");
-      outputs.write(lines_path, [&](const std::string& tmp) { lines::write_vtp(tmp, *poly); });
-    }
-    timer.stop();
-    nlohmann::json r = surface_report(s);
-    r["input"] = in;
-    r["mesh"] = mesh_path;
-    r["png"] = png_path;
-    r["mesh_bytes"] = mesh_bytes;
-    r["compression"] = io::to_string(o.compress);
-    if (poly) {
-      r["lines"] = lines_path;
-      r["polylines"] = poly->line_count();
-    }
-    r["device"] = device_name(o);
-    r["programs"] = program_report();
-    r["timings_ms"] = timer.json();
-    outputs.write(stats_path,
-                  [&](const std::string& tmp) { write_text_file(tmp, r.dump(2) + "\n"); });
-    outputs.commit();
-    cleanup.armed = false;
+    const nlohmann::json r = run_one(in, dir, o, ro, lo, format);
     if (o.json) {
       std::cout << r.dump(2) << "\n";
     } else if (!o.quiet) {
-      std::cout << "isosurface at " << s.isovalue << ": " << r["vertices"] << " vertices, " << r["triangles"]
-                << " triangles\n  mesh with curvature: " << mesh_path << "\n  picture:             " << png_path
-                << "\n  statistics:          " << stats_path << "\n";
-      if (poly) std::cout << "  lines:               " << lines_path << "\n";
+      std::cout << "isosurface at " << r.value("isovalue", 0.0f) << ": " << r["vertices"] << " vertices, " << r["triangles"]
+                << " triangles\n  mesh with curvature: " << r["mesh"].get<std::string>()
+                << "\n  picture:             " << r["png"].get<std::string>()
+                << "\n  statistics:          " << (fs::path(dir) / "stats.json").string() << "\n";
+      if (r.contains("lines"))
+        std::cout << "  lines:               " << r["lines"].get<std::string>() << "\n";
     }
   });
 }

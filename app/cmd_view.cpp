@@ -6,6 +6,7 @@
 #include "app/commands.h"
 #include "app/line_options_cli.h"
 #include "app/pipeline.h"
+#include "app/series.h"
 #include "app/picture_title.h"
 #include "app/render_options_cli.h"
 #include "core/error.h"
@@ -27,9 +28,14 @@ void register_view(CLI::App& app) {
               "render --camera), s saves a screenshot, q quits. Needs an X display.");
   static CommonOptions o;
   static RenderCli ro;
-  static std::string in, screenshots = "isocurv-screenshot", camera_out = "isocurv-camera.json",
+  static std::vector<std::string> ins;
+  static SeriesCli series;
+  static std::string screenshots = "isocurv-screenshot", camera_out = "isocurv-camera.json",
                          surface_out = "isocurv-surface.vtp";
-  cmd->add_option("VOLUME", in, "Volume file")->required();
+  cmd->add_option("VOLUME", ins,
+                  "Volume file (several, a quoted glob or a multi-grid .vdb with --time-series: "
+                  "the frames of a series)")
+      ->required();
   cmd->add_option("--screenshots", screenshots, "'s' writes PREFIX-NNN.png")->capture_default_str();
   cmd->add_option("--camera-out", camera_out, "'k' writes the camera here")->capture_default_str();
   cmd->add_option("--surface-out", surface_out, "The path 'w' proposes for the surface (.vtp or .ply)")
@@ -41,6 +47,7 @@ void register_view(CLI::App& app) {
   add_line_options(*cmd, lc, "contours,suggestive");
   static bool show_lines = false;
   cmd->add_flag("--show-lines", show_lines, "Start with the lines on (else press l)")->group("Lines");
+  add_series_options(*cmd, series);
   cmd->callback([] {
     lines::Options lo;
     try {
@@ -48,14 +55,45 @@ void register_view(CLI::App& app) {
     } catch (const Error& e) {
       throw CLI::ValidationError("--lines", e.what());
     }
-    StageTimer timer;
+    if (ins.size() > 1 && !series.enabled)
+      throw Error("isocurv view takes one volume (several are the frames of a series with --time-series)");
+    // The frames (one without --time-series); the current one's volume and mesher.
+    const std::vector<SeriesFrame> frames =
+        series.enabled ? series_frames(ins, o.volume.grid, series.time_step)
+                       : std::vector<SeriesFrame>{{ins.front(), "", "", 0}};
+    static std::string in;
+    in = frames.front().path;
+    struct Current {
+      std::shared_ptr<volume::Volume> vol;
+      std::shared_ptr<mc::Mesher> mesher;
+    };
+    auto cur = std::make_shared<Current>();
+    auto load_frame = [frames, cur](int k, float* iso) {
+      CommonOptions fo = o;
+      if (!frames[k].grid.empty()) fo.volume.grid = frames[k].grid;
+      if (iso == nullptr) fo.iso.reset();  // a later frame: its range is checked by extraction
+      StageTimer timer;
+      float ignored = 0;
+      auto vol = std::make_shared<volume::Volume>(load_volume(frames[k].path, fo, timer, iso ? iso : &ignored));
+      // The OpenCL mesher keeps its per-block ranges between slider moves; the reference re-reads
+      // the whole volume each time (slow, but it needs no OpenCL).
+      std::shared_ptr<mc::Mesher> mesher;
+      if (!reference_device(o)) mesher = std::make_shared<mc::Mesher>(*vol, device_for(o));
+      cur->vol = vol;
+      cur->mesher = mesher;
+      in = frames[k].path;
+    };
     float iso = 0;
-    auto vol = std::make_shared<volume::Volume>(load_volume(in, o, timer, &iso));
-    // The OpenCL mesher keeps its per-block ranges between slider moves; the reference re-reads
-    // the whole volume each time (slow, but it needs no OpenCL).
-    std::shared_ptr<mc::Mesher> mesher;
-    if (!reference_device(o)) mesher = std::make_shared<mc::Mesher>(*vol, device_for(o));
+    load_frame(0, &iso);
+    auto vol = cur->vol;
     viz::ExplorerSetup setup;
+    if (frames.size() > 1) {
+      setup.frames = static_cast<int>(frames.size());
+      setup.set_frame = [load_frame](int k) { load_frame(k, nullptr); };
+      setup.frame_label = [frames](int k) {
+        return frames[k].label + ", t = " + format_number(frames[k].time);
+      };
+    }
     setup.isovalue = iso;
     setup.min_value = static_cast<float>(vol->stats.min);
     setup.max_value = static_cast<float>(vol->stats.max);
@@ -64,6 +102,7 @@ void register_view(CLI::App& app) {
       setup.title_for = [](float value, const std::string& quantity) {
         return picture_title(in, quantity, value, estimator_title(o));
       };
+    vol.reset();  // the frame shown is held by cur (and replaced by set_frame)
     setup.screenshot_prefix = screenshots;
     setup.camera_path = camera_out;
     setup.surface_path = surface_out;
@@ -85,7 +124,9 @@ void register_view(CLI::App& app) {
       }
       return viz::Surface{std::move(s.mesh), std::move(*s.field), 0, "opened " + path};
     };
-    setup.surface = [vol, mesher](float value) {
+    setup.surface = [cur](float value) {
+      const std::shared_ptr<volume::Volume> vol = cur->vol;
+      const std::shared_ptr<mc::Mesher> mesher = cur->mesher;
       const auto t0 = std::chrono::steady_clock::now();
       mc::Options mo;
       mo.cap = o.cap;

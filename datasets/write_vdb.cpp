@@ -32,4 +32,31 @@ void write_vdb(const Field& field, const volume::Volume& v, const std::string& p
   }
 }
 
+void write_vdb_grids(const std::vector<NamedGrid>& grids, const std::string& path) {
+  openvdb::initialize();
+  openvdb::GridCPtrVec out;
+  for (const NamedGrid& g : grids) {
+    if (!g.field || !g.volume || !g.volume->grid) throw Error(path, "no grid to write");
+    openvdb::FloatGrid::Ptr grid = g.volume->grid->copy();
+    grid->setName(g.name);
+    grid->insertMeta("isovalue", openvdb::DoubleMetadata(g.field->isovalue()));
+    grid->insertMeta("inside", openvdb::StringMetadata(
+                                   g.field->inside() == volume::Inside::Below ? "below" : "above"));
+    grid->insertMeta("field", openvdb::StringMetadata(g.field->name()));
+    grid->insertMeta("description", openvdb::StringMetadata(g.field->info().description));
+    grid->insertMeta("time", openvdb::DoubleMetadata(g.time));
+    grid->setSaveFloatAsHalf(false);
+    out.push_back(grid);
+  }
+  try {
+    write_atomically(path, [&](const std::string& tmp) {
+      openvdb::io::File file(tmp);
+      file.write(out);
+      file.close();
+    });
+  } catch (const openvdb::Exception& e) {
+    throw Error(path, std::string("cannot write .vdb: ") + e.what());
+  }
+}
+
 }  // namespace isocurv::datasets

@@ -18,6 +18,7 @@
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
 #include <vtkSliderRepresentation2D.h>
+#include <vtkProperty.h>
 #include <vtkSliderWidget.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
@@ -80,6 +81,7 @@ class Explorer {
     status_->GetPositionCoordinate()->SetValue(0.01, 0.01);  // bottom left, under the slider
     scene_.overlay()->AddViewProp(status_);
     make_slider();
+    if (has_time()) make_time_slider();
     relayout(setup_.view.width, setup_.view.height);
     if (setup_.lines) {
       lines_on_ = setup_.show_lines;
@@ -97,15 +99,20 @@ class Explorer {
 
     interactor_->Initialize();
     slider_->EnabledOn();
-    if (!setup_.script.empty()) {
+    if (has_time()) time_slider_->EnabledOn();
+    if (!setup_.script.empty() || has_time()) {
       timer_callback_->SetCallback(&Explorer::on_timer);
       timer_callback_->SetClientData(this);
       interactor_->AddObserver(vtkCommand::TimerEvent, timer_callback_);
-      interactor_->CreateRepeatingTimer(kScriptTickMs);
     }
+    if (!setup_.script.empty()) script_timer_ = interactor_->CreateRepeatingTimer(kScriptTickMs);
+    if (has_time())
+      play_timer_ = interactor_->CreateRepeatingTimer(
+          static_cast<unsigned long>(1000.0 / std::max(0.5, std::min(120.0, setup_.play_fps))));
     window_->Render();
     interactor_->Start();
     slider_->EnabledOff();
+    if (has_time()) time_slider_->EnabledOff();
     window_->Finalize();
   }
 
@@ -151,6 +158,12 @@ class Explorer {
         else message_ = "saving the surface is not available here";
         break;
       case 'k': save_camera_file(); break;
+      case ' ':
+        if (!has_time()) return false;
+        playing_ = !playing_;
+        refresh_status();
+        window_->Render();
+        break;
       case 'l':
         if (!setup_.lines) return false;
         lines_on_ = !lines_on_;
@@ -245,15 +258,21 @@ class Explorer {
   void relayout(int width, int height) {
     const int font = std::max(11, static_cast<int>(height * kStatusFontPerPixel));
     status_->GetTextProperty()->SetFontSize(font);
-    const int status_px = static_cast<int>(kStatusLines * font * 1.25);
+    const int status_px = static_cast<int>((kStatusLines + (has_time() ? 1 : 0)) * font * 1.25);
     const int slider_px = std::max(static_cast<int>(kSliderBand * height), 2 * font);
     scene_.set_size(width, height);
-    scene_.set_bottom_reserved(status_px + slider_px);
+    scene_.set_bottom_reserved(status_px + slider_px * (has_time() ? 2 : 1));
     auto* rep = static_cast<vtkSliderRepresentation2D*>(slider_->GetRepresentation());
     const double y = (status_px + 0.5 * slider_px) / double(height);
     const double right = scene_.layout().surface.x1 / double(width);
     rep->GetPoint1Coordinate()->SetValue(0.08, y);
     rep->GetPoint2Coordinate()->SetValue(std::max(0.3, right - 0.08), y);
+    if (has_time()) {  // the time slider in a band of its own above the isovalue's
+      auto* t = static_cast<vtkSliderRepresentation2D*>(time_slider_->GetRepresentation());
+      const double yt = (status_px + 1.5 * slider_px) / double(height);
+      t->GetPoint1Coordinate()->SetValue(0.08, yt);
+      t->GetPoint2Coordinate()->SetValue(std::max(0.3, right - 0.08), yt);
+    }
   }
 
   static void on_resize(vtkObject*, unsigned long, void* self, void*) {
@@ -319,6 +338,69 @@ class Explorer {
     window_->Render();
   }
 
+  bool has_time() const { return setup_.frames >= 2 && setup_.set_frame; }
+
+  /// Makes frame k current and re-extracts at the current isovalue; on failure keeps the frame
+  /// shown and reports on the status line (and stops playing).
+  void go_to_frame(int k) {
+    k = std::max(0, std::min(setup_.frames - 1, k));
+    if (k == frame_) return;
+    try {
+      setup_.set_frame(k);
+      Surface s = call(iso_);
+      scene_.set_surface(s.mesh, s.field);
+      frame_ = k;
+      shown_.clear();
+      note_update(s);
+      retitle();
+    } catch (const Error& e) {
+      message_ = "frame " + std::to_string(k) + ": " + e.what();
+      playing_ = false;
+      try {
+        setup_.set_frame(frame_);  // back to the frame shown, so slider moves cut it again
+      } catch (const Error&) {
+      }
+    }
+    static_cast<vtkSliderRepresentation2D*>(time_slider_->GetRepresentation())->SetValue(frame_);
+    refresh_status();
+    window_->Render();
+  }
+
+  void make_time_slider() {
+    vtkNew<vtkSliderRepresentation2D> rep;
+    rep->SetMinimumValue(0);
+    rep->SetMaximumValue(setup_.frames - 1);
+    rep->SetValue(0);
+    rep->SetTitleText("");
+    rep->SetLabelFormat("%.0f");
+    rep->GetPoint1Coordinate()->SetCoordinateSystemToNormalizedDisplay();
+    rep->GetPoint2Coordinate()->SetCoordinateSystemToNormalizedDisplay();
+    rep->SetSliderLength(0.02);
+    rep->SetSliderWidth(0.03);
+    rep->SetTubeWidth(0.008);
+    rep->SetEndCapLength(0.01);
+    rep->SetEndCapWidth(0.03);
+    rep->SetLabelHeight(0.022);
+    rep->GetTubeProperty()->SetColor(0.45, 0.6, 0.9);
+    time_slider_->SetInteractor(interactor_);
+    time_slider_->KeyPressActivationOff();
+    time_slider_->SetRepresentation(rep);
+    time_slider_->SetCurrentRenderer(scene_.overlay());
+    time_slider_->SetDefaultRenderer(scene_.overlay());
+    time_slider_->SetAnimationModeToJump();
+    time_callback_->SetCallback(&Explorer::on_time_slider);
+    time_callback_->SetClientData(this);
+    time_slider_->AddObserver(vtkCommand::InteractionEvent, time_callback_);
+    time_slider_->AddObserver(vtkCommand::EndInteractionEvent, time_callback_);
+  }
+
+  static void on_time_slider(vtkObject*, unsigned long event, void* self, void*) {
+    auto* e = static_cast<Explorer*>(self);
+    if (event == vtkCommand::InteractionEvent && e->last_ms_ > kLiveUpdateMs) return;
+    const double v = static_cast<vtkSliderRepresentation2D*>(e->time_slider_->GetRepresentation())->GetValue();
+    e->go_to_frame(static_cast<int>(std::lround(v)));
+  }
+
   static std::string format(double v) {
     char text[32];
     std::snprintf(text, sizeof text, "%.5g", v);
@@ -341,6 +423,10 @@ class Explorer {
             "  [d] directions: " + (o.dirs ? "on" : "off") + "  [v] view: " + to_string(view_) +
             "\n[r] reset view  [i] isovalue  [o] open  [w] save  [k] camera  [s] screenshot";
     if (setup_.lines) line += std::string("  [l] lines: ") + (lines_on_ ? "on" : "off");
+    if (has_time())
+      line += "\nframe " + std::to_string(frame_) + " of " + std::to_string(setup_.frames) +
+              (setup_.frame_label ? " (" + setup_.frame_label(frame_) + ")" : "") +
+              (playing_ ? "   [space] pause" : "   [space] play");
     static const char* kPrompts[] = {"", "isovalue: ", "open mesh: ", "save surface as: "};
     if (entry_ != Entry::none)
       line += "\n" + std::string(kPrompts[static_cast<int>(entry_)]) + typed_ + "_   (Enter / Escape)";
@@ -387,7 +473,15 @@ class Explorer {
     e->update(e->slider_value());
   }
 
-  static void on_timer(vtkObject*, unsigned long, void* self, void*) { static_cast<Explorer*>(self)->step(); }
+  static void on_timer(vtkObject*, unsigned long, void* self, void* data) {
+    auto* e = static_cast<Explorer*>(self);
+    const int id = data ? *static_cast<int*>(data) : -1;
+    if (id == e->play_timer_) {
+      if (e->playing_ && e->entry_ == Entry::none) e->go_to_frame((e->frame_ + 1) % e->setup_.frames);
+      return;
+    }
+    if (id == e->script_timer_) e->step();
+  }
 
   /// Before each frame: new lines when they are on and the camera or the surface changed.
   static void on_render_start(vtkObject*, unsigned long, void* self, void*) {
@@ -437,6 +531,12 @@ class Explorer {
       case ExplorerAction::Kind::Screenshot:
         screenshot(a.path);
         break;
+      case ExplorerAction::Kind::SetFrame:
+        if (!has_time()) break;
+        static_cast<vtkSliderRepresentation2D*>(time_slider_->GetRepresentation())->SetValue(a.frame);
+        time_slider_->InvokeEvent(vtkCommand::InteractionEvent);
+        time_slider_->InvokeEvent(vtkCommand::EndInteractionEvent);
+        break;
     }
   }
 
@@ -466,6 +566,11 @@ class Explorer {
   vtkNew<vtkRenderWindowInteractor> interactor_;
   vtkNew<ExplorerStyle> style_;
   vtkNew<vtkSliderWidget> slider_;
+  vtkNew<vtkSliderWidget> time_slider_;  // frames of a time series (setup.frames >= 2)
+  vtkNew<vtkCallbackCommand> time_callback_;
+  int frame_ = 0;           // frame shown
+  bool playing_ = false;    // space
+  int play_timer_ = -1, script_timer_ = -1;
   vtkNew<vtkTextActor> status_;
   vtkNew<vtkCallbackCommand> slider_callback_;
   vtkNew<vtkCallbackCommand> timer_callback_;

@@ -24,18 +24,20 @@ struct Surface {
 
 /// One step of a scripted run (for tests and demos), executed on a timer inside the event loop.
 struct ExplorerAction {
-  enum class Kind { SetIsovalue, Key, Type, Screenshot, Resize };
+  enum class Kind { SetIsovalue, Key, Type, Screenshot, Resize, SetFrame };
   Kind kind = Kind::Key;
   float isovalue = 0;  ///< SetIsovalue: moves the slider there, as a user would
   char key = 0;        ///< Key: a key press ('c', 'a', 'd', 's', 'r', '\r' for Enter, ...)
   std::string path;    ///< Screenshot: PNG path; Type: the characters typed, one key each
   int width = 0, height = 0;  ///< Resize: the window's new size
+  int frame = 0;              ///< SetFrame: moves the time slider there, as a user would
 
   static ExplorerAction set_isovalue(float iso) { return {Kind::SetIsovalue, iso, 0, {}, 0, 0}; }
   static ExplorerAction press(char key) { return {Kind::Key, 0, key, {}, 0, 0}; }
   static ExplorerAction type(std::string text) { return {Kind::Type, 0, 0, std::move(text), 0, 0}; }
   static ExplorerAction screenshot(std::string path) { return {Kind::Screenshot, 0, 0, std::move(path), 0, 0}; }
   static ExplorerAction resize(int w, int h) { return {Kind::Resize, 0, 0, {}, w, h}; }
+  static ExplorerAction set_frame(int f) { return {Kind::SetFrame, 0, 0, {}, 0, 0, f}; }
 };
 
 /// Everything the explorer needs.
@@ -60,6 +62,16 @@ struct ExplorerSetup {
   /// last call (`surface_changed` false: only the camera moved). Empty: 'l' does nothing.
   std::function<lines::Polylines(const Surface& surface, const Camera& camera, bool surface_changed)> lines;
   bool show_lines = false;  ///< lines on from the start (needs `lines`)
+  /// A time series (isocurv view --time-series): with frames >= 2 a time slider (frames 0 ..
+  /// frames - 1) appears above the isovalue slider and space plays / pauses (play_fps frames a
+  /// second at most, wrapping around). Changing the frame calls set_frame(k), which makes frame k
+  /// current (may throw Error: the previous frame then stays), then surface(iso) at the current
+  /// isovalue.
+  int frames = 0;
+  std::function<void(int frame)> set_frame;
+  double play_fps = 10;
+  /// When set: the text the status line shows for frame k (e.g. its file and time).
+  std::function<std::string(int frame)> frame_label;
   /// When non-empty: run these actions (one per timer tick, ~100 ms apart) and close the window.
   std::vector<ExplorerAction> script;
 };
@@ -71,7 +83,7 @@ struct ExplorerSetup {
 /// glyphs, l toggles the feature lines (when setup.lines is given), v cycles the named views (iso, +x, -x, +y, -y, +z, -z) and r resets the camera to the
 /// current one, i types an isovalue, o types a mesh file to open, w types a path to save the
 /// surface shown (proposing surface_path), k saves the camera to camera_path, s saves a
-/// screenshot (name printed on stdout). While typing, Enter applies, Escape cancels, BackSpace
+/// screenshot (name printed on stdout), space plays / pauses a time series (setup.frames). While typing, Enter applies, Escape cancels, BackSpace
 /// deletes. The mouse rotates, pans and zooms. Dragging the slider re-runs the callback
 /// live while updates take under 150 ms, otherwise on release. A failed update (Error from the
 /// callback) is shown on the status line and the previous surface stays. Interactive use needs an X

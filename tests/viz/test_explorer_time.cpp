@@ -1,0 +1,100 @@
+// The explorer's time slider and play/pause (space) for a time series, driven by a script.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+
+#include "core/error.h"
+#include "png_stats.h"
+#include "test_surfaces.h"
+#include "viz/explorer.h"
+
+namespace fs = std::filesystem;
+using namespace isocurv;
+
+namespace {
+
+fs::path fresh_time_dir(const std::string& name) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("isocurv_explorer_time_" + std::to_string(::getpid()) + "_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+/// A series of tori whose tube radius grows with the frame; `frame` is the one set_frame made
+/// current, and every surface call is recorded as (frame, isovalue).
+struct TorusSeries {
+  int frame = 0;
+  std::vector<std::pair<int, float>> calls;
+  std::vector<int> set_calls;
+};
+
+viz::ExplorerSetup series_setup(TorusSeries& ts, int frames) {
+  viz::ExplorerSetup setup;
+  setup.isovalue = 0.3f;
+  setup.min_value = 0.1f;
+  setup.max_value = 0.6f;
+  setup.view.width = 480;
+  setup.view.height = 360;
+  setup.frames = frames;
+  setup.play_fps = 50;
+  setup.set_frame = [&ts](int k) {
+    ts.set_calls.push_back(k);
+    if (k == 3) throw Error("frame 3 is broken");
+    ts.frame = k;
+  };
+  setup.frame_label = [](int k) { return "torus_" + std::to_string(k); };
+  setup.surface = [&ts](float iso) {
+    ts.calls.emplace_back(ts.frame, iso);
+    auto t = test::torus(1.f, iso * (1 + 0.3f * ts.frame), 64, 32);
+    return viz::Surface{std::move(t.mesh), std::move(t.field), 0, ""};
+  };
+  return setup;
+}
+
+TEST(VizExplorerTime, TimeSliderReextractsAtTheCurrentIsovalue) {
+  const fs::path dir = fresh_time_dir("slider");
+  TorusSeries ts;
+  viz::ExplorerSetup setup = series_setup(ts, 5);
+  const std::string f0 = (dir / "f0.png").string(), f2 = (dir / "f2.png").string(),
+                    bad = (dir / "bad.png").string();  // the status line names the failure
+  using A = viz::ExplorerAction;
+  setup.script = {A::screenshot(f0), A::set_isovalue(0.35f), A::set_frame(2), A::screenshot(f2),
+                  A::set_frame(3), A::screenshot(bad)};
+  viz::run_explorer(setup);
+  // Frame 0 at 0.3, frame 0 at 0.35 (the slider), frame 2 at 0.35; frame 3 fails and 2 stays.
+  ASSERT_GE(ts.calls.size(), 3u);
+  EXPECT_EQ(ts.calls[0], std::make_pair(0, 0.3f));
+  EXPECT_EQ(ts.calls[1], std::make_pair(0, 0.35f));
+  EXPECT_EQ(ts.calls[2], std::make_pair(2, 0.35f)) << "a new frame is cut at the current isovalue";
+  EXPECT_EQ(ts.calls.size(), 3u) << "the broken frame must not reach the surface callback";
+  EXPECT_EQ(ts.set_calls, (std::vector<int>{2, 3, 2})) << "after a failure the shown frame is made current again";
+  EXPECT_GT(test::pixel_difference(f0, f2), 2000) << "the frame change did not change the image";
+  if (!HasFailure()) fs::remove_all(dir);
+}
+
+TEST(VizExplorerTime, SpacePlaysAndPauses) {
+  TorusSeries ts;
+  viz::ExplorerSetup setup = series_setup(ts, 3);  // frames 0, 1, 2: never the broken 3
+  using A = viz::ExplorerAction;
+  setup.script = {A::press(' '), A::press('c'), A::press('c'), A::press('c'), A::press(' ')};
+  viz::run_explorer(setup);
+  // While playing (about 400 ms at up to 50 frames a second) frames advance and wrap around.
+  ASSERT_GE(ts.set_calls.size(), 2u) << "space did not play";
+  for (std::size_t i = 0; i < ts.set_calls.size(); ++i) EXPECT_EQ(ts.set_calls[i], int((i + 1) % 3));
+  const std::size_t after_pause = ts.set_calls.size();
+  EXPECT_LE(after_pause, 40u);
+}
+
+TEST(VizExplorerTime, OneFrameHasNoTimeSlider) {
+  TorusSeries ts;
+  viz::ExplorerSetup setup = series_setup(ts, 1);
+  using A = viz::ExplorerAction;
+  setup.script = {A::set_frame(2), A::press(' ')};
+  viz::run_explorer(setup);
+  EXPECT_TRUE(ts.set_calls.empty());
+  EXPECT_EQ(ts.calls.size(), 1u);
+}
+
+}  // namespace
