@@ -18,7 +18,7 @@
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
 #include <vtkSliderRepresentation2D.h>
-#include <vtkProperty.h>
+#include <vtkProperty2D.h>
 #include <vtkSliderWidget.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>

@@ -202,8 +202,8 @@ TEST(SeriesCli, RunFeaturesAndLinesOverASeries) {
     ASSERT_TRUE(r.ok()) << r.describe();
     const auto pvd = io::read_pvd(dir / "run/series.pvd");
     ASSERT_EQ(pvd.size(), 2u);
-    EXPECT_EQ(fs::path(pvd[1].file).filename().string(), "gyroid_phase.vtp");
-    EXPECT_TRUE(fs::exists(dir / "run/gyroid_phase_5/gyroid_phase.png"));
+    EXPECT_EQ(fs::path(pvd[1].file).string(), dir / "run/gyroid_phase_5/gyroid_phase_5.vtp");
+    EXPECT_TRUE(fs::exists(dir / "run/gyroid_phase_5/gyroid_phase_5.png"));
     EXPECT_TRUE(fs::exists(dir / "run/gyroid_phase_5/stats.json"));
   }
   {
