@@ -4,13 +4,13 @@
 
 #include <algorithm>
 #include <chrono>
-#include <optional>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "core/error.h"
@@ -123,7 +123,8 @@ void run_series(const std::vector<std::string>& inputs, const SeriesCli& cli,
   {
     std::error_code ec;
     if (fs::exists(layout.dir, ec) && !fs::is_directory(layout.dir, ec))
-      throw Error(layout.dir, "the output (-o) of a time series must be a folder, and this is a file");
+      throw Error(layout.dir,
+                  "the output (-o) of a time series must be a folder, and this is a file");
     fs::create_directories(layout.dir, ec);
     if (ec || !fs::is_directory(layout.dir))
       throw Error(layout.dir, "cannot create the output folder: " + ec.message());
@@ -153,9 +154,9 @@ void run_series(const std::vector<std::string>& inputs, const SeriesCli& cli,
     CommonOptions fo = o;
     if (!f.grid.empty()) fo.volume.grid = f.grid;
     fo.iso = iso;
-    const std::string out =
-        (fs::path(layout.dir) / (layout.folder_per_frame ? f.label : f.label + "." + layout.extension))
-            .string();
+    const std::string out = (fs::path(layout.dir) /
+                             (layout.folder_per_frame ? f.label : f.label + "." + layout.extension))
+                                .string();
     nlohmann::json entry = {{"frame", k}, {"time", f.time}, {"input", f.path}};
     if (!f.grid.empty()) entry["grid"] = f.grid;
     const auto t0 = std::chrono::steady_clock::now();

@@ -23,8 +23,9 @@ void add_series_options(CLI::App& cmd, SeriesCli& s);
 
 /// One frame of a series.
 struct SeriesFrame {
-  std::string path;   ///< the file to read
-  std::string grid;   ///< a multi-grid .vdb: the grid of this frame (else empty: --grid or the default)
+  std::string path;  ///< the file to read
+  std::string
+      grid;  ///< a multi-grid .vdb: the grid of this frame (else empty: --grid or the default)
   std::string label;  ///< unique name of the frame's outputs (file stem, or <stem>_<grid>)
   double time = 0;    ///< index * time_step
 };
@@ -48,8 +49,8 @@ using FrameFunction = std::function<nlohmann::json(const SeriesFrame& frame, Com
 
 /// How a command lays out a series.
 struct SeriesLayout {
-  std::string command;       ///< "run", "curvature", ... (for series.json)
-  std::string dir;           ///< -o: the output folder (created if missing)
+  std::string command;            ///< "run", "curvature", ... (for series.json)
+  std::string dir;                ///< -o: the output folder (created if missing)
   bool folder_per_frame = false;  ///< run: each frame writes the folder DIR/<label>/
   std::string extension = "vtp";  ///< of the per-frame file the .pvd lists
 };

@@ -8,6 +8,8 @@
 // and after 100 frames shows that a streamed series does not grow. Not a test: prints a table.
 //
 //   bench_series [--frames N] [--res N] [--passes N]
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -16,8 +18,6 @@
 #include <fstream>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #include "bench/bench_util.h"
 #include "core/cl_device.h"
@@ -66,9 +66,12 @@ std::size_t frame_update(const volume::Volume& v, float iso, Device& dev) {
 int main(int argc, char** argv) {
   int frames = 64, res = 128, passes = 1;
   for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--frames") && i + 1 < argc) frames = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--res") && i + 1 < argc) res = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--passes") && i + 1 < argc) passes = std::atoi(argv[++i]);
+    if (!std::strcmp(argv[i], "--frames") && i + 1 < argc)
+      frames = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--res") && i + 1 < argc)
+      res = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--passes") && i + 1 < argc)
+      passes = std::atoi(argv[++i]);
     else {
       std::fprintf(stderr, "usage: bench_series [--frames N] [--res N] [--passes N]\n");
       return 2;
@@ -76,8 +79,8 @@ int main(int argc, char** argv) {
   }
   Device& dev = Device::default_device();
   const float iso = 0.f;
-  std::printf("bench_series: gyroid_phase, %d frames of %d^3, isovalue %g, device %s\n", frames, res,
-              iso, dev.info().name.c_str());
+  std::printf("bench_series: gyroid_phase, %d frames of %d^3, isovalue %g, device %s\n", frames,
+              res, iso, dev.info().name.c_str());
 
   // Warm-up (program builds) on frame 0.
   const volume::Volume first = frame_volume(0, frames, res);
@@ -150,8 +153,9 @@ int main(int argc, char** argv) {
     if (i == 0) after_one = bench::status_kb("VmHWM:") / 1024.0;
   }
   const double after_100 = bench::status_kb("VmHWM:") / 1024.0;
-  std::printf("peak RSS (VmHWM): after 1 frame %.1f MiB, after 100 frames %.1f MiB (x%.3f; limit "
-              "x1.2)\n",
-              after_one, after_100, after_100 / after_one);
+  std::printf(
+      "peak RSS (VmHWM): after 1 frame %.1f MiB, after 100 frames %.1f MiB (x%.3f; limit "
+      "x1.2)\n",
+      after_one, after_100, after_100 / after_one);
   return 0;
 }

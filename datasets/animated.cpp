@@ -56,7 +56,8 @@ class GyroidPhase final : public Field {
   explicit GyroidPhase(double t)
       : Field({"gyroid_phase",
                "sin(wx + f)cos(wy) + sin(wy)cos(wz) + sin(wz)cos(wx + f), w = 2 pi, f = 2 pi t, "
-               "cut by [-1,1]^3" + at(t),
+               "cut by [-1,1]^3" +
+                   at(t),
                0.0, Inside::Above, cube(1.0), false, std::nullopt}),
         phase_(2 * kPi * t) {}
   double value(const Vector3d& p) const override {
@@ -92,7 +93,8 @@ class Metaballs final : public Field {
   explicit Metaballs(double t)
       : Field({"metaballs",
                "sum of 5 Gaussians exp(-d^2/(2 s^2)), s = 0.22, iso 0.5, centres on Lissajous "
-               "paths of amplitude 0.45" + at(t),
+               "paths of amplitude 0.45" +
+                   at(t),
                0.5, Inside::Above, cube(1.0), true, std::nullopt}) {
     // Frequencies (a, b, c) and phases (p, q, r) in periods of each site's path.
     static const std::array<std::array<double, 6>, 5> paths = {{{1, 2, 3, 0.00, 0.25, 0.10},
@@ -128,7 +130,9 @@ class Metaballs final : public Field {
   }
 
  private:
-  static double gauss(const Vector3d& d) { return std::exp(-d.squaredNorm() / (2 * sigma * sigma)); }
+  static double gauss(const Vector3d& d) {
+    return std::exp(-d.squaredNorm() / (2 * sigma * sigma));
+  }
   std::array<Vector3d, 5> sites_;
 };
 

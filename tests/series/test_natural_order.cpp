@@ -25,8 +25,8 @@ TEST(NaturalOrder, ZeroPaddingIsStrictAndTotal) {
 }
 
 TEST(NaturalOrder, SortsASeries) {
-  std::vector<std::string> names = {"dir/f_10.vdb", "dir/f_2.vdb", "dir/f_1.vdb",
-                                    "dir/f_0.vdb", "dir/f_11.vdb", "dir/f_9.vdb"};
+  std::vector<std::string> names = {"dir/f_10.vdb", "dir/f_2.vdb",  "dir/f_1.vdb",
+                                    "dir/f_0.vdb",  "dir/f_11.vdb", "dir/f_9.vdb"};
   natural_sort(names);
   EXPECT_EQ(names, (std::vector<std::string>{"dir/f_0.vdb", "dir/f_1.vdb", "dir/f_2.vdb",
                                              "dir/f_9.vdb", "dir/f_10.vdb", "dir/f_11.vdb"}));

@@ -89,7 +89,8 @@ TEST(SeriesCli, PulsingSphereFramesPvdAndCurvature) {
     EXPECT_DOUBLE_EQ(e["time"].get<double>(), i * 0.0625);
     EXPECT_DOUBLE_EQ(pvd[i].time, i * 0.0625);
     EXPECT_DOUBLE_EQ(vtk[i].first, i * 0.0625);
-    EXPECT_EQ(fs::path(vtk[i].second).filename().string(), "pulsing_sphere_" + std::to_string(i) + ".vtp");
+    EXPECT_EQ(fs::path(vtk[i].second).filename().string(),
+              "pulsing_sphere_" + std::to_string(i) + ".vtp");
     for (const char* k : {"load", "extract", "curvature", "write"})
       EXPECT_TRUE(e["timings_ms"].contains(k)) << k;
     EXPECT_TRUE(e["curvature"]["H"]["p50"].is_number());
@@ -109,9 +110,10 @@ TEST(SeriesCli, PulsingSphereFramesPvdAndCurvature) {
 
 TEST(SeriesCli, MultiGridVdbGridsAreFramesInNaturalOrder) {
   TempDir dir("grids");
-  const auto r = run_isocurv({"extract", "--time-series", build_dir() + "/datasets/pulsing_sphere_grids.vdb",
-                              "-o", dir / "out", "--json"},
-                             300);
+  const auto r =
+      run_isocurv({"extract", "--time-series", build_dir() + "/datasets/pulsing_sphere_grids.vdb",
+                   "-o", dir / "out", "--json"},
+                  300);
   ASSERT_TRUE(r.ok()) << r.describe();
   const nlohmann::json j = parse_json(r.out, "series --json");
   ASSERT_EQ(j["entries"].size(), std::size_t(kFrames));
@@ -136,7 +138,8 @@ TEST(SeriesCli, BadFrameStopsWithOneLineAndKeepsTheFramesBefore) {
     fs::copy_file(frame_of("metaballs", i), dir / ("in/m_" + std::to_string(i) + ".vdb"));
   const std::string good = read_file(dir / "in/m_2.vdb");
   write_file(dir / "in/m_2.vdb", good.substr(0, good.size() / 2));  // cut in half
-  const auto r = run_isocurv({"curvature", "--time-series", dir / "in/m_*.vdb", "-o", dir / "out"}, 300);
+  const auto r =
+      run_isocurv({"curvature", "--time-series", dir / "in/m_*.vdb", "-o", dir / "out"}, 300);
   EXPECT_EQ(r.exit_code, 1) << r.describe();
   expect_one_error_line(r, "m_2.vdb");
   EXPECT_NE(r.err.find("frame 2 of 4"), std::string::npos) << r.describe();
@@ -163,7 +166,8 @@ TEST(SeriesCli, FlipbookFramesAreBitIdenticalToTheSingleFileCommand) {
                                 dir / ("meshes/blob_" + std::to_string(i) + ".ply")});
     ASSERT_TRUE(e.ok()) << e.describe();
   }
-  const auto r = run_isocurv({"curvature", "--time-series", dir / "meshes/*.ply", "-o", dir / "out", "--quiet"}, 300);
+  const auto r = run_isocurv(
+      {"curvature", "--time-series", dir / "meshes/*.ply", "-o", dir / "out", "--quiet"}, 300);
   ASSERT_TRUE(r.ok()) << r.describe();
   const auto pvd = io::read_pvd(dir / "out/series.pvd");
   ASSERT_EQ(pvd.size(), 5u);
@@ -172,7 +176,8 @@ TEST(SeriesCli, FlipbookFramesAreBitIdenticalToTheSingleFileCommand) {
   for (int i : {0, 3, 6, 9, 12}) {  // natural order: blob_12 last
     const std::string stem = "blob_" + std::to_string(i);
     EXPECT_EQ(fs::path(pvd[k++].file).filename().string(), stem + ".vtp");
-    const auto one = run_isocurv({"curvature", dir / ("meshes/" + stem + ".ply"), "-o", dir / "one.vtp", "--quiet"});
+    const auto one = run_isocurv(
+        {"curvature", dir / ("meshes/" + stem + ".ply"), "-o", dir / "one.vtp", "--quiet"});
     ASSERT_TRUE(one.ok()) << one.describe();
     const std::string a = read_file(dir / ("out/" + stem + ".vtp")), b = read_file(dir / "one.vtp");
     EXPECT_FALSE(a.empty());
@@ -184,7 +189,8 @@ TEST(SeriesCli, FlipbookFramesAreBitIdenticalToTheSingleFileCommand) {
 
 TEST(SeriesCli, RunFeaturesAndLinesOverASeries) {
   TempDir dir("cmds");
-  const std::vector<std::string> frames = {frame_of("gyroid_phase", 0), frame_of("gyroid_phase", 5)};
+  const std::vector<std::string> frames = {frame_of("gyroid_phase", 0),
+                                           frame_of("gyroid_phase", 5)};
   {
     auto args = std::vector<std::string>{"lines", "--time-series"};
     args.insert(args.end(), frames.begin(), frames.end());
@@ -211,10 +217,11 @@ TEST(SeriesCli, RunFeaturesAndLinesOverASeries) {
     fs::create_directories(dir / "small");
     for (int i = 0; i < 2; ++i) {
       const auto field = datasets::make_animated_field("pulsing_sphere", i / 4.0);
-      datasets::write_vdb(*field, datasets::sample(*field, 24), dir / ("small/s_" + std::to_string(i) + ".vdb"));
+      datasets::write_vdb(*field, datasets::sample(*field, 24),
+                          dir / ("small/s_" + std::to_string(i) + ".vdb"));
     }
-    const auto r = run_isocurv({"features", "--time-series", dir / "small/s_*.vdb", "--radius", "0.2",
-                                "--features", "LBE,H_ii", "-o", dir / "feat", "--json"},
+    const auto r = run_isocurv({"features", "--time-series", dir / "small/s_*.vdb", "--radius",
+                                "0.2", "--features", "LBE,H_ii", "-o", dir / "feat", "--json"},
                                300);
     ASSERT_TRUE(r.ok()) << r.describe();
     const nlohmann::json j = parse_json(r.out, "features series");
@@ -229,10 +236,12 @@ TEST(SeriesCli, UsageErrors) {
   auto r = run_isocurv({"curvature", "--time-series", dir / "none_*.vdb", "-o", dir / "out"});
   EXPECT_EQ(r.exit_code, 1) << r.describe();
   expect_one_error_line(r, "no file matches");
-  r = run_isocurv({"extract", "--time-series", frame_of("metaballs", 0), "--iso", "0.4,0.5", "-o", dir / "out"});
+  r = run_isocurv({"extract", "--time-series", frame_of("metaballs", 0), "--iso", "0.4,0.5", "-o",
+                   dir / "out"});
   EXPECT_NE(r.exit_code, 0) << r.describe();
   expect_one_error_line(r, "--iso");
-  r = run_isocurv({"lines", frame_of("metaballs", 0), frame_of("metaballs", 1), "-o", dir / "x.vtp"});
+  r = run_isocurv(
+      {"lines", frame_of("metaballs", 0), frame_of("metaballs", 1), "-o", dir / "x.vtp"});
   EXPECT_NE(r.exit_code, 0) << r.describe();
   expect_one_error_line(r, "--time-series");
 }
@@ -243,16 +252,18 @@ TEST(SeriesCli, PeakMemoryDoesNotGrowWithFrames) {
   constexpr int n = 100;
   for (int i = 0; i < n; ++i) {
     const auto field = datasets::make_animated_field("metaballs", i / double(n));
-    datasets::write_vdb(*field, datasets::sample(*field, 48), dir / ("in/m_" + std::to_string(i) + ".vdb"));
+    datasets::write_vdb(*field, datasets::sample(*field, 48),
+                        dir / ("in/m_" + std::to_string(i) + ".vdb"));
   }
-  const auto r = run_isocurv({"curvature", "--time-series", dir / "in/m_*.vdb", "-o", dir / "out", "--json"}, 600);
+  const auto r = run_isocurv(
+      {"curvature", "--time-series", dir / "in/m_*.vdb", "-o", dir / "out", "--json"}, 600);
   ASSERT_TRUE(r.ok()) << r.describe();
   const nlohmann::json j = parse_json(r.out, "series --json");
   ASSERT_EQ(j["entries"].size(), std::size_t(n));
   const double first = j["entries"][0]["peak_rss_kb"].get<double>();
   const double last = j["entries"][n - 1]["peak_rss_kb"].get<double>();
-  std::printf("peak RSS after 1 frame %.1f MiB, after %d frames %.1f MiB (x%.3f)\n", first / 1024, n,
-              last / 1024, last / first);
+  std::printf("peak RSS after 1 frame %.1f MiB, after %d frames %.1f MiB (x%.3f)\n", first / 1024,
+              n, last / 1024, last / first);
   EXPECT_LE(last, 1.2 * first) << "peak memory grew with the number of frames";
 }
 

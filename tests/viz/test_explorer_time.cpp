@@ -15,8 +15,8 @@ using namespace isocurv;
 namespace {
 
 fs::path fresh_time_dir(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("isocurv_explorer_time_" + std::to_string(::getpid()) + "_" + name);
+  const fs::path dir = fs::temp_directory_path() /
+                       ("isocurv_explorer_time_" + std::to_string(::getpid()) + "_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -60,8 +60,8 @@ TEST(VizExplorerTime, TimeSliderReextractsAtTheCurrentIsovalue) {
   const std::string f0 = (dir / "f0.png").string(), f2 = (dir / "f2.png").string(),
                     bad = (dir / "bad.png").string();  // the status line names the failure
   using A = viz::ExplorerAction;
-  setup.script = {A::screenshot(f0), A::set_isovalue(0.35f), A::set_frame(2), A::screenshot(f2),
-                  A::set_frame(3), A::screenshot(bad)};
+  setup.script = {A::screenshot(f0), A::set_isovalue(0.35f), A::set_frame(2),
+                  A::screenshot(f2), A::set_frame(3),        A::screenshot(bad)};
   viz::run_explorer(setup);
   // Frame 0 at 0.3, frame 0 at 0.35 (the slider), frame 2 at 0.35; frame 3 fails and 2 stays.
   ASSERT_GE(ts.calls.size(), 3u);
@@ -69,7 +69,8 @@ TEST(VizExplorerTime, TimeSliderReextractsAtTheCurrentIsovalue) {
   EXPECT_EQ(ts.calls[1], std::make_pair(0, 0.35f));
   EXPECT_EQ(ts.calls[2], std::make_pair(2, 0.35f)) << "a new frame is cut at the current isovalue";
   EXPECT_EQ(ts.calls.size(), 3u) << "the broken frame must not reach the surface callback";
-  EXPECT_EQ(ts.set_calls, (std::vector<int>{2, 3, 2})) << "after a failure the shown frame is made current again";
+  EXPECT_EQ(ts.set_calls, (std::vector<int>{2, 3, 2}))
+      << "after a failure the shown frame is made current again";
   EXPECT_GT(test::pixel_difference(f0, f2), 2000) << "the frame change did not change the image";
   if (!HasFailure()) fs::remove_all(dir);
 }
@@ -82,7 +83,8 @@ TEST(VizExplorerTime, SpacePlaysAndPauses) {
   viz::run_explorer(setup);
   // While playing (about 400 ms at up to 50 frames a second) frames advance and wrap around.
   ASSERT_GE(ts.set_calls.size(), 2u) << "space did not play";
-  for (std::size_t i = 0; i < ts.set_calls.size(); ++i) EXPECT_EQ(ts.set_calls[i], int((i + 1) % 3));
+  for (std::size_t i = 0; i < ts.set_calls.size(); ++i)
+    EXPECT_EQ(ts.set_calls[i], int((i + 1) % 3));
   const std::size_t after_pause = ts.set_calls.size();
   EXPECT_LE(after_pause, 40u);
 }
