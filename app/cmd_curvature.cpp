@@ -39,6 +39,7 @@ void register_curvature(CLI::App& app) {
   auto* cmd = app.add_subcommand("curvature", "Estimate per-vertex curvature (k1 k2 dir1 dir2 H K dcurv ShapeIndex Curvedness AO) "
                                               "on a volume's isosurface or on a mesh");
   cmd->footer("Example: isocurv curvature torus.vdb -o torus.vtp --normals volume --json\n"
+              "Series: isocurv curvature --time-series 'frames/*.ply' -o out/  (out/<frame>.vtp, out/series.pvd)\n"
               "Normals point out of the object, so a solid sphere of radius R has k1 = k2 = H = +1/R.");
   static CommonOptions o;
   static BatchCli b;

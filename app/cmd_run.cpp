@@ -106,6 +106,7 @@ nlohmann::json run_one(const std::string& in, const std::string& dir, const Comm
 void register_run(CLI::App& app) {
   auto* cmd = app.add_subcommand("run", "Volume -> isosurface -> curvature -> DIR/<name>.vtp, DIR/<name>.png and DIR/stats.json");
   cmd->footer("Example: isocurv run lobster.vol --iso 40 -o out/\n"
+              "Series: isocurv run --time-series 'frames_*.nhdr' -o anim/  (anim/<frame>/, anim/series.pvd for ParaView)\n"
               "stats.json holds counts, timings_ms per stage, the device, the normals (and their face-normal\n"
               "fallbacks), and area-weighted min/max/mean/percentiles of H, K, k1, k2 without the unreliable vertices.");
   static CommonOptions o;
@@ -145,6 +146,8 @@ void register_run(CLI::App& app) {
       if (!ro.dirs_out.empty())
         throw Error(ro.dirs_out, "--dirs-out names one file: not with --time-series");
       require_series_cli(b, o);
+      if (format != "vtp")
+        throw Error("--format " + format + ": a time series writes .vtp frames (ParaView's .pvd reads XML files)");
       run_series(b.inputs, series, {"run", dir, /*folder_per_frame=*/true, format}, o,
                  [&lo](const SeriesFrame& f, CommonOptions& fo, const std::string& path) {
                    return run_one(f.path, path, fo, ro, lo, format);

@@ -25,7 +25,8 @@ void register_view(CLI::App& app) {
               "Keys: c cycles the colour quantity, a toggles AO, d toggles direction glyphs, l toggles the feature\n"
               "lines (--lines; they follow the camera and the isovalue), v cycles the views, r resets the camera,\n"
               "i types an isovalue, o opens a mesh file, w saves the surface shown, k saves the camera (for\n"
-              "render --camera), s saves a screenshot, q quits. Needs an X display.");
+              "render --camera), s saves a screenshot, q quits; with --time-series FILES... a time slider, and\n"
+              "space plays / pauses the frames. Needs an X display.");
   static CommonOptions o;
   static RenderCli ro;
   static std::vector<std::string> ins;
