@@ -79,14 +79,16 @@ TEST(VizExplorerTime, SpacePlaysAndPauses) {
   TorusSeries ts;
   viz::ExplorerSetup setup = series_setup(ts, 3);  // frames 0, 1, 2: never the broken 3
   using A = viz::ExplorerAction;
-  setup.script = {A::press(' '), A::press('c'), A::press('c'), A::press('c'), A::press(' ')};
+  setup.script = {A::press(' ')};
+  for (int i = 0; i < 8; ++i) setup.script.push_back(A::press('c'));  // ~0.8 s of play
+  setup.script.push_back(A::press(' '));
   viz::run_explorer(setup);
-  // While playing (about 400 ms at up to 50 frames a second) frames advance and wrap around.
+  // While playing (about 800 ms at up to 50 frames a second) frames advance and wrap around.
   ASSERT_GE(ts.set_calls.size(), 2u) << "space did not play";
   for (std::size_t i = 0; i < ts.set_calls.size(); ++i)
     EXPECT_EQ(ts.set_calls[i], int((i + 1) % 3));
   const std::size_t after_pause = ts.set_calls.size();
-  EXPECT_LE(after_pause, 40u);
+  EXPECT_LE(after_pause, 60u);
 }
 
 TEST(VizExplorerTime, OneFrameHasNoTimeSlider) {
