@@ -18,6 +18,7 @@
 #include "core/program_cache.h"
 #include "core/progress.h"
 #include "curvature/ao_scale.h"
+#include "curvature/multi_scale.h"
 #include "curvature/estimate.h"
 #include "curvature/field_stats.h"
 #include "curvature/weld.h"
@@ -75,6 +76,30 @@ void add_compress_option(CLI::App& cmd, CommonOptions& o) {
       });
 }
 
+std::vector<std::string> parse_scales(const std::string& text) {
+  std::vector<std::string> scales;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', start);
+    scales.push_back(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  for (const std::string& s : scales) {
+    if (s == "auto") {
+      if (scales.size() > 1) throw Error("auto cannot be one of several scales ('" + text + "')");
+      continue;
+    }
+    char* end = nullptr;
+    const double v = std::strtod(s.c_str(), &end);
+    if (s.empty() || *end != 0 || !std::isfinite(v) || !(v > 0))
+      throw Error("a positive number (world units), a list of them, or auto, not '" + s + "'");
+    if (std::count(scales.begin(), scales.end(), s) > 1)
+      throw Error("scale " + s + " is given twice");
+  }
+  return scales;
+}
+
 void add_curvature_options(CLI::App& cmd, CommonOptions& o, bool mesh_input) {
   cmd.add_option("--estimator", o.estimator,
                  "Curvature estimator: rusinkiewicz (from the mesh; the default), volume (from the "
@@ -85,14 +110,15 @@ void add_curvature_options(CLI::App& cmd, CommonOptions& o, bool mesh_input) {
   cmd.add_option("--scale", o.scale,
                  "Volume estimator: the Gaussian's standard deviation in world units, or auto (the "
                  "default: from the voxel size, the voxel type and the noise measured near the "
-                 "surface)")
+                 "surface); several, e.g. 1,2,4, add the scalar arrays at each scale suffixed _s<S> "
+                 "(H_s2), the first scale's also unsuffixed")
       ->check([](const std::string& s) -> std::string {
-        if (s == "auto") return "";
-        char* end = nullptr;
-        const double v = std::strtod(s.c_str(), &end);
-        if (s.empty() || *end != 0 || !std::isfinite(v) || !(v > 0))
-          return "a positive number (world units) or auto, not '" + s + "'";
-        return "";
+        try {
+          parse_scales(s);
+          return "";
+        } catch (const Error& e) {
+          return e.what();
+        }
       });
   cmd.add_option("--normals", o.normals,
                  "Vertex normals for the mesh estimators: volume (from the volume's gradient, face normals "
@@ -311,7 +337,8 @@ curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Vol
                 " takes its normals from the volume's gradient at --scale");
   if (mesh_estimator && o.scale != "auto")
     throw Error("--scale applies to --estimator volume");
-  co.scale = o.scale == "auto" ? 0.0 : std::strtod(o.scale.c_str(), nullptr);
+  const std::vector<std::string> scales = parse_scales(o.scale);
+  co.scale = scales[0] == "auto" ? 0.0 : std::strtod(scales[0].c_str(), nullptr);
   NormalsUsed chosen;
   chosen.source = !mesh_estimator ? "volume estimator"
                   : o.normals.empty() ? (volume ? "volume" : "mesh")
@@ -341,8 +368,20 @@ curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Vol
   if (!reference_device(o)) device_for(o);  // open the device (and fail on it) before timing
   timer.start("curvature");
   curvature::EstimatorReport r;
-  curvature::CurvatureField field = curvature::estimate_field(
-      mesh, {volume, isovalue}, reference_device(o) ? nullptr : &device_for(o), co, &r);
+  Device* device = reference_device(o) ? nullptr : &device_for(o);
+  curvature::CurvatureField field = curvature::estimate_field(mesh, {volume, isovalue}, device, co, &r);
+  if (scales.size() > 1) {
+    // Every scale's scalar arrays under its suffix; the first scale's also stay unsuffixed.
+    curvature::append_scale_arrays(field, scales[0], field);
+    for (std::size_t i = 1; i < scales.size(); ++i) {
+      curvature::Options at = co;
+      at.scale = std::strtod(scales[i].c_str(), nullptr);
+      curvature::append_scale_arrays(
+          curvature::estimate_field(mesh, {volume, isovalue}, device, at), scales[i], field);
+    }
+    r.notes.emplace_back("scales", o.scale);
+    field.metadata.emplace_back("scales", o.scale);
+  }
   timer.stop();
   if (report) *report = std::move(r);
   return field;
@@ -404,7 +443,12 @@ nlohmann::json surface_report(const Surface& s) {
   if (!s.estimator.estimator.empty()) {
     nlohmann::json e = {{"name", s.estimator.estimator}};
     for (const auto& [key, value] : s.estimator.parameters) e[key] = value;
-    for (const auto& [key, how] : s.estimator.notes) e[key + "_chosen"] = how;
+    for (const auto& [key, how] : s.estimator.notes) {
+      if (key == "scales")
+        e["scales"] = parse_scales(how);  // --scale S1,S2,...: arrays suffixed _s<S> per scale
+      else
+        e[key + "_chosen"] = how;
+    }
     if (s.estimator.estimator == "volume") e["unreliable_vertices"] = s.estimator.unreliable;
     r["estimator"] = e;
   }

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "app/volume_options.h"
 #include "core/cl_device.h"
@@ -35,8 +36,12 @@ struct CommonOptions {
   float ao_scale = 0;             ///< --ao-scale; 0: 4 x the mean edge length
   io::Compression compress;       ///< --compress (.vtp outputs)
   std::string estimator;          ///< --estimator (curvature::estimator_names); empty: rusinkiewicz
-  std::string scale = "auto";     ///< --scale: sigma in world units, or "auto"
+  std::string scale = "auto";     ///< --scale: sigma in world units, a list "1,2,4", or "auto"
 };
+
+/// The scales of a --scale value, as written: {"auto"}, {"1.5"} or {"1", "2", "4"}. Throws Error
+/// for an entry that is not a positive finite number, a repeated one, or auto among several.
+std::vector<std::string> parse_scales(const std::string& text);
 
 /// Adds --iso --device --cap --snap --json --quiet and the volume options.
 void add_common_options(CLI::App& cmd, CommonOptions& o, bool with_iso = true);

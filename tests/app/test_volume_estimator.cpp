@@ -1,13 +1,16 @@
 // --estimator volume and --scale on the command line (issue 13): the estimator and its scale in
 // --json and the VTP's field data, the Unreliable array, tighter statistics than the mesh
-// estimator on a noisy CT-like ball, and the usage errors.
+// estimator on a noisy CT-like ball, several scales (--scale 1,2.5: arrays suffixed _s<S>), and
+// the usage errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
 
 #include "cli.h"
+#include "io/mesh_file.h"
 
 using namespace isocurv::test;
 using nlohmann::json;
@@ -82,6 +85,57 @@ TEST(VolumeEstimatorCli, JsonFieldDataAndTighterStatistics) {
   EXPECT_DOUBLE_EQ(sg["estimator"]["scale"].get<double>(), 1.5);
 }
 
+const std::vector<float>* extra(const isocurv::io::MeshFile& m, const std::string& name) {
+  if (!m.field) return nullptr;
+  for (const auto& e : m.field->extra)
+    if (e.name == name) return &e.values;
+  return nullptr;
+}
+
+double median(std::vector<float> v) {
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+// The spread of the middle 90% of an array.
+double middle_spread(std::vector<float> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() * 95 / 100] - v[v.size() * 5 / 100];
+}
+
+TEST(VolumeEstimatorCli, SeveralScalesGiveSuffixedArraysPerScale) {
+  TempDir dir("volume_estimator_scales");
+  const double R = 12;
+  const std::string ball = write_noisy_ball(dir, 34, R);
+  const std::string vtp = dir / "ball.vtp";
+  const auto r = run_isocurv({"curvature", ball, "--iso", "120.5", "-o", vtp, "--estimator",
+                              "volume", "--scale", "1,2.5", "--json"},
+                             120);
+  ASSERT_TRUE(r.ok()) << r.describe();
+  const json s = parse_json(r.out, "curvature --json");
+  EXPECT_EQ(s["estimator"]["scales"], json::array({"1", "2.5"})) << s["estimator"].dump(2);
+  EXPECT_DOUBLE_EQ(s["estimator"]["scale"].get<double>(), 1.0) << "the first scale is the main one";
+  const isocurv::io::MeshFile m = isocurv::io::read_mesh(vtp);
+  ASSERT_TRUE(m.field);
+  for (const char* a : {"k1", "k2", "H", "K", "ShapeIndex", "Curvedness"})
+    for (const char* sc : {"_s1", "_s2.5"})
+      ASSERT_NE(extra(m, std::string(a) + sc), nullptr) << a << sc;
+  // The unsuffixed arrays are the first scale's.
+  EXPECT_EQ(*extra(m, "H_s1"), m.field->H);
+  // Both scales measure the ball's curvature; the larger one averages more noise away.
+  const auto& h1 = *extra(m, "H_s1");
+  const auto& h25 = *extra(m, "H_s2.5");
+  EXPECT_NEAR(median(h1), 1 / R, 0.1 / R);
+  EXPECT_NEAR(median(h25), 1 / R, 0.1 / R);
+  EXPECT_LT(middle_spread(h25), 0.7 * middle_spread(h1));
+  // Each scale equals a run at that scale alone.
+  const auto one = run_isocurv({"curvature", ball, "--iso", "120.5", "-o", dir / "one.vtp",
+                                "--estimator", "volume", "--scale", "2.5"},
+                               120);
+  ASSERT_TRUE(one.ok()) << one.describe();
+  EXPECT_EQ(isocurv::io::read_mesh(dir / "one.vtp").field->H, h25);
+}
+
 TEST(VolumeEstimatorCli, UsageErrors) {
   TempDir dir("volume_estimator_errors");
   const std::string ball = write_noisy_ball(dir, 20, 6);
@@ -95,6 +149,9 @@ TEST(VolumeEstimatorCli, UsageErrors) {
       {{"curvature", ball, "-o", out, "--estimator", "nope"}, 2, "--estimator"},
       {{"curvature", ball, "-o", out, "--estimator", "volume", "--scale", "-1"}, 2, "--scale"},
       {{"curvature", ball, "-o", out, "--estimator", "volume", "--scale", "nan"}, 2, "--scale"},
+      {{"curvature", ball, "-o", out, "--estimator", "volume", "--scale", "1,auto"}, 2, "auto"},
+      {{"curvature", ball, "-o", out, "--estimator", "volume", "--scale", "1,2,1"}, 2, "twice"},
+      {{"curvature", ball, "-o", out, "--estimator", "volume", "--scale", "1,"}, 2, "--scale"},
       {{"curvature", ball, "-o", out, "--estimator", "volume", "--scale", "1e6"},
        1,
        "larger than the volume"},
