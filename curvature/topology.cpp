@@ -14,10 +14,22 @@ namespace {
 // Fans with more corners go to vertex_boundary_large (the value estimate.cpp and mesh_pass_cl use).
 constexpr std::uint32_t kMaxFan = 8;
 
+// The slots of a Topology's ScratchBuffers.
+enum Slot : std::size_t {
+  kPositions,
+  kTriangles,
+  kOffsets,
+  kCorners,
+  kLarge,
+  kNbOffsets,
+  kNbIds,
+  kSlots
+};
+
 template <class T, class A>
-cl::Buffer device_copy(Device& device, const std::vector<T, A>& v) {
-  const std::size_t bytes = std::max<std::size_t>(v.size() * sizeof(T), 16);
-  cl::Buffer b(device.context(), CL_MEM_READ_WRITE, bytes);
+cl::Buffer device_copy(Device& device, ScratchBuffers& store, Slot slot,
+                       const std::vector<T, A>& v) {
+  cl::Buffer b = store.get(slot, std::max<std::size_t>(v.size() * sizeof(T), 16));
   if (!v.empty()) device.queue().enqueueWriteBuffer(b, CL_TRUE, 0, v.size() * sizeof(T), v.data());
   return b;
 }
@@ -40,12 +52,15 @@ Topology prepare(const Triangles& triangles, std::size_t vertex_count, Device& d
       large.push_back(std::uint32_t(v));
   t.large_count_ = large.size();
   try {
-    t.positions_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE,
-                              std::max<std::size_t>(vertex_count * sizeof(Vec3f), 16));
-    t.triangle_buf_ = device_copy(device, triangles);
-    t.offsets_buf_ = device_copy(device, t.adjacency_.offsets);
-    t.corners_buf_ = device_copy(device, t.adjacency_.corners);
-    t.large_buf_ = device_copy(device, large);
+    // Buffers like the cold path's (core/cl_scratch.h: on a CPU device, host memory in huge
+    // pages), so the kernels see the same kind of memory either way.
+    t.store_ = std::make_shared<ScratchBuffers>(device, kSlots);
+    t.positions_ =
+        t.store_->get(kPositions, std::max<std::size_t>(vertex_count * sizeof(Vec3f), 16));
+    t.triangle_buf_ = device_copy(device, *t.store_, kTriangles, triangles);
+    t.offsets_buf_ = device_copy(device, *t.store_, kOffsets, t.adjacency_.offsets);
+    t.corners_buf_ = device_copy(device, *t.store_, kCorners, t.adjacency_.corners);
+    t.large_buf_ = device_copy(device, *t.store_, kLarge, large);
   } catch (const cl::Error& e) {
     throw Error(std::string("curvature: preparing the topology: OpenCL call ") + e.what() +
                 " failed on " + device.info().name + ": " + cl_error_name(e.err()));
@@ -59,8 +74,8 @@ const cl::Buffer& Topology::neighbour_offsets_buffer() {
     shape.triangles = triangles_;
     shape.positions.resize(vertex_count_);
     const detail::Neighbours nb = detail::vertex_neighbours(shape, adjacency_);
-    nb_offsets_buf_ = device_copy(*device_, nb.offsets);
-    nb_ids_buf_ = device_copy(*device_, nb.ids);
+    nb_offsets_buf_ = device_copy(*device_, *store_, kNbOffsets, nb.offsets);
+    nb_ids_buf_ = device_copy(*device_, *store_, kNbIds, nb.ids);
     have_neighbours_ = true;
   }
   return nb_offsets_buf_;

@@ -3,9 +3,11 @@
 // mesh (Griffin et al. 2012 section 3.4: the triangles never change, only the positions do).
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/cl_device.h"
+#include "core/cl_scratch.h"
 #include "core/mesh.h"
 #include "curvature/curvature_field.h"
 #include "curvature/estimate.h"
@@ -47,6 +49,7 @@ class Topology {
  private:
   friend Topology prepare(const Triangles& triangles, std::size_t vertex_count, Device& device);
   Device* device_ = nullptr;
+  std::shared_ptr<ScratchBuffers> store_;  // the buffers' memory (huge pages on CPU devices)
   std::size_t vertex_count_ = 0, large_count_ = 0;
   Triangles triangles_;
   VertexCorners adjacency_;
