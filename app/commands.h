@@ -16,5 +16,6 @@ void register_view(CLI::App& app);      ///< isocurv view VOLUME
 void register_features(CLI::App& app);  ///< isocurv features VOLUME_OR_MESH --radius R -o MESH
 void register_compare(CLI::App& app);   ///< isocurv compare VOLUME_OR_MESH
 void register_lines(CLI::App& app);     ///< isocurv lines VOLUME_OR_MESH -o VTP|SVG
+void register_deform(CLI::App& app);    ///< isocurv deform MESH --deformer D -o DIR
 
 }  // namespace isocurv::app

@@ -7,6 +7,50 @@
 #include "curvature/input.h"
 
 namespace isocurv::curvature {
+namespace detail {
+
+void batagelo_passes(MeshPassSession& s, Device& device, const MeshBuffers& m,
+                     const Options& options, bool timed,
+                     std::chrono::steady_clock::time_point& clock, Timings& t,
+                     CurvatureField& out) {
+  cl::CommandQueue& q = device.queue();
+  const std::size_t nv = m.nv;
+  const cl_uint vcount = cl_uint(nv);
+  set_args(s.batagelo_tensor, *m.positions, s.normals.buffer, *m.nb_offsets, *m.nb_ids, vcount,
+           cl_float(options.ao_scale), s.k1.buffer, s.k2.buffer, s.dir1.buffer, s.dir2.buffer,
+           s.H.buffer, s.K.buffer, s.shape.buffer, s.curved.buffer, s.ao.buffer,
+           s.no_tensor.buffer);
+  launch(q, s.batagelo_tensor, nv, kGroup);
+  if (timed) q.finish();
+  t.tensor = lap_ms(clock);
+
+  set_args(s.batagelo_dcurv, *m.positions, s.k1.buffer, s.k2.buffer, s.dir1.buffer,
+           s.dir2.buffer, *m.nb_offsets, *m.nb_ids, s.no_tensor.buffer, vcount, s.dcurv.buffer,
+           s.unreliable.buffer);
+  launch(q, s.batagelo_dcurv, nv, kGroup);
+  if (timed) q.finish();
+  t.derivative = lap_ms(clock);
+
+  download(q, s.normals, out.normals, nv);
+  download(q, s.area, out.area, nv);
+  download(q, s.k1, out.k1, nv);
+  download(q, s.k2, out.k2, nv);
+  download(q, s.dir1, out.dir1, nv);
+  download(q, s.dir2, out.dir2, nv);
+  download(q, s.H, out.H, nv);
+  download(q, s.K, out.K, nv);
+  download(q, s.dcurv, out.dcurv, nv);
+  download(q, s.shape, out.shape_index, nv);
+  download(q, s.curved, out.curvedness, nv);
+  download(q, s.ao, out.ao, nv);
+  download(q, s.boundary, out.boundary, nv);
+  download(q, s.unreliable, out.unreliable, nv);
+  q.finish();
+  t.download = lap_ms(clock);
+}
+
+}  // namespace detail
+
 namespace {
 
 CurvatureField run(const Mesh& mesh, Device& device, const Options& options, Timings* timings) {
@@ -22,43 +66,11 @@ CurvatureField run(const Mesh& mesh, Device& device, const Options& options, Tim
   }
   detail::MeshPassSession& s = detail::mesh_pass_session(device);
   std::lock_guard<std::mutex> lock(s.mutex);
-  cl::CommandQueue& q = device.queue();
   const bool timed = timings != nullptr;
-  detail::upload_and_normals(s, device, mesh, options, /*with_neighbours=*/true, timed, t);
-  clock = std::chrono::steady_clock::now();
-
-  const cl_uint vcount = cl_uint(nv);
-  set_args(s.batagelo_tensor, s.positions.buffer, s.normals.buffer, s.nb_offsets.buffer,
-           s.nb_ids.buffer, vcount, cl_float(options.ao_scale), s.k1.buffer, s.k2.buffer,
-           s.dir1.buffer, s.dir2.buffer, s.H.buffer, s.K.buffer, s.shape.buffer, s.curved.buffer,
-           s.ao.buffer, s.no_tensor.buffer);
-  launch(q, s.batagelo_tensor, nv, detail::kGroup);
-  if (timed) q.finish();
-  t.tensor = detail::lap_ms(clock);
-
-  set_args(s.batagelo_dcurv, s.positions.buffer, s.k1.buffer, s.k2.buffer, s.dir1.buffer,
-           s.dir2.buffer, s.nb_offsets.buffer, s.nb_ids.buffer, s.no_tensor.buffer, vcount,
-           s.dcurv.buffer, s.unreliable.buffer);
-  launch(q, s.batagelo_dcurv, nv, detail::kGroup);
-  if (timed) q.finish();
-  t.derivative = detail::lap_ms(clock);
-
-  detail::download(q, s.normals, out.normals, nv);
-  detail::download(q, s.area, out.area, nv);
-  detail::download(q, s.k1, out.k1, nv);
-  detail::download(q, s.k2, out.k2, nv);
-  detail::download(q, s.dir1, out.dir1, nv);
-  detail::download(q, s.dir2, out.dir2, nv);
-  detail::download(q, s.H, out.H, nv);
-  detail::download(q, s.K, out.K, nv);
-  detail::download(q, s.dcurv, out.dcurv, nv);
-  detail::download(q, s.shape, out.shape_index, nv);
-  detail::download(q, s.curved, out.curvedness, nv);
-  detail::download(q, s.ao, out.ao, nv);
-  detail::download(q, s.boundary, out.boundary, nv);
-  detail::download(q, s.unreliable, out.unreliable, nv);
-  q.finish();
-  t.download = detail::lap_ms(clock);
+  const detail::MeshBuffers m =
+      detail::upload_mesh(s, device, mesh, /*with_neighbours=*/true, clock, t);
+  detail::normals_pass(s, device, m, options, timed, clock, t);
+  detail::batagelo_passes(s, device, m, options, timed, clock, t, out);
   t.total = std::chrono::duration<double, std::milli>(clock - start).count();
   if (timings) *timings = t;
   return out;

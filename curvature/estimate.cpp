@@ -14,6 +14,7 @@
 #include "curvature/derived.h"
 #include "curvature/input.h"
 #include "curvature/tolerances.h"
+#include "curvature/topology.h"
 #include "curvature/vertex_corners.h"
 
 namespace isocurv::kernels {
@@ -108,40 +109,24 @@ void download(cl::CommandQueue& q, Session& s, Slot slot, std::vector<T>& v, std
   q.enqueueReadBuffer(s[slot], CL_FALSE, 0, n * sizeof(T), v.data());
 }
 
-void run(const Mesh& mesh, Device& device, const Options& options, CurvatureField& out,
-         Timings* timings) {
-  Clock::time_point clock = Clock::now();
-  const Clock::time_point start = clock;
-  Timings t;
-  check_input(mesh, options);
-  const std::size_t nv = mesh.vertex_count(), nf = mesh.triangle_count();
-  if (nv == 0) {
-    out = CurvatureField{};
-    if (timings) *timings = t;
-    return;
-  }
-  Session& s = session_for(device);
-  std::lock_guard<std::mutex> lock(s.mutex);
+// The device arrays one estimate reads: the cold path's session slots or a prepared Topology's.
+struct MeshBuffers {
+  const cl::Buffer &positions, &triangles, &offsets, &corners, &large;
+  std::size_t nv, nf, large_count;
+};
+
+// Uploads the given normals and reserves every per-frame buffer, runs every pass and downloads
+// into `out`. Call with s.mutex held; nv > 0. `clock` and `t` as in run(). Both the cold and the
+// prepared paths come through here, which is what makes them bit-identical.
+void passes(Session& s, Device& device, const MeshBuffers& m, const Options& options,
+            CurvatureField& out, bool timed, Clock::time_point& clock, Timings& t) {
   cl::CommandQueue& q = device.queue();
-  // Separate the steps only when asked to time them.
   auto step = [&](double& ms) {
-    if (!timings) return;
+    if (!timed) return;
     q.finish();
     ms = lap(clock);
   };
-
-  build_vertex_corners(mesh, s.adjacency);
-  s.large.clear();
-  for (std::size_t v = 0; v < nv; ++v)
-    if (s.adjacency.offsets[v + 1] - s.adjacency.offsets[v] > kMaxFan)
-      s.large.push_back(std::uint32_t(v));
-  t.adjacency = lap(clock);
-
-  upload(q, s, kPositions, mesh.positions);
-  upload(q, s, kTriangles, mesh.triangles);
-  upload(q, s, kOffsets, s.adjacency.offsets);
-  upload(q, s, kCorners, s.adjacency.corners);
-  upload(q, s, kLargeFans, s.large);
+  const std::size_t nv = m.nv, nf = m.nf;
   const bool given = options.vertex_normals != nullptr;
   if (given)
     upload(q, s, kGivenNormals, *options.vertex_normals);
@@ -155,28 +140,25 @@ void run(const Mesh& mesh, Device& device, const Options& options, CurvatureFiel
   s.reserve(kDcurv, nv * sizeof(cl_float4));
   step(t.upload);
 
-  const cl_uint vcount = cl_uint(nv), fcount = cl_uint(nf), lcount = cl_uint(s.large.size());
-  set_args(s.corner_normals_areas, s[kPositions], s[kTriangles], fcount,
+  const cl_uint vcount = cl_uint(nv), fcount = cl_uint(nf), lcount = cl_uint(m.large_count);
+  set_args(s.corner_normals_areas, m.positions, m.triangles, fcount,
            cl_int(options.normal_weights == NormalWeights::area), s[kCorner]);
   launch(q, s.corner_normals_areas, nf, kGroup);
-  set_args(s.vertex_normals_areas, s[kOffsets], s[kCorners], s[kCorner],
+  set_args(s.vertex_normals_areas, m.offsets, m.corners, s[kCorner],
            s[kGivenNormals], cl_int(given), vcount, s[kNormals], s[kArea]);
   launch(q, s.vertex_normals_areas, nv, kGroup);
-  set_args(s.vertex_boundary, s[kOffsets], s[kCorners], s[kTriangles], vcount,
-           s[kBoundary]);
+  set_args(s.vertex_boundary, m.offsets, m.corners, m.triangles, vcount, s[kBoundary]);
   launch(q, s.vertex_boundary, nv, kGroup);
-  set_args(s.vertex_boundary_large, s[kOffsets], s[kCorners], s[kTriangles],
-           s[kLargeFans], lcount, s[kBoundary]);
-  launch(q, s.vertex_boundary_large, s.large.size(), kGroup);
+  set_args(s.vertex_boundary_large, m.offsets, m.corners, m.triangles, m.large, lcount,
+           s[kBoundary]);
+  launch(q, s.vertex_boundary_large, m.large_count, kGroup);
   step(t.normals_areas);
 
-  set_args(s.corner_tensors, s[kPositions], s[kTriangles], s[kNormals], fcount,
-           s[kCorner]);
+  set_args(s.corner_tensors, m.positions, m.triangles, s[kNormals], fcount, s[kCorner]);
   launch(q, s.corner_tensors, nf, kGroup);
   step(t.tensor);
 
-  set_args(s.vertex_sums, s[kOffsets], s[kCorners], s[kCorner], vcount,
-           s[kSums]);
+  set_args(s.vertex_sums, m.offsets, m.corners, s[kCorner], vcount, s[kSums]);
   launch(q, s.vertex_sums, nv, kGroup);
   set_args(s.vertex_principal, s[kSums], s[kNormals], vcount,
            cl_float(options.ao_scale), s[kK1], s[kK2], s[kDir1], s[kDir2],
@@ -184,11 +166,10 @@ void run(const Mesh& mesh, Device& device, const Options& options, CurvatureFiel
   launch(q, s.vertex_principal, nv, kGroup);
   step(t.directions);
 
-  set_args(s.corner_dcurv, s[kPositions], s[kTriangles], s[kK1], s[kK2],
-           s[kDir1], s[kDir2], fcount, s[kCorner]);
+  set_args(s.corner_dcurv, m.positions, m.triangles, s[kK1], s[kK2], s[kDir1], s[kDir2],
+           fcount, s[kCorner]);
   launch(q, s.corner_dcurv, nf, kGroup);
-  set_args(s.vertex_dcurv, s[kOffsets], s[kCorners], s[kCorner], s[kSums],
-           vcount, s[kDcurv]);
+  set_args(s.vertex_dcurv, m.offsets, m.corners, s[kCorner], s[kSums], vcount, s[kDcurv]);
   launch(q, s.vertex_dcurv, nv, kGroup);
   step(t.derivative);
 
@@ -207,8 +188,78 @@ void run(const Mesh& mesh, Device& device, const Options& options, CurvatureFiel
   download(q, s, kBoundary, out.boundary, nv);
   q.finish();
   t.download = lap(clock);
+}
+
+void run(const Mesh& mesh, Device& device, const Options& options, CurvatureField& out,
+         Timings* timings) {
+  Clock::time_point clock = Clock::now();
+  const Clock::time_point start = clock;
+  Timings t;
+  check_input(mesh, options);
+  const std::size_t nv = mesh.vertex_count(), nf = mesh.triangle_count();
+  if (nv == 0) {
+    out = CurvatureField{};
+    if (timings) *timings = t;
+    return;
+  }
+  Session& s = session_for(device);
+  std::lock_guard<std::mutex> lock(s.mutex);
+  cl::CommandQueue& q = device.queue();
+
+  build_vertex_corners(mesh, s.adjacency);
+  s.large.clear();
+  for (std::size_t v = 0; v < nv; ++v)
+    if (s.adjacency.offsets[v + 1] - s.adjacency.offsets[v] > kMaxFan)
+      s.large.push_back(std::uint32_t(v));
+  t.adjacency = lap(clock);
+
+  upload(q, s, kPositions, mesh.positions);
+  upload(q, s, kTriangles, mesh.triangles);
+  upload(q, s, kOffsets, s.adjacency.offsets);
+  upload(q, s, kCorners, s.adjacency.corners);
+  upload(q, s, kLargeFans, s.large);
+  const MeshBuffers m{s[kPositions], s[kTriangles], s[kOffsets], s[kCorners], s[kLargeFans],
+                      nv, nf, s.large.size()};
+  passes(s, device, m, options, out, timings != nullptr, clock, t);
   t.total = std::chrono::duration<double, std::milli>(clock - start).count();
   if (timings) *timings = t;
+}
+
+// The prepared path: topo's buffers, positions already on the device.
+void run_resident(Topology& topo, Device& device, const Options& options, CurvatureField& out,
+                  Timings* timings, Clock::time_point start, double upload_ms) {
+  Clock::time_point clock = Clock::now();
+  Timings t;
+  const std::size_t nv = topo.vertex_count();
+  if (nv == 0) {
+    out = CurvatureField{};
+    if (timings) *timings = t;
+    return;
+  }
+  Session& s = session_for(device);
+  std::lock_guard<std::mutex> lock(s.mutex);
+  const MeshBuffers m{topo.positions(), topo.triangle_buffer(), topo.offsets_buffer(),
+                      topo.corners_buffer(), topo.large_fans_buffer(), nv,
+                      topo.triangle_count(), topo.large_fan_count()};
+  passes(s, device, m, options, out, timings != nullptr, clock, t);
+  t.upload += upload_ms;  // positions (estimate) plus given normals (passes)
+  t.total = std::chrono::duration<double, std::milli>(clock - start).count();
+  if (timings) *timings = t;
+}
+
+void check_prepared(const Topology& topo, Device& device, const Options& options) {
+  if (topo.device() != &device)
+    throw Error("curvature: the topology was prepared on another device");
+  check_options(options, topo.vertex_count());
+}
+
+[[noreturn]] void rethrow(Device& device, const cl::Error& e) {
+  try {
+    device.queue().finish();  // no copy may still target the field being unwound
+  } catch (const cl::Error&) {
+  }
+  throw Error(std::string("curvature: OpenCL call ") + e.what() + " failed on " +
+              device.info().name + ": " + cl_error_name(e.err()));
 }
 
 }  // namespace
@@ -225,12 +276,31 @@ void estimate(const Mesh& mesh, Device& device, const Options& options, Curvatur
   try {
     run(mesh, device, options, out, timings);
   } catch (const cl::Error& e) {
-    try {
-      device.queue().finish();  // no copy may still target the field being unwound
-    } catch (const cl::Error&) {
-    }
-    throw Error(std::string("curvature: OpenCL call ") + e.what() + " failed on " +
-                device.info().name + ": " + cl_error_name(e.err()));
+    rethrow(device, e);
+  }
+}
+
+void estimate(const Positions& positions, Topology& topo, Device& device, const Options& options,
+              CurvatureField& out, Timings* timings) {
+  const Clock::time_point start = Clock::now();
+  try {
+    check_prepared(topo, device, options);
+    upload_positions(positions, topo);
+    const double upload_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    run_resident(topo, device, options, out, timings, start, upload_ms);
+  } catch (const cl::Error& e) {
+    rethrow(device, e);
+  }
+}
+
+void estimate_resident(Topology& topo, Device& device, const Options& options,
+                       CurvatureField& out, Timings* timings) {
+  const Clock::time_point start = Clock::now();
+  try {
+    check_prepared(topo, device, options);
+    run_resident(topo, device, options, out, timings, start, 0);
+  } catch (const cl::Error& e) {
+    rethrow(device, e);
   }
 }
 

@@ -11,4 +11,16 @@ namespace isocurv::curvature {
 /// valid input (zero-area or repeated-index triangles, isolated or duplicate vertices) passes.
 void check_input(const Mesh& mesh, const Options& options);
 
+/// The triangle part of check_input: at most 2^32 - 1 vertices and corners, every index below
+/// vertex_count. Throws isocurv::Error naming the first bad triangle.
+void check_triangles(const Triangles& triangles, std::size_t vertex_count);
+
+/// The position part of check_input: every coordinate finite. Throws isocurv::Error naming the
+/// first bad vertex.
+void check_positions(const Positions& positions);
+
+/// The option part of check_input for a mesh of vertex_count vertices: vertex_normals of that
+/// size (when given), a finite ao_scale.
+void check_options(const Options& options, std::size_t vertex_count);
+
 }  // namespace isocurv::curvature

@@ -9,6 +9,44 @@
 #include "curvature/prantl.h"
 
 namespace isocurv::curvature {
+namespace detail {
+
+void prantl_passes(MeshPassSession& s, Device& device, const MeshBuffers& m,
+                   const Options& options, int edges, bool area_averaging, bool timed,
+                   std::chrono::steady_clock::time_point& clock, Timings& t,
+                   CurvatureField& out) {
+  cl::CommandQueue& q = device.queue();
+  const std::size_t nv = m.nv, nf = m.nf;
+  set_args(s.prantl_faces, *m.positions, *m.triangles, s.normals.buffer, cl_uint(nf),
+           cl_int(edges == 2), cl_int(area_averaging), s.corner.buffer);
+  launch(q, s.prantl_faces, nf, kGroup);
+  if (timed) q.finish();
+  t.tensor = lap_ms(clock);
+
+  set_args(s.prantl_vertices, *m.offsets, *m.corners, s.corner.buffer, cl_uint(nv),
+           cl_float(options.ao_scale), s.k1.buffer, s.k2.buffer, s.H.buffer, s.K.buffer,
+           s.shape.buffer, s.curved.buffer, s.ao.buffer, s.unreliable.buffer);
+  launch(q, s.prantl_vertices, nv, kGroup);
+  if (timed) q.finish();
+  t.directions = lap_ms(clock);
+
+  download(q, s.normals, out.normals, nv);
+  download(q, s.area, out.area, nv);
+  download(q, s.k1, out.k1, nv);
+  download(q, s.k2, out.k2, nv);
+  download(q, s.H, out.H, nv);
+  download(q, s.K, out.K, nv);
+  download(q, s.shape, out.shape_index, nv);
+  download(q, s.curved, out.curvedness, nv);
+  download(q, s.ao, out.ao, nv);
+  download(q, s.boundary, out.boundary, nv);
+  download(q, s.unreliable, out.unreliable, nv);
+  q.finish();
+  t.download = lap_ms(clock);
+}
+
+}  // namespace detail
+
 namespace {
 
 CurvatureField run(const Mesh& mesh, Device& device, const Options& options, int edges,
@@ -21,45 +59,19 @@ CurvatureField run(const Mesh& mesh, Device& device, const Options& options, int
                 std::to_string(edges));
   Timings t;
   CurvatureField out;
-  const std::size_t nv = mesh.vertex_count(), nf = mesh.triangle_count();
+  const std::size_t nv = mesh.vertex_count();
   if (nv == 0) {
     if (timings) *timings = t;
     return out;
   }
   detail::MeshPassSession& s = detail::mesh_pass_session(device);
   std::lock_guard<std::mutex> lock(s.mutex);
-  cl::CommandQueue& q = device.queue();
   const bool timed = timings != nullptr;
-  detail::upload_and_normals(s, device, mesh, options, /*with_neighbours=*/false, timed, t);
-  clock = std::chrono::steady_clock::now();
-
-  set_args(s.prantl_faces, s.positions.buffer, s.triangles.buffer, s.normals.buffer,
-           cl_uint(nf), cl_int(edges == 2), cl_int(averaging == PrantlAveraging::area),
-           s.corner.buffer);
-  launch(q, s.prantl_faces, nf, detail::kGroup);
-  if (timed) q.finish();
-  t.tensor = detail::lap_ms(clock);
-
-  set_args(s.prantl_vertices, s.offsets.buffer, s.corners.buffer, s.corner.buffer, cl_uint(nv),
-           cl_float(options.ao_scale), s.k1.buffer, s.k2.buffer, s.H.buffer, s.K.buffer,
-           s.shape.buffer, s.curved.buffer, s.ao.buffer, s.unreliable.buffer);
-  launch(q, s.prantl_vertices, nv, detail::kGroup);
-  if (timed) q.finish();
-  t.directions = detail::lap_ms(clock);
-
-  detail::download(q, s.normals, out.normals, nv);
-  detail::download(q, s.area, out.area, nv);
-  detail::download(q, s.k1, out.k1, nv);
-  detail::download(q, s.k2, out.k2, nv);
-  detail::download(q, s.H, out.H, nv);
-  detail::download(q, s.K, out.K, nv);
-  detail::download(q, s.shape, out.shape_index, nv);
-  detail::download(q, s.curved, out.curvedness, nv);
-  detail::download(q, s.ao, out.ao, nv);
-  detail::download(q, s.boundary, out.boundary, nv);
-  detail::download(q, s.unreliable, out.unreliable, nv);
-  q.finish();
-  t.download = detail::lap_ms(clock);
+  const detail::MeshBuffers m =
+      detail::upload_mesh(s, device, mesh, /*with_neighbours=*/false, clock, t);
+  detail::normals_pass(s, device, m, options, timed, clock, t);
+  detail::prantl_passes(s, device, m, options, edges, averaging == PrantlAveraging::area, timed,
+                        clock, t, out);
   t.total = std::chrono::duration<double, std::milli>(clock - start).count();
   if (timings) *timings = t;
   return out;

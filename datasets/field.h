@@ -64,4 +64,10 @@ std::vector<std::string> field_names();
 /// Throws isocurv::Error for an unknown name, listing the known ones.
 std::unique_ptr<Field> make_field(const std::string& name);
 
+/// The catalogue's ellipsoid field 1 - (x/a)^2 - (y/b)^2 - (z/c)^2 (positive inside, isovalue 0)
+/// with semi-axes a, b, c (world units) instead of 0.8, 0.6, 0.4; box = semi-axes + 0.2. For the
+/// exact curvature of deforming-sphere animations (deform/affine.h).
+/// @throw isocurv::Error for a semi-axis that is not positive and finite
+std::unique_ptr<Field> make_ellipsoid(double a, double b, double c);
+
 }  // namespace isocurv::datasets

@@ -21,6 +21,8 @@
 //                   Gaussian is cut off beyond 7 sigma (its value there is below 3e-11).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <functional>
 
 #include "core/error.h"
@@ -136,13 +138,22 @@ class Torus final : public Field {
 
 class Ellipsoid final : public Field {
  public:
-  Ellipsoid()
-      : Field({"ellipsoid", "1 - (x/a)^2 - (y/b)^2 - (z/c)^2, semi-axes a, b, c = 0.8, 0.6, 0.4, positive inside",
-               0.0, Inside::Above, make_box(Vector3d(-1.0, -0.8, -0.6), Vector3d(1.0, 0.8, 0.6)), true, 2}) {}
-  static Vector3d inv_sq() { return Vector3d(1 / (0.8 * 0.8), 1 / (0.6 * 0.6), 1 / (0.4 * 0.4)); }
-  double value(const Vector3d& p) const override { return 1.0 - p.cwiseProduct(p).dot(inv_sq()); }
-  Vector3d gradient(const Vector3d& p) const override { return -2.0 * p.cwiseProduct(inv_sq()); }
-  Matrix3d hessian(const Vector3d&) const override { return Matrix3d(-2.0 * inv_sq().asDiagonal()); }
+  Ellipsoid() : Ellipsoid(0.8, 0.6, 0.4, "ellipsoid") {}
+  Ellipsoid(double a, double b, double c, const std::string& name)
+      : Field({name, "1 - (x/a)^2 - (y/b)^2 - (z/c)^2, semi-axes a, b, c = " + fmt_axes(a, b, c) + ", positive inside",
+               0.0, Inside::Above, make_box(-Vector3d(a, b, c) - Vector3d::Constant(0.2), Vector3d(a, b, c) + Vector3d::Constant(0.2)), true, 2}),
+        inv_sq_(1 / (a * a), 1 / (b * b), 1 / (c * c)) {}
+  double value(const Vector3d& p) const override { return 1.0 - p.cwiseProduct(p).dot(inv_sq_); }
+  Vector3d gradient(const Vector3d& p) const override { return -2.0 * p.cwiseProduct(inv_sq_); }
+  Matrix3d hessian(const Vector3d&) const override { return Matrix3d(-2.0 * inv_sq_.asDiagonal()); }
+
+ private:
+  static std::string fmt_axes(double a, double b, double c) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "%g, %g, %g", a, b, c);
+    return buf;
+  }
+  Vector3d inv_sq_;
 };
 
 class Gyroid final : public Field {
@@ -446,6 +457,12 @@ std::vector<std::string> field_names() {
   std::vector<std::string> names;
   for (const auto& e : catalogue()) names.push_back(e.first);
   return names;
+}
+
+std::unique_ptr<Field> make_ellipsoid(double a, double b, double c) {
+  if (!(a > 0 && b > 0 && c > 0 && std::isfinite(a) && std::isfinite(b) && std::isfinite(c)))
+    throw Error("datasets: ellipsoid semi-axes must be positive and finite");
+  return std::make_unique<Ellipsoid>(a, b, c, "ellipsoid_abc");
 }
 
 std::unique_ptr<Field> make_field(const std::string& name) {

@@ -87,9 +87,9 @@ double lap_ms(std::chrono::steady_clock::time_point& since) {
   return ms;
 }
 
-void upload_and_normals(MeshPassSession& s, Device& device, const Mesh& mesh,
-                        const Options& options, bool with_neighbours, bool timed, Timings& t) {
-  auto clock = std::chrono::steady_clock::now();
+MeshBuffers upload_mesh(MeshPassSession& s, Device& device, const Mesh& mesh,
+                        bool with_neighbours, std::chrono::steady_clock::time_point& clock,
+                        Timings& t) {
   const std::size_t nv = mesh.vertex_count(), nf = mesh.triangle_count();
   cl::Context& ctx = device.context();
   cl::CommandQueue& q = device.queue();
@@ -106,10 +106,28 @@ void upload_and_normals(MeshPassSession& s, Device& device, const Mesh& mesh,
   upload(q, ctx, s.offsets, s.adjacency.offsets);
   upload(q, ctx, s.corners, s.adjacency.corners);
   upload(q, ctx, s.large_fans, s.large);
+  MeshBuffers m;
   if (with_neighbours) {
     upload(q, ctx, s.nb_offsets, s.neighbours.offsets);
     upload(q, ctx, s.nb_ids, s.neighbours.ids);
+    m.nb_offsets = &s.nb_offsets.buffer;
+    m.nb_ids = &s.nb_ids.buffer;
   }
+  m.positions = &s.positions.buffer;
+  m.triangles = &s.triangles.buffer;
+  m.offsets = &s.offsets.buffer;
+  m.corners = &s.corners.buffer;
+  m.large = &s.large_fans.buffer;
+  m.nv = nv, m.nf = nf, m.large_count = s.large.size();
+  return m;
+}
+
+void normals_pass(MeshPassSession& s, Device& device, const MeshBuffers& m,
+                  const Options& options, bool timed, std::chrono::steady_clock::time_point& clock,
+                  Timings& t) {
+  const std::size_t nv = m.nv, nf = m.nf;
+  cl::Context& ctx = device.context();
+  cl::CommandQueue& q = device.queue();
   const bool given = options.vertex_normals != nullptr;
   if (given)
     upload(q, ctx, s.given_normals, *options.vertex_normals);
@@ -124,21 +142,60 @@ void upload_and_normals(MeshPassSession& s, Device& device, const Mesh& mesh,
   if (timed) q.finish();
   t.upload = lap_ms(clock);
 
-  const cl_uint vcount = cl_uint(nv), fcount = cl_uint(nf), lcount = cl_uint(s.large.size());
-  set_args(s.corner_normals_areas, s.positions.buffer, s.triangles.buffer, fcount,
+  const cl_uint vcount = cl_uint(nv), fcount = cl_uint(nf), lcount = cl_uint(m.large_count);
+  set_args(s.corner_normals_areas, *m.positions, *m.triangles, fcount,
            cl_int(options.normal_weights == NormalWeights::area), s.corner.buffer);
   launch(q, s.corner_normals_areas, nf, kGroup);
-  set_args(s.vertex_normals_areas, s.offsets.buffer, s.corners.buffer, s.corner.buffer,
+  set_args(s.vertex_normals_areas, *m.offsets, *m.corners, s.corner.buffer,
            s.given_normals.buffer, cl_int(given), vcount, s.normals.buffer, s.area.buffer);
   launch(q, s.vertex_normals_areas, nv, kGroup);
-  set_args(s.vertex_boundary, s.offsets.buffer, s.corners.buffer, s.triangles.buffer, vcount,
-           s.boundary.buffer);
+  set_args(s.vertex_boundary, *m.offsets, *m.corners, *m.triangles, vcount, s.boundary.buffer);
   launch(q, s.vertex_boundary, nv, kGroup);
-  set_args(s.vertex_boundary_large, s.offsets.buffer, s.corners.buffer, s.triangles.buffer,
-           s.large_fans.buffer, lcount, s.boundary.buffer);
-  launch(q, s.vertex_boundary_large, s.large.size(), kGroup);
+  set_args(s.vertex_boundary_large, *m.offsets, *m.corners, *m.triangles, *m.large, lcount,
+           s.boundary.buffer);
+  launch(q, s.vertex_boundary_large, m.large_count, kGroup);
   if (timed) q.finish();
   t.normals_areas = lap_ms(clock);
+}
+
+void estimate_resident_mesh_pass(Estimator e, Topology& topo, Device& device,
+                                 const Options& options, CurvatureField& out, Timings* timings) {
+  const auto start = std::chrono::steady_clock::now();
+  auto clock = start;
+  Timings t;
+  out = CurvatureField{};
+  const std::size_t nv = topo.vertex_count();
+  if (nv == 0) {
+    if (timings) *timings = t;
+    return;
+  }
+  const bool batagelo = e == Estimator::batagelo;
+  try {
+    MeshBuffers m;
+    m.positions = &topo.positions();
+    m.triangles = &topo.triangle_buffer();
+    m.offsets = &topo.offsets_buffer();
+    m.corners = &topo.corners_buffer();
+    m.large = &topo.large_fans_buffer();
+    if (batagelo) {
+      m.nb_offsets = &topo.neighbour_offsets_buffer();
+      m.nb_ids = &topo.neighbour_ids_buffer();
+    }
+    m.nv = nv, m.nf = topo.triangle_count(), m.large_count = topo.large_fan_count();
+    MeshPassSession& s = mesh_pass_session(device);
+    std::lock_guard<std::mutex> lock(s.mutex);
+    const bool timed = timings != nullptr;
+    normals_pass(s, device, m, options, timed, clock, t);
+    if (batagelo)
+      batagelo_passes(s, device, m, options, timed, clock, t, out);
+    else
+      prantl_passes(s, device, m, options, e == Estimator::prantl3 ? 3 : 2, /*area=*/true, timed,
+                    clock, t, out);
+  } catch (const cl::Error& err) {
+    rethrow_cl(device, batagelo ? "batagelo" : "prantl", err);
+  }
+  t.total = std::chrono::duration<double, std::milli>(clock - start).count();
+  if (timings) *timings = t;
 }
 
 void rethrow_cl(Device& device, const char* what, const cl::Error& e) {

@@ -14,6 +14,7 @@
 #include "curvature/detail/local_geometry.h"
 #include "curvature/estimate.h"
 #include "curvature/options.h"
+#include "curvature/topology.h"
 #include "curvature/vertex_corners.h"
 
 namespace isocurv::curvature::detail {
@@ -44,12 +45,48 @@ MeshPassSession& mesh_pass_session(Device& device);
 
 constexpr std::size_t kGroup = 64;  ///< work-group size of every launch
 
-/// Builds the adjacency (and, when with_neighbours, the distinct 1-ring), uploads the mesh and
-/// given normals, reserves the per-vertex output buffers, and runs the normal, area and boundary
-/// kernels. `t` receives adjacency, upload and normals_areas (the latter only when `timed`).
+/// The device arrays one estimate reads: the session's (cold path) or a prepared Topology's.
+/// nb_offsets and nb_ids (the distinct 1-ring) are only set where an estimator needs them.
+struct MeshBuffers {
+  const cl::Buffer* positions = nullptr;
+  const cl::Buffer* triangles = nullptr;
+  const cl::Buffer* offsets = nullptr;
+  const cl::Buffer* corners = nullptr;
+  const cl::Buffer* large = nullptr;
+  const cl::Buffer* nb_offsets = nullptr;
+  const cl::Buffer* nb_ids = nullptr;
+  std::size_t nv = 0, nf = 0, large_count = 0;
+};
+
+/// Builds the adjacency (and, when with_neighbours, the distinct 1-ring) and uploads the mesh
+/// into the session's buffers; t.adjacency receives the host time since `clock`, which moves on.
 /// nv > 0. Call with s.mutex held.
-void upload_and_normals(MeshPassSession& s, Device& device, const Mesh& mesh,
-                        const Options& options, bool with_neighbours, bool timed, Timings& t);
+MeshBuffers upload_mesh(MeshPassSession& s, Device& device, const Mesh& mesh,
+                        bool with_neighbours, std::chrono::steady_clock::time_point& clock,
+                        Timings& t);
+
+/// Uploads the given normals, reserves the per-vertex output buffers, and runs the normal, area
+/// and boundary kernels on `m`. `t` receives upload (since `clock`) and normals_areas (the latter
+/// only when `timed`); clock moves on. nv > 0. Call with s.mutex held.
+void normals_pass(MeshPassSession& s, Device& device, const MeshBuffers& m,
+                  const Options& options, bool timed, std::chrono::steady_clock::time_point& clock,
+                  Timings& t);
+
+/// The steps after normals_pass of Batagelo's and Prantl's kernel paths, downloads included
+/// (batagelo_estimate.cpp, prantl_estimate.cpp). Call with s.mutex held.
+void batagelo_passes(MeshPassSession& s, Device& device, const MeshBuffers& m,
+                     const Options& options, bool timed,
+                     std::chrono::steady_clock::time_point& clock, Timings& t,
+                     CurvatureField& out);
+void prantl_passes(MeshPassSession& s, Device& device, const MeshBuffers& m,
+                   const Options& options, int edges, bool area_averaging, bool timed,
+                   std::chrono::steady_clock::time_point& clock, Timings& t,
+                   CurvatureField& out);
+
+/// The prepared-topology path of batagelo, prantl3 and prantl2 (topology.h), positions already
+/// in topo.positions(); `out` is reset first. Options already checked.
+void estimate_resident_mesh_pass(Estimator e, Topology& topo, Device& device,
+                                 const Options& options, CurvatureField& out, Timings* timings);
 
 /// Copies a device buffer of n elements into v (non-blocking; finish the queue before use).
 template <class T>

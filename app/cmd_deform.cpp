@@ -1,0 +1,232 @@
+// isocurv deform MESH --deformer affine|noise|skin -o DIR: an animated mesh (connectivity fixed),
+// deformed on the device frame by frame, curvature on a prepared topology, one .vtp per frame.
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/commands.h"
+#include "app/pipeline.h"
+#include "core/error.h"
+#include "core/mesh_measures.h"
+#include "core/progress.h"
+#include "curvature/ao_scale.h"
+#include "curvature/estimator.h"
+#include "curvature/topology.h"
+#include "deform/affine.h"
+#include "deform/noise_displace.h"
+#include "deform/skinning.h"
+#include "io/mesh_file.h"
+#include "io/pvd_collection.h"
+
+namespace isocurv::app {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point& t) {
+  const Clock::time_point now = Clock::now();
+  const double ms = std::chrono::duration<double, std::milli>(now - t).count();
+  t = now;
+  return ms;
+}
+
+struct DeformCli {
+  std::string input, output, deformer, skin, estimator = "rusinkiewicz";
+  int frames = 60;
+  double amplitude = 0.02;  // noise: fraction of the bounding-box diagonal
+  double waves = 4;         // noise: wavelengths per bounding-box diagonal
+};
+
+// The stem of a path: its file name up to the first dot.
+std::string stem_of(const std::string& path) {
+  const std::string name = fs::path(path).filename().string();
+  const std::size_t dot = name.find('.');
+  return dot == std::string::npos || dot == 0 ? name : name.substr(0, dot);
+}
+
+std::string frame_name(const std::string& stem, int f) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "_%04d.vtp", f);
+  return stem + buf;
+}
+
+void run_deform(const DeformCli& c, const CommonOptions& o) {
+  if (c.deformer != "affine" && c.deformer != "noise" && c.deformer != "skin")
+    throw Error("--deformer must be affine, noise or skin, not '" + c.deformer + "'");
+  if (c.deformer == "skin" && c.skin.empty()) throw Error("--deformer skin needs --skin FILE.json");
+  if (c.deformer != "skin" && !c.skin.empty())
+    throw Error("--skin applies to --deformer skin only");
+  if (c.frames < 1 || c.frames > 100000) throw Error("--frames must be between 1 and 100000");
+  if (!std::isfinite(c.amplitude) || !std::isfinite(c.waves) || c.waves <= 0)
+    throw Error("--amplitude must be finite and --waves positive");
+  const std::optional<curvature::Estimator> est = curvature::estimator_from_name(c.estimator);
+  if (!est ||
+      !(*est == curvature::Estimator::rusinkiewicz || *est == curvature::Estimator::batagelo ||
+        *est == curvature::Estimator::prantl3 || *est == curvature::Estimator::prantl2))
+    throw Error(
+        "--estimator must be rusinkiewicz, batagelo, prantl3 or prantl2 (the estimators "
+        "with a prepared-topology path), not '" +
+        c.estimator + "'");
+  if (!is_mesh_path(c.input))
+    throw Error(c.input + ": deform takes a mesh file (" + io::mesh_extensions() + ")");
+  if (reference_device(o))
+    throw Error("deform runs on an OpenCL device (--device reference has no deformer kernels)");
+
+  StageTimer timer;
+  Surface s = load_surface(c.input, o, timer);
+  const Mesh& rest = s.mesh;
+  if (rest.triangle_count() == 0) throw Error(c.input + ": the mesh has no triangles");
+  std::optional<deform::Skin> skin;
+  if (c.deformer == "skin") skin = deform::load_skin(c.skin, rest.vertex_count());
+
+  // Everything is checked: now the output folder.
+  std::error_code ec;
+  fs::create_directories(c.output, ec);
+  if (ec || !fs::is_directory(c.output))
+    throw Error(c.output + ": cannot create the output folder");
+  const std::string stem = stem_of(c.input);
+
+  Device& dev = device_for(o);
+  timer.start("prepare");
+  curvature::Topology topo = curvature::prepare(rest.triangles, rest.vertex_count(), dev);
+  curvature::Options co;
+  co.estimator = *est;
+  co.ao_scale = o.ao_scale > 0 ? o.ao_scale : curvature::default_ao_scale(rest);
+  const std::size_t nv = rest.vertex_count();
+  cl::Buffer rest_buf(dev.context(), CL_MEM_READ_ONLY, nv * sizeof(Vec3f));
+  dev.queue().enqueueWriteBuffer(rest_buf, CL_TRUE, 0, nv * sizeof(Vec3f), rest.positions.data());
+  std::optional<cl::Buffer> normals_buf;
+  std::unique_ptr<deform::DeviceSkin> device_skin;
+  const double diag = bounding_box_diagonal(rest);
+  if (c.deformer == "noise") {
+    const std::vector<Vec3f> n = area_weighted_normals(rest);
+    normals_buf = cl::Buffer(dev.context(), CL_MEM_READ_ONLY, nv * sizeof(Vec3f));
+    dev.queue().enqueueWriteBuffer(*normals_buf, CL_TRUE, 0, nv * sizeof(Vec3f), n.data());
+  }
+  if (skin) device_skin = std::make_unique<deform::DeviceSkin>(dev, *skin);
+  dev.queue().finish();
+  timer.stop();
+
+  io::PvdCollection pvd((fs::path(c.output) / (stem + ".pvd")).string());
+  nlohmann::json per_frame = nlohmann::json::array();
+  double sum_deform = 0, sum_curv = 0, sum_write = 0;
+  Mesh frame;
+  frame.triangles = rest.triangles;
+  frame.positions.resize(nv);
+  curvature::CurvatureField field;
+  Progress bar("deform", std::uint64_t(c.frames));
+  for (int f = 0; f < c.frames; ++f) {
+    // Time: one period over the frames for the analytic deformers, the keyframe span for a skin.
+    double t = double(f) / c.frames;
+    if (skin)
+      t = c.frames == 1
+              ? skin->start_time()
+              : skin->start_time() + (skin->end_time() - skin->start_time()) * f / (c.frames - 1);
+    Clock::time_point clock = Clock::now();
+    if (c.deformer == "affine") {
+      const std::array<double, 3> a = deform::ellipsoid_axes(t);
+      deform::affine(dev, rest_buf, nv, deform::scaling(a[0], a[1], a[2]), topo.positions());
+    } else if (c.deformer == "noise") {
+      const double amp = c.amplitude * diag * std::sin(2 * 3.14159265358979323846 * t);
+      deform::noise_displace(dev, rest_buf, *normals_buf, nv,
+                             2 * 3.14159265358979323846 * c.waves / diag, amp, topo.positions());
+    } else {
+      device_skin->apply(rest_buf, deform::bone_matrices(*skin, t), topo.positions());
+    }
+    dev.queue().finish();
+    const double deform_ms = ms_since(clock);
+    curvature::Timings ct;
+    curvature::estimate_resident(co.estimator, topo, dev, co, field, &ct);
+    const double curv_ms = ms_since(clock);
+    dev.queue().enqueueReadBuffer(topo.positions(), CL_TRUE, 0, nv * sizeof(Vec3f),
+                                  frame.positions.data());
+    const std::string name = frame_name(stem, f);
+    const std::string path = (fs::path(c.output) / name).string();
+    io::write_mesh(path, frame, &field, o.compress);
+    pvd.add(t, path);
+    const double write_ms = ms_since(clock);
+    sum_deform += deform_ms, sum_curv += curv_ms, sum_write += write_ms;
+    per_frame.push_back(
+        {{"frame", f},
+         {"time", t},
+         {"file", name},
+         {"timings_ms", {{"deform", deform_ms}, {"curvature", curv_ms}, {"write", write_ms}}}});
+    bar.advance();
+  }
+  bar.finish();
+
+  const double per_frame_ms = (sum_deform + sum_curv) / c.frames;
+  nlohmann::json r;
+  r["input"] = c.input;
+  r["deformer"] = c.deformer;
+  if (skin) r["skin"] = c.skin;
+  r["estimator"] = c.estimator;
+  r["frames"] = c.frames;
+  r["vertices"] = nv;
+  r["triangles"] = rest.triangle_count();
+  r["device"] = device_name(o);
+  r["collection"] = stem + ".pvd";
+  r["timings_ms"] = timer.json();
+  r["timings_ms"]["deform"] = sum_deform;
+  r["timings_ms"]["curvature"] = sum_curv;
+  r["timings_ms"]["write"] = sum_write;
+  r["frames_per_second"] = per_frame_ms > 0 ? 1000.0 / per_frame_ms : 0.0;
+  r["per_frame"] = per_frame;
+  write_text_file((fs::path(c.output) / "timings.json").string(), r.dump(2) + "\n");
+  if (o.json) {
+    r.erase("per_frame");
+    r["programs"] = program_report();
+    std::cout << r.dump(2) << "\n";
+  } else if (!o.quiet) {
+    std::printf(
+        "wrote %d frames of %zu vertices to %s (%s.pvd, timings.json): %.2f ms a frame "
+        "deform + curvature, %.1f frames/s\n",
+        c.frames, nv, c.output.c_str(), stem.c_str(), per_frame_ms,
+        r["frames_per_second"].get<double>());
+  }
+}
+
+}  // namespace
+
+void register_deform(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "deform",
+      "Animate a mesh on the device (affine ellipsoid, noise displacement or linear-blend "
+      "skinning; connectivity fixed) and estimate its curvature every frame on a prepared "
+      "topology: one .vtp per frame, a .pvd collection and timings.json");
+  cmd->footer(
+      "Example: isocurv deform sphere.vtp --deformer affine --frames 60 -o anim/\n"
+      "         isocurv deform horse.ply --deformer skin --skin horse_rig.json -o anim/ --json\n"
+      "affine: scaled about the origin by diag(a, b, c), a = 1 + 0.5 sin 2 pi t and b, c a third\n"
+      "and two thirds of a period later (a unit sphere becomes ellipsoids with axes in [0.5,\n"
+      "1.5]); noise: p + A sin(2 pi t) noise(p) n along the rest normals "
+      "(deform/noise_displace.h);\n"
+      "t = frame / frames. skin: the keyframes of --skin (format: README, deform/skinning.h)\n"
+      "sampled evenly from the first to the last. Writes DIR/<stem>_NNNN.vtp, DIR/<stem>.pvd\n"
+      "(rewritten as each frame is added) and DIR/timings.json. The mesh is used as given (not\n"
+      "welded), so skin weights keep their vertex order.");
+  static CommonOptions o;
+  static DeformCli c;
+  cmd->add_option("MESH", c.input, "Rest mesh (.vtp .ply .obj .stl)")->required();
+  cmd->add_option("--deformer", c.deformer, "affine, noise or skin")->required();
+  cmd->add_option("--skin", c.skin, "Skin file (JSON: bones, per-vertex weights, keyframes)");
+  cmd->add_option("--frames", c.frames, "Number of frames (default 60)");
+  cmd->add_option("--amplitude", c.amplitude,
+                  "noise: peak displacement, fraction of the bounding-box diagonal (0.02)");
+  cmd->add_option("--waves", c.waves, "noise: wavelengths per bounding-box diagonal (4)");
+  cmd->add_option("--estimator", c.estimator,
+                  "rusinkiewicz (default), batagelo, prantl3 or prantl2");
+  cmd->add_option("--ao-scale", o.ao_scale, "Ambient-occlusion radius (default 4 mean edges)");
+  cmd->add_option("-o,--output", c.output, "Output folder (created if missing)")->required();
+  add_common_options(*cmd, o, false);
+  add_compress_option(*cmd, o);
+  cmd->callback([] { run_deform(c, o); });
+}
+
+}  // namespace isocurv::app

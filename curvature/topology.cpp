@@ -1,0 +1,122 @@
+#include "curvature/topology.h"
+
+#include <algorithm>
+#include <string>
+
+#include "core/error.h"
+#include "curvature/detail/local_geometry.h"
+#include "curvature/detail/mesh_pass_cl.h"
+#include "curvature/input.h"
+
+namespace isocurv::curvature {
+namespace {
+
+// Fans with more corners go to vertex_boundary_large (the value estimate.cpp and mesh_pass_cl use).
+constexpr std::uint32_t kMaxFan = 8;
+
+// The slots of a Topology's ScratchBuffers.
+enum Slot : std::size_t {
+  kPositions,
+  kTriangles,
+  kOffsets,
+  kCorners,
+  kLarge,
+  kNbOffsets,
+  kNbIds,
+  kSlots
+};
+
+template <class T, class A>
+cl::Buffer device_copy(Device& device, ScratchBuffers& store, Slot slot,
+                       const std::vector<T, A>& v) {
+  cl::Buffer b = store.get(slot, std::max<std::size_t>(v.size() * sizeof(T), 16));
+  if (!v.empty()) device.queue().enqueueWriteBuffer(b, CL_TRUE, 0, v.size() * sizeof(T), v.data());
+  return b;
+}
+
+}  // namespace
+
+Topology prepare(const Triangles& triangles, std::size_t vertex_count, Device& device) {
+  check_triangles(triangles, vertex_count);
+  Topology t;
+  t.device_ = &device;
+  t.vertex_count_ = vertex_count;
+  t.triangles_ = triangles;
+  Mesh shape;  // build_vertex_corners reads only the triangles and the vertex count
+  shape.triangles = triangles;
+  shape.positions.resize(vertex_count);
+  build_vertex_corners(shape, t.adjacency_);
+  std::vector<std::uint32_t> large;
+  for (std::size_t v = 0; v < vertex_count; ++v)
+    if (t.adjacency_.offsets[v + 1] - t.adjacency_.offsets[v] > kMaxFan)
+      large.push_back(std::uint32_t(v));
+  t.large_count_ = large.size();
+  try {
+    // Buffers like the cold path's (core/cl_scratch.h: on a CPU device, host memory in huge
+    // pages), so the kernels see the same kind of memory either way.
+    t.store_ = std::make_shared<ScratchBuffers>(device, kSlots);
+    t.positions_ =
+        t.store_->get(kPositions, std::max<std::size_t>(vertex_count * sizeof(Vec3f), 16));
+    t.triangle_buf_ = device_copy(device, *t.store_, kTriangles, triangles);
+    t.offsets_buf_ = device_copy(device, *t.store_, kOffsets, t.adjacency_.offsets);
+    t.corners_buf_ = device_copy(device, *t.store_, kCorners, t.adjacency_.corners);
+    t.large_buf_ = device_copy(device, *t.store_, kLarge, large);
+  } catch (const cl::Error& e) {
+    throw Error(std::string("curvature: preparing the topology: OpenCL call ") + e.what() +
+                " failed on " + device.info().name + ": " + cl_error_name(e.err()));
+  }
+  return t;
+}
+
+const cl::Buffer& Topology::neighbour_offsets_buffer() {
+  if (!have_neighbours_) {
+    Mesh shape;
+    shape.triangles = triangles_;
+    shape.positions.resize(vertex_count_);
+    const detail::Neighbours nb = detail::vertex_neighbours(shape, adjacency_);
+    nb_offsets_buf_ = device_copy(*device_, *store_, kNbOffsets, nb.offsets);
+    nb_ids_buf_ = device_copy(*device_, *store_, kNbIds, nb.ids);
+    have_neighbours_ = true;
+  }
+  return nb_offsets_buf_;
+}
+
+const cl::Buffer& Topology::neighbour_ids_buffer() {
+  neighbour_offsets_buffer();
+  return nb_ids_buf_;
+}
+
+void upload_positions(const Positions& positions, Topology& topo) {
+  if (!topo.device()) throw Error("curvature: the topology was never prepared");
+  if (positions.size() != topo.vertex_count())
+    throw Error("curvature: " + std::to_string(positions.size()) +
+                " positions given for a topology of " + std::to_string(topo.vertex_count()) +
+                " vertices");
+  check_positions(positions);
+  if (!positions.empty())
+    topo.device()->queue().enqueueWriteBuffer(topo.positions(), CL_TRUE, 0,
+                                              positions.size() * sizeof(Vec3f), positions.data());
+}
+
+void estimate_resident(Estimator e, Topology& topo, Device& device, const Options& options,
+                       CurvatureField& out, Timings* timings) {
+  switch (e) {
+    case Estimator::rusinkiewicz:
+      estimate_resident(topo, device, options, out, timings);
+      return;
+    case Estimator::batagelo:
+    case Estimator::prantl3:
+    case Estimator::prantl2:
+      if (topo.device() != &device)
+        throw Error("curvature: the topology was prepared on another device");
+      check_options(options, topo.vertex_count());
+      detail::estimate_resident_mesh_pass(e, topo, device, options, out, timings);
+      return;
+    default:
+      throw Error(
+          "curvature: only the rusinkiewicz, batagelo, prantl3 and prantl2 estimators "
+          "run on a prepared topology");
+  }
+}
+
+}  // namespace isocurv::curvature
