@@ -50,7 +50,7 @@ void register_render(CLI::App& app) {
                                    &s.normals, &s.estimator);
       estimated = true;
     } else if (!o.ao.empty()) {
-      apply_ao(s.mesh, *s.field, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer);  // --ao on the file's curvature
+      apply_ao(s.mesh, *s.field, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer);  // --ao-method on the file's curvature
     }
     const viz::RenderOptions opts =
         render_options_for(ro, in, s.volume ? std::optional<float>(s.isovalue) : std::nullopt,

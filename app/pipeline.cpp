@@ -111,7 +111,7 @@ void add_curvature_options(CLI::App& cmd, CommonOptions& o, bool mesh_input) {
 }
 
 void add_ao_options(CLI::App& cmd, CommonOptions& o) {
-  cmd.add_option("--ao", o.ao,
+  cmd.add_option("--ao-method", o.ao,
                  "Ambient occlusion (the AO array): griffin (Griffin et al.'s polynomial, the "
                  "default), griffin-exact (the exact (k1, k2) integral it was fitted from), hattori, "
                  "prantl (mean-curvature mapping), raycast or raycast-cos (256 rays of length "
@@ -119,18 +119,18 @@ void add_ao_options(CLI::App& cmd, CommonOptions& o) {
                  "the reference)")
       ->check(CLI::IsMember(ao::method_names()));
   cmd.add_flag("--hattori-half", o.hattori_half,
-               "--ao hattori: use the umbilic mean ao-scale (k1 + k2) / 2 instead of the printed "
+               "--ao-method hattori: use the umbilic mean ao-scale (k1 + k2) / 2 instead of the printed "
                "ao-scale (k1 + k2)");
 }
 
 void apply_ao(const Mesh& mesh, curvature::CurvatureField& field, const volume::Volume* volume,
               float isovalue, const CommonOptions& o, StageTimer& timer) {
-  if (o.hattori_half && o.ao != "hattori") throw Error("--hattori-half applies to --ao hattori");
+  if (o.hattori_half && o.ao != "hattori") throw Error("--hattori-half applies to --ao-method hattori");
   if (o.ao.empty() || o.ao == "griffin") return;
   ao::Options ao;
   ao.method = *ao::method_from_name(o.ao);
   if (ao::needs_volume(ao.method) && !volume)
-    throw Error("--ao " + o.ao + " needs a volume input (it casts rays through the volume), not a "
+    throw Error("--ao-method " + o.ao + " needs a volume input (it casts rays through the volume), not a "
                 "mesh file; the curvature methods (griffin-exact, hattori, prantl) work on meshes");
   ao.radius = o.ao_scale > 0 ? o.ao_scale : curvature::default_ao_scale(mesh);
   ao.hattori_half = o.hattori_half;

@@ -36,7 +36,7 @@ struct CommonOptions {
   io::Compression compress;       ///< --compress (.vtp outputs)
   std::string estimator;          ///< --estimator (curvature::estimator_names); empty: rusinkiewicz
   std::string scale = "auto";     ///< --scale: sigma in world units, or "auto"
-  std::string ao;                 ///< --ao (ao::method_names); empty: griffin, the estimators' own
+  std::string ao;                 ///< --ao-method (ao::method_names); empty: griffin, the estimators' own
   bool hattori_half = false;      ///< --hattori-half
 };
 
@@ -45,7 +45,8 @@ void add_common_options(CLI::App& cmd, CommonOptions& o, bool with_iso = true);
 /// Adds --estimator, --scale, --normals and --ao-scale, and --flip when the command takes mesh files.
 void add_curvature_options(CLI::App& cmd, CommonOptions& o, bool mesh_input = false);
 
-/// Adds --ao METHOD and --hattori-half (curvature, run, render, view).
+/// Adds --ao-method METHOD and --hattori-half (named so, as SEEDS-SPEC G-AO2 does: --ao is
+/// render's shortcut for --shading ambient-ao) (curvature, run, render, view).
 void add_ao_options(CLI::App& cmd, CommonOptions& o);
 
 /// Adds --compress none|lz4|zlib[:LEVEL] (io/compression.h) for the commands that write meshes.
@@ -70,10 +71,10 @@ class StageTimer {
   nlohmann::json timings_ = nlohmann::json::object();
 };
 
-/// Applies --ao to `field` (stage "ao"; nothing for the default griffin, which every estimator
+/// Applies --ao-method to `field` (stage "ao"; nothing for the default griffin, which every estimator
 /// already gives): ao::compute at --ao-scale (or 4 mean edge lengths). A ray cast without
-/// `volume` (a mesh file) is an Error saying it needs the volume; --hattori-half without --ao
-/// hattori is an Error.
+/// `volume` (a mesh file) is an Error saying it needs the volume; --hattori-half without
+/// --ao-method hattori is an Error.
 void apply_ao(const Mesh& mesh, curvature::CurvatureField& field, const volume::Volume* volume,
               float isovalue, const CommonOptions& o, StageTimer& timer);
 
@@ -151,7 +152,7 @@ void require_curvature_format(const std::string& path);
 void prepare_mesh_for_curvature(Surface& s, const std::string& path, const CommonOptions& o);
 
 /// Estimates the curvature of `mesh` (stage "curvature") on the chosen device with --estimator
-/// (curvature::estimate_field), then the AO --ao chooses (apply_ao). Rusinkiewicz's normals: --normals, by default volume when `volume`
+/// (curvature::estimate_field), then the AO --ao-method chooses (apply_ao). Rusinkiewicz's normals: --normals, by default volume when `volume`
 /// is given, else mesh; volume normals come from volume::gradient_normals_for_mesh (face normals
 /// where the gradient disagrees or vanishes). --normals volume without a volume (a mesh file) is an
 /// Error. The volume estimator (at --scale, from `volume` at `isovalue`) takes no --normals and

@@ -1,4 +1,4 @@
-// --ao on the command line: the default is today's AO, every method names itself in the JSON, the
+// --ao-method on the command line: the default is today's AO, every method names itself in the JSON, the
 // ray casts need a volume, and the AO arrays differ where the methods do.
 #include <gtest/gtest.h>
 
@@ -28,7 +28,7 @@ TEST(CliAo, EveryMethodRunsAndNamesItself) {
   for (const char* m :
        {"griffin", "griffin-exact", "hattori", "prantl", "raycast", "raycast-cos"}) {
     const std::string out = dir / (std::string(m) + ".vtp");
-    const auto r = run_isocurv({"curvature", torus, "--ao", m, "-o", out, "--json"}, 120);
+    const auto r = run_isocurv({"curvature", torus, "--ao-method", m, "-o", out, "--json"}, 120);
     ASSERT_TRUE(r.ok()) << r.describe();
     const json j = parse_json(r.out, "curvature --json");
     EXPECT_EQ(j["ao"]["method"], m);
@@ -38,33 +38,33 @@ TEST(CliAo, EveryMethodRunsAndNamesItself) {
     const std::vector<float> a = ao_of(out);
     ASSERT_EQ(a.size(), def.size()) << m;
     if (std::string(m) == "griffin")
-      EXPECT_EQ(a, def) << "--ao griffin is the default, unchanged";
+      EXPECT_EQ(a, def) << "--ao-method griffin is the default, unchanged";
     else
       EXPECT_NE(a, def) << m;
     for (float x : a) ASSERT_TRUE(x >= 0 && x <= 1) << m;
   }
   // The ray cast on a mesh file: one clear line; --hattori-half only with hattori.
   expect_clean_failure(
-      run_isocurv({"curvature", dir / "default.vtp", "--ao", "raycast", "-o", dir / "x.vtp"}),
+      run_isocurv({"curvature", dir / "default.vtp", "--ao-method", "raycast", "-o", dir / "x.vtp"}),
       "needs a volume");
-  const auto mesh_ok = run_isocurv({"curvature", dir / "default.vtp", "--ao", "hattori",
+  const auto mesh_ok = run_isocurv({"curvature", dir / "default.vtp", "--ao-method", "hattori",
                                     "--hattori-half", "-o", dir / "h.vtp", "--json"});
   ASSERT_TRUE(mesh_ok.ok()) << mesh_ok.describe();
   EXPECT_EQ(parse_json(mesh_ok.out, "json")["ao"]["hattori"], "half");
   expect_clean_failure(run_isocurv({"curvature", torus, "--hattori-half", "-o", dir / "y.vtp"}),
                        "--hattori-half");
-  expect_usage_error(run_isocurv({"curvature", torus, "--ao", "guess", "-o", dir / "z.vtp"}),
-                     "--ao");
+  expect_usage_error(run_isocurv({"curvature", torus, "--ao-method", "guess", "-o", dir / "z.vtp"}),
+                     "--ao-method");
 }
 
 TEST(CliAo, RenderAndRunTakeIt) {
   TempDir dir("ao_render");
-  const auto r = run_isocurv({"render", dataset("torus"), "--ao", "raycast", "--color", "AO",
+  const auto r = run_isocurv({"render", dataset("torus"), "--ao-method", "raycast", "--color", "AO",
                               "--size", "320x240", "-o", dir / "ao.png"},
                              180);
   ASSERT_TRUE(r.ok()) << r.describe();
   EXPECT_EQ(png_size(dir / "ao.png")[0], 320u);
-  const auto run = run_isocurv({"run", dataset("torus"), "--ao", "griffin-exact", "--size",
+  const auto run = run_isocurv({"run", dataset("torus"), "--ao-method", "griffin-exact", "--size",
                                 "320x240", "-o", dir / "out", "--json"},
                                180);
   ASSERT_TRUE(run.ok()) << run.describe();
