@@ -1,5 +1,5 @@
-// --ao-method on the command line: the default is today's AO, every method names itself in the JSON, the
-// ray casts need a volume, and the AO arrays differ where the methods do.
+// --ao-method on the command line: the default is today's AO, every method names itself in the
+// JSON, the ray casts need a volume, and the AO arrays differ where the methods do.
 #include <gtest/gtest.h>
 
 #include "cli.h"
@@ -44,9 +44,9 @@ TEST(CliAo, EveryMethodRunsAndNamesItself) {
     for (float x : a) ASSERT_TRUE(x >= 0 && x <= 1) << m;
   }
   // The ray cast on a mesh file: one clear line; --hattori-half only with hattori.
-  expect_clean_failure(
-      run_isocurv({"curvature", dir / "default.vtp", "--ao-method", "raycast", "-o", dir / "x.vtp"}),
-      "needs a volume");
+  expect_clean_failure(run_isocurv({"curvature", dir / "default.vtp", "--ao-method", "raycast",
+                                    "-o", dir / "x.vtp"}),
+                       "needs a volume");
   const auto mesh_ok = run_isocurv({"curvature", dir / "default.vtp", "--ao-method", "hattori",
                                     "--hattori-half", "-o", dir / "h.vtp", "--json"});
   ASSERT_TRUE(mesh_ok.ok()) << mesh_ok.describe();
