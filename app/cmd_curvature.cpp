@@ -52,6 +52,7 @@ void register_curvature(CLI::App& app) {
       ->required();
   add_common_options(*cmd, o, false);
   add_curvature_options(*cmd, o, true);
+  add_ao_options(*cmd, o);
   add_compress_option(*cmd, o);
   add_series_options(*cmd, series);
   cmd->callback([] {

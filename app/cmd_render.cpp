@@ -26,6 +26,7 @@ void register_render(CLI::App& app) {
   cmd->add_option("-o,--output", out, "PNG file to write")->required();
   add_common_options(*cmd, o);
   add_curvature_options(*cmd, o, true);
+  add_ao_options(*cmd, o);
   add_render_options(*cmd, ro);
   static LineCli lc;
   add_line_options(*cmd, lc, "");
@@ -48,10 +49,12 @@ void register_render(CLI::App& app) {
       s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer,
                                    &s.normals, &s.estimator);
       estimated = true;
+    } else if (!o.ao.empty()) {
+      apply_ao(s.mesh, *s.field, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer);  // --ao-method on the file's curvature
     }
     const viz::RenderOptions opts =
         render_options_for(ro, in, s.volume ? std::optional<float>(s.isovalue) : std::nullopt,
-                           estimated ? estimator_title(s.estimator) : "curvature from the file",
+                           with_ao(estimated ? estimator_title(s.estimator) : "curvature from the file", o),
                            s.volume ? s.volume->format : "");
     viz::LinesForCamera lines_for;
     if (lo.lines.any())

@@ -62,7 +62,7 @@ nlohmann::json run_one(const std::string& in, const std::string& dir, const Comm
     mesh_bytes = file_bytes(tmp);
   });
   timer.start("render");
-  const viz::RenderOptions opts = render_options_for(ro, in, s.isovalue, estimator_title(s.estimator),
+  const viz::RenderOptions opts = render_options_for(ro, in, s.isovalue, with_ao(estimator_title(s.estimator), o),
                                                      s.volume ? s.volume->format : "");
   viz::LinesForCamera lines_for;
   if (lo.lines.any())
@@ -122,6 +122,7 @@ void register_run(CLI::App& app) {
       ->capture_default_str();
   add_common_options(*cmd, o, false);
   add_curvature_options(*cmd, o);
+  add_ao_options(*cmd, o);
   add_compress_option(*cmd, o);
   add_render_options(*cmd, ro);
   static LineCli lc;

@@ -9,6 +9,7 @@
 #include "app/series.h"
 #include "app/picture_title.h"
 #include "app/render_options_cli.h"
+#include "ao/method.h"
 #include "core/error.h"
 #include "io/mesh_file.h"
 #include "curvature/estimate.h"
@@ -43,6 +44,7 @@ void register_view(CLI::App& app) {
       ->capture_default_str();
   add_common_options(*cmd, o);
   add_curvature_options(*cmd, o);
+  add_ao_options(*cmd, o);
   add_render_options(*cmd, ro, false);
   static LineCli lc;
   add_line_options(*cmd, lc, "contours,suggestive");
@@ -98,10 +100,10 @@ void register_view(CLI::App& app) {
     setup.isovalue = iso;
     setup.min_value = static_cast<float>(vol->stats.min);
     setup.max_value = static_cast<float>(vol->stats.max);
-    setup.view = render_options_for(ro, in, iso, estimator_title(o), vol->format);
+    setup.view = render_options_for(ro, in, iso, with_ao(estimator_title(o), o), vol->format);
     if (ro.title.empty())
       setup.title_for = [](float value, const std::string& quantity) {
-        return picture_title(in, quantity, value, estimator_title(o));
+        return picture_title(in, quantity, value, with_ao(estimator_title(o), o));
       };
     vol.reset();  // the frame shown is held by cur (and replaced by set_frame)
     setup.screenshot_prefix = screenshots;
@@ -117,6 +119,11 @@ void register_view(CLI::App& app) {
       mesh_options.device = o.device;
       mesh_options.quiet = true;
       mesh_options.ao_scale = o.ao_scale;
+      // the curvature formulas apply to a mesh; a ray cast needs the volume, so a mesh gets griffin
+      if (!ao::needs_volume(*ao::method_from_name(o.ao.empty() ? "griffin" : o.ao))) {
+        mesh_options.ao = o.ao;
+        mesh_options.hattori_half = o.hattori_half;
+      }
       StageTimer ignored;
       Surface s = load_surface(path, mesh_options, ignored);
       if (!s.field || s.field->H.size() != s.mesh.positions.size()) {

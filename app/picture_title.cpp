@@ -38,4 +38,9 @@ std::string estimator_title(const CommonOptions& o) {
   return name == "volume" ? name + ", scale " + o.scale : name;
 }
 
+std::string with_ao(const std::string& estimator, const CommonOptions& o) {
+  if (o.ao.empty() || o.ao == "griffin") return estimator;
+  return (estimator.empty() ? "" : estimator + ", ") + "AO " + o.ao;
+}
+
 }  // namespace isocurv::app

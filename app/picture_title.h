@@ -23,4 +23,8 @@ std::string estimator_title(const curvature::EstimatorReport& report);
 /// (or the default) and --scale as given.
 std::string estimator_title(const CommonOptions& o);
 
+/// `estimator` followed by ", AO METHOD" when --ao-method chose another AO than the default griffin, so
+/// a picture coloured or shaded by AO says which (e.g. "rusinkiewicz, AO raycast").
+std::string with_ao(const std::string& estimator, const CommonOptions& o);
+
 }  // namespace isocurv::app

@@ -17,6 +17,7 @@
 #include "core/mesh_measures.h"
 #include "core/program_cache.h"
 #include "core/progress.h"
+#include "ao/ao.h"
 #include "curvature/ao_scale.h"
 #include "curvature/multi_scale.h"
 #include "curvature/estimate.h"
@@ -133,6 +134,35 @@ void add_curvature_options(CLI::App& cmd, CommonOptions& o, bool mesh_input) {
   cmd.add_option("--ao-scale", o.ao_scale,
                  "Ambient-occlusion radius in world units (default: 4 x the mean edge length)")
       ->check(CLI::NonNegativeNumber);
+}
+
+void add_ao_options(CLI::App& cmd, CommonOptions& o) {
+  cmd.add_option("--ao-method", o.ao,
+                 "Ambient occlusion (the AO array): griffin (Griffin et al.'s polynomial, the "
+                 "default), griffin-exact (the exact (k1, k2) integral it was fitted from), hattori, "
+                 "prantl (mean-curvature mapping), raycast or raycast-cos (256 rays of length "
+                 "--ao-scale through the volume, uniform or cosine-weighted; volume input only, "
+                 "the reference)")
+      ->check(CLI::IsMember(ao::method_names()));
+  cmd.add_flag("--hattori-half", o.hattori_half,
+               "--ao-method hattori: use the umbilic mean ao-scale (k1 + k2) / 2 instead of the printed "
+               "ao-scale (k1 + k2)");
+}
+
+void apply_ao(const Mesh& mesh, curvature::CurvatureField& field, const volume::Volume* volume,
+              float isovalue, const CommonOptions& o, StageTimer& timer) {
+  if (o.hattori_half && o.ao != "hattori") throw Error("--hattori-half applies to --ao-method hattori");
+  if (o.ao.empty() || o.ao == "griffin") return;
+  ao::Options ao;
+  ao.method = *ao::method_from_name(o.ao);
+  if (ao::needs_volume(ao.method) && !volume)
+    throw Error("--ao-method " + o.ao + " needs a volume input (it casts rays through the volume), not a "
+                "mesh file; the curvature methods (griffin-exact, hattori, prantl) work on meshes");
+  ao.radius = o.ao_scale > 0 ? o.ao_scale : curvature::default_ao_scale(mesh);
+  ao.hattori_half = o.hattori_half;
+  timer.start("ao");
+  ao::compute(mesh, field, {volume, isovalue}, ao);
+  timer.stop();
 }
 
 void StageTimer::start(const std::string& stage) {
@@ -383,6 +413,7 @@ curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Vol
     field.metadata.emplace_back("scales", o.scale);
   }
   timer.stop();
+  apply_ao(mesh, field, volume, isovalue, o, timer);
   if (report) *report = std::move(r);
   return field;
 }
@@ -451,6 +482,16 @@ nlohmann::json surface_report(const Surface& s) {
     }
     if (s.estimator.estimator == "volume") e["unreliable_vertices"] = s.estimator.unreliable;
     r["estimator"] = e;
+  }
+  if (s.field && !s.field->ao.empty()) {  // which AO the field carries (ao/ao.h's metadata)
+    nlohmann::json a = nlohmann::json::object();
+    for (const auto& [key, value] : s.field->metadata)
+      if (key == "ao") a["method"] = value;
+      else if (key.rfind("ao_", 0) == 0 && key != "ao_scale") a[key.substr(3)] = value;
+    double sum = 0;
+    for (float v : s.field->ao) sum += v;
+    a["mean"] = sum / double(s.field->ao.size());
+    if (a.contains("method")) r["ao"] = a;
   }
   if (s.field && s.field->size() == s.mesh.positions.size())
     r["curvature"] = field_stats_json(*s.field, s.mesh);

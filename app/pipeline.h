@@ -37,6 +37,8 @@ struct CommonOptions {
   io::Compression compress;       ///< --compress (.vtp outputs)
   std::string estimator;          ///< --estimator (curvature::estimator_names); empty: rusinkiewicz
   std::string scale = "auto";     ///< --scale: sigma in world units, a list "1,2,4", or "auto"
+  std::string ao;                 ///< --ao-method (ao::method_names); empty: griffin, the estimators' own
+  bool hattori_half = false;      ///< --hattori-half
 };
 
 /// The scales of a --scale value, as written: {"auto"}, {"1.5"} or {"1", "2", "4"}. Throws Error
@@ -47,6 +49,10 @@ std::vector<std::string> parse_scales(const std::string& text);
 void add_common_options(CLI::App& cmd, CommonOptions& o, bool with_iso = true);
 /// Adds --estimator, --scale, --normals and --ao-scale, and --flip when the command takes mesh files.
 void add_curvature_options(CLI::App& cmd, CommonOptions& o, bool mesh_input = false);
+
+/// Adds --ao-method METHOD and --hattori-half (named so, as SEEDS-SPEC G-AO2 does: --ao is
+/// render's shortcut for --shading ambient-ao) (curvature, run, render, view).
+void add_ao_options(CLI::App& cmd, CommonOptions& o);
 
 /// Adds --compress none|lz4|zlib[:LEVEL] (io/compression.h) for the commands that write meshes.
 void add_compress_option(CLI::App& cmd, CommonOptions& o);
@@ -69,6 +75,13 @@ class StageTimer {
   double compile0_ = 0;  ///< program_build_stats().ms when the stage started
   nlohmann::json timings_ = nlohmann::json::object();
 };
+
+/// Applies --ao-method to `field` (stage "ao"; nothing for the default griffin, which every estimator
+/// already gives): ao::compute at --ao-scale (or 4 mean edge lengths). A ray cast without
+/// `volume` (a mesh file) is an Error saying it needs the volume; --hattori-half without
+/// --ao-method hattori is an Error.
+void apply_ao(const Mesh& mesh, curvature::CurvatureField& field, const volume::Volume* volume,
+              float isovalue, const CommonOptions& o, StageTimer& timer);
 
 /// True for a mesh file extension (.vtp .ply .obj .stl), false for anything else (a volume).
 bool is_mesh_path(const std::string& path);
@@ -144,7 +157,7 @@ void require_curvature_format(const std::string& path);
 void prepare_mesh_for_curvature(Surface& s, const std::string& path, const CommonOptions& o);
 
 /// Estimates the curvature of `mesh` (stage "curvature") on the chosen device with --estimator
-/// (curvature::estimate_field). Rusinkiewicz's normals: --normals, by default volume when `volume`
+/// (curvature::estimate_field), then the AO --ao-method chooses (apply_ao). Rusinkiewicz's normals: --normals, by default volume when `volume`
 /// is given, else mesh; volume normals come from volume::gradient_normals_for_mesh (face normals
 /// where the gradient disagrees or vanishes). --normals volume without a volume (a mesh file) is an
 /// Error. The volume estimator (at --scale, from `volume` at `isovalue`) takes no --normals and

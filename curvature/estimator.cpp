@@ -134,6 +134,7 @@ CurvatureField estimate_field(const Mesh& mesh, const VolumeSource& source, Devi
     field.metadata.emplace_back(key, text);
   }
   for (const auto& [key, how] : r.notes) field.metadata.emplace_back(key + "_chosen", how);
+  field.metadata.emplace_back("ao", "griffin");  // the AO every estimator gives (ao/ao.h: others)
   if (report) *report = std::move(r);
   return field;
 }
