@@ -10,6 +10,7 @@ void register_commands(CLI::App& app) {
   register_run(app);
   register_render(app);
   register_lines(app);
+  register_screen(app);
   register_view(app);
   register_check(app);
   register_compare(app);
