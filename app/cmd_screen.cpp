@@ -34,16 +34,16 @@ bool has_ext(const std::string& path, const char* ext) {
 std::string estimator_name(const screen::ScreenOptions& so) {
   if (so.estimator == screen::ScreenEstimator::mellado)
     return "screen-space Mellado, radius " + std::to_string(so.mellado_radius) + " px";
-  return "screen-space Prantl, " + std::to_string(so.edges) + " edges" +
-         (so.lod ? ", LOD" : "");
+  return "screen-space Prantl, " + std::to_string(so.edges) + " edges" + (so.lod ? ", LOD" : "");
 }
 
 }  // namespace
 
 void register_screen(CLI::App& app) {
   auto* cmd = app.add_subcommand(
-      "screen", "Screen-space curvature per pixel: a volume's isosurface ray cast (no mesh) or a "
-                "mesh rasterised, then Prantl's per-pixel shape operator (or Mellado's sphere fit)");
+      "screen",
+      "Screen-space curvature per pixel: a volume's isosurface ray cast (no mesh) or a "
+      "mesh rasterised, then Prantl's per-pixel shape operator (or Mellado's sphere fit)");
   cmd->footer(
       "Example: isocurv screen gyroid.vdb --color K --size 800x600 --lod on -o gyroid_K.png "
       "--raw gyroid.vti\n"
@@ -102,8 +102,9 @@ void register_screen(CLI::App& app) {
          },
          "Picture size WIDTHxHEIGHT (default 1024x768; 16..8192 a side)")
       ->group("Camera");
-  cmd->add_option("--estimator", estimator, "prantl (per-pixel shape operator) or mellado "
-                                            "(sphere fit, H only)")
+  cmd->add_option("--estimator", estimator,
+                  "prantl (per-pixel shape operator) or mellado "
+                  "(sphere fit, H only)")
       ->check(CLI::IsMember({"prantl", "mellado"}))
       ->capture_default_str()
       ->group("Screen space");
@@ -123,13 +124,15 @@ void register_screen(CLI::App& app) {
       ->check(CLI::IsMember({4, 8}))
       ->capture_default_str()
       ->group("Screen space");
-  cmd->add_option("--depth", depth, "Depth the LOD and discontinuity rule read: linear "
-                                    "(eye depth / far) or window (the paper's)")
+  cmd->add_option("--depth", depth,
+                  "Depth the LOD and discontinuity rule read: linear "
+                  "(eye depth / far) or window (the paper's)")
       ->check(CLI::IsMember({"linear", "window"}))
       ->capture_default_str()
       ->group("Screen space");
-  cmd->add_option("--discontinuity", rule, "report: a neighbour across a depth jump falls back to "
-                                           "1 pixel; paper: its triangles are dropped")
+  cmd->add_option("--discontinuity", rule,
+                  "report: a neighbour across a depth jump falls back to "
+                  "1 pixel; paper: its triangles are dropped")
       ->check(CLI::IsMember({"report", "paper"}))
       ->capture_default_str()
       ->group("Screen space");
@@ -141,13 +144,14 @@ void register_screen(CLI::App& app) {
     if (!has_ext(out, ".png")) throw Error(out, "isocurv screen writes a .png picture");
     if (!raw.empty() && !has_ext(raw, ".vti")) throw Error(raw, "--raw writes a .vti file");
     if (o.cap) throw Error("--cap does not apply to isocurv screen (the ray caster reads the box)");
-    so.estimator = estimator == "mellado" ? screen::ScreenEstimator::mellado
-                                          : screen::ScreenEstimator::prantl;
+    so.estimator =
+        estimator == "mellado" ? screen::ScreenEstimator::mellado : screen::ScreenEstimator::prantl;
     if (so.estimator == screen::ScreenEstimator::mellado && po.quantity == "K")
       throw Error("--estimator mellado gives mean curvature only; use --color H");
     so.lod = lod == "on";
     so.depth = depth == "window" ? screen::DepthMapping::window : screen::DepthMapping::linear;
-    so.rule = rule == "paper" ? screen::DiscontinuityRule::paper : screen::DiscontinuityRule::report;
+    so.rule =
+        rule == "paper" ? screen::DiscontinuityRule::paper : screen::DiscontinuityRule::report;
     const bool reference = reference_device(o);
     StageTimer timer;
     std::optional<screen::CastVolume> cast;
@@ -200,7 +204,8 @@ void register_screen(CLI::App& app) {
     // The surface box depends on the legend's labels, which depend on the values: lay out,
     // compute, lay out again with the real range, and recompute if the box changed size.
     for (int pass = 0; pass < 3; ++pass) {
-      const int sw = layout.surface.x1 - layout.surface.x0, sh = layout.surface.y1 - layout.surface.y0;
+      const int sw = layout.surface.x1 - layout.surface.x0,
+                sh = layout.surface.y1 - layout.surface.y0;
       if (sw < 1 || sh < 1) throw Error(out, "the picture leaves no room for the surface");
       camera = fit_camera(bounds, view, double(sw) / sh);
       const screen::ViewFrame frame = screen::view_frame(camera, sw, sh);
@@ -215,7 +220,8 @@ void register_screen(CLI::App& app) {
       timer.stop();
       range = screen::screen_range(c, po);
       const viz::PictureLayout next = screen::screen_layout(width, height, po, range);
-      const bool same = next.surface.x1 - next.surface.x0 == sw && next.surface.y1 - next.surface.y0 == sh;
+      const bool same =
+          next.surface.x1 - next.surface.x0 == sw && next.surface.y1 - next.surface.y0 == sh;
       layout = next;
       if (same) break;
       if (pass == 2) {  // keep the image; put it where the last layout says, at its size
@@ -224,7 +230,8 @@ void register_screen(CLI::App& app) {
     }
     timer.start("write");
     AtomicFileSet files;
-    files.write(out, [&](const std::string& tmp) { screen::write_picture(tmp, g, c, layout, po, range); });
+    files.write(
+        out, [&](const std::string& tmp) { screen::write_picture(tmp, g, c, layout, po, range); });
     if (!raw.empty()) files.write(raw, [&](const std::string& tmp) { screen::write_raw(tmp, c); });
     files.commit();
     timer.stop();

@@ -47,10 +47,13 @@ double median_ms(int passes, F&& f) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // rows as they come, also into a file
   int passes = 3, n_iso = 10;
   for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--passes") && i + 1 < argc) passes = std::max(1, std::atoi(argv[++i]));
-    else if (!std::strcmp(argv[i], "--isovalues") && i + 1 < argc) n_iso = std::max(2, std::atoi(argv[++i]));
+    if (!std::strcmp(argv[i], "--passes") && i + 1 < argc)
+      passes = std::max(1, std::atoi(argv[++i]));
+    else if (!std::strcmp(argv[i], "--isovalues") && i + 1 < argc)
+      n_iso = std::max(2, std::atoi(argv[++i]));
   }
   Device& dev = Device::default_device();
   std::printf("device: %s (%s)\n", dev.info().name.c_str(), dev.info().type.c_str());
@@ -60,8 +63,8 @@ int main(int argc, char** argv) {
     const screen::CastVolume cv(v);
     const float iso = float(field->isovalue());
     std::printf("\n== %s 128^3, isovalue %g\n", name, iso);
-    std::printf("%-10s %5s %8s %8s %8s %8s %8s %8s\n", "size", "zoom", "cover%", "cast", "2e",
-                "3e", "2e+LOD", "Mellado");
+    std::printf("%-10s %5s %8s %8s %8s %8s %8s %8s\n", "size", "zoom", "cover%", "cast", "2e", "3e",
+                "2e+LOD", "Mellado");
     screen::ScreenOptions o2, o3, ol, om;
     o3.edges = 3;
     ol.lod = true;
@@ -86,13 +89,16 @@ int main(int argc, char** argv) {
     // The slider update, both paths, over n_iso isovalues across the value range.
     std::vector<float> isos;
     for (int i = 0; i < n_iso; ++i)
-      isos.push_back(float(v.stats.min + (v.stats.max - v.stats.min) * (0.05 + 0.9 * i / (n_iso - 1))));
-    const screen::ViewFrame f = screen::view_frame(fit_camera(cv.bounds, ViewSpec{}, 800.0 / 600), 800, 600);
+      isos.push_back(
+          float(v.stats.min + (v.stats.max - v.stats.min) * (0.05 + 0.9 * i / (n_iso - 1))));
+    const screen::ViewFrame f =
+        screen::view_frame(fit_camera(cv.bounds, ViewSpec{}, 800.0 / 600), 800, 600);
     mc::Mesher mesher(v, dev);
     std::vector<double> screen_ms, object_ms;
     for (float is : isos) {
       screen::estimate(screen::ray_cast(cv, is, f, dev), dev, o2);
-      screen_ms.push_back(median_ms(passes, [&] { screen::estimate(screen::ray_cast(cv, is, f, dev), dev, o2); }));
+      screen_ms.push_back(
+          median_ms(passes, [&] { screen::estimate(screen::ray_cast(cv, is, f, dev), dev, o2); }));
       object_ms.push_back(median_ms(passes, [&] {
         Mesh mesh = mesher.extract(is);
         curvature::Options co;
@@ -104,10 +110,11 @@ int main(int argc, char** argv) {
       std::sort(x.begin(), x.end());
       return x[x.size() / 2];
     };
-    std::printf("slider update (median over %d isovalues): screen space (cast + 2-edge estimate, "
-                "800x600) %.1f ms = %.1f/s; extract + curvature %.1f ms = %.1f/s; ratio %.2fx\n",
-                n_iso, med(screen_ms), 1000 / med(screen_ms), med(object_ms), 1000 / med(object_ms),
-                med(object_ms) / med(screen_ms));
+    std::printf(
+        "slider update (median over %d isovalues): screen space (cast + 2-edge estimate, "
+        "800x600) %.1f ms = %.1f/s; extract + curvature %.1f ms = %.1f/s; ratio %.2fx\n",
+        n_iso, med(screen_ms), 1000 / med(screen_ms), med(object_ms), 1000 / med(object_ms),
+        med(object_ms) / med(screen_ms));
   }
   return 0;
 }

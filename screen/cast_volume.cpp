@@ -61,7 +61,8 @@ CastVolume::CastVolume(const volume::Volume& v) : id(next_id++) {
           for (int k = c * kCastBrick; k <= std::min(nz - 1, (c + 1) * kCastBrick); ++k)
             for (int j = b * kCastBrick; j <= std::min(ny - 1, (b + 1) * kCastBrick); ++j)
               for (int i = a * kCastBrick; i <= std::min(nx - 1, (a + 1) * kCastBrick); ++i) {
-                const float s = values[std::size_t(i) + std::size_t(nx) * (j + std::size_t(ny) * k)];
+                const float s =
+                    values[std::size_t(i) + std::size_t(nx) * (j + std::size_t(ny) * k)];
                 if (!std::isfinite(s)) continue;
                 range[0] = std::min(range[0], s), range[1] = std::max(range[1], s);
               }
@@ -93,7 +94,8 @@ CastVolume::CastVolume(const volume::Volume& v) : id(next_id++) {
     const auto w = world({double((i & 1) * (nx - 1)), double(((i >> 1) & 1) * (ny - 1)),
                           double(((i >> 2) & 1) * (nz - 1))});
     for (int c = 0; c < 3; ++c)
-      bounds[2 * c] = std::min(bounds[2 * c], w[c]), bounds[2 * c + 1] = std::max(bounds[2 * c + 1], w[c]);
+      bounds[2 * c] = std::min(bounds[2 * c], w[c]),
+                 bounds[2 * c + 1] = std::max(bounds[2 * c + 1], w[c]);
   }
 }
 

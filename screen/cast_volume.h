@@ -18,9 +18,9 @@ inline constexpr int kCastBrick = 8;
 /// Index space here counts from the domain's first voxel: sample (i, j, k) is voxel
 /// domain.min() + (i, j, k), at values[i + nx (j + ny k)].
 struct CastVolume {
-  int nx = 0, ny = 0, nz = 0;   ///< samples per axis (each >= 2)
-  std::vector<float> values;    ///< raw voxel values (non-finite ones read as outside)
-  int bx = 0, by = 0, bz = 0;   ///< bricks per axis: ceil((n - 1) / kCastBrick)
+  int nx = 0, ny = 0, nz = 0;  ///< samples per axis (each >= 2)
+  std::vector<float> values;   ///< raw voxel values (non-finite ones read as outside)
+  int bx = 0, by = 0, bz = 0;  ///< bricks per axis: ceil((n - 1) / kCastBrick)
   /// Per brick (index bx_i + bx (by_i + by bz_i)): min and max of the finite samples it reads
   /// (its 9^3 corners, clipped to the domain); min > max when there are none.
   std::vector<std::array<float, 2>> brick_range;

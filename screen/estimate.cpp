@@ -39,17 +39,20 @@ struct Rules {
   bool ortho, linear;
   double window(double z) const {
     double d;
-    if (linear) d = z / far;
-    else if (ortho) d = (z - near) / (far - near);
-    else d = (1 / near - 1 / z) / (1 / near - 1 / far);
+    if (linear)
+      d = z / far;
+    else if (ortho)
+      d = (z - near) / (far - near);
+    else
+      d = (1 / near - 1 / z) / (1 / near - 1 / far);
     return std::min(std::max(d, 0.0), 1.0);
   }
 };
 
 Rules rules_for(const GBuffer& g, const ScreenOptions& o) {
   const double f = lod_far(g);
-  return {g.width(), g.height(), g.near, g.far, f, 1 / f, g.frame.ortho,
-          o.depth == DepthMapping::linear};
+  return {g.width(), g.height(), g.near,        g.far,
+          f,         1 / f,      g.frame.ortho, o.depth == DepthMapping::linear};
 }
 
 using A3 = std::array<double, 3>;
@@ -209,21 +212,23 @@ ScreenCurvature estimate_reference(const GBuffer& g, const ScreenOptions& o) {
   check(g, o);
   ScreenCurvature out = empty_result(g);
   const Rules r = rules_for(g, o);
-  tbb::parallel_for(tbb::blocked_range<int>(0, g.height()), [&](const tbb::blocked_range<int>& rows) {
-    for (int y = rows.begin(); y != rows.end(); ++y)
-      for (int x = 0; x < g.width(); ++x) {
-        const int c = x + g.width() * y;
-        if (!g.valid[c]) continue;
-        const Pixel px{g, o, r, x, y, c, r.window(g.depth[c])};
-        if (o.estimator == ScreenEstimator::prantl) prantl_pixel(px, out);
-        else mellado_pixel(px, out);
-      }
-  });
+  tbb::parallel_for(tbb::blocked_range<int>(0, g.height()),
+                    [&](const tbb::blocked_range<int>& rows) {
+                      for (int y = rows.begin(); y != rows.end(); ++y)
+                        for (int x = 0; x < g.width(); ++x) {
+                          const int c = x + g.width() * y;
+                          if (!g.valid[c]) continue;
+                          const Pixel px{g, o, r, x, y, c, r.window(g.depth[c])};
+                          if (o.estimator == ScreenEstimator::prantl)
+                            prantl_pixel(px, out);
+                          else
+                            mellado_pixel(px, out);
+                        }
+                    });
   return out;
 }
 
-ScreenCurvature estimate(const GBuffer& g, Device& device, const ScreenOptions& o,
-                         int work_group) {
+ScreenCurvature estimate(const GBuffer& g, Device& device, const ScreenOptions& o, int work_group) {
   check(g, o);
   if (work_group < 1) throw Error("screen: the work-group size must be positive");
   ScreenCurvature out = empty_result(g);
@@ -241,32 +246,33 @@ ScreenCurvature estimate(const GBuffer& g, Device& device, const ScreenOptions& 
   }
   s.host_pos.resize(n), s.host_nrm.resize(n), s.host_out.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    s.host_pos[i] = {{g.position[i][0], g.position[i][1], g.position[i][2], g.valid[i] ? 1.0f : 0.0f}};
+    s.host_pos[i] = {
+        {g.position[i][0], g.position[i][1], g.position[i][2], g.valid[i] ? 1.0f : 0.0f}};
     s.host_nrm[i] = {{g.normal[i][0], g.normal[i][1], g.normal[i][2], 0.0f}};
   }
   q.enqueueWriteBuffer(s.pos, CL_FALSE, 0, n * 16, s.host_pos.data());
   q.enqueueWriteBuffer(s.nrm, CL_FALSE, 0, n * 16, s.host_nrm.data());
   q.enqueueWriteBuffer(s.depth, CL_FALSE, 0, n * 4, g.depth.data());
   const Rules r = rules_for(g, o);
-  const Params p{g.width(),
-                 g.height(),
-                 o.edges,
-                 o.lod ? 1 : 0,
-                 o.size_max,
-                 o.fan,
-                 o.rule == DiscontinuityRule::paper ? 1 : 0,
-                 o.mellado_radius,
-                 float(r.near),
-                 float(r.far),
-                 float(r.f_lod),
-                 float(r.tau),
-                 o.max_normal_angle_deg > 0 ? float(std::cos(o.max_normal_angle_deg * M_PI / 180))
-                                            : -2.0f,
-                 r.ortho ? 1 : 0,
-                 r.linear ? 1 : 0};
-  cl::Kernel& k = device.kernel(detail::screen_program(device),
-                                o.estimator == ScreenEstimator::prantl ? "screen_prantl"
-                                                                       : "screen_mellado");
+  const Params p{
+      g.width(),
+      g.height(),
+      o.edges,
+      o.lod ? 1 : 0,
+      o.size_max,
+      o.fan,
+      o.rule == DiscontinuityRule::paper ? 1 : 0,
+      o.mellado_radius,
+      float(r.near),
+      float(r.far),
+      float(r.f_lod),
+      float(r.tau),
+      o.max_normal_angle_deg > 0 ? float(std::cos(o.max_normal_angle_deg * M_PI / 180)) : -2.0f,
+      r.ortho ? 1 : 0,
+      r.linear ? 1 : 0};
+  cl::Kernel& k =
+      device.kernel(detail::screen_program(device),
+                    o.estimator == ScreenEstimator::prantl ? "screen_prantl" : "screen_mellado");
   set_args(k, s.pos, s.nrm, s.depth, p, s.out);
   launch(q, k, n, std::size_t(work_group));
   q.enqueueReadBuffer(s.out, CL_TRUE, 0, n * 16, s.host_out.data());

@@ -24,10 +24,10 @@ enum class DiscontinuityRule { report, paper };
 
 struct ScreenOptions {
   ScreenEstimator estimator = ScreenEstimator::prantl;
-  int edges = 2;        ///< 2 (eq. 17, the fastest) or 3 (eq. 9-11) edges per pixel triangle
-  bool lod = false;     ///< level of detail: step s = floor(size_max f^(-2d)) + 1 (report eq. 7.12)
-  int size_max = 8;     ///< the LOD's largest extra step (pixels)
-  int fan = 4;          ///< triangles around the pixel when s > 1: 4 (report) or 8 (paper)
+  int edges = 2;     ///< 2 (eq. 17, the fastest) or 3 (eq. 9-11) edges per pixel triangle
+  bool lod = false;  ///< level of detail: step s = floor(size_max f^(-2d)) + 1 (report eq. 7.12)
+  int size_max = 8;  ///< the LOD's largest extra step (pixels)
+  int fan = 4;       ///< triangles around the pixel when s > 1: 4 (report) or 8 (paper)
   DepthMapping depth = DepthMapping::linear;
   DiscontinuityRule rule = DiscontinuityRule::report;
   /// Reject pixel triangles whose corner normals differ by more than this (degrees); <= 0: off.

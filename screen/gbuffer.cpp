@@ -41,8 +41,7 @@ double ViewFrame::eye_depth(const std::array<double, 3>& p) const {
   return dot(sub(p, eye), forward);
 }
 
-bool ViewFrame::project(const std::array<double, 3>& p, double& x, double& y,
-                        double& depth) const {
+bool ViewFrame::project(const std::array<double, 3>& p, double& x, double& y, double& depth) const {
   const V d = sub(p, eye);
   depth = dot(d, forward);
   double sx = dot(d, right), sy = dot(d, up);
@@ -73,8 +72,8 @@ ViewFrame view_frame(const Camera& camera, int width, int height) {
   f.right = unit(cross(f.forward, camera.view_up));
   if (dot(f.right, f.right) == 0) throw Error("screen: the camera's view up is along its view");
   f.up = cross(f.right, f.forward);
-  f.half_height = camera.ortho ? camera.parallel_scale
-                               : std::tan(camera.view_angle_deg * M_PI / 360.0);
+  f.half_height =
+      camera.ortho ? camera.parallel_scale : std::tan(camera.view_angle_deg * M_PI / 360.0);
   return f;
 }
 

@@ -19,7 +19,8 @@ inline constexpr int kMaxImageSide = 8192;
 /// every ray starts at the eye; the view angle is the full vertical angle (VTK's). Orthographic:
 /// rays are parallel to `forward`, starting on the plane through the eye.
 struct ViewFrame {
-  std::array<double, 3> eye{}, forward{}, right{}, up{};  ///< unit, right-handed (right x up = -forward)
+  std::array<double, 3> eye{}, forward{}, right{},
+      up{};  ///< unit, right-handed (right x up = -forward)
   bool ortho = false;
   double half_height = 1;  ///< perspective: tan(angle / 2); ortho: parallel scale (world)
   int width = 0, height = 0;
@@ -42,10 +43,10 @@ ViewFrame view_frame(const Camera& camera, int width, int height);
 /// The G-buffer: row-major, index x + width * y, y up. Invalid pixels (no surface) hold zeros.
 struct GBuffer {
   ViewFrame frame;
-  double near = 0, far = 1;  ///< eye-depth range of the scene (clipping planes), near > 0
-  std::vector<Vec3f> position;    ///< world position of the surface point
-  std::vector<Vec3f> normal;      ///< unit outward normal
-  std::vector<float> depth;       ///< eye depth (world units along `forward`)
+  double near = 0, far = 1;         ///< eye-depth range of the scene (clipping planes), near > 0
+  std::vector<Vec3f> position;      ///< world position of the surface point
+  std::vector<Vec3f> normal;        ///< unit outward normal
+  std::vector<float> depth;         ///< eye depth (world units along `forward`)
   std::vector<std::uint8_t> valid;  ///< 1 where the pixel sees the surface
 
   int width() const { return frame.width; }

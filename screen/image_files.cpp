@@ -1,5 +1,6 @@
 #include "screen/image_files.h"
 
+#include <vtkColorTransferFunction.h>
 #include <vtkErrorCode.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
@@ -9,7 +10,6 @@
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkUnsignedCharArray.h>
-#include <vtkColorTransferFunction.h>
 #include <vtkWindowToImageFilter.h>
 #include <vtkXMLImageDataWriter.h>
 
@@ -74,7 +74,8 @@ void write_picture(const std::string& path, const GBuffer& g, const ScreenCurvat
   viz::check_opengl(window);
   vtkNew<vtkRenderer> overlay;
   overlay->GradientBackgroundOn();
-  overlay->SetBackground(viz::kBackgroundBottom[0], viz::kBackgroundBottom[1], viz::kBackgroundBottom[2]);
+  overlay->SetBackground(viz::kBackgroundBottom[0], viz::kBackgroundBottom[1],
+                         viz::kBackgroundBottom[2]);
   overlay->SetBackground2(viz::kBackgroundTop[0], viz::kBackgroundTop[1], viz::kBackgroundTop[2]);
   window->AddRenderer(overlay);
   viz::Legend legend(overlay);
@@ -119,7 +120,8 @@ void write_picture(const std::string& path, const GBuffer& g, const ScreenCurvat
     writer->SetFileName(tmp.c_str());
     writer->Write();
     if (errors.failed() || writer->GetErrorCode() != vtkErrorCode::NoError)
-      throw Error(path, "cannot write PNG" + (errors.failed() ? ": " + errors.message() : std::string()));
+      throw Error(path,
+                  "cannot write PNG" + (errors.failed() ? ": " + errors.message() : std::string()));
   });
   window->Finalize();
 }
@@ -146,7 +148,8 @@ void write_raw(const std::string& path, const ScreenCurvature& c) {
     writer->SetInputData(img);
     writer->SetFileName(tmp.c_str());
     if (!writer->Write() || errors.failed())
-      throw Error(path, "cannot write VTK image data" + (errors.failed() ? ": " + errors.message() : std::string()));
+      throw Error(path, "cannot write VTK image data" +
+                            (errors.failed() ? ": " + errors.message() : std::string()));
   });
 }
 

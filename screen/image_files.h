@@ -12,13 +12,13 @@ namespace isocurv::screen {
 
 /// What the picture shows.
 struct PictureOptions {
-  std::string quantity = "H";   ///< "H" or "K"
-  std::string cmap = "auto";    ///< viz::color_map_names
+  std::string quantity = "H";            ///< "H" or "K"
+  std::string cmap = "auto";             ///< viz::color_map_names
   std::optional<viz::ColorRange> range;  ///< fixed colour range; else viz::color_range's
   double clamp_percentile = 2;
-  std::string title;            ///< none when empty
-  std::string length_unit;      ///< the legend's unit ("mm"); empty: "length"
-  bool shade = true;            ///< colours times (0.35 + 0.65 |n . view|) for a sense of shape
+  std::string title;        ///< none when empty
+  std::string length_unit;  ///< the legend's unit ("mm"); empty: "length"
+  bool shade = true;        ///< colours times (0.35 + 0.65 |n . view|) for a sense of shape
 };
 
 /// The layout of a width x height picture whose colour range is `range` (viz::layout_picture):

@@ -28,12 +28,15 @@ GBuffer rasterise(const Mesh& mesh, const std::vector<Vec3f>& normals, const Vie
   const std::size_t nv = mesh.positions.size();
   if (normals.size() != nv) throw Error("screen: the mesh needs one normal per vertex");
   for (const Tri& t : mesh.triangles)
-    if (t[0] >= nv || t[1] >= nv || t[2] >= nv) throw Error("screen: a triangle index is out of range");
+    if (t[0] >= nv || t[1] >= nv || t[2] >= nv)
+      throw Error("screen: a triangle index is out of range");
   GBuffer g;
   g.reset(frame);
   std::array<double, 6> b = {1e300, -1e300, 1e300, -1e300, 1e300, -1e300};
   for (const Vec3f& p : mesh.positions)
-    for (int c = 0; c < 3; ++c) b[2 * c] = std::min(b[2 * c], double(p[c])), b[2 * c + 1] = std::max(b[2 * c + 1], double(p[c]));
+    for (int c = 0; c < 3; ++c)
+      b[2 * c] = std::min(b[2 * c], double(p[c])),
+            b[2 * c + 1] = std::max(b[2 * c + 1], double(p[c]));
   if (nv == 0) b = {0, 1, 0, 1, 0, 1};
   depth_range(frame, b, g.near, g.far);
   // Each triangle's pixel box (inclusive), once; empty when it is clipped or off screen.
@@ -47,15 +50,18 @@ GBuffer rasterise(const Mesh& mesh, const std::vector<Vec3f>& normals, const Vie
     bool ok = true;
     for (int j = 0; j < 3; ++j) {
       double x, y, z;
-      if (!frame.project(d3(mesh.positions[t[j]]), x, y, z) || (!frame.ortho && z < g.near)) ok = false;
+      if (!frame.project(d3(mesh.positions[t[j]]), x, y, z) || (!frame.ortho && z < g.near))
+        ok = false;
       x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
     }
     Box& bx = boxes[f];
     bx = {1, 0, 1, 0};
     if (!ok) return;
     // Pixel centres x + 0.5 in [x0, x1].
-    bx.x0 = std::max(0, int(std::ceil(x0 - 0.5))), bx.x1 = std::min(frame.width - 1, int(std::floor(x1 - 0.5)));
-    bx.y0 = std::max(0, int(std::ceil(y0 - 0.5))), bx.y1 = std::min(frame.height - 1, int(std::floor(y1 - 0.5)));
+    bx.x0 = std::max(0, int(std::ceil(x0 - 0.5))),
+    bx.x1 = std::min(frame.width - 1, int(std::floor(x1 - 0.5)));
+    bx.y0 = std::max(0, int(std::ceil(y0 - 0.5))),
+    bx.y1 = std::min(frame.height - 1, int(std::floor(y1 - 0.5)));
   });
   const int bands = (frame.height + kBand - 1) / kBand;
   tbb::parallel_for(0, bands, [&](int band) {

@@ -23,7 +23,9 @@ void check(const CastOptions& o) {
     throw Error("screen: the ray step must be in (0, 0.5] voxel and bisections in [1, 60]");
 }
 
-void frame_depths(GBuffer& g, const CastVolume& v) { depth_range(g.frame, v.bounds, g.near, g.far); }
+void frame_depths(GBuffer& g, const CastVolume& v) {
+  depth_range(g.frame, v.bounds, g.near, g.far);
+}
 
 // The reference's march for one ray (index space); false when nothing is hit.
 bool cast_one(const CastVolume& vol, float iso, const V& oi, const V& di, const CastOptions& opt,
@@ -41,7 +43,9 @@ bool cast_one(const CastVolume& vol, float iso, const V& oi, const V& di, const 
   }
   if (!(t1 > t0)) return false;
   const V base = {oi[0] + t0 * di[0], oi[1] + t0 * di[1], oi[2] + t0 * di[2]};
-  auto at = [&](double t) { return V{base[0] + t * di[0], base[1] + t * di[1], base[2] + t * di[2]}; };
+  auto at = [&](double t) {
+    return V{base[0] + t * di[0], base[1] + t * di[1], base[2] + t * di[2]};
+  };
   const double tl = t1 - t0;
   const double dmax = std::max({std::abs(di[0]), std::abs(di[1]), std::abs(di[2])});
   const double dt = opt.step / dmax;
@@ -54,7 +58,9 @@ bool cast_one(const CastVolume& vol, float iso, const V& oi, const V& di, const 
     for (int k = 0; k < 3; ++k)
       bc[k] = std::min(std::max(int(std::floor(p[k] / kCastBrick)), 0), nb[k] - 1);
     double tn = t + dt;
-    if (!vol.brick_straddles(std::size_t(bc[0]) + std::size_t(vol.bx) * (bc[1] + std::size_t(vol.by) * bc[2]), iso)) {
+    if (!vol.brick_straddles(
+            std::size_t(bc[0]) + std::size_t(vol.bx) * (bc[1] + std::size_t(vol.by) * bc[2]),
+            iso)) {
       double te = std::numeric_limits<double>::infinity();
       for (int k = 0; k < 3; ++k) {
         if (di[k] == 0) continue;
@@ -98,28 +104,29 @@ GBuffer ray_cast_reference(const CastVolume& vol, float iso, const ViewFrame& fr
   GBuffer g;
   g.reset(frame);
   frame_depths(g, vol);
-  tbb::parallel_for(tbb::blocked_range<int>(0, frame.height), [&](const tbb::blocked_range<int>& r) {
-    for (int y = r.begin(); y != r.end(); ++y)
-      for (int x = 0; x < frame.width; ++x) {
-        V o, d;
-        frame.ray(x + 0.5, y + 0.5, o, d);
-        const V oi = vol.index(o);
-        V di;
-        for (int k = 0; k < 3; ++k)
-          di[k] = vol.to_index[4 * k] * d[0] + vol.to_index[4 * k + 1] * d[1] +
-                  vol.to_index[4 * k + 2] * d[2];
-        V q;
-        if (!cast_one(vol, iso, oi, di, opt, q)) continue;
-        const V n = vol.normal(q);
-        if (n[0] == 0 && n[1] == 0 && n[2] == 0) continue;
-        const V p = vol.world(q);
-        const std::size_t i = std::size_t(x) + std::size_t(frame.width) * y;
-        g.position[i] = {float(p[0]), float(p[1]), float(p[2])};
-        g.normal[i] = {float(n[0]), float(n[1]), float(n[2])};
-        g.depth[i] = float(frame.eye_depth(p));
-        g.valid[i] = 1;
-      }
-  });
+  tbb::parallel_for(tbb::blocked_range<int>(0, frame.height),
+                    [&](const tbb::blocked_range<int>& r) {
+                      for (int y = r.begin(); y != r.end(); ++y)
+                        for (int x = 0; x < frame.width; ++x) {
+                          V o, d;
+                          frame.ray(x + 0.5, y + 0.5, o, d);
+                          const V oi = vol.index(o);
+                          V di;
+                          for (int k = 0; k < 3; ++k)
+                            di[k] = vol.to_index[4 * k] * d[0] + vol.to_index[4 * k + 1] * d[1] +
+                                    vol.to_index[4 * k + 2] * d[2];
+                          V q;
+                          if (!cast_one(vol, iso, oi, di, opt, q)) continue;
+                          const V n = vol.normal(q);
+                          if (n[0] == 0 && n[1] == 0 && n[2] == 0) continue;
+                          const V p = vol.world(q);
+                          const std::size_t i = std::size_t(x) + std::size_t(frame.width) * y;
+                          g.position[i] = {float(p[0]), float(p[1]), float(p[2])};
+                          g.normal[i] = {float(n[0]), float(n[1]), float(n[2])};
+                          g.depth[i] = float(frame.eye_depth(p));
+                          g.valid[i] = 1;
+                        }
+                    });
   return g;
 }
 
@@ -137,10 +144,12 @@ GBuffer ray_cast(const CastVolume& vol, float iso, const ViewFrame& frame, Devic
   if (s.uploaded != vol.id) {
     s.values = cl::Buffer(ctx, CL_MEM_READ_ONLY, std::max<std::size_t>(4, vol.values.size() * 4));
     q.enqueueWriteBuffer(s.values, CL_FALSE, 0, vol.values.size() * 4, vol.values.data());
-    s.bricks = cl::Buffer(ctx, CL_MEM_READ_ONLY, std::max<std::size_t>(8, vol.brick_range.size() * 8));
+    s.bricks =
+        cl::Buffer(ctx, CL_MEM_READ_ONLY, std::max<std::size_t>(8, vol.brick_range.size() * 8));
     q.enqueueWriteBuffer(s.bricks, CL_FALSE, 0, vol.brick_range.size() * 8, vol.brick_range.data());
     std::vector<float> xf(36, 0.0f);
-    for (int i = 0; i < 12; ++i) xf[i] = float(vol.to_index[i]), xf[12 + i] = float(vol.to_world[i]);
+    for (int i = 0; i < 12; ++i)
+      xf[i] = float(vol.to_index[i]), xf[12 + i] = float(vol.to_world[i]);
     for (int i = 0; i < 9; ++i) xf[24 + i] = float(vol.normal_matrix[i]);
     s.xform = cl::Buffer(ctx, CL_MEM_READ_ONLY, xf.size() * 4);
     q.enqueueWriteBuffer(s.xform, CL_TRUE, 0, xf.size() * 4, xf.data());

@@ -66,12 +66,13 @@ TEST(ScreenEstimate, KernelsMatchTheReference) {
       if (!ref.valid[i]) continue;
       wide += ref.step[i] > 1;
       const double dh = std::abs(ref.H[i] - dev.H[i]) / (std::abs(ref.H[i]) + 1e-3 * scale);
-      const double dk = std::abs(ref.K[i] - dev.K[i]) /
-                        (std::abs(ref.K[i]) + 1e-3 * scale * scale);
+      const double dk = std::abs(ref.K[i] - dev.K[i]) / (std::abs(ref.K[i]) + 1e-3 * scale * scale);
       worst_h = std::max(worst_h, dh), worst_k = std::max(worst_k, dk);
     }
-    std::printf("variant %d: %zu px, %zu with step > 1, %zu differ; worst rel. difference H %.1e "
-                "K %.1e\n", index, ref.valid_count(), wide, differ, worst_h, worst_k);
+    std::printf(
+        "variant %d: %zu px, %zu with step > 1, %zu differ; worst rel. difference H %.1e "
+        "K %.1e\n",
+        index, ref.valid_count(), wide, differ, worst_h, worst_k);
     EXPECT_LE(differ, g.pixels() / 1000) << index;
     // Float against double on pixel-sized edges (the differences themselves are exact).
     EXPECT_LE(worst_h, 5e-3) << index;
@@ -119,7 +120,8 @@ TEST(ScreenEstimate, TwoAndThreeEdgesAgreeOnH) {
 // given the curvature of a triangle spanning it (which would be far from 0).
 TEST(ScreenEstimate, DepthDiscontinuitiesAreNotBridged) {
   const int w = 64, h = 32;
-  const screen::ViewFrame f = screen::view_frame(ortho_camera({0, 0, 0}, {0, 0, 1}, {0, 1, 0}, 1), w, h);
+  const screen::ViewFrame f =
+      screen::view_frame(ortho_camera({0, 0, 0}, {0, 0, 1}, {0, 1, 0}, 1), w, h);
   screen::GBuffer g;
   g.reset(f);
   g.near = 1, g.far = 20;

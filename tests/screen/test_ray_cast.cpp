@@ -41,8 +41,10 @@ TEST(ScreenRayCast, HitsLieOnTheIsosurface) {
     const screen::GBuffer ref = screen::ray_cast_reference(*s.cast, iso, frame);
     const screen::GBuffer dev = screen::ray_cast(*s.cast, iso, frame, Device::default_device());
     const double wr = worst_offset(*s.cast, iso, ref), wd = worst_offset(*s.cast, iso, dev);
-    std::printf("%s: %zu hits; worst distance from the trilinear isosurface: reference %.1e, "
-                "kernel %.1e voxel\n", name, ref.valid_count(), wr, wd);
+    std::printf(
+        "%s: %zu hits; worst distance from the trilinear isosurface: reference %.1e, "
+        "kernel %.1e voxel\n",
+        name, ref.valid_count(), wr, wd);
     EXPECT_GT(ref.valid_count(), 3000u);
     EXPECT_LE(wr, 1e-4);
     EXPECT_LE(wd, 1e-4);
@@ -77,8 +79,10 @@ TEST(ScreenRayCast, KernelMatchesReference) {
     EXPECT_NEAR(ref.depth[i], dev.depth[i], 1e-3 * h);
     ++both;
   }
-  std::printf("ray cast kernel vs reference: %zu pixels agree (positions within %.1e voxel, "
-              "normals %.1e), %zu differ\n", both, worst_p, worst_n, differ);
+  std::printf(
+      "ray cast kernel vs reference: %zu pixels agree (positions within %.1e voxel, "
+      "normals %.1e), %zu differ\n",
+      both, worst_p, worst_n, differ);
   EXPECT_LE(differ, ref.pixels() / 1000);
   EXPECT_LE(worst_p, 1e-3);
   EXPECT_LE(worst_n, 1e-4);
@@ -99,7 +103,8 @@ TEST(ScreenRayCast, NormalsAreTheVolumesGradientNormals) {
   const std::vector<Vec3f> n = volume::gradient_normals(s.volume, pts);
   double worst = 0;
   for (std::size_t j = 0; j < pts.size(); ++j)
-    for (int k = 0; k < 3; ++k) worst = std::max(worst, double(std::abs(n[j][k] - g.normal[at[j]][k])));
+    for (int k = 0; k < 3; ++k)
+      worst = std::max(worst, double(std::abs(n[j][k] - g.normal[at[j]][k])));
   EXPECT_LE(worst, 1e-5);
 }
 
@@ -109,7 +114,8 @@ TEST(ScreenRayCast, WorkGroupSizesGiveIdenticalBuffers) {
   const auto frame = screen::view_frame(iso_camera(*s.cast, 130, 70), 130, 70);
   const screen::GBuffer a = screen::ray_cast(*s.cast, iso, frame, Device::default_device(), {}, 1);
   for (int wg : {7, 64, 128}) {
-    const screen::GBuffer b = screen::ray_cast(*s.cast, iso, frame, Device::default_device(), {}, wg);
+    const screen::GBuffer b =
+        screen::ray_cast(*s.cast, iso, frame, Device::default_device(), {}, wg);
     EXPECT_EQ(a.valid, b.valid) << wg;
     EXPECT_TRUE(a.position == b.position) << wg;
     EXPECT_TRUE(a.normal == b.normal) << wg;
@@ -152,7 +158,8 @@ TEST(ScreenRayCast, BadSizesAndStepsAreRefused) {
   const Scene& s = scene("torus", 48);
   screen::CastOptions o;
   o.step = 0.75;
-  EXPECT_THROW(screen::ray_cast_reference(*s.cast, 0, screen::view_frame(Camera{}, 8, 8), o), Error);
+  EXPECT_THROW(screen::ray_cast_reference(*s.cast, 0, screen::view_frame(Camera{}, 8, 8), o),
+               Error);
 }
 
 }  // namespace

@@ -81,8 +81,10 @@ TEST(ScreenSphere, LodWidensTheTrianglesNearTheCameraAndStaysExact) {
     std::size_t wide = 0;
     for (std::size_t i = 0; i < mask.size(); ++i) wide += mask[i] && c.step[i] > 1;
     const Worst w = worst_error(c, mask);
-    std::printf("sphere close-up, LOD %d-fan: %zu of %zu px with step > 1, max rel. error H %.2e "
-                "K %.2e\n", fan, wide, w.n, w.h, w.k);
+    std::printf(
+        "sphere close-up, LOD %d-fan: %zu of %zu px with step > 1, max rel. error H %.2e "
+        "K %.2e\n",
+        fan, wide, w.n, w.h, w.k);
     EXPECT_GT(wide, w.n / 4);
     EXPECT_LE(w.h, 1e-3);
     EXPECT_LE(w.k, 2e-3);
@@ -102,8 +104,10 @@ TEST(ScreenSphere, GradientNormalsWithinThreePercent) {
       for (std::size_t i = 0; i < mask.size(); ++i)
         if (mask[i] && c.valid[i]) errs.push_back(std::abs(c.H[i] - 1 / kR) * kR);
       std::sort(errs.begin(), errs.end());
-      std::printf("sphere gradient normals, %d edges, LOD %s: max rel. error H %.2e K %.2e, "
-                  "median H %.2e\n", edges, lod ? "on" : "off", w.h, w.k, errs[errs.size() / 2]);
+      std::printf(
+          "sphere gradient normals, %d edges, LOD %s: max rel. error H %.2e K %.2e, "
+          "median H %.2e\n",
+          edges, lod ? "on" : "off", w.h, w.k, errs[errs.size() / 2]);
       EXPECT_LE(w.h, 0.03);
       EXPECT_LE(w.k, 0.06);
       EXPECT_LE(errs[errs.size() / 2], 0.01);
