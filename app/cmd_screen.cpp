@@ -198,12 +198,14 @@ void register_screen(CLI::App& app) {
     Device* device = reference ? nullptr : &device_for(o);
     screen::GBuffer g;
     screen::ScreenCurvature c;
-    viz::ColorRange range = po.range ? *po.range : viz::ColorRange{-1, 1};
+    // The surface box depends on the legend's labels, which depend on the values: lay out with
+    // the widest labels (%.3g of -8.88e+88) unless --range fixes them, compute once at that box,
+    // then centre the image in the final layout's box (as large or larger); recompute only when
+    // it does not fit.
+    viz::ColorRange range = po.range ? *po.range : viz::ColorRange{-8.88e88, 8.88e88};
     viz::PictureLayout layout = screen::screen_layout(width, height, po, range);
     Camera camera;
-    // The surface box depends on the legend's labels, which depend on the values: lay out,
-    // compute, lay out again with the real range, and recompute if the box changed size.
-    for (int pass = 0; pass < 3; ++pass) {
+    for (int pass = 0; pass < 2; ++pass) {
       const int sw = layout.surface.x1 - layout.surface.x0,
                 sh = layout.surface.y1 - layout.surface.y0;
       if (sw < 1 || sh < 1) throw Error(out, "the picture leaves no room for the surface");
@@ -219,13 +221,14 @@ void register_screen(CLI::App& app) {
       c = reference ? screen::estimate_reference(g, so) : screen::estimate(g, *device, so);
       timer.stop();
       range = screen::screen_range(c, po);
-      const viz::PictureLayout next = screen::screen_layout(width, height, po, range);
-      const bool same =
-          next.surface.x1 - next.surface.x0 == sw && next.surface.y1 - next.surface.y0 == sh;
+      viz::PictureLayout next = screen::screen_layout(width, height, po, range);
+      const int nw = next.surface.x1 - next.surface.x0, nh = next.surface.y1 - next.surface.y0;
       layout = next;
-      if (same) break;
-      if (pass == 2) {  // keep the image; put it where the last layout says, at its size
+      if ((nw >= sw && nh >= sh) || pass == 1) {
+        layout.surface.x0 += std::max(0, (nw - sw) / 2),
+            layout.surface.y0 += std::max(0, (nh - sh) / 2);
         layout.surface.x1 = layout.surface.x0 + sw, layout.surface.y1 = layout.surface.y0 + sh;
+        break;
       }
     }
     timer.start("write");

@@ -9,7 +9,7 @@ namespace isocurv::screen {
 
 struct CastOptions {
   double step = 0.5;    ///< march step in voxels, along the ray's longest index axis (<= 1/2)
-  int bisections = 24;  ///< halvings of the crossing step: 0.5 / 2^24 voxel, far below 1e-4
+  int bisections = 16;  ///< halvings of the crossing step: 0.5 / 2^16 voxel, far below 1e-4
 };
 
 /// Per pixel of `frame`, the first crossing into the object along the pixel's ray (a sample
