@@ -11,6 +11,7 @@ void register_commands(CLI::App& app) {
   register_render(app);
   register_lines(app);
   register_deform(app);
+  register_screen(app);
   register_view(app);
   register_check(app);
   register_compare(app);

@@ -1,0 +1,275 @@
+// isocurv screen VOLUME|MESH -o image.png [--raw image.vti]: screen-space curvature per pixel
+// (Prantl et al. 2017, Mellado et al. 2013) on a G-buffer ray cast from the volume's isosurface
+// (no mesh) or rasterised from a mesh file.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "app/commands.h"
+#include "app/picture_title.h"
+#include "app/pipeline.h"
+#include "app/render_options_cli.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/mesh_measures.h"
+#include "screen/cast_volume.h"
+#include "screen/estimate.h"
+#include "screen/image_files.h"
+#include "screen/rasterise.h"
+#include "screen/ray_cast.h"
+#include "viz/color_map.h"
+#include "viz/quantity.h"
+#include "volume/load.h"
+
+namespace isocurv::app {
+namespace {
+
+bool has_ext(const std::string& path, const char* ext) {
+  std::string e = std::filesystem::path(path).extension().string();
+  for (char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return e == ext;
+}
+
+std::string estimator_name(const screen::ScreenOptions& so) {
+  if (so.estimator == screen::ScreenEstimator::mellado)
+    return "screen-space Mellado, radius " + std::to_string(so.mellado_radius) + " px";
+  return "screen-space Prantl, " + std::to_string(so.edges) + " edges" + (so.lod ? ", LOD" : "");
+}
+
+}  // namespace
+
+void register_screen(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "screen",
+      "Screen-space curvature per pixel: a volume's isosurface ray cast (no mesh) or a "
+      "mesh rasterised, then Prantl's per-pixel shape operator (or Mellado's sphere fit)");
+  cmd->footer(
+      "Example: isocurv screen gyroid.vdb --color K --size 800x600 --lod on -o gyroid_K.png "
+      "--raw gyroid.vti\n"
+      "The picture is laid out as isocurv render's (title, legend); the screen-space image fills "
+      "its surface part,\nand --raw writes that image's pixels (float arrays H, K, Valid). "
+      "Pixels at silhouettes and depth\ndiscontinuities are left out (background). An isovalue "
+      "that misses the volume gives an empty image\nand a warning. Sizes up to 8192x8192.");
+  static CommonOptions o;
+  static ViewSpec view;
+  static screen::PictureOptions po;
+  static screen::ScreenOptions so;
+  static int width = 1024, height = 768;
+  static std::string in, out, raw, estimator = "prantl", lod = "off", depth = "linear",
+                                   rule = "report";
+  cmd->add_option("VOLUME_OR_MESH", in, "Volume or mesh file")->required();
+  cmd->add_option("-o,--output", out, "PNG picture to write")->required();
+  cmd->add_option("--raw", raw, "Also write the per-pixel H, K and Valid as VTK image data (.vti)");
+  add_common_options(*cmd, o);
+  add_camera_options(*cmd, view);
+  cmd->add_option("--color", po.quantity, "Quantity to colour by: H or K")
+      ->check(CLI::IsMember({"H", "K"}))
+      ->capture_default_str()
+      ->group("Rendering");
+  cmd->add_option("--cmap", po.cmap, "Colour map (as isocurv render's)")
+      ->check(CLI::IsMember(viz::color_map_names()))
+      ->capture_default_str()
+      ->group("Rendering");
+  cmd->add_option_function<std::vector<double>>(
+         "--range",
+         [](const std::vector<double>& v) {
+           if (!(v[0] < v[1]))
+             throw CLI::ValidationError("--range", "expected MIN MAX with MIN < MAX");
+           po.range = viz::ColorRange{v[0], v[1]};
+         },
+         "Colour exactly this value range (MIN MAX)")
+      ->expected(2)
+      ->group("Rendering");
+  cmd->add_option("--percentile", po.clamp_percentile,
+                  "The automatic colour range leaves out this percentage of extreme values")
+      ->check(CLI::Range(0.0, 49.0))
+      ->group("Rendering");
+  cmd->add_option("--title", po.title, "Title text (default: input, quantity, isovalue, method)")
+      ->group("Rendering");
+  cmd->add_option("--unit", po.length_unit, "Length unit for the legend, e.g. mm")
+      ->group("Rendering");
+  cmd->add_option_function<std::string>(
+         "--size",
+         [](const std::string& s) {
+           int w = 0, h = 0;
+           char x = 0;
+           if (std::sscanf(s.c_str(), "%d%c%d", &w, &x, &h) != 3 || (x != 'x' && x != 'X') ||
+               w < 16 || h < 16 || w > screen::kMaxImageSide || h > screen::kMaxImageSide)
+             throw CLI::ValidationError("--size",
+                                        "expected WIDTHxHEIGHT, each 16..8192, e.g. 800x600");
+           width = w, height = h;
+         },
+         "Picture size WIDTHxHEIGHT (default 1024x768; 16..8192 a side)")
+      ->group("Camera");
+  cmd->add_option("--estimator", estimator,
+                  "prantl (per-pixel shape operator) or mellado "
+                  "(sphere fit, H only)")
+      ->check(CLI::IsMember({"prantl", "mellado"}))
+      ->capture_default_str()
+      ->group("Screen space");
+  cmd->add_option("--edges", so.edges, "Edges per pixel triangle: 2 (eq. 17) or 3 (eq. 9-11)")
+      ->check(CLI::IsMember({2, 3}))
+      ->capture_default_str()
+      ->group("Screen space");
+  cmd->add_option("--lod", lod, "Level of detail: wider pixel triangles near the camera")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str()
+      ->group("Screen space");
+  cmd->add_option("--lod-size", so.size_max, "The LOD's largest step (pixels)")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str()
+      ->group("Screen space");
+  cmd->add_option("--fan", so.fan, "LOD triangles around a pixel: 4 (report) or 8 (paper)")
+      ->check(CLI::IsMember({4, 8}))
+      ->capture_default_str()
+      ->group("Screen space");
+  cmd->add_option("--depth", depth,
+                  "Depth the LOD and discontinuity rule read: linear "
+                  "(eye depth / far) or window (the paper's)")
+      ->check(CLI::IsMember({"linear", "window"}))
+      ->capture_default_str()
+      ->group("Screen space");
+  cmd->add_option("--discontinuity", rule,
+                  "report: a neighbour across a depth jump falls back to "
+                  "1 pixel; paper: its triangles are dropped")
+      ->check(CLI::IsMember({"report", "paper"}))
+      ->capture_default_str()
+      ->group("Screen space");
+  cmd->add_option("--mellado-radius", so.mellado_radius, "Mellado's fit radius (pixels)")
+      ->check(CLI::Range(1, 32))
+      ->capture_default_str()
+      ->group("Screen space");
+  cmd->callback([] {
+    if (!has_ext(out, ".png")) throw Error(out, "isocurv screen writes a .png picture");
+    if (!raw.empty() && !has_ext(raw, ".vti")) throw Error(raw, "--raw writes a .vti file");
+    if (o.cap) throw Error("--cap does not apply to isocurv screen (the ray caster reads the box)");
+    so.estimator =
+        estimator == "mellado" ? screen::ScreenEstimator::mellado : screen::ScreenEstimator::prantl;
+    if (so.estimator == screen::ScreenEstimator::mellado && po.quantity == "K")
+      throw Error("--estimator mellado gives mean curvature only; use --color H");
+    so.lod = lod == "on";
+    so.depth = depth == "window" ? screen::DepthMapping::window : screen::DepthMapping::linear;
+    so.rule =
+        rule == "paper" ? screen::DiscontinuityRule::paper : screen::DiscontinuityRule::report;
+    const bool reference = reference_device(o);
+    StageTimer timer;
+    std::optional<screen::CastVolume> cast;
+    std::optional<Surface> surf;
+    std::vector<Vec3f> normals;
+    std::array<double, 6> bounds{};
+    float iso = 0;
+    std::string format;
+    std::size_t triangles = 0;
+    bool empty = false;
+    if (is_mesh_path(in)) {
+      surf = load_surface(in, o, timer);
+      prepare_mesh_for_curvature(*surf, in, o);
+      normals = area_weighted_normals(surf->mesh);
+      triangles = surf->mesh.triangles.size();
+      bounds = {1e300, -1e300, 1e300, -1e300, 1e300, -1e300};
+      for (const Vec3f& p : surf->mesh.positions)
+        for (int c = 0; c < 3; ++c)
+          bounds[2 * c] = std::min(bounds[2 * c], double(p[c])),
+                     bounds[2 * c + 1] = std::max(bounds[2 * c + 1], double(p[c]));
+      empty = surf->mesh.triangles.empty();
+      if (empty) throw Error(in, "the mesh has no triangles");
+    } else {
+      timer.start("load");
+      volume::Volume v = volume::load(in, to_load_options(o.volume));
+      format = v.format;
+      iso = o.iso ? *o.iso : float(v.stats.suggested_isovalue);
+      if (!std::isfinite(iso)) throw Error(in, "isovalue must be a finite number");
+      timer.start("index");
+      cast.emplace(v);
+      if (!cast->surface_bounds(iso, bounds)) {
+        empty = true;
+        bounds = cast->bounds;
+        if (!o.quiet)
+          std::cerr << "isocurv: warning: " << in << ": isovalue " << format_number(iso)
+                    << " gives no surface (values " << format_number(v.stats.min) << " to "
+                    << format_number(v.stats.max) << "); the image is empty\n";
+      }
+      timer.stop();
+    }
+    if (po.title.empty())
+      po.title = picture_title(in, po.quantity, cast ? std::optional<float>(iso) : std::nullopt,
+                               estimator_name(so));
+    Device* device = reference ? nullptr : &device_for(o);
+    screen::GBuffer g;
+    screen::ScreenCurvature c;
+    // The surface box depends on the legend's labels, which depend on the values: lay out with
+    // the widest labels (%.3g of -8.88e+88) unless --range fixes them, compute once at that box,
+    // then centre the image in the final layout's box (as large or larger); recompute only when
+    // it does not fit.
+    viz::ColorRange range = po.range ? *po.range : viz::ColorRange{-8.88e88, 8.88e88};
+    viz::PictureLayout layout = screen::screen_layout(width, height, po, range);
+    Camera camera;
+    for (int pass = 0; pass < 2; ++pass) {
+      const int sw = layout.surface.x1 - layout.surface.x0,
+                sh = layout.surface.y1 - layout.surface.y0;
+      if (sw < 1 || sh < 1) throw Error(out, "the picture leaves no room for the surface");
+      camera = fit_camera(bounds, view, double(sw) / sh);
+      const screen::ViewFrame frame = screen::view_frame(camera, sw, sh);
+      timer.start(cast ? "cast" : "rasterise");
+      if (cast)
+        g = reference ? screen::ray_cast_reference(*cast, iso, frame)
+                      : screen::ray_cast(*cast, iso, frame, *device);
+      else
+        g = screen::rasterise(surf->mesh, normals, frame);
+      timer.start("estimate");
+      c = reference ? screen::estimate_reference(g, so) : screen::estimate(g, *device, so);
+      timer.stop();
+      range = screen::screen_range(c, po);
+      viz::PictureLayout next = screen::screen_layout(width, height, po, range);
+      const int nw = next.surface.x1 - next.surface.x0, nh = next.surface.y1 - next.surface.y0;
+      layout = next;
+      if ((nw >= sw && nh >= sh) || pass == 1) {
+        layout.surface.x0 += std::max(0, (nw - sw) / 2),
+            layout.surface.y0 += std::max(0, (nh - sh) / 2);
+        layout.surface.x1 = layout.surface.x0 + sw, layout.surface.y1 = layout.surface.y0 + sh;
+        break;
+      }
+    }
+    timer.start("write");
+    AtomicFileSet files;
+    files.write(
+        out, [&](const std::string& tmp) { screen::write_picture(tmp, g, c, layout, po, range); });
+    if (!raw.empty()) files.write(raw, [&](const std::string& tmp) { screen::write_raw(tmp, c); });
+    files.commit();
+    timer.stop();
+    std::vector<float> hv, kv;
+    for (std::size_t i = 0; i < c.valid.size(); ++i)
+      if (c.valid[i]) hv.push_back(c.H[i]), kv.push_back(c.K[i]);
+    auto median = [](std::vector<float> v) -> nlohmann::json {
+      if (v.empty()) return nullptr;
+      std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+      return v[v.size() / 2];
+    };
+    if (o.json) {
+      nlohmann::json r;
+      r["input"] = in;
+      r["output"] = out;
+      if (!raw.empty()) r["raw"] = raw;
+      if (cast) r["isovalue"] = iso;
+      if (surf) r["triangles"] = triangles;
+      r["producer"] = cast ? "ray cast" : "rasterised mesh";
+      r["estimator"] = estimator_name(so);
+      r["image"] = {{"width", c.width}, {"height", c.height}};
+      r["surface_pixels"] = g.valid_count();
+      r["estimated_pixels"] = hv.size();
+      r["coverage"] = double(g.valid_count()) / std::max<std::size_t>(1, g.pixels());
+      r["median_H"] = median(hv);
+      if (so.estimator == screen::ScreenEstimator::prantl) r["median_K"] = median(kv);
+      r["empty"] = empty;
+      r["device"] = device_name(o);
+      r["timings_ms"] = timer.json();
+      std::cout << r.dump(2) << "\n";
+    } else if (!o.quiet) {
+      std::cout << "wrote " << out << (raw.empty() ? "" : " and " + raw) << ": " << c.width << "x"
+                << c.height << " image, " << hv.size() << " pixels estimated\n";
+    }
+  });
+}
+
+}  // namespace isocurv::app

@@ -1,0 +1,120 @@
+// Screen-space curvature benchmark (SEEDS-SPEC 4.4 (d), the paper's Fig. 17-18): frame time
+// against pixel coverage at 800x600 and 1920x1200 (zoomed so the surface covers ~2-100% of the
+// image), split into the ray cast (G-buffer from the volume) and the estimate, for 2 and 3
+// edges, LOD on and off, and Mellado's sphere fit. Beside it, from the same run and volume, the
+// isovalue-slider update: re-cast + estimate at 800x600 against mc::Mesher::extract +
+// curvature::estimate (the explorer's object-space path, rendering excluded on both sides).
+// Not a test: prints tables.
+//
+//   bench_screen [--passes N] [--isovalues N]
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "core/cl_device.h"
+#include "curvature/ao_scale.h"
+#include "curvature/estimate.h"
+#include "datasets/field.h"
+#include "datasets/sample.h"
+#include "mc/extract.h"
+#include "screen/cast_volume.h"
+#include "screen/estimate.h"
+#include "screen/ray_cast.h"
+
+using namespace isocurv;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+template <class F>
+double median_ms(int passes, F&& f) {
+  std::vector<double> t;
+  for (int i = 0; i < passes; ++i) {
+    const auto t0 = Clock::now();
+    f();
+    t.push_back(ms_since(t0));
+  }
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // rows as they come, also into a file
+  int passes = 3, n_iso = 10;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--passes") && i + 1 < argc)
+      passes = std::max(1, std::atoi(argv[++i]));
+    else if (!std::strcmp(argv[i], "--isovalues") && i + 1 < argc)
+      n_iso = std::max(2, std::atoi(argv[++i]));
+  }
+  Device& dev = Device::default_device();
+  std::printf("device: %s (%s)\n", dev.info().name.c_str(), dev.info().type.c_str());
+  for (const char* name : {"torus", "gyroid", "buckyball"}) {
+    const auto field = datasets::make_field(name);
+    const volume::Volume v = datasets::sample(*field, 128);
+    const screen::CastVolume cv(v);
+    const float iso = float(field->isovalue());
+    std::printf("\n== %s 128^3, isovalue %g\n", name, iso);
+    std::printf("%-10s %5s %8s %8s %8s %8s %8s %8s\n", "size", "zoom", "cover%", "cast", "2e", "3e",
+                "2e+LOD", "Mellado");
+    screen::ScreenOptions o2, o3, ol, om;
+    o3.edges = 3;
+    ol.lod = true;
+    om.estimator = screen::ScreenEstimator::mellado;
+    for (auto [w, h] : {std::pair{800, 600}, std::pair{1920, 1200}})
+      for (double zoom : {0.15, 0.35, 0.7, 1.2, 2.5, 5.0}) {
+        ViewSpec spec;
+        spec.zoom = zoom;
+        const screen::ViewFrame f =
+            screen::view_frame(fit_camera(cv.bounds, spec, double(w) / h), w, h);
+        screen::GBuffer g = screen::ray_cast(cv, iso, f, dev);  // warm-up (program build)
+        const double cast = median_ms(passes, [&] { g = screen::ray_cast(cv, iso, f, dev); });
+        double t[4];
+        int k = 0;
+        for (const auto* o : {&o2, &o3, &ol, &om}) {
+          screen::estimate(g, dev, *o);
+          t[k++] = median_ms(passes, [&] { screen::estimate(g, dev, *o); });
+        }
+        std::printf("%4dx%-5d %5.2f %8.1f %8.1f %8.1f %8.1f %8.1f %8.1f\n", w, h, zoom,
+                    100.0 * g.valid_count() / g.pixels(), cast, t[0], t[1], t[2], t[3]);
+      }
+    // The slider update, both paths, over n_iso isovalues across the value range.
+    std::vector<float> isos;
+    for (int i = 0; i < n_iso; ++i)
+      isos.push_back(
+          float(v.stats.min + (v.stats.max - v.stats.min) * (0.05 + 0.9 * i / (n_iso - 1))));
+    const screen::ViewFrame f =
+        screen::view_frame(fit_camera(cv.bounds, ViewSpec{}, 800.0 / 600), 800, 600);
+    mc::Mesher mesher(v, dev);
+    std::vector<double> screen_ms, object_ms;
+    for (float is : isos) {
+      screen::estimate(screen::ray_cast(cv, is, f, dev), dev, o2);
+      screen_ms.push_back(
+          median_ms(passes, [&] { screen::estimate(screen::ray_cast(cv, is, f, dev), dev, o2); }));
+      object_ms.push_back(median_ms(passes, [&] {
+        Mesh mesh = mesher.extract(is);
+        curvature::Options co;
+        co.ao_scale = curvature::default_ao_scale(mesh);
+        curvature::estimate(mesh, dev, co);
+      }));
+    }
+    auto med = [](std::vector<double> x) {
+      std::sort(x.begin(), x.end());
+      return x[x.size() / 2];
+    };
+    std::printf(
+        "slider update (median over %d isovalues): screen space (cast + 2-edge estimate, "
+        "800x600) %.1f ms = %.1f/s; extract + curvature %.1f ms = %.1f/s; ratio %.2fx\n",
+        n_iso, med(screen_ms), 1000 / med(screen_ms), med(object_ms), 1000 / med(object_ms),
+        med(object_ms) / med(screen_ms));
+  }
+  return 0;
+}

@@ -1,0 +1,212 @@
+#include "screen/cast_volume.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "core/error.h"
+
+namespace isocurv::screen {
+namespace {
+
+std::atomic<std::uint64_t> next_id{1};
+
+}  // namespace
+
+CastVolume::CastVolume(const volume::Volume& v) : id(next_id++) {
+  if (!v.grid) throw Error(v.path, "no volume");
+  openvdb::CoordBBox box = v.domain;
+  if (!v.dense || box.empty()) box = v.grid->evalActiveVoxelBoundingBox();
+  if (box.empty()) throw Error(v.path, "the volume holds no voxels");
+  if (!v.grid->transform().isLinear())
+    throw Error(v.path, "screen: the volume's transform is not affine");
+  const openvdb::Coord d = box.dim();
+  if (d.x() < 2 || d.y() < 2 || d.z() < 2)
+    throw Error(v.path, "screen: the volume is thinner than 2 voxels along an axis");
+  const std::uint64_t samples = std::uint64_t(d.x()) * d.y() * d.z();
+  if (samples > kMaxCastSamples)
+    throw Error(v.path, "screen: the volume's box holds " + std::to_string(samples) +
+                            " voxels, more than the ray caster's limit of " +
+                            std::to_string(kMaxCastSamples) + " (2^28)");
+  nx = d.x(), ny = d.y(), nz = d.z();
+  sign = v.inside == volume::Inside::Above ? 1.0f : -1.0f;
+  values.resize(samples);
+  const openvdb::Coord lo = box.min();
+  const openvdb::FloatGrid& grid = *v.grid;
+  tbb::parallel_for(tbb::blocked_range<int>(0, nz), [&](const tbb::blocked_range<int>& r) {
+    auto acc = grid.getConstAccessor();
+    for (int k = r.begin(); k != r.end(); ++k)
+      for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i)
+          values[std::size_t(i) + std::size_t(nx) * (j + std::size_t(ny) * k)] =
+              acc.getValue(lo + openvdb::Coord(i, j, k));
+  });
+
+  bx = (nx - 1 + kCastBrick - 1) / kCastBrick;
+  by = (ny - 1 + kCastBrick - 1) / kCastBrick;
+  bz = (nz - 1 + kCastBrick - 1) / kCastBrick;
+  brick_range.assign(std::size_t(bx) * by * bz,
+                     {std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest()});
+  tbb::parallel_for(tbb::blocked_range<int>(0, bz), [&](const tbb::blocked_range<int>& r) {
+    for (int c = r.begin(); c != r.end(); ++c)
+      for (int b = 0; b < by; ++b)
+        for (int a = 0; a < bx; ++a) {
+          auto& range = brick_range[std::size_t(a) + std::size_t(bx) * (b + std::size_t(by) * c)];
+          for (int k = c * kCastBrick; k <= std::min(nz - 1, (c + 1) * kCastBrick); ++k)
+            for (int j = b * kCastBrick; j <= std::min(ny - 1, (b + 1) * kCastBrick); ++j)
+              for (int i = a * kCastBrick; i <= std::min(nx - 1, (a + 1) * kCastBrick); ++i) {
+                const float s =
+                    values[std::size_t(i) + std::size_t(nx) * (j + std::size_t(ny) * k)];
+                if (!std::isfinite(s)) continue;
+                range[0] = std::min(range[0], s), range[1] = std::max(range[1], s);
+              }
+        }
+  });
+
+  const openvdb::math::Transform& xf = grid.transform();
+  const openvdb::Vec3d o = xf.indexToWorld(lo);
+  Eigen::Matrix3d a;
+  for (int c = 0; c < 3; ++c) {
+    openvdb::Coord e = lo;
+    e[c] += 1;
+    const openvdb::Vec3d col = xf.indexToWorld(e) - o;
+    for (int r = 0; r < 3; ++r) a(r, c) = col[r];
+  }
+  const Eigen::Matrix3d inv = a.inverse(), it = inv.transpose();
+  const Eigen::Vector3d ob(o.x(), o.y(), o.z()), ib = -inv * ob;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) {
+      to_world[4 * r + c] = a(r, c);
+      to_index[4 * r + c] = inv(r, c);
+      normal_matrix[3 * r + c] = it(r, c);
+    }
+    to_world[4 * r + 3] = ob[r];
+    to_index[4 * r + 3] = ib[r];
+  }
+  bounds = {1e300, -1e300, 1e300, -1e300, 1e300, -1e300};
+  for (int i = 0; i < 8; ++i) {
+    const auto w = world({double((i & 1) * (nx - 1)), double(((i >> 1) & 1) * (ny - 1)),
+                          double(((i >> 2) & 1) * (nz - 1))});
+    for (int c = 0; c < 3; ++c)
+      bounds[2 * c] = std::min(bounds[2 * c], w[c]),
+                 bounds[2 * c + 1] = std::max(bounds[2 * c + 1], w[c]);
+  }
+}
+
+std::array<double, 3> CastVolume::world(const std::array<double, 3>& q) const {
+  std::array<double, 3> w;
+  for (int r = 0; r < 3; ++r)
+    w[r] = to_world[4 * r] * q[0] + to_world[4 * r + 1] * q[1] + to_world[4 * r + 2] * q[2] +
+           to_world[4 * r + 3];
+  return w;
+}
+
+bool CastVolume::surface_bounds(float iso, std::array<double, 6>& box) const {
+  int lo[3] = {bx, by, bz}, hi[3] = {-1, -1, -1};
+  for (int c = 0; c < bz; ++c)
+    for (int b = 0; b < by; ++b)
+      for (int a = 0; a < bx; ++a)
+        if (brick_straddles(std::size_t(a) + std::size_t(bx) * (b + std::size_t(by) * c), iso)) {
+          const int q[3] = {a, b, c};
+          for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
+        }
+  if (hi[0] < 0) return false;
+  const int n[3] = {nx, ny, nz};
+  box = {1e300, -1e300, 1e300, -1e300, 1e300, -1e300};
+  for (int i = 0; i < 8; ++i) {
+    std::array<double, 3> q;
+    for (int k = 0; k < 3; ++k)
+      q[k] = ((i >> k) & 1) ? std::min(double(hi[k] + 1) * kCastBrick, double(n[k] - 1))
+                            : double(lo[k]) * kCastBrick;
+    const auto w = world(q);
+    for (int c = 0; c < 3; ++c)
+      box[2 * c] = std::min(box[2 * c], w[c]), box[2 * c + 1] = std::max(box[2 * c + 1], w[c]);
+  }
+  return true;
+}
+
+std::array<double, 3> CastVolume::index(const std::array<double, 3>& p) const {
+  std::array<double, 3> q;
+  for (int r = 0; r < 3; ++r)
+    q[r] = to_index[4 * r] * p[0] + to_index[4 * r + 1] * p[1] + to_index[4 * r + 2] * p[2] +
+           to_index[4 * r + 3];
+  return q;
+}
+
+double CastVolume::field(const std::array<double, 3>& p, float iso,
+                         std::array<double, 3>* gradient) const {
+  const int n[3] = {nx, ny, nz};
+  int c0[3];
+  double f[3];
+  for (int a = 0; a < 3; ++a) {
+    const double q = std::min(std::max(p[a], 0.0), double(n[a] - 1));
+    c0[a] = std::min(int(std::floor(q)), n[a] - 2);
+    f[a] = q - c0[a];
+  }
+  double s[2][2][2];
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i) s[k][j][i] = signed_at(c0[0] + i, c0[1] + j, c0[2] + k, iso);
+  const double fx = f[0], fy = f[1], fz = f[2];
+  auto lerp = [](double a, double b, double t) { return a + (b - a) * t; };
+  const double x00 = lerp(s[0][0][0], s[0][0][1], fx), x10 = lerp(s[0][1][0], s[0][1][1], fx);
+  const double x01 = lerp(s[1][0][0], s[1][0][1], fx), x11 = lerp(s[1][1][0], s[1][1][1], fx);
+  const double y0 = lerp(x00, x10, fy), y1 = lerp(x01, x11, fy);
+  if (gradient) {
+    const double dx00 = s[0][0][1] - s[0][0][0], dx10 = s[0][1][1] - s[0][1][0];
+    const double dx01 = s[1][0][1] - s[1][0][0], dx11 = s[1][1][1] - s[1][1][0];
+    (*gradient)[0] = lerp(lerp(dx00, dx10, fy), lerp(dx01, dx11, fy), fz);
+    (*gradient)[1] = lerp(x10 - x00, x11 - x01, fz);
+    (*gradient)[2] = y1 - y0;
+  }
+  return lerp(y0, y1, fz);
+}
+
+std::array<double, 3> CastVolume::normal(const std::array<double, 3>& p) const {
+  const int n[3] = {nx, ny, nz};
+  auto value = [&](int i, int j, int k) {
+    return double(values[std::size_t(i) + std::size_t(nx) * (j + std::size_t(ny) * k)]);
+  };
+  auto grad_at = [&](const int c[3], double g[3]) {
+    for (int a = 0; a < 3; ++a) {
+      int hi[3] = {c[0], c[1], c[2]}, lo[3] = {c[0], c[1], c[2]};
+      hi[a] = std::min(c[a] + 1, n[a] - 1), lo[a] = std::max(c[a] - 1, 0);
+      const int span = hi[a] - lo[a];
+      g[a] = span == 0 ? 0.0 : (value(hi[0], hi[1], hi[2]) - value(lo[0], lo[1], lo[2])) / span;
+    }
+  };
+  int c0[3];
+  double f[3];
+  for (int a = 0; a < 3; ++a) {
+    const double q = std::min(std::max(p[a], 0.0), double(n[a] - 1));
+    c0[a] = int(std::floor(q));
+    f[a] = q - c0[a];
+  }
+  double g[3] = {0, 0, 0};
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i) {
+        const double w = (i ? f[0] : 1 - f[0]) * (j ? f[1] : 1 - f[1]) * (k ? f[2] : 1 - f[2]);
+        if (w == 0) continue;
+        const int c[3] = {std::min(c0[0] + i, nx - 1), std::min(c0[1] + j, ny - 1),
+                          std::min(c0[2] + k, nz - 1)};
+        double gc[3];
+        grad_at(c, gc);
+        for (int a = 0; a < 3; ++a) g[a] += w * gc[a];
+      }
+  std::array<double, 3> w;
+  for (int r = 0; r < 3; ++r)
+    w[r] = -sign * (normal_matrix[3 * r] * g[0] + normal_matrix[3 * r + 1] * g[1] +
+                    normal_matrix[3 * r + 2] * g[2]);
+  const double len = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+  if (!(len > 0) || !std::isfinite(len)) return {0, 0, 0};
+  return {w[0] / len, w[1] / len, w[2] / len};
+}
+
+}  // namespace isocurv::screen

@@ -1,0 +1,70 @@
+#pragma once
+// A volume as the isosurface ray caster reads it: its samples over the data domain, dense, and
+// the value range of every 8^3-cell brick for empty-space skipping. Independent of the isovalue:
+// built once, cast at any number of isovalues (the explorer's slider).
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "volume/volume.h"
+
+namespace isocurv::screen {
+
+/// Most samples a CastVolume holds (1 GiB of floats); a larger data domain is an Error.
+inline constexpr std::uint64_t kMaxCastSamples = std::uint64_t(1) << 28;
+/// Cells per brick edge of the skipping grid (the mesher's brick size, mc::kBrick).
+inline constexpr int kCastBrick = 8;
+
+/// Index space here counts from the domain's first voxel: sample (i, j, k) is voxel
+/// domain.min() + (i, j, k), at values[i + nx (j + ny k)].
+struct CastVolume {
+  int nx = 0, ny = 0, nz = 0;  ///< samples per axis (each >= 2)
+  std::vector<float> values;   ///< raw voxel values (non-finite ones read as outside)
+  int bx = 0, by = 0, bz = 0;  ///< bricks per axis: ceil((n - 1) / kCastBrick)
+  /// Per brick (index bx_i + bx (by_i + by bz_i)): min and max of the finite samples it reads
+  /// (its 9^3 corners, clipped to the domain); min > max when there are none.
+  std::vector<std::array<float, 2>> brick_range;
+  float sign = 1;  ///< +1: inside is above the isovalue; -1: below (volume::Inside::Below)
+  /// world = A index + b, row-major 3x4 (the grid's affine transform, from the domain's origin).
+  std::array<double, 12> to_world{};
+  std::array<double, 12> to_index{};  ///< its inverse
+  /// The inverse transpose of A (index-space gradients to world-space ones), row-major 3x3.
+  std::array<double, 9> normal_matrix{};
+  std::array<double, 6> bounds{};  ///< world box of the domain (xmin, xmax, ymin, ymax, zmin, zmax)
+  std::uint64_t id = 0;            ///< unique per construction (device caches key on it)
+
+  /// Copies the samples of `v`'s data domain (dense: its domain; sparse: the active box) and
+  /// ranks the bricks. Parallel (TBB), deterministic.
+  /// @throw Error for an empty volume, a non-affine transform, a domain thinner than 2 samples
+  /// on an axis, or more than kMaxCastSamples samples
+  explicit CastVolume(const volume::Volume& v);
+  CastVolume() = default;
+
+  /// Signed insideness sign * (value - iso) at sample (i, j, k): > 0 inside, <= 0 outside.
+  /// Non-finite samples read -1 (outside).
+  float signed_at(int i, int j, int k, float iso) const {
+    const float v = values[std::size_t(i) + std::size_t(nx) * (j + std::size_t(ny) * k)];
+    return std::isfinite(v) ? sign * (v - iso) : -1.0f;
+  }
+  /// Whether brick b may hold surface at `iso`: it has a sample inside and one outside.
+  bool brick_straddles(std::size_t b, float iso) const {
+    const auto& r = brick_range[b];
+    if (!(r[0] <= r[1])) return false;
+    return sign > 0 ? (r[1] > iso && r[0] <= iso) : (r[0] < iso && r[1] >= iso);
+  }
+  /// The trilinear signed field at index point p (clamped into the domain) and its index-space
+  /// gradient (of the trilinear interpolant, the hit test's field).
+  double field(const std::array<double, 3>& p, float iso,
+               std::array<double, 3>* gradient = nullptr) const;
+  /// The unit outward normal at index point p as volume::gradient_normals computes it: central
+  /// differences at the samples (one-sided at the border), trilinearly interpolated, carried to
+  /// world space by normal_matrix, pointing to decreasing insideness. Zero for a zero gradient.
+  std::array<double, 3> normal(const std::array<double, 3>& p) const;
+  std::array<double, 3> world(const std::array<double, 3>& index) const;
+  /// The world box (xmin, xmax, ymin, ymax, zmin, zmax) of the bricks that straddle `iso` (a
+  /// box around the isosurface, within a brick of it), or false when none does (no surface).
+  bool surface_bounds(float iso, std::array<double, 6>& box) const;
+  std::array<double, 3> index(const std::array<double, 3>& world) const;
+};
+
+}  // namespace isocurv::screen

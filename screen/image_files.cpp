@@ -1,0 +1,156 @@
+#include "screen/image_files.h"
+
+#include <vtkColorTransferFunction.h>
+#include <vtkErrorCode.h>
+#include <vtkFloatArray.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPNGWriter.h>
+#include <vtkPointData.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkWindowToImageFilter.h>
+#include <vtkXMLImageDataWriter.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "io/vtk_errors.h"
+#include "viz/curvature_scene.h"
+#include "viz/headless_display.h"
+#include "viz/legend.h"
+#include "viz/quantity.h"
+
+namespace isocurv::screen {
+namespace {
+
+const std::vector<float>& values_of(const ScreenCurvature& c, const std::string& q) {
+  if (q == "H") return c.H;
+  if (q == "K") return c.K;
+  throw Error("screen: --color takes H or K, not " + q);
+}
+
+std::string legend_title(const PictureOptions& o) {
+  const std::string q = viz::canonical_quantity(o.quantity);
+  const std::string unit = viz::quantity_unit(q, o.length_unit);
+  return unit.empty() ? q : q + "\n" + unit;
+}
+
+}  // namespace
+
+viz::PictureLayout screen_layout(int width, int height, const PictureOptions& o,
+                                 const viz::ColorRange& range) {
+  return viz::layout_picture(width, height, o.title, legend_title(o), range.lo, range.hi);
+}
+
+viz::ColorRange screen_range(const ScreenCurvature& c, const PictureOptions& o) {
+  const std::vector<float>& v = values_of(c, o.quantity);
+  std::vector<float> valid;
+  valid.reserve(v.size());
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (c.valid[i]) valid.push_back(v[i]);
+  if (valid.empty()) return o.range ? *o.range : viz::ColorRange{-1, 1};
+  return viz::color_range(valid, viz::canonical_quantity(o.quantity), o.clamp_percentile, o.range);
+}
+
+void write_picture(const std::string& path, const GBuffer& g, const ScreenCurvature& c,
+                   const viz::PictureLayout& layout, const PictureOptions& o,
+                   const viz::ColorRange& range) {
+  const viz::PixelBox& box = layout.surface;
+  if (box.x1 - box.x0 != c.width || box.y1 - box.y0 != c.height || g.width() != c.width ||
+      g.height() != c.height)
+    throw Error(path, "the screen image does not fit the picture's surface box");
+  const std::string q = viz::canonical_quantity(o.quantity);
+  const std::string cmap = viz::resolve_color_map(o.cmap, q);
+  const std::vector<float>& values = values_of(c, o.quantity);
+
+  viz::ensure_display();
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetSize(layout.width, layout.height);
+  viz::check_opengl(window);
+  vtkNew<vtkRenderer> overlay;
+  overlay->GradientBackgroundOn();
+  overlay->SetBackground(viz::kBackgroundBottom[0], viz::kBackgroundBottom[1],
+                         viz::kBackgroundBottom[2]);
+  overlay->SetBackground2(viz::kBackgroundTop[0], viz::kBackgroundTop[1], viz::kBackgroundTop[2]);
+  window->AddRenderer(overlay);
+  viz::Legend legend(overlay);
+  legend.update(layout, cmap, range, true);
+  window->Render();
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->SetInputBufferTypeToRGB();
+  grab->ReadFrontBufferOff();
+  {
+    io::VtkErrorCapture errors(grab);
+    grab->Update();
+    if (errors.failed()) throw Error(path, "cannot read the rendered image: " + errors.message());
+  }
+  vtkImageData* img = grab->GetOutput();
+  auto* rgb = static_cast<unsigned char*>(img->GetScalarPointer());
+  const int w = layout.width;
+  auto map = viz::make_color_map(range, cmap);
+  for (int y = 0; y < c.height; ++y)
+    for (int x = 0; x < c.width; ++x) {
+      const std::size_t i = std::size_t(x) + std::size_t(c.width) * y;
+      if (!c.valid[i] || !std::isfinite(values[i])) continue;
+      const double v = std::min(std::max(double(values[i]), range.lo), range.hi);
+      double col[3];
+      map->GetColor(v, col);
+      double shade = 1;
+      if (o.shade) {
+        std::array<double, 3> org, dir;
+        g.frame.ray(x + 0.5, y + 0.5, org, dir);
+        const auto& n = g.normal[i];
+        shade = 0.35 + 0.65 * std::abs(n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2]);
+      }
+      unsigned char* px = rgb + 3 * (std::size_t(box.x0 + x) + std::size_t(w) * (box.y0 + y));
+      for (int k = 0; k < 3; ++k)
+        px[k] = static_cast<unsigned char>(std::lround(std::min(1.0, col[k] * shade) * 255));
+    }
+  img->Modified();
+  write_atomically(path, [&](const std::string& tmp) {
+    vtkNew<vtkPNGWriter> writer;
+    io::VtkErrorCapture errors(writer);
+    writer->SetInputData(img);
+    writer->SetFileName(tmp.c_str());
+    writer->Write();
+    if (errors.failed() || writer->GetErrorCode() != vtkErrorCode::NoError)
+      throw Error(path,
+                  "cannot write PNG" + (errors.failed() ? ": " + errors.message() : std::string()));
+  });
+  window->Finalize();
+}
+
+void write_raw(const std::string& path, const ScreenCurvature& c) {
+  vtkNew<vtkImageData> img;
+  img->SetDimensions(c.width, c.height, 1);
+  img->SetSpacing(1, 1, 1);
+  img->SetOrigin(0, 0, 0);
+  const std::size_t n = std::size_t(c.width) * c.height;
+  auto add = [&](const char* name, auto&& value) {
+    vtkNew<vtkFloatArray> a;
+    a->SetName(name);
+    a->SetNumberOfTuples(static_cast<vtkIdType>(n));
+    for (std::size_t i = 0; i < n; ++i) a->SetValue(static_cast<vtkIdType>(i), value(i));
+    img->GetPointData()->AddArray(a);
+  };
+  add("H", [&](std::size_t i) { return c.valid[i] ? c.H[i] : 0.0f; });
+  add("K", [&](std::size_t i) { return c.valid[i] ? c.K[i] : 0.0f; });
+  add("Valid", [&](std::size_t i) { return c.valid[i] ? 1.0f : 0.0f; });
+  write_atomically(path, [&](const std::string& tmp) {
+    vtkNew<vtkXMLImageDataWriter> writer;
+    io::VtkErrorCapture errors(writer);
+    writer->SetInputData(img);
+    writer->SetFileName(tmp.c_str());
+    if (!writer->Write() || errors.failed())
+      throw Error(path, "cannot write VTK image data" +
+                            (errors.failed() ? ": " + errors.message() : std::string()));
+  });
+}
+
+}  // namespace isocurv::screen

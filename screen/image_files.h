@@ -1,0 +1,47 @@
+#pragma once
+// The screen stage's outputs: the picture (PNG, with title and colour-bar legend laid out as
+// isocurv render does) and the raw per-pixel values (.vti).
+#include <string>
+
+#include "screen/estimate.h"
+#include "screen/gbuffer.h"
+#include "viz/color_map.h"
+#include "viz/picture_layout.h"
+
+namespace isocurv::screen {
+
+/// What the picture shows.
+struct PictureOptions {
+  std::string quantity = "H";            ///< "H" or "K"
+  std::string cmap = "auto";             ///< viz::color_map_names
+  std::optional<viz::ColorRange> range;  ///< fixed colour range; else viz::color_range's
+  double clamp_percentile = 2;
+  std::string title;        ///< none when empty
+  std::string length_unit;  ///< the legend's unit ("mm"); empty: "length"
+  bool shade = true;        ///< colours times (0.35 + 0.65 |n . view|) for a sense of shape
+};
+
+/// The layout of a width x height picture whose colour range is `range` (viz::layout_picture):
+/// its `surface` box is where, and how large, the screen-space image goes.
+viz::PictureLayout screen_layout(int width, int height, const PictureOptions& options,
+                                 const viz::ColorRange& range);
+
+/// The colour range of `c`'s valid values of options.quantity (viz::color_range); an image
+/// without valid pixels gets options.range or [-1, 1].
+viz::ColorRange screen_range(const ScreenCurvature& c, const PictureOptions& options);
+
+/// Writes the picture atomically: the background, title and legend of `layout` (rendered by VTK
+/// offscreen; a private Xvfb when there is no display), then `c`'s valid pixels coloured (and
+/// shaded by `g`'s normals) pasted into layout.surface, whose size must be c's. Invalid pixels
+/// show the background. @throw Error naming `path` for a failed render or write, or a size
+/// mismatch
+void write_picture(const std::string& path, const GBuffer& g, const ScreenCurvature& c,
+                   const viz::PictureLayout& layout, const PictureOptions& options,
+                   const viz::ColorRange& range);
+
+/// Writes `c` as VTK image data (.vti, vtkXMLImageDataWriter, atomically): c.width x c.height x 1
+/// points, spacing 1, origin 0 (pixel (x, y) is point x + width y, y up), float point arrays
+/// `H`, `K` (0 where invalid) and `Valid` (1 or 0). @throw Error naming `path` on failure
+void write_raw(const std::string& path, const ScreenCurvature& c);
+
+}  // namespace isocurv::screen

@@ -1,0 +1,193 @@
+#include "screen/ray_cast.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <string>
+
+#include "core/cl_launch.h"
+#include "core/error.h"
+#include "screen/detail/kernels.h"
+
+namespace isocurv::screen {
+namespace {
+
+using V = std::array<double, 3>;
+
+void check(const CastOptions& o) {
+  if (!(o.step > 0 && o.step <= 0.5) || o.bisections < 1 || o.bisections > 60)
+    throw Error("screen: the ray step must be in (0, 0.5] voxel and bisections in [1, 60]");
+}
+
+void frame_depths(GBuffer& g, const CastVolume& v) {
+  depth_range(g.frame, v.bounds, g.near, g.far);
+}
+
+// The reference's march for one ray (index space); false when nothing is hit.
+bool cast_one(const CastVolume& vol, float iso, const V& oi, const V& di, const CastOptions& opt,
+              V& hit) {
+  const double hi[3] = {double(vol.nx - 1), double(vol.ny - 1), double(vol.nz - 1)};
+  double t0 = 0, t1 = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < 3; ++a) {
+    if (di[a] == 0) {
+      if (oi[a] < 0 || oi[a] > hi[a]) return false;
+    } else {
+      double ta = -oi[a] / di[a], tb = (hi[a] - oi[a]) / di[a];
+      if (ta > tb) std::swap(ta, tb);
+      t0 = std::max(t0, ta), t1 = std::min(t1, tb);
+    }
+  }
+  if (!(t1 > t0)) return false;
+  const V base = {oi[0] + t0 * di[0], oi[1] + t0 * di[1], oi[2] + t0 * di[2]};
+  auto at = [&](double t) {
+    return V{base[0] + t * di[0], base[1] + t * di[1], base[2] + t * di[2]};
+  };
+  const double tl = t1 - t0;
+  const double dmax = std::max({std::abs(di[0]), std::abs(di[1]), std::abs(di[2])});
+  const double dt = opt.step / dmax;
+  const int nb[3] = {vol.bx, vol.by, vol.bz};
+  double t = 0, s_prev = vol.field(base, iso), a = 0, b = 0;
+  bool found = false;
+  while (t < tl) {
+    const V p = at(t);
+    int bc[3];
+    for (int k = 0; k < 3; ++k)
+      bc[k] = std::min(std::max(int(std::floor(p[k] / kCastBrick)), 0), nb[k] - 1);
+    double tn = t + dt;
+    if (!vol.brick_straddles(
+            std::size_t(bc[0]) + std::size_t(vol.bx) * (bc[1] + std::size_t(vol.by) * bc[2]),
+            iso)) {
+      double te = std::numeric_limits<double>::infinity();
+      for (int k = 0; k < 3; ++k) {
+        if (di[k] == 0) continue;
+        const double ex = (di[k] > 0 ? bc[k] + 1 : bc[k]) * double(kCastBrick);
+        te = std::min(te, (ex - base[k]) / di[k]);
+      }
+      tn = std::max(tn, te);
+    }
+    tn = std::min(tn, tl);
+    const double s = vol.field(at(tn), iso);
+    if (s_prev <= 0 && s > 0) {
+      found = true, a = t, b = tn;
+      break;
+    }
+    s_prev = s;
+    t = tn;
+  }
+  if (!found) return false;
+  for (int i = 0; i < opt.bisections; ++i) {
+    const double m = 0.5 * (a + b);
+    (vol.field(at(m), iso) > 0 ? b : a) = m;
+  }
+  hit = at(0.5 * (a + b));
+  return true;
+}
+
+struct CastState {
+  explicit CastState(Device&) {}
+  std::mutex mutex;
+  std::uint64_t uploaded = 0;  // CastVolume::id of the volume on the device
+  cl::Buffer values, bricks, xform, cam, position, normal, depth;
+  std::size_t pixels = 0;
+  std::vector<cl_float4> host_pos, host_nrm;
+};
+
+}  // namespace
+
+GBuffer ray_cast_reference(const CastVolume& vol, float iso, const ViewFrame& frame,
+                           const CastOptions& opt) {
+  check(opt);
+  GBuffer g;
+  g.reset(frame);
+  frame_depths(g, vol);
+  tbb::parallel_for(tbb::blocked_range<int>(0, frame.height),
+                    [&](const tbb::blocked_range<int>& r) {
+                      for (int y = r.begin(); y != r.end(); ++y)
+                        for (int x = 0; x < frame.width; ++x) {
+                          V o, d;
+                          frame.ray(x + 0.5, y + 0.5, o, d);
+                          const V oi = vol.index(o);
+                          V di;
+                          for (int k = 0; k < 3; ++k)
+                            di[k] = vol.to_index[4 * k] * d[0] + vol.to_index[4 * k + 1] * d[1] +
+                                    vol.to_index[4 * k + 2] * d[2];
+                          V q;
+                          if (!cast_one(vol, iso, oi, di, opt, q)) continue;
+                          const V n = vol.normal(q);
+                          if (n[0] == 0 && n[1] == 0 && n[2] == 0) continue;
+                          const V p = vol.world(q);
+                          const std::size_t i = std::size_t(x) + std::size_t(frame.width) * y;
+                          g.position[i] = {float(p[0]), float(p[1]), float(p[2])};
+                          g.normal[i] = {float(n[0]), float(n[1]), float(n[2])};
+                          g.depth[i] = float(frame.eye_depth(p));
+                          g.valid[i] = 1;
+                        }
+                    });
+  return g;
+}
+
+GBuffer ray_cast(const CastVolume& vol, float iso, const ViewFrame& frame, Device& device,
+                 const CastOptions& opt, int work_group) {
+  check(opt);
+  if (work_group < 1) throw Error("screen: the work-group size must be positive");
+  GBuffer g;
+  g.reset(frame);
+  frame_depths(g, vol);
+  CastState& s = device.state<CastState>();
+  std::lock_guard<std::mutex> lock(s.mutex);
+  cl::Context& ctx = device.context();
+  cl::CommandQueue& q = device.queue();
+  if (s.uploaded != vol.id) {
+    s.values = cl::Buffer(ctx, CL_MEM_READ_ONLY, std::max<std::size_t>(4, vol.values.size() * 4));
+    q.enqueueWriteBuffer(s.values, CL_FALSE, 0, vol.values.size() * 4, vol.values.data());
+    s.bricks =
+        cl::Buffer(ctx, CL_MEM_READ_ONLY, std::max<std::size_t>(8, vol.brick_range.size() * 8));
+    q.enqueueWriteBuffer(s.bricks, CL_FALSE, 0, vol.brick_range.size() * 8, vol.brick_range.data());
+    std::vector<float> xf(36, 0.0f);
+    for (int i = 0; i < 12; ++i)
+      xf[i] = float(vol.to_index[i]), xf[12 + i] = float(vol.to_world[i]);
+    for (int i = 0; i < 9; ++i) xf[24 + i] = float(vol.normal_matrix[i]);
+    s.xform = cl::Buffer(ctx, CL_MEM_READ_ONLY, xf.size() * 4);
+    q.enqueueWriteBuffer(s.xform, CL_TRUE, 0, xf.size() * 4, xf.data());
+    s.uploaded = vol.id;
+  }
+  const std::size_t n = g.pixels();
+  if (n > s.pixels) {
+    s.position = cl::Buffer(ctx, CL_MEM_WRITE_ONLY, n * 16);
+    s.normal = cl::Buffer(ctx, CL_MEM_WRITE_ONLY, n * 16);
+    s.depth = cl::Buffer(ctx, CL_MEM_WRITE_ONLY, n * 4);
+    s.pixels = n;
+  }
+  if (!s.cam()) s.cam = cl::Buffer(ctx, CL_MEM_READ_ONLY, 16 * 4);
+  float cam[16] = {0};
+  for (int c = 0; c < 3; ++c) {
+    cam[c] = float(frame.eye[c]), cam[3 + c] = float(frame.forward[c]);
+    cam[6 + c] = float(frame.right[c]), cam[9 + c] = float(frame.up[c]);
+  }
+  cam[12] = float(frame.half_height), cam[13] = frame.ortho ? 1.0f : 0.0f;
+  q.enqueueWriteBuffer(s.cam, CL_FALSE, 0, sizeof cam, cam);
+  cl::Kernel& k = device.kernel(detail::screen_program(device), "ray_cast");
+  set_args(k, s.values, s.bricks, cl_int4{{vol.nx, vol.ny, vol.nz, 0}},
+           cl_int4{{vol.bx, vol.by, vol.bz, 0}}, cl_float(iso), cl_float(vol.sign), s.xform, s.cam,
+           cl_int(frame.width), cl_int(frame.height), cl_float(opt.step), cl_int(opt.bisections),
+           s.position, s.normal, s.depth);
+  launch(q, k, n, std::size_t(work_group));
+  s.host_pos.resize(n), s.host_nrm.resize(n);
+  q.enqueueReadBuffer(s.position, CL_FALSE, 0, n * 16, s.host_pos.data());
+  q.enqueueReadBuffer(s.normal, CL_FALSE, 0, n * 16, s.host_nrm.data());
+  q.enqueueReadBuffer(s.depth, CL_TRUE, 0, n * 4, g.depth.data());
+  for (std::size_t i = 0; i < n; ++i) {
+    const cl_float4& p = s.host_pos[i];
+    const cl_float4& m = s.host_nrm[i];
+    g.position[i] = {p.s[0], p.s[1], p.s[2]};
+    g.normal[i] = {m.s[0], m.s[1], m.s[2]};
+    g.valid[i] = p.s[3] != 0.0f;
+  }
+  return g;
+}
+
+}  // namespace isocurv::screen

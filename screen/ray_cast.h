@@ -1,0 +1,35 @@
+#pragma once
+// G-buffer producer (i): the isosurface of a volume cast per pixel, no mesh involved
+// (SEEDS-SPEC 4.4). The OpenCL kernel (screen_kernels.cl, ray_cast) and its C++ reference.
+#include "core/cl_device.h"
+#include "screen/cast_volume.h"
+#include "screen/gbuffer.h"
+
+namespace isocurv::screen {
+
+struct CastOptions {
+  double step = 0.5;    ///< march step in voxels, along the ray's longest index axis (<= 1/2)
+  int bisections = 16;  ///< halvings of the crossing step: 0.5 / 2^16 voxel, far below 1e-4
+};
+
+/// Per pixel of `frame`, the first crossing into the object along the pixel's ray (a sample
+/// with signed value sign * (v - iso) > 0 after one <= 0: a sample equal to the isovalue is
+/// outside, as for the mesher) of the trilinear field, through the volume's domain box;
+/// 8^3-cell bricks whose samples do not straddle `iso` are jumped over. The crossing step is
+/// bisected; the hit is on the trilinear isosurface to well under 1e-4 voxel. Normal: the
+/// volume's gradient normal there (CastVolume::normal, volume::gradient_normals' logic); a zero
+/// gradient leaves the pixel invalid. A ray starting inside the object finds no surface until
+/// it has left it (open surfaces cut by the box show their inner side as nothing). An isovalue
+/// that misses the volume gives an all-invalid buffer. near/far from the volume's box.
+/// Double precision, TBB over rows, deterministic. @throw Error for a bad step
+GBuffer ray_cast_reference(const CastVolume& volume, float iso, const ViewFrame& frame,
+                           const CastOptions& options = {});
+
+/// The same on `device` in float (positions within ~1e-5 voxel of the reference; a grazing ray
+/// may differ). The volume is uploaded on the first call for it and kept (keyed on volume.id).
+/// @param work_group work-group size of the launch
+/// @throw Error for a bad step or an OpenCL failure
+GBuffer ray_cast(const CastVolume& volume, float iso, const ViewFrame& frame, Device& device,
+                 const CastOptions& options = {}, int work_group = 64);
+
+}  // namespace isocurv::screen

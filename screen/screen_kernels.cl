@@ -1,0 +1,369 @@
+// Screen-space curvature on the device: the isosurface ray caster that fills a G-buffer from a
+// volume (screen/ray_cast.cpp is its reference), and the per-pixel estimators on a G-buffer:
+// Prantl et al.'s per-triangle shape operator on pixel triangles with LOD and the
+// depth-discontinuity rule, and Mellado et al.'s screen-space sphere fit
+// (screen/estimate.cpp is their reference). One work item per pixel; no atomics: deterministic.
+// Build options: -DPIVOT_TOLERANCE=... -DBRICK=8.
+
+// ---------------------------------------------------------------- ray caster
+
+typedef struct {
+  int nx, ny, nz, bx, by, bz;
+  float iso, sign;
+} Grid;
+
+float signed_at(__global const float* v, const Grid* g, int i, int j, int k) {
+  const float x = v[i + g->nx * (j + g->ny * k)];
+  return isfinite(x) ? g->sign * (x - g->iso) : -1.0f;
+}
+
+// The trilinear signed field at index point p, clamped into the domain (CastVolume::field).
+float field_at(__global const float* v, const Grid* g, float3 p) {
+  const float3 hi = (float3)(g->nx - 1, g->ny - 1, g->nz - 1);
+  const float3 q = clamp(p, (float3)(0.0f), hi);
+  const int3 c = min(convert_int3(floor(q)), (int3)(g->nx - 2, g->ny - 2, g->nz - 2));
+  const float3 f = q - convert_float3(c);
+  const float s000 = signed_at(v, g, c.x, c.y, c.z), s100 = signed_at(v, g, c.x + 1, c.y, c.z);
+  const float s010 = signed_at(v, g, c.x, c.y + 1, c.z);
+  const float s110 = signed_at(v, g, c.x + 1, c.y + 1, c.z);
+  const float s001 = signed_at(v, g, c.x, c.y, c.z + 1);
+  const float s101 = signed_at(v, g, c.x + 1, c.y, c.z + 1);
+  const float s011 = signed_at(v, g, c.x, c.y + 1, c.z + 1);
+  const float s111 = signed_at(v, g, c.x + 1, c.y + 1, c.z + 1);
+  const float x00 = s000 + (s100 - s000) * f.x, x10 = s010 + (s110 - s010) * f.x;
+  const float x01 = s001 + (s101 - s001) * f.x, x11 = s011 + (s111 - s011) * f.x;
+  const float y0 = x00 + (x10 - x00) * f.y, y1 = x01 + (x11 - x01) * f.y;
+  return y0 + (y1 - y0) * f.z;
+}
+
+float raw_at(__global const float* v, const Grid* g, int i, int j, int k) {
+  return v[i + g->nx * (j + g->ny * k)];
+}
+
+// Central (one-sided at the border) difference at sample c.
+float3 sample_gradient(__global const float* v, const Grid* g, int3 c) {
+  const int3 n = (int3)(g->nx, g->ny, g->nz);
+  float3 r;
+  const int xh = min(c.x + 1, n.x - 1), xl = max(c.x - 1, 0);
+  const int yh = min(c.y + 1, n.y - 1), yl = max(c.y - 1, 0);
+  const int zh = min(c.z + 1, n.z - 1), zl = max(c.z - 1, 0);
+  r.x = xh == xl ? 0.0f : (raw_at(v, g, xh, c.y, c.z) - raw_at(v, g, xl, c.y, c.z)) / (xh - xl);
+  r.y = yh == yl ? 0.0f : (raw_at(v, g, c.x, yh, c.z) - raw_at(v, g, c.x, yl, c.z)) / (yh - yl);
+  r.z = zh == zl ? 0.0f : (raw_at(v, g, c.x, c.y, zh) - raw_at(v, g, c.x, c.y, zl)) / (zh - zl);
+  return r;
+}
+
+// Gradients at the samples, interpolated trilinearly (CastVolume::normal, before the transform).
+float3 gradient_at(__global const float* v, const Grid* g, float3 p) {
+  const float3 hi = (float3)(g->nx - 1, g->ny - 1, g->nz - 1);
+  const float3 q = clamp(p, (float3)(0.0f), hi);
+  const int3 c0 = convert_int3(floor(q));
+  const float3 f = q - convert_float3(c0);
+  float3 r = (float3)(0.0f);
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i) {
+        const float w = (i ? f.x : 1 - f.x) * (j ? f.y : 1 - f.y) * (k ? f.z : 1 - f.z);
+        if (w == 0.0f) continue;
+        const int3 c = min(c0 + (int3)(i, j, k), (int3)(g->nx - 1, g->ny - 1, g->nz - 1));
+        r += w * sample_gradient(v, g, c);
+      }
+  return r;
+}
+
+bool brick_straddles(__global const float2* range, const Grid* g, int b) {
+  const float2 r = range[b];
+  if (!(r.x <= r.y)) return false;
+  return g->sign > 0.0f ? (r.y > g->iso && r.x <= g->iso) : (r.x < g->iso && r.y >= g->iso);
+}
+
+float3 affine(__constant const float* m, float3 p) {
+  return (float3)(m[0] * p.x + m[1] * p.y + m[2] * p.z + m[3],
+                  m[4] * p.x + m[5] * p.y + m[6] * p.z + m[7],
+                  m[8] * p.x + m[9] * p.y + m[10] * p.z + m[11]);
+}
+float3 linear3(__constant const float* m, int stride, float3 p) {
+  return (float3)(m[0] * p.x + m[1] * p.y + m[2] * p.z,
+                  m[stride] * p.x + m[stride + 1] * p.y + m[stride + 2] * p.z,
+                  m[2 * stride] * p.x + m[2 * stride + 1] * p.y + m[2 * stride + 2] * p.z);
+}
+
+// One ray per pixel: march from where it enters the domain at `step` voxels (along the ray's
+// longest index axis), jumping over bricks without surface, to the first sample inside (signed
+// value > 0) after one outside; bisect that step `bisections` times; the hit is the last
+// interval's midpoint. xform: to_index (12), to_world (12), normal_matrix (9).
+// cam: eye, forward, right, up (xyz each), half_height, ortho, then 2 unused.
+__kernel void ray_cast(__global const float* values, __global const float2* bricks,
+                       const int4 dims, const int4 bdims, const float iso, const float sign,
+                       __constant const float* xform, __constant const float* cam,
+                       const int width, const int height, const float step, const int bisections,
+                       __global float4* out_position, __global float4* out_normal,
+                       __global float* out_depth) {
+  const int id = get_global_id(0);
+  if (id >= width * height) return;
+  Grid g = {dims.x, dims.y, dims.z, bdims.x, bdims.y, bdims.z, iso, sign};
+  const int px = id % width, py = id / width;
+  const float3 eye = (float3)(cam[0], cam[1], cam[2]), fwd = (float3)(cam[3], cam[4], cam[5]);
+  const float3 right = (float3)(cam[6], cam[7], cam[8]), up = (float3)(cam[9], cam[10], cam[11]);
+  const float hh = cam[12];
+  const bool ortho = cam[13] != 0.0f;
+  const float aspect = (float)width / height;
+  const float sx = (((px + 0.5f) / width) * 2 - 1) * aspect * hh;
+  const float sy = (((py + 0.5f) / height) * 2 - 1) * hh;
+  float3 o, d;
+  if (ortho) {
+    o = eye + sx * right + sy * up;
+    d = fwd;
+  } else {
+    o = eye;
+    d = normalize(fwd + sx * right + sy * up);
+  }
+  out_position[id] = (float4)(0.0f);
+  out_normal[id] = (float4)(0.0f);
+  out_depth[id] = 0.0f;
+  const float3 oi = affine(xform, o), di = linear3(xform, 4, d);
+  // Slab clip against the domain [0, n - 1].
+  const float3 hi = (float3)(dims.x - 1, dims.y - 1, dims.z - 1);
+  float t0 = 0.0f, t1 = INFINITY;
+  for (int a = 0; a < 3; ++a) {
+    const float oa = a == 0 ? oi.x : a == 1 ? oi.y : oi.z;
+    const float da = a == 0 ? di.x : a == 1 ? di.y : di.z;
+    const float ha = a == 0 ? hi.x : a == 1 ? hi.y : hi.z;
+    if (da == 0.0f) {
+      if (oa < 0.0f || oa > ha) t1 = -1.0f;
+    } else {
+      float ta = (0.0f - oa) / da, tb = (ha - oa) / da;
+      if (ta > tb) { const float s = ta; ta = tb; tb = s; }
+      t0 = fmax(t0, ta), t1 = fmin(t1, tb);
+    }
+  }
+  if (!(t1 > t0)) return;
+  const float3 base = oi + t0 * di;
+  const float tl = t1 - t0;
+  const float dmax = fmax(fabs(di.x), fmax(fabs(di.y), fabs(di.z)));
+  const float dt = step / dmax;
+  const float3 inv = (float3)(di.x != 0.0f ? 1.0f / di.x : INFINITY,
+                              di.y != 0.0f ? 1.0f / di.y : INFINITY,
+                              di.z != 0.0f ? 1.0f / di.z : INFINITY);
+  float t = 0.0f, s_prev = field_at(values, &g, base);
+  bool hit = false;
+  float a = 0.0f, b = 0.0f;
+  while (t < tl) {
+    const float3 p = base + t * di;
+    const int3 bc = clamp(convert_int3(floor(p / BRICK)), (int3)(0),
+                          (int3)(bdims.x - 1, bdims.y - 1, bdims.z - 1));
+    float tn = t + dt;
+    if (!brick_straddles(bricks, &g, bc.x + bdims.x * (bc.y + bdims.y * bc.z))) {
+      const float3 lo = convert_float3(bc) * BRICK, up3 = lo + BRICK;
+      const float3 ex = (float3)(di.x > 0 ? up3.x : lo.x, di.y > 0 ? up3.y : lo.y,
+                                 di.z > 0 ? up3.z : lo.z);
+      const float3 te3 = (ex - base) * inv;
+      const float te = fmin(di.x != 0.0f ? te3.x : INFINITY,
+                            fmin(di.y != 0.0f ? te3.y : INFINITY, di.z != 0.0f ? te3.z : INFINITY));
+      tn = fmax(tn, te);
+    }
+    tn = fmin(tn, tl);
+    const float s = field_at(values, &g, base + tn * di);
+    if (s_prev <= 0.0f && s > 0.0f) {
+      hit = true, a = t, b = tn;
+      break;
+    }
+    s_prev = s;
+    t = tn;
+  }
+  if (!hit) return;
+  for (int i = 0; i < bisections; ++i) {
+    const float m = 0.5f * (a + b);
+    if (field_at(values, &g, base + m * di) > 0.0f) b = m; else a = m;
+  }
+  const float3 q = base + (0.5f * (a + b)) * di;
+  const float3 gi = gradient_at(values, &g, q);
+  const float3 gw = -sign * linear3(xform + 24, 3, gi);
+  const float len = length(gw);
+  if (!(len > 0.0f) || !isfinite(len)) return;
+  const float3 pw = affine(xform + 12, q);
+  out_position[id] = (float4)(pw, 1.0f);
+  out_normal[id] = (float4)(gw / len, 0.0f);
+  out_depth[id] = dot(pw - eye, fwd);
+}
+
+// ---------------------------------------------------------------- estimators
+
+typedef struct {
+  int width, height, edges, lod, size_max, fan, paper_rule, mellado_radius;
+  float near, far, f_lod, tau, cos_max;  // cos_max < -1: no normal-angle check
+  int ortho, linear_depth;
+} Params;
+
+float window_depth(const Params* P, float z) {
+  float d;
+  if (P->linear_depth) d = z / P->far;
+  else if (P->ortho) d = (z - P->near) / (P->far - P->near);
+  else d = (1.0f / P->near - 1.0f / z) / (1.0f / P->near - 1.0f / P->far);
+  return clamp(d, 0.0f, 1.0f);
+}
+
+// Prantl's per-triangle shape operator (curvature/prantl.cpp's prantl_triangle in float):
+// returns false for a degenerate triangle, else (H_f, K_f) in *hk.
+bool shape_operator(float3 p0, float3 p1, float3 p2, float3 n0, float3 n1, float3 n2, int edges,
+                    float2* hk) {
+  const float3 e01 = p1 - p0, e02 = p2 - p0;
+  if (dot(e01, e01) == 0.0f) return false;
+  const float3 m = cross(e01, e02);
+  if (dot(m, m) == 0.0f) return false;
+  const float3 tu = normalize(e01);
+  const float3 tv = cross(normalize(cross(tu, e02)), tu);
+  const float3 e0 = p0 - p1, e1 = p1 - p2, e2 = p2 - p0;
+  const float3 dn0 = n0 - n1, dn1 = n1 - n2, dn2 = n2 - n0;
+  const float u0 = dot(e0, tu), v0 = dot(e0, tv), a0 = dot(dn0, tu), b0 = dot(dn0, tv);
+  const float u1 = dot(e1, tu), v1 = dot(e1, tv), a1 = dot(dn1, tu), b1 = dot(dn1, tv);
+  const float third = edges == 2 ? 0.0f : 1.0f;
+  const float u2 = third * dot(e2, tu), v2 = third * dot(e2, tv);
+  const float a2 = third * dot(dn2, tu), b2 = third * dot(dn2, tv);
+  const float sp = u0 * u0 + u1 * u1 + u2 * u2, sq = u0 * v0 + u1 * v1 + u2 * v2;
+  const float sr = v0 * v0 + v1 * v1 + v2 * v2;
+  const float c0 = u0 * a0 + u1 * a1 + u2 * a2;
+  const float c1 = v0 * a0 + u0 * b0 + v1 * a1 + u1 * b1 + v2 * a2 + u2 * b2;
+  const float c2 = v0 * b0 + v1 * b1 + v2 * b2;
+  const float minor = sp * sr - sq * sq;
+  if (!(minor > (float)PIVOT_TOLERANCE * (sp + sr) * (sp + sr))) return false;
+  const float inv_det = 1.0f / ((sp + sr) * minor);
+  const float j00 = sr * (sp + sr) - sq * sq, j01 = -sq * sr, j02 = sq * sq, j11 = sp * sr;
+  const float j12 = -sp * sq, j22 = sp * (sp + sr) - sq * sq;
+  const float L = inv_det * (j00 * c0 + j01 * c1 + j02 * c2);
+  const float M = inv_det * (j01 * c0 + j11 * c1 + j12 * c2);
+  const float N = inv_det * (j02 * c0 + j12 * c1 + j22 * c2);
+  *hk = (float2)(0.5f * (L + N), L * N - M * M);
+  return true;
+}
+
+__constant int kDX[8] = {1, 1, 0, -1, -1, -1, 0, 1};
+__constant int kDY[8] = {0, 1, 1, 1, 0, -1, -1, -1};
+
+// The neighbour `step` pixels along direction k, or -1 when outside the image, invalid, or
+// across a depth discontinuity (|d_c - d_n| > tau).
+int neighbour(const Params* P, __global const float4* pos, __global const float* depth, int x,
+              int y, float dc, int k, int step) {
+  const int qx = x + step * kDX[k], qy = y + step * kDY[k];
+  if (qx < 0 || qy < 0 || qx >= P->width || qy >= P->height) return -1;
+  const int q = qx + P->width * qy;
+  if (pos[q].w == 0.0f) return -1;
+  if (fabs(window_depth(P, depth[q]) - dc) > P->tau) return -1;
+  return q;
+}
+
+bool pixel_triangle(const Params* P, __global const float4* pos, __global const float4* nrm,
+                    int c, int a, int b, float2* hk) {
+  if (a < 0 || b < 0) return false;
+  const float3 n0 = nrm[c].xyz, n1 = nrm[a].xyz, n2 = nrm[b].xyz;
+  if (P->cos_max >= -1.0f &&
+      (dot(n0, n1) < P->cos_max || dot(n1, n2) < P->cos_max || dot(n2, n0) < P->cos_max))
+    return false;
+  // Positions relative to the centre pixel: differences of nearby floats are exact.
+  const float3 pc = pos[c].xyz;
+  return shape_operator((float3)(0.0f), pos[a].xyz - pc, pos[b].xyz - pc, n0, n1, n2, P->edges,
+                        hk);
+}
+
+// Per pixel (H, K, valid, step used): the estimate of screen/estimate.cpp's estimate_reference.
+__kernel void screen_prantl(__global const float4* pos, __global const float4* nrm,
+                            __global const float* depth, const Params P, __global float4* out) {
+  const int c = get_global_id(0);
+  if (c >= P.width * P.height) return;
+  out[c] = (float4)(0.0f);
+  if (pos[c].w == 0.0f) return;
+  const int x = c % P.width, y = c / P.width;
+  const float dc = window_depth(&P, depth[c]);
+  const int s = P.lod ? (int)floor(P.size_max * pow(P.f_lod, -2.0f * dc)) + 1 : 1;
+  float2 sum = (float2)(0.0f);
+  int count = 0;
+  if (s > 1) {
+    int nb[8];
+    for (int k = 0; k < 8; ++k) {
+      nb[k] = -1;
+      if (P.fan == 4 && (k & 1)) continue;
+      nb[k] = neighbour(&P, pos, depth, x, y, dc, k, s);
+      if (nb[k] < 0 && !P.paper_rule) nb[k] = neighbour(&P, pos, depth, x, y, dc, k, 1);
+    }
+    const int inc = P.fan == 4 ? 2 : 1;
+    for (int k = 0; k < 8; k += inc) {
+      float2 hk;
+      if (pixel_triangle(&P, pos, nrm, c, nb[k], nb[(k + inc) & 7], &hk)) sum += hk, ++count;
+    }
+  }
+  int used = s;
+  if (count == 0) {  // the single s = 1 triangle: the first usable quadrant from (c, R, U)
+    used = 1;
+    for (int k = 0; k < 8 && count == 0; k += 2) {
+      float2 hk;
+      const int a = neighbour(&P, pos, depth, x, y, dc, k, 1);
+      const int b = neighbour(&P, pos, depth, x, y, dc, (k + 2) & 7, 1);
+      if (pixel_triangle(&P, pos, nrm, c, a, b, &hk)) sum = hk, count = 1;
+    }
+  }
+  if (count == 0) return;
+  out[c] = (float4)(sum / count, 1.0f, (float)used);
+}
+
+// Mellado et al.'s algebraic sphere fit with normals over the pixels within mellado_radius of
+// c (depth-discontinuity rule as above); H = 2 u_q / |u_l|, K not estimated (0).
+__kernel void screen_mellado(__global const float4* pos, __global const float4* nrm,
+                             __global const float* depth, const Params P, __global float4* out) {
+  const int c = get_global_id(0);
+  if (c >= P.width * P.height) return;
+  out[c] = (float4)(0.0f);
+  if (pos[c].w == 0.0f) return;
+  const int x = c % P.width, y = c / P.width, r = P.mellado_radius;
+  const float dc = window_depth(&P, depth[c]);
+  const float3 pc = pos[c].xyz;
+  float h2 = 0.0f;
+  int count = 0;
+  for (int j = -r; j <= r; ++j)
+    for (int i = -r; i <= r; ++i) {
+      const int qx = x + i, qy = y + j;
+      if (i * i + j * j > r * r || qx < 0 || qy < 0 || qx >= P.width || qy >= P.height) continue;
+      const int q = qx + P.width * qy;
+      if (pos[q].w == 0.0f || fabs(window_depth(&P, depth[q]) - dc) > P.tau) continue;
+      const float3 d = pos[q].xyz - pc;
+      h2 = fmax(h2, dot(d, d));
+      ++count;
+    }
+  if (count < 6 || !(h2 > 0.0f)) return;
+  h2 *= 2.25f;  // h = 1.5 x the farthest point
+  // The weighted means first, then the sums about them: u_q's numerator and denominator are
+  // differences of nearly equal sums, which float would lose.
+  float sw = 0.0f;
+  float3 sx = (float3)(0.0f), sn = (float3)(0.0f);
+  for (int j = -r; j <= r; ++j)
+    for (int i = -r; i <= r; ++i) {
+      const int qx = x + i, qy = y + j;
+      if (i * i + j * j > r * r || qx < 0 || qy < 0 || qx >= P.width || qy >= P.height) continue;
+      const int q = qx + P.width * qy;
+      if (pos[q].w == 0.0f || fabs(window_depth(&P, depth[q]) - dc) > P.tau) continue;
+      const float3 d = pos[q].xyz - pc;
+      const float u = 1.0f - dot(d, d) / h2;
+      const float w = u * u * u * u;
+      sw += w, sx += w * d, sn += w * nrm[q].xyz;
+    }
+  const float3 mx = sx / sw, mn = sn / sw;
+  float cxx = 0.0f, cxn = 0.0f;
+  for (int j = -r; j <= r; ++j)
+    for (int i = -r; i <= r; ++i) {
+      const int qx = x + i, qy = y + j;
+      if (i * i + j * j > r * r || qx < 0 || qy < 0 || qx >= P.width || qy >= P.height) continue;
+      const int q = qx + P.width * qy;
+      if (pos[q].w == 0.0f || fabs(window_depth(&P, depth[q]) - dc) > P.tau) continue;
+      const float3 d = pos[q].xyz - pc;
+      const float u = 1.0f - dot(d, d) / h2;
+      const float w = u * u * u * u;
+      const float3 dx = d - mx, dn = nrm[q].xyz - mn;
+      cxx += w * dot(dx, dx), cxn += w * dot(dx, dn);
+    }
+  // u_q = 1/2 (sum w x.n - sum w x . sum w n / sum w) / (sum w x.x - |sum w x|^2 / sum w).
+  if (!(cxx > 0.0f)) return;
+  const float uq = 0.5f * cxn / cxx;
+  const float3 ul = mn - 2.0f * uq * mx;
+  const float len = length(ul);
+  if (!(len > 0.0f)) return;
+  out[c] = (float4)(2.0f * uq / len, 0.0f, 1.0f, (float)r);
+}

@@ -1,0 +1,108 @@
+// isocurv screen end to end: a volume and a mesh file to PNG and .vti, the empty isovalue, the
+// size limit and the options that cannot apply.
+#include <gtest/gtest.h>
+#include <vtkFloatArray.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkXMLImageDataReader.h>
+
+#include "tests/app/cli.h"
+
+namespace isocurv::test {
+namespace {
+
+using json = nlohmann::json;
+
+TEST(CliScreen, VolumeToPictureAndRawImage) {
+  TempDir dir("screen_volume");
+  const auto r = run_isocurv({"screen", dataset("sphere"), "--size", "320x240", "--edges", "3",
+                              "-o", dir / "s.png", "--raw", dir / "s.vti", "--json", "--quiet"},
+                             120);
+  ASSERT_TRUE(r.ok()) << r.describe();
+  const json j = parse_json(r.out, "screen --json");
+  EXPECT_EQ(j["producer"], "ray cast");
+  EXPECT_GT(j["estimated_pixels"].get<int>(), 5000);
+  EXPECT_FALSE(j["empty"].get<bool>());
+  EXPECT_NEAR(j["median_H"].get<double>(), 1 / 0.8, 0.02);  // the sphere's R = 0.8
+  EXPECT_NEAR(j["median_K"].get<double>(), 1 / 0.64, 0.04);
+  EXPECT_TRUE(j["timings_ms"].contains("cast")) << j.dump(2);
+  EXPECT_EQ(png_size(dir / "s.png"), (std::array<std::uint32_t, 2>{320, 240}));
+  vtkNew<vtkXMLImageDataReader> reader;
+  reader->SetFileName((dir / "s.vti").c_str());
+  reader->Update();
+  vtkImageData* img = reader->GetOutput();
+  int dims[3];
+  img->GetDimensions(dims);
+  EXPECT_EQ(dims[0], j["image"]["width"].get<int>());
+  EXPECT_EQ(dims[1], j["image"]["height"].get<int>());
+  auto* valid = vtkFloatArray::SafeDownCast(img->GetPointData()->GetArray("Valid"));
+  auto* h = vtkFloatArray::SafeDownCast(img->GetPointData()->GetArray("H"));
+  ASSERT_TRUE(valid && h && img->GetPointData()->GetArray("K"));
+  long n = 0;
+  for (vtkIdType i = 0; i < valid->GetNumberOfTuples(); ++i)
+    if (valid->GetValue(i) == 1) {
+      ++n;
+      EXPECT_GT(h->GetValue(i), 0.5);
+    }
+  EXPECT_EQ(n, j["estimated_pixels"].get<long>());
+  EXPECT_EQ(dir.entries(), (std::vector<std::string>{"s.png", "s.vti"}));
+}
+
+TEST(CliScreen, MeshFileAndMellado) {
+  TempDir dir("screen_mesh");
+  ASSERT_TRUE(run_isocurv({"extract", dataset("torus"), "-o", dir / "t.ply", "--quiet"}).ok());
+  const auto r = run_isocurv({"screen", dir / "t.ply", "--size", "300x300", "--estimator",
+                              "mellado", "-o", dir / "t.png", "--json", "--quiet"},
+                             120);
+  ASSERT_TRUE(r.ok()) << r.describe();
+  const json j = parse_json(r.out, "screen --json");
+  EXPECT_EQ(j["producer"], "rasterised mesh");
+  EXPECT_GT(j["estimated_pixels"].get<int>(), 5000);
+  EXPECT_FALSE(j.contains("median_K"));
+  const auto k = run_isocurv(
+      {"screen", dir / "t.ply", "--estimator", "mellado", "--color", "K", "-o", dir / "k.png"});
+  EXPECT_EQ(k.exit_code, 1) << k.describe();
+  ASSERT_EQ(k.err_lines().size(), 1u) << k.describe();
+  EXPECT_EQ(k.err_lines()[0].rfind("isocurv:", 0), 0u);
+  const auto iso = run_isocurv({"screen", dir / "t.ply", "--iso", "0.5", "-o", dir / "i.png"});
+  EXPECT_NE(iso.exit_code, 0);
+}
+
+TEST(CliScreen, AnIsovalueThatMissesGivesAnEmptyImageAndAWarning) {
+  TempDir dir("screen_empty");
+  const auto r = run_isocurv({"screen", dataset("torus"), "--iso", "100", "--size", "64x64", "-o",
+                              dir / "e.png", "--json"},
+                             120);
+  ASSERT_TRUE(r.ok()) << r.describe();
+  const json j = parse_json(r.out, "screen --json");
+  EXPECT_TRUE(j["empty"].get<bool>());
+  EXPECT_EQ(j["estimated_pixels"].get<int>(), 0);
+  ASSERT_EQ(r.err_lines().size(), 1u) << r.describe();
+  EXPECT_NE(r.err_lines()[0].find("warning"), std::string::npos);
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"e.png"});
+}
+
+TEST(CliScreen, SizeLimitAndBadOutputsAreOneErrorLine) {
+  TempDir dir("screen_bad");
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"screen", dataset("torus"), "--size", "9000x100", "-o",
+                                 dir / "a.png"},
+        std::vector<std::string>{"screen", dataset("torus"), "-o", dir / "a.jpg"},
+        std::vector<std::string>{"screen", dataset("torus"), "-o", dir / "a.png", "--raw",
+                                 dir / "a.vtp"},
+        std::vector<std::string>{"screen", dataset("torus"), "--edges", "4", "-o", dir / "a.png"},
+        std::vector<std::string>{"screen", dir / "missing.vdb", "-o", dir / "a.png"}}) {
+    const auto r = run_isocurv(args);
+    EXPECT_NE(r.exit_code, 0) << r.describe();
+    EXPECT_FALSE(r.timed_out);
+    ASSERT_GE(r.err_lines().size(), 1u) << r.describe();
+    EXPECT_EQ(r.err_lines()[0].rfind("isocurv:", 0), 0u) << r.describe();
+  }
+  EXPECT_TRUE(dir.entries().empty());
+  EXPECT_TRUE(run_isocurv({"screen", "--help"}).out.find("Example: isocurv screen") !=
+              std::string::npos);
+}
+
+}  // namespace
+}  // namespace isocurv::test

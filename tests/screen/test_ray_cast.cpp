@@ -1,0 +1,166 @@
+// The isosurface ray caster: hits on the trilinear isosurface within 1e-4 voxel, the kernel
+// against the C++ reference, its normals against volume::gradient_normals, work-group sizes,
+// anisotropic voxels, and an isovalue that misses the volume.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+
+#include "core/cl_device.h"
+#include "screen/ray_cast.h"
+#include "tests/screen/scenes.h"
+#include "volume/gradient_normals.h"
+
+namespace isocurv::test {
+namespace {
+
+// Distance (voxels) of each valid hit from the trilinear isosurface: |s| / |grad s| (index space).
+double worst_offset(const screen::CastVolume& v, float iso, const screen::GBuffer& g) {
+  double worst = 0;
+  for (std::size_t i = 0; i < g.pixels(); ++i) {
+    if (!g.valid[i]) continue;
+    const auto& p = g.position[i];
+    const auto q = v.index({p[0], p[1], p[2]});
+    std::array<double, 3> grad;
+    const double s = v.field(q, iso, &grad);
+    const double len = std::sqrt(grad[0] * grad[0] + grad[1] * grad[1] + grad[2] * grad[2]);
+    worst = std::max(worst, std::abs(s) / len);
+  }
+  return worst;
+}
+
+Camera iso_camera(const screen::CastVolume& v, int w, int h) {
+  return fit_camera(v.bounds, ViewSpec{}, double(w) / h);
+}
+
+TEST(ScreenRayCast, HitsLieOnTheIsosurface) {
+  for (const char* name : {"torus", "gyroid"}) {
+    const Scene& s = scene(name, 96);
+    const float iso = float(s.field->isovalue());
+    const auto frame = screen::view_frame(iso_camera(*s.cast, 200, 150), 200, 150);
+    const screen::GBuffer ref = screen::ray_cast_reference(*s.cast, iso, frame);
+    const screen::GBuffer dev = screen::ray_cast(*s.cast, iso, frame, Device::default_device());
+    const double wr = worst_offset(*s.cast, iso, ref), wd = worst_offset(*s.cast, iso, dev);
+    std::printf(
+        "%s: %zu hits; worst distance from the trilinear isosurface: reference %.1e, "
+        "kernel %.1e voxel\n",
+        name, ref.valid_count(), wr, wd);
+    EXPECT_GT(ref.valid_count(), 3000u);
+    EXPECT_LE(wr, 1e-4);
+    EXPECT_LE(wd, 1e-4);
+  }
+}
+
+TEST(ScreenRayCast, KernelMatchesReference) {
+  const Scene& s = scene("torus", 96);
+  const float iso = float(s.field->isovalue());
+  const auto frame = screen::view_frame(iso_camera(*s.cast, 240, 180), 240, 180);
+  const screen::GBuffer ref = screen::ray_cast_reference(*s.cast, iso, frame);
+  const screen::GBuffer dev = screen::ray_cast(*s.cast, iso, frame, Device::default_device());
+  const double h = s.volume.spacing()[0];
+  std::size_t differ = 0, both = 0;
+  double worst_p = 0, worst_n = 0;
+  for (std::size_t i = 0; i < ref.pixels(); ++i) {
+    if (ref.valid[i] != dev.valid[i]) {
+      ++differ;
+      continue;
+    }
+    if (!ref.valid[i]) continue;
+    double dp = 0, dn = 0;
+    for (int k = 0; k < 3; ++k) {
+      dp = std::max(dp, double(std::abs(ref.position[i][k] - dev.position[i][k])));
+      dn = std::max(dn, double(std::abs(ref.normal[i][k] - dev.normal[i][k])));
+    }
+    if (dp > 0.01 * h) {  // a grazing ray whose float march found another crossing
+      ++differ;
+      continue;
+    }
+    worst_p = std::max(worst_p, dp / h), worst_n = std::max(worst_n, dn);
+    EXPECT_NEAR(ref.depth[i], dev.depth[i], 1e-3 * h);
+    ++both;
+  }
+  std::printf(
+      "ray cast kernel vs reference: %zu pixels agree (positions within %.1e voxel, "
+      "normals %.1e), %zu differ\n",
+      both, worst_p, worst_n, differ);
+  EXPECT_LE(differ, ref.pixels() / 1000);
+  EXPECT_LE(worst_p, 1e-3);
+  EXPECT_LE(worst_n, 1e-4);
+  EXPECT_EQ(ref.near, dev.near);
+  EXPECT_EQ(ref.far, dev.far);
+}
+
+TEST(ScreenRayCast, NormalsAreTheVolumesGradientNormals) {
+  const Scene& s = scene("ellipsoid", 80);
+  const float iso = float(s.field->isovalue());
+  const auto frame = screen::view_frame(iso_camera(*s.cast, 120, 90), 120, 90);
+  const screen::GBuffer g = screen::ray_cast_reference(*s.cast, iso, frame);
+  Positions pts;
+  std::vector<std::size_t> at;
+  for (std::size_t i = 0; i < g.pixels(); ++i)
+    if (g.valid[i]) pts.push_back(g.position[i]), at.push_back(i);
+  ASSERT_GT(pts.size(), 1000u);
+  const std::vector<Vec3f> n = volume::gradient_normals(s.volume, pts);
+  double worst = 0;
+  for (std::size_t j = 0; j < pts.size(); ++j)
+    for (int k = 0; k < 3; ++k)
+      worst = std::max(worst, double(std::abs(n[j][k] - g.normal[at[j]][k])));
+  EXPECT_LE(worst, 1e-5);
+}
+
+TEST(ScreenRayCast, WorkGroupSizesGiveIdenticalBuffers) {
+  const Scene& s = scene("torus", 96);
+  const float iso = float(s.field->isovalue());
+  const auto frame = screen::view_frame(iso_camera(*s.cast, 130, 70), 130, 70);
+  const screen::GBuffer a = screen::ray_cast(*s.cast, iso, frame, Device::default_device(), {}, 1);
+  for (int wg : {7, 64, 128}) {
+    const screen::GBuffer b =
+        screen::ray_cast(*s.cast, iso, frame, Device::default_device(), {}, wg);
+    EXPECT_EQ(a.valid, b.valid) << wg;
+    EXPECT_TRUE(a.position == b.position) << wg;
+    EXPECT_TRUE(a.normal == b.normal) << wg;
+    EXPECT_EQ(a.depth, b.depth) << wg;
+  }
+}
+
+TEST(ScreenRayCast, AnisotropicVoxelsFollowTheTransform) {
+  const auto field = datasets::make_field("sphere");
+  datasets::SampleOptions so;
+  so.anisotropy = Eigen::Vector3d(1, 1, 1.7);
+  const volume::Volume v = datasets::sample(*field, 96, so);
+  const screen::CastVolume cv(v);
+  const auto frame = screen::view_frame(fit_camera(cv.bounds, ViewSpec{}, 1), 100, 100);
+  const screen::GBuffer g = screen::ray_cast(cv, 0.0f, frame, Device::default_device());
+  ASSERT_GT(g.valid_count(), 1000u);
+  double worst = 0;
+  for (std::size_t i = 0; i < g.pixels(); ++i)
+    if (g.valid[i]) {
+      const auto& p = g.position[i];
+      worst = std::max(worst, std::abs(std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) - 0.8));
+    }
+  // The trilinear sphere lies within a small fraction of the longest voxel of the exact one.
+  EXPECT_LE(worst, 0.05 * v.spacing()[2]);
+}
+
+TEST(ScreenRayCast, AnIsovalueThatMissesGivesAnEmptyBuffer) {
+  const Scene& s = scene("torus", 48);
+  const auto frame = screen::view_frame(iso_camera(*s.cast, 64, 48), 64, 48);
+  std::array<double, 6> box;
+  EXPECT_FALSE(s.cast->surface_bounds(1e6f, box));
+  EXPECT_EQ(screen::ray_cast(*s.cast, 1e6f, frame, Device::default_device()).valid_count(), 0u);
+  EXPECT_EQ(screen::ray_cast_reference(*s.cast, -1e6f, frame).valid_count(), 0u);
+  EXPECT_TRUE(s.cast->surface_bounds(float(s.field->isovalue()), box));
+}
+
+TEST(ScreenRayCast, BadSizesAndStepsAreRefused) {
+  EXPECT_THROW(screen::view_frame(Camera{}, 0, 10), Error);
+  EXPECT_THROW(screen::view_frame(Camera{}, 10, screen::kMaxImageSide + 1), Error);
+  const Scene& s = scene("torus", 48);
+  screen::CastOptions o;
+  o.step = 0.75;
+  EXPECT_THROW(screen::ray_cast_reference(*s.cast, 0, screen::view_frame(Camera{}, 8, 8), o),
+               Error);
+}
+
+}  // namespace
+}  // namespace isocurv::test
