@@ -332,8 +332,24 @@ std::vector<Vec3f> mesh_normals(const Mesh& mesh, const std::string& source) {
 }
 
 /// ao_scale= : None (4 mean edge lengths of `mesh`) or a radius in world units.
-float ao_scale_of(const py::object& ao_scale, const Mesh& mesh) {
-  return ao_scale.is_none() ? curvature::default_ao_scale(mesh) : ao_scale.cast<float>();
+/// A Python number as a finite float (TypeError / ValueError naming `arg` otherwise).
+float finite_number(const py::object& o, const char* arg) {
+  float v = 0;
+  try {
+    v = o.cast<float>();
+  } catch (const py::cast_error&) {
+    throw py::type_error(std::string(arg) + ": expected a number");
+  }
+  if (!std::isfinite(v)) throw py::value_error(std::string(arg) + ": must be a finite number");
+  return v;
+}
+
+/// ao_scale= : None (nothing: 4 mean edge lengths of the mesh) or a positive radius, world units.
+std::optional<float> ao_scale_of(const py::object& ao_scale) {
+  if (ao_scale.is_none()) return std::nullopt;
+  const float v = finite_number(ao_scale, "ao_scale");
+  if (!(v > 0)) throw py::value_error("ao_scale: a positive number (world units)");
+  return v;
 }
 
 /// What a curvature call used, as CurvatureArrays.report: {"estimator", "parameters" {name:
@@ -393,7 +409,7 @@ py::object curvature_of(const std::shared_ptr<PyMesh>& mesh, const volume::Volum
   float isovalue = 0;
   if (!mesh_estimator) {
     if (!iso.is_none())
-      isovalue = iso.cast<float>();
+      isovalue = finite_number(iso, "iso");
     else if (mesh->isovalue)
       isovalue = *mesh->isovalue;
     else
@@ -405,7 +421,8 @@ py::object curvature_of(const std::shared_ptr<PyMesh>& mesh, const volume::Volum
     throw py::value_error("iso: applies to estimator='volume' only");
   }
   if (mesh->mesh.triangles.empty()) throw py::value_error("mesh: has no triangles");
-  co.ao_scale = ao_scale_of(ao_scale, mesh->mesh);
+  const std::optional<float> ao = ao_scale_of(ao_scale);
+  co.ao_scale = ao ? *ao : curvature::default_ao_scale(mesh->mesh);
   curvature::CurvatureField field;
   curvature::EstimatorReport report;
   volume::MeshNormals vn;
@@ -432,7 +449,8 @@ py::object curvature_of(const std::shared_ptr<PyMesh>& mesh, const volume::Volum
 struct PyTopology {
   Device* device = nullptr;
   curvature::Topology topo;
-  Mesh frame;  ///< the triangles and the latest positions (for ao_scale and host normals)
+  Mesh frame;       ///< the triangles and the latest positions (for ao_scale and host normals)
+  std::mutex lock;  ///< one frame at a time (taken without the GIL, before device_lock)
 };
 
 std::shared_ptr<PyTopology> make_topology(const std::shared_ptr<PyMesh>& mesh, py::object device) {
@@ -476,16 +494,18 @@ py::object topology_curvature(PyTopology& t, const py::object& positions, py::ob
   if (p.ndim() != 2 || p.shape(1) != 3 || std::size_t(p.shape(0)) != n)
     throw py::value_error("positions: expected shape (" + std::to_string(n) +
                           ", 3) (one per vertex of the prepared mesh)");
-  std::memcpy(static_cast<void*>(t.frame.positions.data()), p.data(), n * sizeof(Vec3f));
+  const std::optional<float> ao = ao_scale_of(ao_scale);
   curvature::Options co;
   co.estimator = e;
-  co.ao_scale = ao_scale_of(ao_scale, t.frame);
   curvature::CurvatureField field;
   curvature::EstimatorReport r;
   r.estimator = curvature::estimator_name(e);
-  r.parameters.emplace_back("ao_scale", co.ao_scale);
   {
-    py::gil_scoped_release release;
+    py::gil_scoped_release release;  // p stays referenced, so its data stays valid
+    std::lock_guard<std::mutex> frame_lock(t.lock);
+    std::memcpy(static_cast<void*>(t.frame.positions.data()), p.data(), n * sizeof(Vec3f));
+    co.ao_scale = ao ? *ao : curvature::default_ao_scale(t.frame);
+    r.parameters.emplace_back("ao_scale", co.ao_scale);
     const std::vector<Vec3f> averaged = mesh_normals(t.frame, source);
     if (!averaged.empty()) co.vertex_normals = &averaged;
     std::lock_guard<std::mutex> lock(device_lock);
@@ -511,7 +531,9 @@ PYBIND11_MODULE(isocurv, m) {
       "mesh.triangles (m, 3) uint32\n"
       "  arrays = isocurv.curvature(mesh, volume=v)  # {'H': ..., 'K': ..., 'k1': ..., 'dir1': "
       "..., ...}\n"
-      "  isocurv.write_mesh('ct.vtp', mesh, arrays)\n\n"
+      "  isocurv.write_mesh('ct.vtp', mesh, arrays)\n"
+      "  topo = isocurv.Topology(mesh)               # a deforming mesh: "
+      "topo.curvature(positions)\n\n"
       "Errors raise isocurv.Error (a RuntimeError) with the command line's one-line message; "
       "wrong\n"
       "argument types raise TypeError, wrong shapes or values ValueError, naming the argument.";

@@ -270,6 +270,10 @@ class Estimators(unittest.TestCase):
             isocurv.curvature(isocurv.Mesh(m.vertices, m.triangles), v, estimator="volume")
         with self.assertRaisesRegex(ValueError, "^iso: applies to estimator='volume' only"):
             isocurv.curvature(m, v, iso=135)
+        with self.assertRaisesRegex(ValueError, "^ao_scale: a positive number"):
+            isocurv.curvature(m, ao_scale=-1)
+        with self.assertRaisesRegex(TypeError, "^ao_scale"):
+            isocurv.curvature(m, ao_scale="wide")
 
 
 class Topologies(unittest.TestCase):
@@ -303,6 +307,25 @@ class Topologies(unittest.TestCase):
         # The frames differ: the ellipsoid's H spreads where the sphere's does not.
         h = [np.ptp(topo.curvature(f)["H"]) for f in self.frames[:2]]
         self.assertGreater(h[1], 3 * h[0])
+
+    def test_threads_may_share_a_topology(self):
+        topo = isocurv.Topology(self.mesh)
+        cold = [isocurv.curvature(isocurv.Mesh(f, self.mesh.triangles))["H"] for f in self.frames]
+        results = {}
+
+        def work(i):
+            for _ in range(3):
+                results.setdefault(i, []).append(topo.curvature(self.frames[i])["H"])
+
+        threads = [threading.Thread(target=work, args=(i,)) for i in range(len(self.frames))]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        for i, hs in results.items():
+            self.assertEqual(len(hs), 3)
+            for h in hs:
+                np.testing.assert_array_equal(h, cold[i], err_msg="frame %d" % i)
 
     def test_bad_arguments(self):
         topo = isocurv.Topology(self.mesh)
