@@ -21,11 +21,15 @@
 #include "core/cl_device.h"
 #include "core/error.h"
 #include "core/mesh.h"
+#include "core/mesh_measures.h"
 #include "core/program_cache.h"
 #include "curvature/ao_scale.h"
 #include "curvature/curvature_field.h"
 #include "curvature/estimate.h"
+#include "curvature/estimator.h"
+#include "curvature/face_average_normals.h"
 #include "curvature/reference.h"
+#include "curvature/topology.h"
 #include "io/compression.h"
 #include "io/field_arrays.h"
 #include "io/mesh_file.h"
@@ -81,6 +85,7 @@ Device& opened_device(const DeviceChoice& c) {
 /// A Mesh shared between Python objects and the numpy views of its arrays.
 struct PyMesh {
   Mesh mesh;
+  std::optional<float> isovalue;  ///< set by extract (the volume estimator needs it)
 };
 
 volume::Inside inside_of(const std::string& s) {
@@ -177,11 +182,11 @@ py::array view(const T* data, std::size_t n, std::size_t cols, py::handle base) 
   return py::array_t<T>({n, cols}, {cols * sizeof(T), sizeof(T)}, data, base);
 }
 
-/// The field's non-empty arrays as numpy views of one heap copy of the field (owned by a capsule).
-py::dict field_dict(curvature::CurvatureField&& field) {
+/// The field's non-empty arrays as numpy views of one heap copy of the field (owned by a capsule),
+/// stored by name into `out` (a dict, or a CurvatureArrays).
+py::object field_dict(curvature::CurvatureField&& field, py::object out = py::dict()) {
   auto* owned = new curvature::CurvatureField(std::move(field));
   py::capsule base(owned, [](void* p) { delete static_cast<curvature::CurvatureField*>(p); });
-  py::dict out;
   io::for_each_array(*owned, [&](const char* name, const auto& v) {
     if (v.empty()) return;
     using E = typename std::decay_t<decltype(v)>::value_type;
@@ -271,6 +276,250 @@ std::shared_ptr<PyMesh> mesh_from_arrays(const py::object& vertices, const py::o
   return m;
 }
 
+/// isocurv.CurvatureArrays: the dict subclass curvature() returns (made at module import).
+py::handle curvature_arrays_type;
+
+/// The estimator called `name` (ValueError naming `arg` and listing the names otherwise).
+curvature::Estimator estimator_of(const py::object& name, const char* arg) {
+  if (name.is_none()) return curvature::Estimator::rusinkiewicz;
+  if (!py::isinstance<py::str>(name))
+    throw py::type_error(std::string(arg) + ": expected an estimator name (a str)");
+  const std::string s = name.cast<std::string>();
+  if (const auto e = curvature::estimator_from_name(s)) return *e;
+  std::string names;
+  for (const std::string& n : curvature::estimator_names())
+    names += (names.empty() ? "" : ", ") + n;
+  throw py::value_error(std::string(arg) + ": expected one of " + names + ", not '" + s + "'");
+}
+
+/// scale= as the CLI's --scale: None or 'auto' (0: chosen from the data) or a positive number.
+double scale_of(const py::object& scale) {
+  if (scale.is_none()) return 0;
+  if (py::isinstance<py::str>(scale)) {
+    const std::string s = scale.cast<std::string>();
+    if (s == "auto") return 0;
+    throw py::value_error("scale: a positive number (world units) or 'auto', not '" + s + "'");
+  }
+  if (!py::isinstance<py::float_>(scale) && !py::isinstance<py::int_>(scale) &&
+      !py::hasattr(scale, "__float__"))
+    throw py::type_error("scale: expected a number (world units) or 'auto'");
+  const double v = scale.cast<double>();
+  if (!std::isfinite(v) || !(v > 0))
+    throw py::value_error("scale: a positive number (world units) or 'auto', not " +
+                          py::str(scale).cast<std::string>());
+  return v;
+}
+
+/// normals= for the mesh estimators: None (the default), 'volume', 'mesh', 'area' or
+/// 'face-average' (the CLI's --normals).
+std::string normals_of(const py::object& normals) {
+  if (normals.is_none()) return "";
+  if (!py::isinstance<py::str>(normals))
+    throw py::type_error("normals: expected 'volume', 'mesh', 'area' or 'face-average'");
+  const std::string s = normals.cast<std::string>();
+  if (s != "volume" && s != "mesh" && s != "area" && s != "face-average")
+    throw py::value_error("normals: expected 'volume', 'mesh', 'area' or 'face-average', not '" +
+                          s + "'");
+  return s;
+}
+
+/// Host-side vertex normals for normals='area' / 'face-average' (empty for 'mesh': the
+/// estimator's own Max-weighted normals).
+std::vector<Vec3f> mesh_normals(const Mesh& mesh, const std::string& source) {
+  if (source == "area") return area_weighted_normals(mesh);
+  if (source == "face-average") return curvature::face_average_normals(mesh);
+  return {};
+}
+
+/// ao_scale= : None (4 mean edge lengths of `mesh`) or a radius in world units.
+/// A Python number as a finite float (TypeError / ValueError naming `arg` otherwise).
+float finite_number(const py::object& o, const char* arg) {
+  float v = 0;
+  try {
+    v = o.cast<float>();
+  } catch (const py::cast_error&) {
+    throw py::type_error(std::string(arg) + ": expected a number");
+  }
+  if (!std::isfinite(v)) throw py::value_error(std::string(arg) + ": must be a finite number");
+  return v;
+}
+
+/// ao_scale= : None (nothing: 4 mean edge lengths of the mesh) or a positive radius, world units.
+std::optional<float> ao_scale_of(const py::object& ao_scale) {
+  if (ao_scale.is_none()) return std::nullopt;
+  const float v = finite_number(ao_scale, "ao_scale");
+  if (!(v > 0)) throw py::value_error("ao_scale: a positive number (world units)");
+  return v;
+}
+
+/// What a curvature call used, as CurvatureArrays.report: {"estimator", "parameters" {name:
+/// value}, "chosen" {name: 'auto'|'given'}, "unreliable", "normals"[, "normal_fallbacks"]}.
+py::dict report_dict(const curvature::EstimatorReport& r, const std::string& normals,
+                     const volume::MeshNormals* vn) {
+  py::dict d, params, chosen;
+  d["estimator"] = r.estimator;
+  for (const auto& [k, v] : r.parameters) params[k.c_str()] = v;
+  for (const auto& [k, v] : r.notes) chosen[k.c_str()] = v;
+  d["parameters"] = params;
+  d["chosen"] = chosen;
+  d["unreliable"] = r.unreliable;
+  d["normals"] = normals;
+  if (vn) {
+    py::dict f;
+    f["opposed"] = vn->opposed;
+    f["weak_gradient"] = vn->weak;
+    f["caps"] = vn->caps;
+    d["normal_fallbacks"] = f;
+  }
+  return d;
+}
+
+/// A CurvatureArrays of the field's arrays carrying `report`.
+py::object curvature_arrays(curvature::CurvatureField&& field, py::dict report) {
+  py::object out = field_dict(std::move(field), curvature_arrays_type());
+  out.attr("report") = report;
+  return out;
+}
+
+py::object curvature_of(const std::shared_ptr<PyMesh>& mesh, const volume::Volume* volume,
+                        py::object estimator, py::object scale, py::object normals_arg,
+                        py::object iso, py::object ao_scale, bool cap, py::object device) {
+  const DeviceChoice dc = device_choice(device);
+  curvature::Options co;
+  co.estimator = estimator_of(estimator, "estimator");
+  const std::string given = normals_of(normals_arg);
+  const bool mesh_estimator = !curvature::needs_volume(co.estimator);
+  const std::string name = curvature::estimator_name(co.estimator);
+  // The CLI's rules (app/pipeline.cpp estimate_curvature), as ValueErrors naming the argument.
+  if (!mesh_estimator && !volume)
+    throw py::value_error("estimator: '" + name +
+                          "' needs the volume argument (it reads the volume's derivatives), not "
+                          "a mesh alone");
+  if (!mesh_estimator && !given.empty())
+    throw py::value_error("normals: applies to the mesh estimators; estimator='" + name +
+                          "' takes its normals from the volume's gradient at scale");
+  if (mesh_estimator && !scale.is_none())
+    throw py::value_error("scale: applies to estimator='volume' only");
+  co.scale = scale_of(scale);
+  const std::string source = !mesh_estimator ? "volume estimator"
+                             : given.empty() ? (volume ? "volume" : "mesh")
+                                             : given;
+  if (source == "volume" && !volume)
+    throw py::value_error("normals: 'volume' needs the volume argument");
+  float isovalue = 0;
+  if (!mesh_estimator) {
+    if (!iso.is_none())
+      isovalue = finite_number(iso, "iso");
+    else if (mesh->isovalue)
+      isovalue = *mesh->isovalue;
+    else
+      throw py::value_error(
+          "iso: estimator='" + name +
+          "' needs the mesh's isovalue (meshes from isocurv.extract carry it as mesh.isovalue)");
+    if (!std::isfinite(isovalue)) throw py::value_error("iso: must be a finite number");
+  } else if (!iso.is_none()) {
+    throw py::value_error("iso: applies to estimator='volume' only");
+  }
+  if (mesh->mesh.triangles.empty()) throw py::value_error("mesh: has no triangles");
+  const std::optional<float> ao = ao_scale_of(ao_scale);
+  co.ao_scale = ao ? *ao : curvature::default_ao_scale(mesh->mesh);
+  curvature::CurvatureField field;
+  curvature::EstimatorReport report;
+  volume::MeshNormals vn;
+  std::vector<Vec3f> averaged;
+  {
+    py::gil_scoped_release release;
+    if (source == "volume") {
+      vn = volume::gradient_normals_for_mesh(*volume, mesh->mesh, cap);
+      co.vertex_normals = &vn.normals;
+    } else if (source == "area" || source == "face-average") {
+      averaged = mesh_normals(mesh->mesh, source);
+      co.vertex_normals = &averaged;
+    }
+    std::lock_guard<std::mutex> lock(device_lock);
+    field = curvature::estimate_field(mesh->mesh, {volume, isovalue},
+                                      dc.reference ? nullptr : &opened_device(dc), co, &report);
+  }
+  return curvature_arrays(std::move(field),
+                          report_dict(report, source, source == "volume" ? &vn : nullptr));
+}
+
+/// isocurv.Topology: a mesh's triangles prepared once on the device, for the curvature of many
+/// positions of the same connectivity (curvature/topology.h).
+struct PyTopology {
+  Device* device = nullptr;
+  curvature::Topology topo;
+  Mesh frame;       ///< the triangles and the latest positions (for ao_scale and host normals)
+  std::mutex lock;  ///< one frame at a time (taken without the GIL, before device_lock)
+};
+
+std::shared_ptr<PyTopology> make_topology(const std::shared_ptr<PyMesh>& mesh, py::object device) {
+  const DeviceChoice dc = device_choice(device);
+  if (dc.reference)
+    throw py::value_error(
+        "device: Topology runs on an OpenCL device ('reference' has no prepared path)");
+  if (mesh->mesh.triangles.empty()) throw py::value_error("mesh: has no triangles");
+  auto t = std::make_shared<PyTopology>();
+  t->frame.triangles = mesh->mesh.triangles;
+  t->frame.positions = mesh->mesh.positions;
+  py::gil_scoped_release release;
+  std::lock_guard<std::mutex> lock(device_lock);
+  t->device = &opened_device(dc);
+  t->topo = curvature::prepare(t->frame.triangles, t->frame.positions.size(), *t->device);
+  return t;
+}
+
+py::object topology_curvature(PyTopology& t, const py::object& positions, py::object estimator,
+                              py::object normals_arg, py::object ao_scale) {
+  const curvature::Estimator e = estimator_of(estimator, "estimator");
+  if (e != curvature::Estimator::rusinkiewicz && e != curvature::Estimator::batagelo &&
+      e != curvature::Estimator::prantl3 && e != curvature::Estimator::prantl2)
+    throw py::value_error(
+        "estimator: Topology runs rusinkiewicz, batagelo, prantl3 or prantl2 (the estimators "
+        "with a prepared-topology path), not '" +
+        std::string(curvature::estimator_name(e)) + "'");
+  std::string source = normals_of(normals_arg);
+  if (source == "volume")
+    throw py::value_error("normals: Topology takes 'mesh', 'area' or 'face-average' (no volume)");
+  if (source.empty()) source = "mesh";
+  py::array_t<float, py::array::c_style | py::array::forcecast> p;
+  try {
+    p = positions.cast<decltype(p)>();
+  } catch (const py::error_already_set&) {
+    throw py::type_error("positions: expected a numeric (n, 3) array");
+  } catch (const py::cast_error&) {
+    throw py::type_error("positions: expected a numeric (n, 3) array");
+  }
+  const std::size_t n = t.frame.positions.size();
+  if (p.ndim() != 2 || p.shape(1) != 3 || std::size_t(p.shape(0)) != n)
+    throw py::value_error("positions: expected shape (" + std::to_string(n) +
+                          ", 3) (one per vertex of the prepared mesh)");
+  const std::optional<float> ao = ao_scale_of(ao_scale);
+  curvature::Options co;
+  co.estimator = e;
+  curvature::CurvatureField field;
+  curvature::EstimatorReport r;
+  r.estimator = curvature::estimator_name(e);
+  {
+    py::gil_scoped_release release;  // p stays referenced, so its data stays valid
+    std::lock_guard<std::mutex> frame_lock(t.lock);
+    std::memcpy(static_cast<void*>(t.frame.positions.data()), p.data(), n * sizeof(Vec3f));
+    co.ao_scale = ao ? *ao : curvature::default_ao_scale(t.frame);
+    r.parameters.emplace_back("ao_scale", co.ao_scale);
+    const std::vector<Vec3f> averaged = mesh_normals(t.frame, source);
+    if (!averaged.empty()) co.vertex_normals = &averaged;
+    std::lock_guard<std::mutex> lock(device_lock);
+    if (e == curvature::Estimator::rusinkiewicz) {
+      curvature::estimate(t.frame.positions, t.topo, *t.device, co, field);
+    } else {
+      curvature::upload_positions(t.frame.positions, t.topo);
+      curvature::estimate_resident(e, t.topo, *t.device, co, field);
+      for (std::uint8_t u : field.unreliable) r.unreliable += u;
+    }
+  }
+  return curvature_arrays(std::move(field), report_dict(r, source, nullptr));
+}
+
 }  // namespace
 
 PYBIND11_MODULE(isocurv, m) {
@@ -282,7 +531,9 @@ PYBIND11_MODULE(isocurv, m) {
       "mesh.triangles (m, 3) uint32\n"
       "  arrays = isocurv.curvature(mesh, volume=v)  # {'H': ..., 'K': ..., 'k1': ..., 'dir1': "
       "..., ...}\n"
-      "  isocurv.write_mesh('ct.vtp', mesh, arrays)\n\n"
+      "  isocurv.write_mesh('ct.vtp', mesh, arrays)\n"
+      "  topo = isocurv.Topology(mesh)               # a deforming mesh: "
+      "topo.curvature(positions)\n\n"
       "Errors raise isocurv.Error (a RuntimeError) with the command line's one-line message; "
       "wrong\n"
       "argument types raise TypeError, wrong shapes or values ValueError, naming the argument.";
@@ -298,6 +549,20 @@ PYBIND11_MODULE(isocurv, m) {
     }
   });
   set_program_cache_warnings(true);
+
+  {
+    py::dict ns;
+    ns["__module__"] = "isocurv";
+    ns["__doc__"] =
+        "The dict of numpy arrays curvature() returns, with .report: the estimator, its "
+        "parameters and the unreliable count.";
+    py::object dict_type =
+        py::reinterpret_borrow<py::object>(reinterpret_cast<PyObject*>(&PyDict_Type));
+    py::object cls = py::module_::import("builtins")
+                         .attr("type")("CurvatureArrays", py::make_tuple(dict_type), ns);
+    m.attr("CurvatureArrays") = cls;
+    curvature_arrays_type = cls;  // kept alive by the module
+  }
 
   py::class_<volume::Volume>(
       m, "Volume",
@@ -371,6 +636,19 @@ PYBIND11_MODULE(isocurv, m) {
             return view(p, me.mesh.triangles.size(), 3, self);
           },
           "(m, 3) uint32 view of the triangles' vertex indices (normals point out of the object)")
+      .def_property(
+          "isovalue",
+          [](const PyMesh& me) {
+            return me.isovalue ? py::object(py::float_(*me.isovalue)) : py::object(py::none());
+          },
+          [](PyMesh& me, py::object v) {
+            if (v.is_none())
+              me.isovalue.reset();
+            else
+              me.isovalue = v.cast<float>();
+          },
+          "The isovalue the mesh was extracted at (set by extract; None otherwise; assignable): "
+          "what curvature(estimator='volume') reads")
       .def("__repr__", [](const PyMesh& me) {
         return "<isocurv.Mesh " + std::to_string(me.mesh.positions.size()) + " vertices, " +
                std::to_string(me.mesh.triangles.size()) + " triangles>";
@@ -440,6 +718,7 @@ PYBIND11_MODULE(isocurv, m) {
         std::lock_guard<std::mutex> lock(device_lock);
         out->mesh = dc.reference ? mc::extract_reference(v, value, mo)
                                  : mc::extract(v, value, opened_device(dc), mo);
+        out->isovalue = value;
         return out;
       },
       py::arg("volume"), py::arg("iso") = py::none(), py::kw_only(), py::arg("cap") = false,
@@ -454,48 +733,56 @@ PYBIND11_MODULE(isocurv, m) {
       "empty mesh.");
 
   m.def(
-      "curvature",
-      [](const std::shared_ptr<PyMesh>& mesh, const volume::Volume* volume, py::object normals,
-         py::object ao_scale, bool cap, py::object device) {
-        const DeviceChoice dc = device_choice(device);
-        std::string source =
-            normals.is_none() ? (volume ? "volume" : "mesh") : normals.cast<std::string>();
-        if (source != "volume" && source != "mesh")
-          throw py::value_error("normals: expected 'volume' or 'mesh'");
-        if (source == "volume" && !volume)
-          throw py::value_error("normals: 'volume' needs the volume argument");
-        if (mesh->mesh.triangles.empty()) throw py::value_error("mesh: has no triangles");
-        curvature::CurvatureField field;
-        {
-          py::gil_scoped_release release;
-          curvature::Options co;
-          volume::MeshNormals vn;
-          if (source == "volume") {
-            vn = volume::gradient_normals_for_mesh(*volume, mesh->mesh, cap);
-            co.vertex_normals = &vn.normals;
-          }
-          co.ao_scale =
-              ao_scale.is_none() ? curvature::default_ao_scale(mesh->mesh) : ao_scale.cast<float>();
-          std::lock_guard<std::mutex> lock(device_lock);
-          field = dc.reference ? curvature::estimate_reference(mesh->mesh, co)
-                               : curvature::estimate(mesh->mesh, opened_device(dc), co);
-        }
-        return field_dict(std::move(field));
-      },
-      py::arg("mesh"), py::arg("volume") = nullptr, py::kw_only(), py::arg("normals") = py::none(),
+      "curvature", &curvature_of, py::arg("mesh"), py::arg("volume") = nullptr, py::kw_only(),
+      py::arg("estimator") = py::none(), py::arg("scale") = py::none(),
+      py::arg("normals") = py::none(), py::arg("iso") = py::none(),
       py::arg("ao_scale") = py::none(), py::arg("cap") = false, py::arg("device") = py::none(),
-      "Per-vertex curvature of `mesh` as a dict of numpy arrays named as in the files: Normals (n, "
-      "3), Area, "
-      "k1, k2 (k1 >= k2), dir1, dir2 (n, 3), H, K, dcurv (n, 4), ShapeIndex, Curvedness, AO (n,), "
-      "Boundary "
-      "(n,) uint8. With `volume` (the one the mesh came from) the normals come from its gradient "
-      "(normals='volume', the default then; face normals where the gradient cannot be trusted), "
-      "else from the "
-      "faces; cap=True when the mesh was extracted with cap=True. ao_scale: ambient-occlusion "
-      "radius in world "
-      "units (default 4 mean edge lengths). Normals point out of the object, so a solid sphere of "
-      "radius R "
-      "has k1 = k2 = H = +1/R.");
+      R"doc(Per-vertex curvature of `mesh` as a CurvatureArrays (a dict) of numpy arrays named as in
+the files: Normals (n, 3), Area, k1, k2 (k1 >= k2), dir1, dir2 (n, 3), H, K, dcurv (n, 4),
+ShapeIndex, Curvedness, AO (n,), Boundary (n,) uint8, Unreliable (n,) uint8 where the estimator
+flags vertices; an estimator fills only the arrays it can. `.report` says what was used:
+{'estimator', 'parameters' (e.g. {'scale': 1.5, 'ao_scale': 2.0}, world units), 'chosen'
+({'scale': 'auto'|'given'}), 'unreliable' (count), 'normals'[, 'normal_fallbacks']}.
+
+estimator: one of isocurv.estimator_names() (the CLI's --estimator): 'rusinkiewicz' (the
+default), 'volume' (the volume's own derivatives at `scale`; needs `volume` and the mesh's
+isovalue: mesh.isovalue for meshes from extract, else iso=), or the other mesh estimators
+batagelo, prantl3, prantl2, quadric, cubic, sampling, meyer. scale: the volume estimator's
+Gaussian sigma in world units, or 'auto'/None (from the data); an error with a mesh estimator.
+normals (mesh estimators): 'volume' (the gradient of `volume`, face normals where it cannot be
+trusted; the default with a volume), 'mesh' (the faces, Max's weights; the default without),
+'area' or 'face-average'; an error with estimator='volume'. cap=True when the mesh was
+extracted with cap=True. ao_scale: ambient-occlusion radius in world units (default 4 mean edge
+lengths). Normals point out of the object, so a solid sphere of radius R has k1 = k2 = H = +1/R.
+Wrong combinations raise ValueError naming the argument.)doc");
+
+  m.def("estimator_names", &curvature::estimator_names,
+        "The names curvature(estimator=...) takes, as the CLI's --estimator.");
+
+  py::class_<PyTopology, std::shared_ptr<PyTopology>>(
+      m, "Topology",
+      R"doc(Topology(mesh, device=None): the mesh's triangles prepared once on the OpenCL device
+(adjacency built and uploaded), for the curvature of a deforming mesh whose connectivity never
+changes. topology.curvature(positions) then uploads only the (n, 3) positions; the result is
+bit-identical to isocurv.curvature(isocurv.Mesh(positions, mesh.triangles), normals=...,
+estimator=...) on the same device. One call at a time (calls are serialised).)doc")
+      .def(py::init(&make_topology), py::arg("mesh"), py::kw_only(), py::arg("device") = py::none())
+      .def("curvature", &topology_curvature, py::arg("positions"), py::kw_only(),
+           py::arg("estimator") = py::none(), py::arg("normals") = py::none(),
+           py::arg("ao_scale") = py::none(),
+           R"doc(Curvature of the prepared triangles at `positions` ((n, 3), n the mesh's vertex
+count; converted to float32) as a CurvatureArrays with .report, as isocurv.curvature.
+estimator: 'rusinkiewicz' (default), 'batagelo', 'prantl3' or 'prantl2' (those with a prepared
+path); normals: 'mesh' (default), 'area' or 'face-average'; ao_scale: default 4 mean edge
+lengths of these positions.)doc")
+      .def_property_readonly("vertex_count",
+                             [](const PyTopology& t) { return t.frame.positions.size(); })
+      .def_property_readonly("triangle_count",
+                             [](const PyTopology& t) { return t.frame.triangles.size(); })
+      .def("__repr__", [](const PyTopology& t) {
+        return "<isocurv.Topology " + std::to_string(t.frame.positions.size()) + " vertices, " +
+               std::to_string(t.frame.triangles.size()) + " triangles>";
+      });
 
   m.def(
       "read_mesh",
@@ -507,7 +794,7 @@ PYBIND11_MODULE(isocurv, m) {
         }
         auto out = std::make_shared<PyMesh>();
         out->mesh = std::move(f.mesh);
-        py::dict arrays = f.field ? field_dict(std::move(*f.field)) : py::dict();
+        py::object arrays = f.field ? field_dict(std::move(*f.field)) : py::dict();
         return py::make_tuple(out, arrays);
       },
       py::arg("path"),

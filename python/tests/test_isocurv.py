@@ -186,5 +186,166 @@ class Meshes(unittest.TestCase):
             np.testing.assert_array_equal(r, expected)
 
 
+class Estimators(unittest.TestCase):
+    """curvature(estimator=, scale=, normals=, iso=) follow the CLI's --estimator rules."""
+
+    def setUp(self):
+        self.v = isocurv.from_array(ball(np.float32))
+        self.mesh = isocurv.extract(self.v, 255 - 10 * RADIUS)
+
+    def test_names_are_the_clis(self):
+        names = isocurv.estimator_names()
+        self.assertEqual(names[:2], ["rusinkiewicz", "volume"])
+        self.assertIn("batagelo", names)
+
+    def test_default_is_rusinkiewicz_and_unchanged(self):
+        a = isocurv.curvature(self.mesh, self.v)
+        b = isocurv.curvature(self.mesh, self.v, estimator="rusinkiewicz", normals="volume")
+        self.assertIsInstance(a, dict)
+        self.assertEqual(sorted(a), sorted(b))
+        for key in a:
+            np.testing.assert_array_equal(a[key], b[key], err_msg=key)
+        self.assertEqual(a.report["estimator"], "rusinkiewicz")
+        self.assertEqual(a.report["normals"], "volume")
+        self.assertEqual(a.report["normal_fallbacks"]["opposed"], 0)
+        self.assertGreater(a.report["parameters"]["ao_scale"], 0)
+        self.assertEqual(isocurv.curvature(self.mesh).report["normals"], "mesh")
+
+    def test_volume_estimator_on_a_sphere(self):
+        self.assertEqual(self.mesh.isovalue, 255 - 10 * RADIUS)
+        for dtype, tol in ((np.float32, 0.02), (np.uint8, 0.05)):
+            v = isocurv.from_array(ball(dtype))
+            mesh = isocurv.extract(v, 255 - 10 * RADIUS)
+            a = isocurv.curvature(mesh, v, estimator="volume")
+            for q in (1, 50, 99):
+                self.assertAlmostEqual(np.percentile(a["H"], q) * RADIUS, 1, delta=tol, msg=str(dtype))
+                self.assertAlmostEqual(np.percentile(a["K"], q) * RADIUS**2, 1, delta=2 * tol, msg=str(dtype))
+            r = a.report
+            self.assertEqual((r["estimator"], r["chosen"]["scale"], r["unreliable"]), ("volume", "auto", 0))
+            self.assertGreater(r["parameters"]["scale"], 0.5)
+            self.assertEqual(r["normals"], "volume estimator")
+            self.assertEqual(a["Unreliable"].shape, (len(mesh.vertices),))
+        given = isocurv.curvature(self.mesh, self.v, estimator="volume", scale=1.5)
+        self.assertEqual(given.report["parameters"]["scale"], 1.5)
+        self.assertEqual(given.report["chosen"]["scale"], "given")
+        self.assertAlmostEqual(np.median(given["H"]) * RADIUS, 1, delta=0.03)
+        auto = isocurv.curvature(self.mesh, self.v, estimator="volume", scale="auto")
+        self.assertEqual(auto.report["chosen"]["scale"], "auto")
+        # A mesh without an isovalue (not from extract) takes iso=.
+        bare = isocurv.Mesh(self.mesh.vertices, self.mesh.triangles)
+        self.assertIsNone(bare.isovalue)
+        with_iso = isocurv.curvature(bare, self.v, estimator="volume", iso=255 - 10 * RADIUS)
+        np.testing.assert_array_equal(with_iso["H"], auto["H"])
+
+    def test_every_mesh_estimator_gives_the_sphere(self):
+        for name in isocurv.estimator_names():
+            if name == "volume":
+                continue
+            a = isocurv.curvature(self.mesh, estimator=name)
+            self.assertEqual(a.report["estimator"], name)
+            self.assertAlmostEqual(np.median(a["H"]) * RADIUS, 1, delta=0.05, msg=name)
+            self.assertEqual(a.report["unreliable"], int(a["Unreliable"].sum()) if "Unreliable" in a else 0)
+        area = isocurv.curvature(self.mesh, estimator="batagelo", normals="face-average")
+        self.assertEqual(area.report["normals"], "face-average")
+        self.assertFalse(np.array_equal(area["H"], isocurv.curvature(self.mesh, estimator="batagelo")["H"]))
+
+    def test_bad_combinations_raise_value_errors_naming_the_argument(self):
+        m, v = self.mesh, self.v
+        with self.assertRaisesRegex(ValueError, "^scale: applies to estimator='volume' only$"):
+            isocurv.curvature(m, v, scale=1.0)
+        with self.assertRaisesRegex(ValueError, "^estimator: 'volume' needs the volume argument"):
+            isocurv.curvature(m, estimator="volume")
+        with self.assertRaisesRegex(ValueError, "^normals: applies to the mesh estimators"):
+            isocurv.curvature(m, v, estimator="volume", normals="mesh")
+        with self.assertRaisesRegex(ValueError, "^estimator: expected one of rusinkiewicz, volume, .*'vtk'"):
+            isocurv.curvature(m, estimator="vtk")
+        with self.assertRaisesRegex(TypeError, "^estimator"):
+            isocurv.curvature(m, estimator=3)
+        for bad in (-1.0, 0, float("nan"), "big"):
+            with self.assertRaisesRegex(ValueError, "^scale: a positive number"):
+                isocurv.curvature(m, v, estimator="volume", scale=bad)
+        with self.assertRaisesRegex(ValueError, "^normals: expected"):
+            isocurv.curvature(m, normals="gradient")
+        with self.assertRaisesRegex(ValueError, "^iso: estimator='volume' needs the mesh's isovalue"):
+            isocurv.curvature(isocurv.Mesh(m.vertices, m.triangles), v, estimator="volume")
+        with self.assertRaisesRegex(ValueError, "^iso: applies to estimator='volume' only"):
+            isocurv.curvature(m, v, iso=135)
+        with self.assertRaisesRegex(ValueError, "^ao_scale: a positive number"):
+            isocurv.curvature(m, ao_scale=-1)
+        with self.assertRaisesRegex(TypeError, "^ao_scale"):
+            isocurv.curvature(m, ao_scale="wide")
+
+
+class Topologies(unittest.TestCase):
+    """isocurv.Topology: prepared once, bit-identical to a cold curvature() of each frame."""
+
+    def setUp(self):
+        self.mesh = isocurv.extract(isocurv.from_array(ball(np.float32)), 135)
+        p = self.mesh.vertices.astype(np.float64)
+        centre = p.mean(axis=0)
+        self.frames = [
+            self.mesh.vertices.copy(),
+            (centre + (p - centre) * [1.5, 1.0, 0.7]).astype(np.float32),  # an ellipsoid
+            (p + 0.3 * np.sin(p[:, [1, 2, 0]] / 3)).astype(np.float64),  # float64: converted
+        ]
+
+    def test_frames_are_bit_identical_to_cold_calls(self):
+        topo = isocurv.Topology(self.mesh)
+        self.assertEqual((topo.vertex_count, topo.triangle_count), (len(self.mesh.vertices), len(self.mesh.triangles)))
+        for estimator in ("rusinkiewicz", "batagelo", "prantl3", "prantl2"):
+            for normals in (None, "area"):
+                for i, frame in enumerate(self.frames):
+                    warm = topo.curvature(frame, estimator=estimator, normals=normals)
+                    cold = isocurv.curvature(isocurv.Mesh(frame, self.mesh.triangles), estimator=estimator, normals=normals)
+                    msg = "%s %s frame %d" % (estimator, normals, i)
+                    self.assertEqual(sorted(warm), sorted(cold), msg)
+                    for key in cold:
+                        np.testing.assert_array_equal(warm[key], cold[key], err_msg=msg + " " + key)
+                    self.assertEqual(warm.report["estimator"], cold.report["estimator"])
+                    self.assertEqual(warm.report["parameters"], cold.report["parameters"])
+                    self.assertEqual(warm.report["unreliable"], cold.report["unreliable"])
+        # The frames differ: the ellipsoid's H spreads where the sphere's does not.
+        h = [np.ptp(topo.curvature(f)["H"]) for f in self.frames[:2]]
+        self.assertGreater(h[1], 3 * h[0])
+
+    def test_threads_may_share_a_topology(self):
+        topo = isocurv.Topology(self.mesh)
+        cold = [isocurv.curvature(isocurv.Mesh(f, self.mesh.triangles))["H"] for f in self.frames]
+        results = {}
+
+        def work(i):
+            for _ in range(3):
+                results.setdefault(i, []).append(topo.curvature(self.frames[i])["H"])
+
+        threads = [threading.Thread(target=work, args=(i,)) for i in range(len(self.frames))]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        for i, hs in results.items():
+            self.assertEqual(len(hs), 3)
+            for h in hs:
+                np.testing.assert_array_equal(h, cold[i], err_msg="frame %d" % i)
+
+    def test_bad_arguments(self):
+        topo = isocurv.Topology(self.mesh)
+        with self.assertRaisesRegex(ValueError, "^positions: expected shape"):
+            topo.curvature(self.frames[0][1:])
+        with self.assertRaisesRegex(TypeError, "^positions"):
+            topo.curvature("abc")
+        with self.assertRaisesRegex(ValueError, "^estimator: Topology runs"):
+            topo.curvature(self.frames[0], estimator="quadric")
+        with self.assertRaisesRegex(ValueError, "^normals"):
+            topo.curvature(self.frames[0], normals="volume")
+        with self.assertRaisesRegex(ValueError, "^device"):
+            isocurv.Topology(self.mesh, device="reference")
+        with self.assertRaisesRegex(ValueError, "^mesh: has no triangles"):
+            isocurv.Topology(isocurv.Mesh(np.zeros((3, 3)), np.zeros((0, 3), int)))
+        bad = self.frames[0].copy()
+        bad[0, 0] = np.nan
+        with self.assertRaises(isocurv.Error):
+            topo.curvature(bad)
+
+
 if __name__ == "__main__":
     unittest.main()
