@@ -1,6 +1,7 @@
 #pragma once
 // Running the real `isocurv` executable as a subprocess for the end-to-end tests: stdout, stderr
 // and exit status captured, a timeout, DISPLAY unset (rendering must start its own Xvfb).
+#include "tests/test_paths.h"
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <poll.h>
@@ -52,7 +53,7 @@ struct CliResult {
   }
 };
 
-inline std::string build_dir() { return ISOCURV_BUILD_DIR; }
+inline std::string build_dir() { return isocurv::test_paths::build_dir(); }
 /// The executable under test: this build's, or ISOCURV_TEST_EXE (e.g. an older build, to see
 /// which tests fail without a fix).
 inline std::string isocurv_exe() {

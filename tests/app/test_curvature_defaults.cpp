@@ -1,6 +1,7 @@
 // Curvature defaults on volumes (issue 12, section 2): volume normals by default, face normals
 // where the gradient misleads (counted in the JSON), area-weighted statistics without the
 // unreliable vertices.
+#include "tests/test_paths.h"
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -113,7 +114,7 @@ TEST(CurvatureDefaults, MeshInputKeepsMeshNormals) {
 TEST(CurvatureDefaults, LobsterAtAVoxelValue) {
   // The issue's case: with mesh normals and plain statistics, iso 40 gave H min -1024, K max
   // 1,048,576 and mean K 955. Loose bounds: the mesher may change (vertex snapping).
-  const std::string lobster = std::string(ISOCURV_SHARED_DATASETS) + "/lobster/lobster.vol";
+  const std::string lobster = std::string(isocurv::test_paths::shared_datasets()) + "/lobster/lobster.vol";
   if (!fs::exists(lobster)) GTEST_SKIP() << "no " << lobster;
   TempDir dir("lobster");
   const auto r =

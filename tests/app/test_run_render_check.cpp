@@ -1,4 +1,5 @@
 // isocurv run, render, check and view end to end (headless: DISPLAY unset, the CLI starts Xvfb).
+#include "tests/test_paths.h"
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -275,7 +276,7 @@ TEST(RenderOptions, AnatomicalViewsNeedAnAnatomicalFrame) {
   EXPECT_EQ(bad.exit_code, 1) << bad.describe();
   EXPECT_NE(bad.err.find("anatomical"), std::string::npos) << bad.describe();
   EXPECT_FALSE(fs::exists(dir / "a.png"));
-  const std::string nifti = std::string(ISOCURV_SHARED_DATASETS) + "/mni152_t1/avg152T1_RL_nifti.nii.gz";
+  const std::string nifti = std::string(isocurv::test_paths::shared_datasets()) + "/mni152_t1/avg152T1_RL_nifti.nii.gz";
   if (!fs::exists(nifti)) GTEST_SKIP() << "no " << nifti;
   // NIfTI's world is RAS: anterior is the +y side, superior up, as --view +y
   const auto ant = run_isocurv({"render", nifti, "--view", "anterior", "--size", "120x90", "-o", dir / "ant.png", "--quiet"});

@@ -1,4 +1,5 @@
 // The .vdb files written at build time into <build>/datasets/ exist, are small, and load.
+#include "tests/test_paths.h"
 #include <gtest/gtest.h>
 
 #include <openvdb/io/File.h>
@@ -56,7 +57,7 @@ void check(const Field& f, const Loaded& l, const std::string& path) {
 }  // namespace
 
 TEST(GeneratedFiles, EveryFieldWasWrittenAtBuildTime) {
-  const std::filesystem::path dir = std::filesystem::path(ISOCURV_BUILD_DIR) / "datasets";
+  const std::filesystem::path dir = std::filesystem::path(isocurv::test_paths::build_dir()) / "datasets";
   for (const auto& name : field_names()) {
     const std::string path = (dir / (name + ".vdb")).string();
     ASSERT_TRUE(std::filesystem::exists(path)) << path << " missing: the isocurv_datasets_vdb target writes it";

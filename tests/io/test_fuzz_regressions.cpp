@@ -1,5 +1,6 @@
 // Every mesh file the fuzzers found a problem with (tests/data/fuzz/mesh, fuzz/README.md) reads
 // or fails with isocurv::Error, and a mesh read from one has its indices in range.
+#include "tests/test_paths.h"
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -11,7 +12,7 @@
 namespace fs = std::filesystem;
 
 TEST(IoFuzzRegressions, EveryFileReadsOrFailsWithError) {
-  const fs::path dir = fs::path(ISOCURV_SOURCE_DIR) / "tests/data/fuzz/mesh";
+  const fs::path dir = fs::path(isocurv::test_paths::source_dir()) / "tests/data/fuzz/mesh";
   int files = 0;
   for (const auto& entry : fs::directory_iterator(dir)) {
     if (entry.path().filename() == "README.md") continue;

@@ -2,6 +2,7 @@
 // isovalue, found by brute force over every brick of the frame, plus only those next to a NaN,
 // for a lone inside voxel in each part of a block a lower brick's apron reads (corner, lines,
 // faces, interior); the gather keeps exactly the straddling ones, with the frame's signed values.
+#include "tests/test_paths.h"
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -204,7 +205,7 @@ TEST(BrickIndex, SparseLayoutGivesWhatTheDenseOneGives) {
 TEST(BrickIndex, SparseLayoutGivesWhatTheDenseOneGivesOnRealVdbFiles) {
   int found = 0;
   for (const char* file : {"vdb_sphere/sphere.vdb", "vdb_cube/cube.vdb", "vdb_smoke/smoke.vdb"}) {
-    const std::string path = std::string(ISOCURV_SHARED_DATASETS) + "/" + file;
+    const std::string path = std::string(isocurv::test_paths::shared_datasets()) + "/" + file;
     if (!std::filesystem::exists(path)) continue;
     ++found;
     const volume::Volume v = volume::load(path);
@@ -218,7 +219,7 @@ TEST(BrickIndex, SparseLayoutGivesWhatTheDenseOneGivesOnRealVdbFiles) {
       EXPECT_TRUE(a.samples == b.samples) << file << " at " << iso;
     }
   }
-  if (found == 0) GTEST_SKIP() << "no .vdb datasets in " << ISOCURV_SHARED_DATASETS;
+  if (found == 0) GTEST_SKIP() << "no .vdb datasets in " << isocurv::test_paths::shared_datasets();
 }
 
 // Two small balls 1e5 voxels apart along every axis (a legal sparse .vdb): the automatic layout

@@ -2,6 +2,7 @@
 // equal to the isovalue must leave no duplicate vertices, non-manifold edges or flipped triangles
 // (where VTK's meshers leave duplicates or non-manifold edges), and between voxel values the
 // surface agrees with vtkFlyingEdges3D.
+#include "tests/test_paths.h"
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -34,7 +35,7 @@ void PrintTo(const RealCase& c, std::ostream* os) { *os << c.file; }
 }  // namespace
 
 TEST_P(MesherOnRealVolume, CleanAtVoxelValuesAndAgreesWithFlyingEdgesBetweenThem) {
-  const std::string path = std::string(ISOCURV_SHARED_DATASETS) + "/" + GetParam().file;
+  const std::string path = std::string(isocurv::test_paths::shared_datasets()) + "/" + GetParam().file;
   if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not present";
   const volume::Volume v = volume::load(path);
   Device& dev = Device::default_device();

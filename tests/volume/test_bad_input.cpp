@@ -1,4 +1,5 @@
 // Every kind of bad input gives isocurv::Error naming the file, never a crash or a huge allocation.
+#include "tests/test_paths.h"
 #include <gtest/gtest.h>
 #include <openvdb/io/File.h>
 #include <openvdb/tools/LevelSetSphere.h>
@@ -430,7 +431,7 @@ TEST(VolumeBadInput, HeaderValuesOutOfRange) {
   TempDir dir;
   write_file(dir.file("big.vol"), "X: 4\nY: 3111111111111111111111111111111111111\nZ: 2\n.\n" + std::string(24, 'x'));
   expect_error([&] { load(dir.file("big.vol")); }, "big.vol", "bad Y size");
-  const std::string vti = std::string(ISOCURV_SOURCE_DIR) + "/tests/data/fuzz/volume/vti_direction_4e31.vti";
+  const std::string vti = std::string(isocurv::test_paths::source_dir()) + "/tests/data/fuzz/volume/vti_direction_4e31.vti";
   expect_error([&] { load(vti); }, "vti_direction_4e31.vti", "degenerate direction matrix");
   auto image = [](const std::string& direction) {
     return "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"1.0\">\n"

@@ -1,5 +1,6 @@
 // Every volume file the fuzzers found a problem with (tests/data/fuzz/volume, fuzz/README.md)
 // loads or fails with isocurv::Error, never anything else.
+#include "tests/test_paths.h"
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,7 +13,7 @@
 namespace fs = std::filesystem;
 
 TEST(VolumeFuzzRegressions, EveryFileLoadsOrFailsWithError) {
-  const fs::path dir = fs::path(ISOCURV_SOURCE_DIR) / "tests/data/fuzz/volume";
+  const fs::path dir = fs::path(isocurv::test_paths::source_dir()) / "tests/data/fuzz/volume";
   int files = 0;
   for (const auto& entry : fs::directory_iterator(dir)) {
     if (entry.path().filename() == "README.md" || entry.path().extension() == ".data") continue;

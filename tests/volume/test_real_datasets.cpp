@@ -1,5 +1,6 @@
 // The real volumes of ../shared/datasets (README facts: dimensions, value ranges, grid classes,
 // isovalues); skipped when the folder is absent.
+#include "tests/test_paths.h"
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -72,7 +73,7 @@ const Expect kFiles[] = {
     {"vg_spot/spot-256.vol", 257, 257, 257, 0, 128, 64, 64, "unknown", 1, 1, 1},
 };
 
-std::string dataset(const std::string& rel) { return std::string(ISOCURV_SHARED_DATASETS) + "/" + rel; }
+std::string dataset(const std::string& rel) { return std::string(isocurv::test_paths::shared_datasets()) + "/" + rel; }
 
 class VolumeRealDataset : public ::testing::TestWithParam<Expect> {};
 
