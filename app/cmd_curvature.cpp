@@ -1,6 +1,7 @@
 // isocurv curvature VOLUME|MESH -o MESH: a mesh carrying every curvature array.
 #include <iostream>
 
+#include "core/atomic_file.h"
 #include "app/batch.h"
 #include "app/commands.h"
 #include "app/pipeline.h"
@@ -14,6 +15,7 @@ namespace {
 nlohmann::json curvature_one(const std::string& in, const std::string& out,
                              const CommonOptions& o) {
   require_curvature_format(out);  // before any work: .obj and .stl would drop the arrays
+  require_writable_file(out);
   StageTimer timer;
   Surface s = load_surface(in, o, timer);
   prepare_mesh_for_curvature(s, in, o);

@@ -1,6 +1,7 @@
 // isocurv extract VOLUME -o MESH: the fused isosurface mesh.
 #include <iostream>
 
+#include "core/atomic_file.h"
 #include "app/batch.h"
 #include "app/commands.h"
 #include "app/pipeline.h"
@@ -12,6 +13,7 @@ namespace {
 
 /// One input -> the mesh file `out`; the report --json prints.
 nlohmann::json extract_one(const std::string& in, const std::string& out, const CommonOptions& o) {
+  require_writable_file(out);  // before any work
   StageTimer timer;
   Surface s = load_surface(in, o, timer, EmptySurface::warn);
   timer.start("write");

@@ -5,6 +5,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "core/atomic_file.h"
 #include "app/commands.h"
 #include "app/pipeline.h"
 #include "app/series.h"
@@ -83,6 +84,7 @@ void register_features(CLI::App &app) {
   static auto one = [](const std::string& in, const std::string& out, CommonOptions& o,
                        bool quiet_summary) -> nlohmann::json {
     require_curvature_format(out);
+    require_writable_file(out);  // before any work
     features::Options fo;
     if (list != "all")
       fo.features = features::parse_features(list);

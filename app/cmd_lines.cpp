@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "core/atomic_file.h"
 #include "app/commands.h"
 #include "app/line_options_cli.h"
 #include "app/pipeline.h"
@@ -75,6 +76,7 @@ void register_lines(CLI::App &app) {
           out,
           "isocurv lines writes .vtp (polylines) or .svg (a drawing), not '" +
               ext + "'");
+    require_writable_file(out);  // before any work
     lines::Options lo;
     try {
       lo = line_options(lc);

@@ -40,6 +40,7 @@ void register_render(CLI::App& app) {
     StageTimer timer;
     if (!ro.dirs_out.empty() && !ro.opts.dirs) throw Error(ro.dirs_out, "--dirs-out needs --dirs");
     if (!ro.dirs_out.empty()) viz::check_glyphs_path(ro.dirs_out);
+    require_writable_file(out);  // before any work
     Surface s = load_surface(in, o, timer);
     bool estimated = false;
     const std::size_t nv = s.mesh.positions.size();

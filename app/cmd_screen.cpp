@@ -142,7 +142,9 @@ void register_screen(CLI::App& app) {
       ->group("Screen space");
   cmd->callback([] {
     if (!has_ext(out, ".png")) throw Error(out, "isocurv screen writes a .png picture");
+    require_writable_file(out);  // before any work
     if (!raw.empty() && !has_ext(raw, ".vti")) throw Error(raw, "--raw writes a .vti file");
+    if (!raw.empty()) require_writable_file(raw);
     if (o.cap) throw Error("--cap does not apply to isocurv screen (the ray caster reads the box)");
     so.estimator =
         estimator == "mellado" ? screen::ScreenEstimator::mellado : screen::ScreenEstimator::prantl;

@@ -1,5 +1,6 @@
 #include "core/atomic_file.h"
 
+#include <fcntl.h>
 #include <signal.h>
 #include <unistd.h>
 
@@ -107,11 +108,33 @@ std::string backup_path_for(const std::string& path) {
 
 std::string temporary_path_for(const std::string& path) {
   fs::path p(path);
-  std::string name = "." + p.stem().string() + ".tmp" + std::to_string(getpid()) + p.extension().string();
+  std::string name =
+      "." + p.stem().string() + ".tmp" + std::to_string(getpid()) + p.extension().string();
   return (p.parent_path() / name).string();
 }
 
-void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write) {
+void require_writable_file(const std::string& path) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw Error(path, "cannot write: this is a folder, not a file");
+  const fs::path parent = fs::path(path).parent_path();
+  if (!parent.empty() && !fs::is_directory(parent, ec))
+    throw Error(path, "cannot write: folder " + parent.string() + " does not exist");
+  const std::string probe = temporary_path_for(path) + ".probe";
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
+  if (fd < 0) {
+    const int err = errno;
+    if (err != EEXIST)
+      throw Error(path, "cannot write: folder " +
+                            (parent.empty() ? std::string(".") : parent.string()) +
+                            " is not writable (" + std::strerror(err) + ")");
+    return;  // a stale probe: the folder took files before
+  }
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
+void write_atomically(const std::string& path,
+                      const std::function<void(const std::string&)>& write) {
   AtomicFileSet set;
   set.write(path, write);
   set.commit();
@@ -127,7 +150,7 @@ AtomicFileSet::~AtomicFileSet() {
 
 void AtomicFileSet::write(const std::string& path,
                           const std::function<void(const std::string&)>& write) {
-  fs::path parent = fs::path(path).parent_path();
+  const fs::path parent = fs::path(path).parent_path();
   if (!parent.empty() && !fs::is_directory(parent))
     throw Error(path, "cannot write: folder " + parent.string() + " does not exist");
   Entry e;

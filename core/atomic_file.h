@@ -12,7 +12,14 @@ namespace isocurv {
 /// renames it to `path`. If write throws (or the rename fails) the temporary is removed, the
 /// exception propagates and any existing file at `path` is left untouched. (An AtomicFileSet of
 /// one file.)
-void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write);
+void write_atomically(const std::string& path,
+                      const std::function<void(const std::string&)>& write);
+
+/// Checks, before any work, that write_atomically(path, ...) can succeed as far as the file system
+/// goes: `path` is not a folder, and its folder exists and lets this process create files (probed
+/// by creating and removing a temporary file there).
+/// @throw Error naming `path` (one line: which of the three it is) otherwise.
+void require_writable_file(const std::string& path);
 
 /// The temporary name write_atomically uses for `path` (same folder, same extension so that
 /// writers choosing a format by extension still work).

@@ -2,13 +2,40 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 
 namespace isocurv {
 namespace {
 std::atomic<bool> g_enabled{true};
+/// The running stage's reported fraction (-1: none reported) and whether a StageBar runs.
+std::atomic<double> g_stage_fraction{-1.0};
+std::atomic<int> g_stage_bars{0};
+
+/// "1.2 s" or "2 min 5 s".
+std::string format_seconds(double s) {
+  char buf[32];
+  if (s < 60)
+    std::snprintf(buf, sizeof buf, "%.1f s", s);
+  else
+    std::snprintf(buf, sizeof buf, "%d min %d s", int(s / 60), int(s) % 60);
+  return buf;
+}
+}  // namespace
+
+void report_stage_progress(double fraction) {
+  if (!(fraction >= 0)) fraction = 0;
+  g_stage_fraction.store(fraction > 1 ? 1.0 : fraction, std::memory_order_relaxed);
+}
+
+double stage_progress() { return g_stage_fraction.load(std::memory_order_relaxed); }
+
+void StageCounter::add(std::uint64_t units) {
+  const std::uint64_t done = done_.fetch_add(units, std::memory_order_relaxed) + units;
+  report_stage_progress(double(done) / double(total_));
 }
 
 void set_progress_enabled(bool enabled) { g_enabled = enabled; }
@@ -27,9 +54,11 @@ std::chrono::milliseconds progress_delay() {
 bool progress_visible() { return g_enabled && isatty(STDERR_FILENO); }
 
 Progress::Progress(std::string label, std::uint64_t total)
-    : label_(std::move(label)), total_(total ? total : 1),
-      active_(progress_visible()),
-      start_(std::chrono::steady_clock::now()), last_(start_) {}
+    : label_(std::move(label)),
+      total_(total ? total : 1),
+      active_(progress_visible() && g_stage_bars.load() == 0),
+      start_(std::chrono::steady_clock::now()),
+      last_(start_) {}
 
 Progress::~Progress() { finish(); }
 
@@ -37,6 +66,8 @@ void Progress::advance(std::uint64_t units) { set(done_ + units); }
 
 void Progress::set(std::uint64_t done) {
   done_ = done > total_ ? total_ : done;
+  if (g_stage_bars.load(std::memory_order_relaxed) > 0)
+    report_stage_progress(double(done_) / double(total_));
   draw(false);
 }
 
@@ -44,8 +75,7 @@ void Progress::draw(bool force) {
   if (!active_) return;
   auto now = std::chrono::steady_clock::now();
   // Only show a bar for steps that take more than a moment.
-  if (!force && (now - start_ < progress_delay() ||
-                 now - last_ < std::chrono::milliseconds(100)))
+  if (!force && (now - start_ < progress_delay() || now - last_ < std::chrono::milliseconds(100)))
     return;
   last_ = now;
   const int width = 30;
@@ -66,6 +96,8 @@ void Progress::finish() {
 }
 
 StageBar::StageBar(std::string label) : label_(std::move(label)) {
+  g_stage_fraction = -1.0;
+  ++g_stage_bars;
   if (progress_visible()) thread_ = std::thread([this] { run(); });
 }
 
@@ -74,8 +106,10 @@ StageBar::~StageBar() { finish(); }
 void StageBar::finish() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
+    if (done_) return;
     done_ = true;
   }
+  --g_stage_bars;
   wake_.notify_all();
   if (thread_.joinable()) thread_.join();
 }
@@ -86,21 +120,39 @@ void StageBar::run() {
   const auto start = std::chrono::steady_clock::now();
   std::unique_lock<std::mutex> lock(mutex_);
   if (wake_.wait_for(lock, progress_delay(), [this] { return done_; })) return;  // quick: no bar
-  bool drawn = false;
+  std::size_t widest = 0;  // the longest line drawn, to erase it
   for (int frame = 0; !done_; ++frame) {
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const int period = 2 * (kWidth - kBlock);  // the block bounces from end to end
-    const int phase = frame % period, at = phase <= kWidth - kBlock ? phase : period - phase;
+    const double s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double fraction = g_stage_fraction.load(std::memory_order_relaxed);
     char bar[kWidth + 1];
-    for (int i = 0; i < kWidth; ++i) bar[i] = (i >= at && i < at + kBlock) ? '=' : ' ';
+    std::string tail = format_seconds(s);
+    if (fraction >= 0) {  // known progress: a filled bar, the percentage, the time left
+      const int filled = static_cast<int>(kWidth * fraction);
+      for (int i = 0; i < kWidth; ++i) bar[i] = i < filled ? '#' : ' ';
+      char pct[16];
+      std::snprintf(pct, sizeof pct, "%3d%%  ", static_cast<int>(100 * fraction));
+      tail = pct + tail;
+      if (fraction > 0.02 && fraction < 1)
+        tail += ", " + format_seconds(s * (1 - fraction) / fraction) + " left";
+    } else {  // unknown: the block bounces from end to end
+      const int period = 2 * (kWidth - kBlock);
+      const int phase = frame % period, at = phase <= kWidth - kBlock ? phase : period - phase;
+      for (int i = 0; i < kWidth; ++i) bar[i] = (i >= at && i < at + kBlock) ? '=' : ' ';
+    }
     bar[kWidth] = '\0';
-    std::fprintf(stderr, "\r%-12s [%s] %6.1f s", label_.c_str(), bar, s);
+    char line[256];
+    const int len =
+        std::snprintf(line, sizeof line, "\r%-12s [%s] %s", label_.c_str(), bar, tail.c_str());
+    // Pad over what a longer earlier line left on the terminal.
+    const std::size_t shown = len > 0 ? std::size_t(len) : 0;
+    std::fprintf(stderr, "%s%*s", line, int(widest > shown ? widest - shown : 0), "");
+    widest = std::max(widest, shown);
     std::fflush(stderr);
-    drawn = true;
     wake_.wait_for(lock, kRedraw, [this] { return done_; });
   }
-  if (drawn) {
-    std::fprintf(stderr, "\r%*s\r", static_cast<int>(label_.size()) + kWidth + 24, "");
+  if (widest > 0) {
+    std::fprintf(stderr, "\r%*s\r", static_cast<int>(widest), "");
     std::fflush(stderr);
   }
 }

@@ -1,5 +1,6 @@
 #pragma once
 // A progress bar on stderr for long steps; silent when stderr is not a terminal or when quiet.
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -19,8 +20,31 @@ std::chrono::milliseconds progress_delay();
 /// True when bars are drawn: enabled and stderr is a terminal.
 bool progress_visible();
 
-/// Progress of one step with `total` units. Draws at most ~10 times a second, erases itself when
-/// finished or destroyed. Thread-compatible: call advance() from one thread.
+/// Tells the running StageBar how far its stage has come (0..1, clamped). The bar then shows a
+/// filled bar, the percentage and the time left instead of a bouncing block. Ignored when no
+/// StageBar runs. Cheap (one relaxed atomic store); any thread may call it.
+void report_stage_progress(double fraction);
+
+/// The fraction last reported since the latest StageBar started, or -1 when none was.
+double stage_progress();
+
+/// Counts the units of work of a parallel loop inside a stage and reports done/total through
+/// report_stage_progress. Thread-safe: add() from any thread (one atomic add per call; call it
+/// per chunk, not per element).
+class StageCounter {
+ public:
+  explicit StageCounter(std::uint64_t total) : total_(total ? total : 1) {}
+  void add(std::uint64_t units);
+
+ private:
+  std::uint64_t total_;
+  std::atomic<std::uint64_t> done_{0};
+};
+
+/// Progress of one step with `total` units. Inside a running StageBar it draws nothing itself and
+/// feeds that bar (report_stage_progress), so one line shows one bar; otherwise it draws its own,
+/// at most ~10 times a second, and erases itself when finished or destroyed. Thread-compatible:
+/// call advance() from one thread.
 class Progress {
  public:
   Progress(std::string label, std::uint64_t total);
@@ -39,10 +63,12 @@ class Progress {
   std::chrono::steady_clock::time_point start_, last_;
 };
 
-/// A bar for a step whose amount of work is not known in advance (loading a file, one library
-/// call): once the step has run for progress_delay(), a thread of its own draws
-/// "label  [    <=>    ]  1.2 s" on stderr ten times a second until finish() or destruction,
-/// which erase it. Nothing when progress_visible() is false. Create and finish it from one thread.
+/// The bar of one pipeline stage (app's StageTimer makes one per stage): once the stage has run
+/// for progress_delay(), a thread of its own draws on stderr, ten times a second until finish()
+/// or destruction (which erase it), either "label  [####      ]  42%  1.2 s, 1.6 s left" when the
+/// stage's code reports how far it is (report_stage_progress, StageCounter, Progress), or
+/// "label  [   =====    ]  1.2 s" for work of unknown size (one library call). Nothing when
+/// progress_visible() is false. One StageBar at a time; create and finish it from one thread.
 class StageBar {
  public:
   explicit StageBar(std::string label);

@@ -15,6 +15,7 @@
 #include <vtkXMLPolyDataWriter.h>
 
 #include "core/error.h"
+#include "core/vtk_progress.h"
 #include "io/mesh_formats.h"
 #include "io/polydata.h"
 #include "io/vtk_errors.h"
@@ -36,6 +37,7 @@ void write_vtp(const std::string& path, const Mesh& mesh, const curvature::Curva
   }
   if (compression.compressor != Compressor::none) writer->SetCompressionLevel(compression.level);
   writer->SetHeaderTypeToUInt64();  // arrays over 4 GiB
+  VtkProgressReport progress(writer);
   const int ok = writer->Write();
   if (!ok || errors.failed() || writer->GetErrorCode() != vtkErrorCode::NoError)
     throw std::runtime_error(errors.failed() ? errors.message()

@@ -18,6 +18,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/progress.h"
 #include "core/error.h"
 #include "volume/otsu.h"
 
@@ -90,15 +91,16 @@ struct BuildBody {
   float outside;  ///< background, and the replacement for non-finite voxels
   double lo, scale;
   std::vector<std::unique_ptr<Leaf>>* leaves;
+  StageCounter* progress;  ///< blocks built, for the load stage's bar
   std::vector<std::uint64_t> hist = std::vector<std::uint64_t>(kBins, 0);
   double sum = 0;
 
   BuildBody(const BuildBody& o, tbb::split)
       : data(o.data), dims(o.dims), nblocks(o.nblocks), outside(o.outside), lo(o.lo), scale(o.scale),
-        leaves(o.leaves) {}
+        leaves(o.leaves), progress(o.progress) {}
   BuildBody(const T* d, std::array<int, 3> dm, std::array<int, 3> nb, float out, double l, double s,
-            std::vector<std::unique_ptr<Leaf>>* lv)
-      : data(d), dims(dm), nblocks(nb), outside(out), lo(l), scale(s), leaves(lv) {}
+            std::vector<std::unique_ptr<Leaf>>* lv, StageCounter* p)
+      : data(d), dims(dm), nblocks(nb), outside(out), lo(l), scale(s), leaves(lv), progress(p) {}
 
   void operator()(const tbb::blocked_range<std::size_t>& r) {
     float block[Leaf::SIZE];
@@ -135,6 +137,7 @@ struct BuildBody {
       }
       (*leaves)[b] = std::move(leaf);
     }
+    progress->add(r.size());
   }
   void join(BuildBody& o) {
     for (int i = 0; i < kBins; ++i) hist[std::size_t(i)] += o.hist[std::size_t(i)];
@@ -160,7 +163,8 @@ Volume build_dense(const T* data, const std::array<int, 3>& dims, openvdb::math:
   const std::size_t block_count = std::size_t(nblocks[0]) * std::size_t(nblocks[1]) * std::size_t(nblocks[2]);
   std::vector<std::unique_ptr<Leaf>> leaves(block_count);
   const double scale = s.max > s.min ? kBins / (double(s.max) - double(s.min)) : 0.0;
-  BuildBody<T> body(data, dims, nblocks, outside, s.min, scale, &leaves);
+  StageCounter progress(block_count);
+  BuildBody<T> body(data, dims, nblocks, outside, s.min, scale, &leaves, &progress);
   tbb::parallel_deterministic_reduce(tbb::blocked_range<std::size_t>(0, block_count, 8), body);
 
   openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(outside);

@@ -26,6 +26,7 @@
 #include <sstream>
 #include <vector>
 
+#include "core/vtk_progress.h"
 #include "core/error.h"
 #include "volume/dense_image.h"
 #include "volume/file_bytes.h"
@@ -301,6 +302,7 @@ Volume load_vtk_image(const std::string& path, const LoadOptions& options) {
     errors.watch(reader);
     if (!reader->CanReadFile(path.c_str())) throw Error(path, "not a VTK XML image data file");
     reader->SetFileName(path.c_str());
+    VtkProgressReport progress(reader);
     reader->Update();
     image = reader->GetOutput();
   } else {
@@ -309,6 +311,7 @@ Volume load_vtk_image(const std::string& path, const LoadOptions& options) {
     reader->SetFileName(path.c_str());
     if (!reader->IsFileStructuredPoints())
       throw Error(path, errors.message.empty() ? "not a legacy VTK STRUCTURED_POINTS file" : errors.message);
+    VtkProgressReport progress(reader);
     reader->Update();
     image = reader->GetOutput();
   }

@@ -188,6 +188,27 @@ TEST(CliErrors, UnwritableOutput) {
   EXPECT_EQ(dir.entries(), std::vector<std::string>{"afile"});
 }
 
+TEST(CliErrors, AnUnwritableOutputIsCaughtBeforeAnyWork) {
+  TempDir dir("unwritable_early");
+  const std::string nowhere = dir / "no/such/folder";
+  // Each of these would fail later for another reason (an isovalue outside the values, found
+  // while extracting): the output's folder must be the error, found first.
+  const std::vector<std::vector<std::string>> commands = {
+      {"extract", dataset("sphere"), "--iso", "99", "-o", nowhere + "/o.vtp"},
+      {"curvature", dataset("sphere"), "--iso", "99", "-o", nowhere + "/o.vtp"},
+      {"features", dataset("sphere"), "--iso", "99", "--radius", "5%", "-o", nowhere + "/o.vtp"},
+      {"lines", dataset("sphere"), "--iso", "99", "-o", nowhere + "/o.svg"},
+      {"render", dataset("sphere"), "--iso", "99", "--size", "64x64", "-o", nowhere + "/o.png"},
+      {"screen", dataset("sphere"), "--iso", "99", "--size", "64x64", "-o", nowhere + "/o.png"},
+      {"extract", dataset("sphere"), "--iso", "99", "-o", dir.path().string()}};  // a folder
+  for (const auto& args : commands) {
+    const auto r = run_isocurv(args);
+    expect_clean_failure(r, args.back());
+    EXPECT_EQ(r.err.find("value range"), std::string::npos) << args[0] << ": worked first: " << r.err;
+  }
+  EXPECT_TRUE(dir.entries().empty());
+}
+
 TEST(CliErrors, ExistingOutputIsNotClobbered) {
   TempDir dir("clobber");
   const std::string precious = "precious bytes: a file the user cares about\n";

@@ -7,6 +7,8 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -91,4 +93,44 @@ TEST(Progress, BarsOnATerminalNoneWhenPipedOrQuiet) {
       {"run", dataset("gyroid"), "-o", dir / "quiet", "--size", "160x120", "--quiet"}, env, &code);
   EXPECT_EQ(code, 0) << quiet;
   EXPECT_EQ(quiet.find('\r'), std::string::npos) << "--quiet drew a bar: " << quiet;
+}
+
+TEST(Progress, StagesThatKnowTheirSizeShowAPercentageInOneBar) {
+  TempDir dir("progress_pct");
+  // A CT-like uint8 ball (blurred edge, quantised) written as NRRD; `features` counts vertices.
+  const int n = 80;
+  std::string voxels(std::size_t(n) * n * n, '\0');
+  for (int z = 0; z < n; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const double r =
+            std::sqrt(double((x - 40) * (x - 40) + (y - 38) * (y - 38) + (z - 41) * (z - 41)));
+        const double v = 200.0 / (1.0 + std::exp((r - 30.0) / 1.2)) + 20.0;
+        voxels[(std::size_t(z) * n + y) * n + x] =
+            static_cast<char>(static_cast<unsigned char>(std::lround(v)));
+      }
+  write_file(dir / "ball.nrrd",
+             "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 80 80 80\nencoding: raw\n\n" + voxels);
+  int code = -1;
+  const std::string tty = stderr_on_a_terminal(
+      {"features", dir / "ball.nrrd", "--iso", "120", "--radius", "4", "-o", dir / "ball.vtp"},
+      {"ISOCURV_PROGRESS_DELAY_MS=0"}, &code);
+  ASSERT_EQ(code, 0) << tty;
+  auto shows_percent = [&](const std::string& stage) {
+    // The stage's label, then its bar, then "NN%" before the next carriage return.
+    for (std::size_t at = tty.find("\r" + stage); at != std::string::npos;
+         at = tty.find("\r" + stage, at + 1)) {
+      const std::size_t end = tty.find('\r', at + 1);
+      const std::string line =
+          tty.substr(at, end == std::string::npos ? std::string::npos : end - at);
+      if (line.find('%') != std::string::npos && line.find('#') != std::string::npos) return true;
+    }
+    return false;
+  };
+  // Loading and writing this volume take less than a redraw (their counting is tested in
+  // tests/core and tests/io); the features loop runs for about a second.
+  EXPECT_TRUE(shows_percent("features")) << tty;
+  // One bar per line: the features loop feeds the stage's bar instead of drawing its own (whose
+  // inner width, 30, differs from the stage bar's 24).
+  EXPECT_FALSE(std::regex_search(tty, std::regex("\\[[# ]{30}\\]"))) << tty;
 }

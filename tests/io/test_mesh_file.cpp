@@ -7,6 +7,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/progress.h"
 #include "io/field_arrays.h"
 #include "io/compression.h"
 #include "io/mesh_file.h"
@@ -71,6 +72,15 @@ void expect_error_naming(const std::function<void()>& fn, const std::string& fil
 class IoExactFormats : public IoMeshFileTest, public ::testing::WithParamInterface<const char*> {
   void SetUp() override { IoMeshFileTest::SetUp(); }
 };
+
+TEST_F(IoMeshFileTest, WritingAVtpReportsVtkProgressToTheWriteStage) {
+  const Mesh mesh = test::grid_mesh();
+  const auto field = test::random_field(mesh.vertex_count());
+  StageBar bar("write");
+  ASSERT_EQ(stage_progress(), -1.0);
+  io::write_mesh(path("p.vtp"), mesh, &field);
+  EXPECT_EQ(stage_progress(), 1.0) << "VTK's writer reports up to 1";
+}
 
 TEST_P(IoExactFormats, EveryArrayRoundTripsBitForBit) {
   const Mesh mesh = test::grid_mesh();

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 
+#include "core/progress.h"
 #include "test_files.h"
 #include "volume/load.h"
 
@@ -61,6 +62,20 @@ TEST(VolumeLoadRaw, OptionsGiveTheLayout) {
   o.raw.spacing = {0.5, 0.25, 2};
   o.raw.origin = {1, 2, 3};
   expect_ramp(load(path, o), axis_aligned({0.5, 0.25, 2}, {1, 2, 3}), "raw", "uint16");
+}
+
+TEST(VolumeLoadRaw, BuildingTheGridReportsProgressToTheLoadStage) {
+  TempDir dir;
+  const std::string path = dir.file("ramp.raw");
+  write_file(path, to_bytes(ramp_values<std::uint16_t>(), /*big_endian=*/true));
+  LoadOptions o;
+  o.raw.dims = {5, 4, 3};
+  o.raw.type = "uint16";
+  o.raw.big_endian = true;
+  isocurv::StageBar bar("load");
+  ASSERT_EQ(isocurv::stage_progress(), -1.0);
+  load(path, o);
+  EXPECT_EQ(isocurv::stage_progress(), 1.0) << "every block counted";
 }
 
 TEST(VolumeLoadRaw, FileNameGivesTheLayout) {
