@@ -63,8 +63,8 @@ int main(int argc, char** argv) {
     const screen::CastVolume cv(v);
     const float iso = float(field->isovalue());
     std::printf("\n== %s 128^3, isovalue %g\n", name, iso);
-    std::printf("%-10s %5s %8s %8s %8s %8s %8s %8s\n", "size", "zoom", "cover%", "cast", "2e", "3e",
-                "2e+LOD", "Mellado");
+    std::printf("%-10s %5s %8s %8s %8s %8s %8s %8s %8s %8s\n", "size", "zoom", "cover%", "cast",
+                "plain", "speedup", "2e", "3e", "2e+LOD", "Mellado");
     screen::ScreenOptions o2, o3, ol, om;
     o3.edges = 3;
     ol.lod = true;
@@ -76,15 +76,26 @@ int main(int argc, char** argv) {
         const screen::ViewFrame f =
             screen::view_frame(fit_camera(cv.bounds, spec, double(w) / h), w, h);
         screen::GBuffer g = screen::ray_cast(cv, iso, f, dev);  // warm-up (program build)
-        const double cast = median_ms(passes, [&] { g = screen::ray_cast(cv, iso, f, dev); });
+        // The default (safe stride, 8 bisections, secant) against the plain march (0.5-voxel
+        // steps, 16 bisections), pass by pass alternating so load affects both alike.
+        screen::CastOptions plain;
+        plain.safe_stride = false, plain.secant = false, plain.bisections = 16;
+        std::vector<double> tc, tp;
+        for (int p = 0; p < passes; ++p) {
+          tc.push_back(median_ms(1, [&] { g = screen::ray_cast(cv, iso, f, dev); }));
+          tp.push_back(median_ms(1, [&] { screen::ray_cast(cv, iso, f, dev, plain); }));
+        }
+        std::sort(tc.begin(), tc.end()), std::sort(tp.begin(), tp.end());
+        const double cast = tc[tc.size() / 2], cast_plain = tp[tp.size() / 2];
         double t[4];
         int k = 0;
         for (const auto* o : {&o2, &o3, &ol, &om}) {
           screen::estimate(g, dev, *o);
           t[k++] = median_ms(passes, [&] { screen::estimate(g, dev, *o); });
         }
-        std::printf("%4dx%-5d %5.2f %8.1f %8.1f %8.1f %8.1f %8.1f %8.1f\n", w, h, zoom,
-                    100.0 * g.valid_count() / g.pixels(), cast, t[0], t[1], t[2], t[3]);
+        std::printf("%4dx%-5d %5.2f %8.1f %8.1f %8.1f %7.2fx %8.1f %8.1f %8.1f %8.1f\n", w, h, zoom,
+                    100.0 * g.valid_count() / g.pixels(), cast, cast_plain, cast_plain / cast, t[0],
+                    t[1], t[2], t[3]);
       }
     // The slider update, both paths, over n_iso isovalues across the value range.
     std::vector<float> isos;

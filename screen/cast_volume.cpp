@@ -53,19 +53,35 @@ CastVolume::CastVolume(const volume::Volume& v) : id(next_id++) {
   bz = (nz - 1 + kCastBrick - 1) / kCastBrick;
   brick_range.assign(std::size_t(bx) * by * bz,
                      {std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest()});
+  brick_slope.assign(brick_range.size(), 0.0f);
   tbb::parallel_for(tbb::blocked_range<int>(0, bz), [&](const tbb::blocked_range<int>& r) {
     for (int c = r.begin(); c != r.end(); ++c)
       for (int b = 0; b < by; ++b)
         for (int a = 0; a < bx; ++a) {
-          auto& range = brick_range[std::size_t(a) + std::size_t(bx) * (b + std::size_t(by) * c)];
-          for (int k = c * kCastBrick; k <= std::min(nz - 1, (c + 1) * kCastBrick); ++k)
-            for (int j = b * kCastBrick; j <= std::min(ny - 1, (b + 1) * kCastBrick); ++j)
-              for (int i = a * kCastBrick; i <= std::min(nx - 1, (a + 1) * kCastBrick); ++i) {
-                const float s =
-                    values[std::size_t(i) + std::size_t(nx) * (j + std::size_t(ny) * k)];
-                if (!std::isfinite(s)) continue;
+          const std::size_t bi = std::size_t(a) + std::size_t(bx) * (b + std::size_t(by) * c);
+          auto& range = brick_range[bi];
+          float& slope = brick_slope[bi];
+          const int i1 = std::min(nx - 1, (a + 1) * kCastBrick);
+          const int j1 = std::min(ny - 1, (b + 1) * kCastBrick);
+          const int k1 = std::min(nz - 1, (c + 1) * kCastBrick);
+          auto at = [&](int i, int j, int k) {
+            return values[std::size_t(i) + std::size_t(nx) * (j + std::size_t(ny) * k)];
+          };
+          for (int k = c * kCastBrick; k <= k1; ++k)
+            for (int j = b * kCastBrick; j <= j1; ++j)
+              for (int i = a * kCastBrick; i <= i1; ++i) {
+                const float s = at(i, j, k);
+                if (!std::isfinite(s)) {
+                  slope = std::numeric_limits<float>::infinity();
+                  continue;
+                }
                 range[0] = std::min(range[0], s), range[1] = std::max(range[1], s);
+                if (i < i1) slope = std::max(slope, std::abs(at(i + 1, j, k) - s));
+                if (j < j1) slope = std::max(slope, std::abs(at(i, j + 1, k) - s));
+                if (k < k1) slope = std::max(slope, std::abs(at(i, j, k + 1) - s));
               }
+          // A non-finite neighbour makes the difference NaN, which max() skips: the NaN test
+          // above sets infinity when that sample itself is visited.
         }
   });
 

@@ -24,6 +24,11 @@ struct CastVolume {
   /// Per brick (index bx_i + bx (by_i + by bz_i)): min and max of the finite samples it reads
   /// (its 9^3 corners, clipped to the domain); min > max when there are none.
   std::vector<std::array<float, 2>> brick_range;
+  /// Per brick: the largest |difference| of two neighbouring samples (along one axis) it reads,
+  /// a bound on every index-space partial derivative of the trilinear field inside the brick's
+  /// box, so |d field / dt| <= brick_slope * |d|_1 along a ray p + t d there (the safe stride of
+  /// the ray march). Infinity where the brick reads a non-finite sample; 0 for a constant one.
+  std::vector<float> brick_slope;
   float sign = 1;  ///< +1: inside is above the isovalue; -1: below (volume::Inside::Below)
   /// world = A index + b, row-major 3x4 (the grid's affine transform, from the domain's origin).
   std::array<double, 12> to_world{};

@@ -19,8 +19,8 @@ namespace {
 using V = std::array<double, 3>;
 
 void check(const CastOptions& o) {
-  if (!(o.step > 0 && o.step <= 0.5) || o.bisections < 1 || o.bisections > 60)
-    throw Error("screen: the ray step must be in (0, 0.5] voxel and bisections in [1, 60]");
+  if (!(o.step > 0 && o.step <= 0.5) || o.bisections < 0 || o.bisections > 60)
+    throw Error("screen: the ray step must be in (0, 0.5] voxel and bisections in [0, 60]");
 }
 
 void frame_depths(GBuffer& g, const CastVolume& v) {
@@ -49,30 +49,36 @@ bool cast_one(const CastVolume& vol, float iso, const V& oi, const V& di, const 
   const double tl = t1 - t0;
   const double dmax = std::max({std::abs(di[0]), std::abs(di[1]), std::abs(di[2])});
   const double dt = opt.step / dmax;
+  const double l1 = std::abs(di[0]) + std::abs(di[1]) + std::abs(di[2]);
   const int nb[3] = {vol.bx, vol.by, vol.bz};
-  double t = 0, s_prev = vol.field(base, iso), a = 0, b = 0;
+  double t = 0, s_prev = vol.field(base, iso), a = 0, b = 0, fa = 0, fb = 0;
   bool found = false;
   while (t < tl) {
     const V p = at(t);
     int bc[3];
     for (int k = 0; k < 3; ++k)
       bc[k] = std::min(std::max(int(std::floor(p[k] / kCastBrick)), 0), nb[k] - 1);
+    const std::size_t bi =
+        std::size_t(bc[0]) + std::size_t(vol.bx) * (bc[1] + std::size_t(vol.by) * bc[2]);
+    double te = std::numeric_limits<double>::infinity();  // where the ray leaves the brick
+    for (int k = 0; k < 3; ++k) {
+      if (di[k] == 0) continue;
+      const double ex = (di[k] > 0 ? bc[k] + 1 : bc[k]) * double(kCastBrick);
+      te = std::min(te, (ex - base[k]) / di[k]);
+    }
     double tn = t + dt;
-    if (!vol.brick_straddles(
-            std::size_t(bc[0]) + std::size_t(vol.bx) * (bc[1] + std::size_t(vol.by) * bc[2]),
-            iso)) {
-      double te = std::numeric_limits<double>::infinity();
-      for (int k = 0; k < 3; ++k) {
-        if (di[k] == 0) continue;
-        const double ex = (di[k] > 0 ? bc[k] + 1 : bc[k]) * double(kCastBrick);
-        te = std::min(te, (ex - base[k]) / di[k]);
-      }
+    if (!vol.brick_straddles(bi, iso)) {
       tn = std::max(tn, te);
+    } else if (opt.safe_stride && s_prev < 0) {
+      const double slope = vol.brick_slope[bi];
+      const double ts =
+          slope > 0 ? 0.9 * -s_prev / (slope * l1) : std::numeric_limits<double>::infinity();
+      if (ts > dt) tn = std::max(tn, std::min(t + ts, te));
     }
     tn = std::min(tn, tl);
     const double s = vol.field(at(tn), iso);
     if (s_prev <= 0 && s > 0) {
-      found = true, a = t, b = tn;
+      found = true, a = t, b = tn, fa = s_prev, fb = s;
       break;
     }
     s_prev = s;
@@ -80,10 +86,15 @@ bool cast_one(const CastVolume& vol, float iso, const V& oi, const V& di, const 
   }
   if (!found) return false;
   for (int i = 0; i < opt.bisections; ++i) {
-    const double m = 0.5 * (a + b);
-    (vol.field(at(m), iso) > 0 ? b : a) = m;
+    const double m = 0.5 * (a + b), fm = vol.field(at(m), iso);
+    if (fm > 0)
+      b = m, fb = fm;
+    else
+      a = m, fa = fm;
   }
-  hit = at(0.5 * (a + b));
+  // Secant between the ends (fa <= 0 < fb), kept inside the bracket.
+  const double tm = opt.secant ? std::clamp(a + (b - a) * fa / (fa - fb), a, b) : 0.5 * (a + b);
+  hit = at(tm);
   return true;
 }
 
@@ -91,7 +102,7 @@ struct CastState {
   explicit CastState(Device&) {}
   std::mutex mutex;
   std::uint64_t uploaded = 0;  // CastVolume::id of the volume on the device
-  cl::Buffer values, bricks, xform, cam, position, normal, depth;
+  cl::Buffer values, bricks, slopes, xform, cam, position, normal, depth;
   std::size_t pixels = 0;
   std::vector<cl_float4> host_pos, host_nrm;
 };
@@ -147,6 +158,9 @@ GBuffer ray_cast(const CastVolume& vol, float iso, const ViewFrame& frame, Devic
     s.bricks =
         cl::Buffer(ctx, CL_MEM_READ_ONLY, std::max<std::size_t>(8, vol.brick_range.size() * 8));
     q.enqueueWriteBuffer(s.bricks, CL_FALSE, 0, vol.brick_range.size() * 8, vol.brick_range.data());
+    s.slopes =
+        cl::Buffer(ctx, CL_MEM_READ_ONLY, std::max<std::size_t>(4, vol.brick_slope.size() * 4));
+    q.enqueueWriteBuffer(s.slopes, CL_FALSE, 0, vol.brick_slope.size() * 4, vol.brick_slope.data());
     std::vector<float> xf(36, 0.0f);
     for (int i = 0; i < 12; ++i)
       xf[i] = float(vol.to_index[i]), xf[12 + i] = float(vol.to_world[i]);
@@ -171,10 +185,11 @@ GBuffer ray_cast(const CastVolume& vol, float iso, const ViewFrame& frame, Devic
   cam[12] = float(frame.half_height), cam[13] = frame.ortho ? 1.0f : 0.0f;
   q.enqueueWriteBuffer(s.cam, CL_FALSE, 0, sizeof cam, cam);
   cl::Kernel& k = device.kernel(detail::screen_program(device), "ray_cast");
-  set_args(k, s.values, s.bricks, cl_int4{{vol.nx, vol.ny, vol.nz, 0}},
+  set_args(k, s.values, s.bricks, s.slopes, cl_int4{{vol.nx, vol.ny, vol.nz, 0}},
            cl_int4{{vol.bx, vol.by, vol.bz, 0}}, cl_float(iso), cl_float(vol.sign), s.xform, s.cam,
            cl_int(frame.width), cl_int(frame.height), cl_float(opt.step), cl_int(opt.bisections),
-           s.position, s.normal, s.depth);
+           cl_int(opt.safe_stride ? 1 : 0), cl_int(opt.secant ? 1 : 0), s.position, s.normal,
+           s.depth);
   launch(q, k, n, std::size_t(work_group));
   s.host_pos.resize(n), s.host_nrm.resize(n);
   q.enqueueReadBuffer(s.position, CL_FALSE, 0, n * 16, s.host_pos.data());

@@ -89,15 +89,17 @@ float3 linear3(__constant const float* m, int stride, float3 p) {
 }
 
 // One ray per pixel: march from where it enters the domain at `step` voxels (along the ray's
-// longest index axis), jumping over bricks without surface, to the first sample inside (signed
-// value > 0) after one outside; bisect that step `bisections` times; the hit is the last
-// interval's midpoint. xform: to_index (12), to_world (12), normal_matrix (9).
+// longest index axis), jumping over bricks without surface and, with safe_stride, by 0.9 |s| /
+// (slope |d|_1) where that is longer (slopes: CastVolume::brick_slope), to the first sample
+// inside (signed value > 0) after one outside; bisect that step `bisections` times; the hit is
+// the secant point of the last interval (secant) or its midpoint. xform: to_index (12), to_world (12), normal_matrix (9).
 // cam: eye, forward, right, up (xyz each), half_height, ortho, then 2 unused.
 __kernel void ray_cast(__global const float* values, __global const float2* bricks,
-                       const int4 dims, const int4 bdims, const float iso, const float sign,
-                       __constant const float* xform, __constant const float* cam,
-                       const int width, const int height, const float step, const int bisections,
-                       __global float4* out_position, __global float4* out_normal,
+                       __global const float* slopes, const int4 dims, const int4 bdims,
+                       const float iso, const float sign, __constant const float* xform,
+                       __constant const float* cam, const int width, const int height,
+                       const float step, const int bisections, const int safe_stride,
+                       const int secant, __global float4* out_position, __global float4* out_normal,
                        __global float* out_depth) {
   const int id = get_global_id(0);
   if (id >= width * height) return;
@@ -145,27 +147,33 @@ __kernel void ray_cast(__global const float* values, __global const float2* bric
   const float3 inv = (float3)(di.x != 0.0f ? 1.0f / di.x : INFINITY,
                               di.y != 0.0f ? 1.0f / di.y : INFINITY,
                               di.z != 0.0f ? 1.0f / di.z : INFINITY);
+  const float l1 = fabs(di.x) + fabs(di.y) + fabs(di.z);
   float t = 0.0f, s_prev = field_at(values, &g, base);
   bool hit = false;
-  float a = 0.0f, b = 0.0f;
+  float a = 0.0f, b = 0.0f, fa = 0.0f, fb = 0.0f;
   while (t < tl) {
     const float3 p = base + t * di;
     const int3 bc = clamp(convert_int3(floor(p / BRICK)), (int3)(0),
                           (int3)(bdims.x - 1, bdims.y - 1, bdims.z - 1));
+    const int bi = bc.x + bdims.x * (bc.y + bdims.y * bc.z);
+    const float3 lo = convert_float3(bc) * BRICK, up3 = lo + BRICK;
+    const float3 ex = (float3)(di.x > 0 ? up3.x : lo.x, di.y > 0 ? up3.y : lo.y,
+                               di.z > 0 ? up3.z : lo.z);
+    const float3 te3 = (ex - base) * inv;
+    const float te = fmin(di.x != 0.0f ? te3.x : INFINITY,
+                          fmin(di.y != 0.0f ? te3.y : INFINITY, di.z != 0.0f ? te3.z : INFINITY));
     float tn = t + dt;
-    if (!brick_straddles(bricks, &g, bc.x + bdims.x * (bc.y + bdims.y * bc.z))) {
-      const float3 lo = convert_float3(bc) * BRICK, up3 = lo + BRICK;
-      const float3 ex = (float3)(di.x > 0 ? up3.x : lo.x, di.y > 0 ? up3.y : lo.y,
-                                 di.z > 0 ? up3.z : lo.z);
-      const float3 te3 = (ex - base) * inv;
-      const float te = fmin(di.x != 0.0f ? te3.x : INFINITY,
-                            fmin(di.y != 0.0f ? te3.y : INFINITY, di.z != 0.0f ? te3.z : INFINITY));
+    if (!brick_straddles(bricks, &g, bi)) {
       tn = fmax(tn, te);
+    } else if (safe_stride && s_prev < 0.0f) {  // CastOptions::safe_stride
+      const float slope = slopes[bi];
+      const float ts = slope > 0.0f ? 0.9f * -s_prev / (slope * l1) : INFINITY;
+      if (ts > dt) tn = fmax(tn, fmin(t + ts, te));
     }
     tn = fmin(tn, tl);
     const float s = field_at(values, &g, base + tn * di);
     if (s_prev <= 0.0f && s > 0.0f) {
-      hit = true, a = t, b = tn;
+      hit = true, a = t, b = tn, fa = s_prev, fb = s;
       break;
     }
     s_prev = s;
@@ -173,10 +181,11 @@ __kernel void ray_cast(__global const float* values, __global const float2* bric
   }
   if (!hit) return;
   for (int i = 0; i < bisections; ++i) {
-    const float m = 0.5f * (a + b);
-    if (field_at(values, &g, base + m * di) > 0.0f) b = m; else a = m;
+    const float m = 0.5f * (a + b), fm = field_at(values, &g, base + m * di);
+    if (fm > 0.0f) b = m, fb = fm; else a = m, fa = fm;
   }
-  const float3 q = base + (0.5f * (a + b)) * di;
+  const float tm = secant ? clamp(a + (b - a) * (fa / (fa - fb)), a, b) : 0.5f * (a + b);
+  const float3 q = base + tm * di;
   const float3 gi = gradient_at(values, &g, q);
   const float3 gw = -sign * linear3(xform + 24, 3, gi);
   const float len = length(gw);
