@@ -78,8 +78,10 @@ struct ExplorerSetup {
 
 /// Opens the explorer and returns when its window is closed (or 'q'/'e' pressed, or the script is
 /// done). The surface is framed beside the legend and above the status line and the isovalue
-/// slider, which have a strip of their own. Keys: c cycles the colour quantity (H, K, k1, k2,
-/// ShapeIndex, Curvedness, AO), a toggles AO shading (lambert / ambient-ao), d toggles direction
+/// slider, which have a strip of their own. Keys: c cycles the colour through every point array of
+/// the surface shown (H, K, k1, k2, ShapeIndex, Curvedness, AO, Unreliable, Boundary, then its
+/// extra arrays: H_s2, LBE, H_ii, ...; a new surface without the array coloured goes back to
+/// H), a toggles AO shading (lambert / ambient-ao), d toggles direction
 /// glyphs, l toggles the feature lines (when setup.lines is given), v cycles the named views (iso, +x, -x, +y, -y, +z, -z) and r resets the camera to the
 /// current one, i types an isovalue, o types a mesh file to open, w types a path to save the
 /// surface shown (proposing surface_path), k saves the camera to camera_path, s saves a
