@@ -4,11 +4,11 @@
 
 #include "app/commands.h"
 #include "app/line_options_cli.h"
-#include "app/pipeline.h"
 #include "app/picture_title.h"
+#include "app/pipeline.h"
 #include "app/render_options_cli.h"
-#include "core/error.h"
 #include "core/atomic_file.h"
+#include "core/error.h"
 #include "viz/color_map.h"
 #include "viz/direction_glyphs.h"
 #include "viz/render.h"
@@ -51,10 +51,10 @@ void register_render(CLI::App& app) {
     } else if (!o.ao.empty()) {
       apply_ao(s.mesh, *s.field, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer);  // --ao-method on the file's curvature
     }
-    const viz::RenderOptions opts =
-        render_options_for(ro, in, s.volume ? std::optional<float>(s.isovalue) : std::nullopt,
-                           with_ao(estimated ? estimator_title(s.estimator) : "curvature from the file", o),
-                           s.volume ? s.volume->world_space : "", &*s.field);
+    const viz::RenderOptions opts = render_options_for(
+        ro, in, s.volume ? std::optional<float>(s.isovalue) : std::nullopt,
+        with_ao(estimated ? estimator_title(s.estimator) : "curvature from the file", o),
+        s.volume ? s.volume->world_space : "", &*s.field);
     viz::LinesForCamera lines_for;
     if (lo.lines.any())
       lines_for = [&](const Camera& cam) {

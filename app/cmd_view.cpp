@@ -22,13 +22,15 @@ namespace isocurv::app {
 
 void register_view(CLI::App& app) {
   auto* cmd = app.add_subcommand("view", "Explore a volume interactively: isovalue slider, surface coloured by curvature");
-  cmd->footer("Example: isocurv view headsq.raw --dims 64 64 93 --type int16 --iso 500\n"
-              "Keys: c cycles the colour through every point array of the surface (H ... AO, then extras such\n"
-              "as H_s2 or an opened mesh's LBE, H_ii), a toggles AO, d toggles direction glyphs, l toggles the feature\n"
-              "lines (--lines; they follow the camera and the isovalue), v cycles the views, r resets the camera,\n"
-              "i types an isovalue, o opens a mesh file, w saves the surface shown, k saves the camera (for\n"
-              "render --camera), s saves a screenshot, q quits; with --time-series FILES... a time slider, and\n"
-              "space plays / pauses the frames. Needs an X display.");
+  cmd->footer(
+      "Example: isocurv view headsq.raw --dims 64 64 93 --type int16 --iso 500\n"
+      "Keys: c cycles the colour through every point array of the surface (H ... AO, then\n"
+      "extras such as H_s2 or an opened mesh's LBE, H_ii), a toggles AO, d toggles direction\n"
+      "glyphs, l toggles the feature lines (--lines; they follow the camera and the isovalue),\n"
+      "v cycles the views, r resets the camera, i types an isovalue, o opens a mesh file, w saves\n"
+      "the surface shown, k saves the camera (for render --camera), s saves a screenshot, q quits;\n"
+      "with --time-series FILES... a time slider, and space plays / pauses the frames. Needs an X\n"
+      "display.");
   static CommonOptions o;
   static RenderCli ro;
   static std::vector<std::string> ins;

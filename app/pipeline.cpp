@@ -356,8 +356,8 @@ void reestimate_keeping_extras(Surface& s, const std::string& path, const Common
   std::vector<curvature::CurvatureField::Named> extras;
   if (s.field) extras = std::move(s.field->extra);
   prepare_mesh_for_curvature(s, path, o);
-  curvature::CurvatureField f = estimate_curvature(
-      s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer, &s.normals, &s.estimator);
+  curvature::CurvatureField f = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr,
+                                                   s.isovalue, o, timer, &s.normals, &s.estimator);
   const std::size_t nv = s.mesh.positions.size();
   for (auto& e : extras) {
     const bool present = std::any_of(f.extra.begin(), f.extra.end(),

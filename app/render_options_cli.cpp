@@ -20,7 +20,8 @@ void add_render_options(CLI::App& cmd, RenderCli& r, bool files) {
   cmd.add_option(
          "--cmap", opts.cmap,
          "Colour map: auto (diverging for H K k1 k2 ShapeIndex and arrays named after them, grey "
-         "for AO, viridis for the others), diverging (colour-blind-safe blue - light grey at zero - red), viridis "
+         "for AO, viridis for the others), diverging (colour-blind-safe blue - light grey at zero "
+         "- red), viridis "
          "(perceptually uniform), grey, bgr (the papers' blue-green-red)")
       ->check(CLI::IsMember(viz::color_map_names()))
       ->capture_default_str()
@@ -115,10 +116,9 @@ void add_camera_options(CLI::App& cmd, ViewSpec& view, std::string* anatomical) 
              throw CLI::ValidationError(
                  "--view",
                  std::string(e.what()) +
-                     (anatomical
-                          ? "; for NIfTI, MetaImage and NRRD (with a space) volumes also "
-                            "anterior, posterior, left, right, superior or inferior"
-                          : ""));
+                     (anatomical ? "; for NIfTI, MetaImage and NRRD (with a space) volumes also "
+                                   "anterior, posterior, left, right, superior or inferior"
+                                 : ""));
            }
          },
          std::string("Viewpoint: iso (three-quarter view from above, the default), or +x -x +y -y "

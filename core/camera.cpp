@@ -91,8 +91,8 @@ bool is_anatomical_view(const std::string& name) {
 
 std::pair<Vec, Vec> anatomical_axes(const std::string& name, AnatomicalFrame frame) {
   // World directions of the patient's right, anterior and superior.
-  const double sx = frame == AnatomicalFrame::ras ? 1 : -1;   // LPS and LAS: +x is left
-  const double sy = frame == AnatomicalFrame::lps ? -1 : 1;   // LPS: +y is posterior
+  const double sx = frame == AnatomicalFrame::ras ? 1 : -1;  // LPS and LAS: +x is left
+  const double sy = frame == AnatomicalFrame::lps ? -1 : 1;  // LPS: +y is posterior
   const Vec right{sx, 0, 0}, anterior{0, sy, 0}, superior{0, 0, 1};
   if (name == "anterior") return {anterior, superior};
   if (name == "posterior") return {scale(anterior, -1), superior};

@@ -440,11 +440,12 @@ class Explorer {
     if (!detail_.empty()) line += "   (" + detail_ + ")";
     const std::vector<std::string> arrays = field_quantities(current_.field);
     const auto at = std::find(arrays.begin(), arrays.end(), canonical_quantity(o.color));
-    const std::string of =
-        at == arrays.end() ? ""
-                           : " (" + std::to_string(at - arrays.begin() + 1) + " of " +
-                                 std::to_string(arrays.size()) + " arrays)";
-    line += "\n[c] colour: " + canonical_quantity(o.color) + of + "  [a] AO: " + (uses_ao(o.shading) ? "on" : "off") +
+    const std::string of = at == arrays.end()
+                               ? ""
+                               : " (" + std::to_string(at - arrays.begin() + 1) + " of " +
+                                     std::to_string(arrays.size()) + " arrays)";
+    line += "\n[c] colour: " + canonical_quantity(o.color) + of +
+            "  [a] AO: " + (uses_ao(o.shading) ? "on" : "off") +
             "  [d] directions: " + (o.dirs ? "on" : "off") + "  [v] view: " + to_string(view_) +
             "\n[r] reset view  [i] isovalue  [o] open  [w] save  [k] camera  [s] screenshot";
     if (setup_.lines) line += std::string("  [l] lines: ") + (lines_on_ ? "on" : "off");

@@ -68,9 +68,10 @@ std::string tick_label(double value, double range) {
   int digits = 3;
   const double step = std::fabs(range) / (kTicks - 1);
   if (value != 0 && step > 0 && std::isfinite(step))
-    digits = std::clamp(static_cast<int>(std::floor(std::log10(std::fabs(value))) -
-                                         std::floor(std::log10(step))) + 1,
-                        3, 15);
+    digits = std::clamp(
+        static_cast<int>(std::floor(std::log10(std::fabs(value))) - std::floor(std::log10(step))) +
+            1,
+        3, 15);
   char text[40];
   std::snprintf(text, sizeof text, "%.*g", digits, value);
   return text;

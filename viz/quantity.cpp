@@ -131,8 +131,8 @@ std::string resolve_quantity(const curvature::CurvatureField& field, const std::
   if (matches.size() == 1) return matches.front();
   std::string list;
   for (const std::string& q : names) list += (list.empty() ? "" : ", ") + q;
-  throw Error("no point array '" + name + "' to colour by; this mesh has: " +
-              (list.empty() ? "none" : list));
+  throw Error("no point array '" + name +
+              "' to colour by; this mesh has: " + (list.empty() ? "none" : list));
 }
 
 std::vector<float> quantity_values(const curvature::CurvatureField& field,
@@ -166,11 +166,14 @@ std::string quantity_unit(const std::string& name, const std::string& length_uni
   switch (quantity_kind(q)) {
     case QuantityKind::curvature:
       return named_after(b, "K") ? "1/" + l + "\u00b2" : "1/" + l;
-    case QuantityKind::magnitude: return "1/" + l;
+    case QuantityKind::magnitude:
+      return "1/" + l;
     case QuantityKind::shape_index:
     case QuantityKind::occlusion:
-    case QuantityKind::flag: return "";
-    case QuantityKind::other: break;
+    case QuantityKind::flag:
+      return "";
+    case QuantityKind::other:
+      break;
   }
   if (b == "LBE") return "1/" + l + "\u00b2";
   if (b == "Vr") return l + "\u00b3";

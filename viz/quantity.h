@@ -55,8 +55,7 @@ std::string resolve_quantity(const curvature::CurvatureField& field, const std::
 
 /// The values of array `name` (resolve_quantity) in `field`, one per vertex (flags as 0 or 1).
 /// @throw Error when the field does not carry it.
-std::vector<float> quantity_values(const curvature::CurvatureField& field,
-                                   const std::string& name);
+std::vector<float> quantity_values(const curvature::CurvatureField& field, const std::string& name);
 
 /// A reader's name for quantity `name`, for titles: "mean curvature H", "Gaussian curvature K",
 /// "k1 (larger principal curvature)", "shape index", "curvedness", "ambient occlusion",

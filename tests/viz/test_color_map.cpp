@@ -1,12 +1,11 @@
 // Colour map, ranges, quantities and glyphs: no rendering needed.
 #include <gtest/gtest.h>
-
-#include <cmath>
-
 #include <vtkCellData.h>
 #include <vtkColorTransferFunction.h>
 #include <vtkPolyData.h>
 #include <vtkUnsignedCharArray.h>
+
+#include <cmath>
 
 #include "core/error.h"
 #include "test_surfaces.h"
