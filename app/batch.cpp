@@ -117,8 +117,9 @@ void write_outputs(Pending& p, BatchKind kind, const BatchRequest& rq, const Com
   });
   if (kind == BatchKind::run) {
     p.timer.start("render");
-    const viz::RenderOptions opts = render_options_for(*rq.render, p.input, s.isovalue, with_ao(estimator_title(s.estimator), o),
-                           s.volume ? s.volume->format : "");
+    const viz::RenderOptions opts = render_options_for(
+        *rq.render, p.input, s.isovalue, with_ao(estimator_title(s.estimator), o),
+        s.volume ? s.volume->world_space : "", &*s.field);
     outputs.write(p.png_path, [&](const std::string& tmp) { viz::render_png(tmp, s.mesh, *s.field, opts); });
   }
   p.timer.stop();

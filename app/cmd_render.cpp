@@ -4,11 +4,12 @@
 
 #include "app/commands.h"
 #include "app/line_options_cli.h"
-#include "app/pipeline.h"
 #include "app/picture_title.h"
+#include "app/pipeline.h"
 #include "app/render_options_cli.h"
-#include "core/error.h"
 #include "core/atomic_file.h"
+#include "core/error.h"
+#include "viz/color_map.h"
 #include "viz/direction_glyphs.h"
 #include "viz/render.h"
 
@@ -46,17 +47,15 @@ void register_render(CLI::App& app) {
     const std::size_t nv = s.mesh.positions.size();
     if (o.flip || !s.field || s.field->H.size() != nv ||
         (lo.lines.any() && (s.field->dir1.size() != nv || s.field->dcurv.size() != nv))) {
-      prepare_mesh_for_curvature(s, in, o);
-      s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer,
-                                   &s.normals, &s.estimator);
+      reestimate_keeping_extras(s, in, o, timer);  // --flip or no H: the file's extras stay
       estimated = true;
     } else if (!o.ao.empty()) {
       apply_ao(s.mesh, *s.field, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer);  // --ao-method on the file's curvature
     }
-    const viz::RenderOptions opts =
-        render_options_for(ro, in, s.volume ? std::optional<float>(s.isovalue) : std::nullopt,
-                           with_ao(estimated ? estimator_title(s.estimator) : "curvature from the file", o),
-                           s.volume ? s.volume->format : "");
+    const viz::RenderOptions opts = render_options_for(
+        ro, in, s.volume ? std::optional<float>(s.isovalue) : std::nullopt,
+        with_ao(estimated ? estimator_title(s.estimator) : "curvature from the file", o),
+        s.volume ? s.volume->world_space : "", &*s.field);
     viz::LinesForCamera lines_for;
     if (lo.lines.any())
       lines_for = [&](const Camera& cam) {
@@ -64,7 +63,10 @@ void register_render(CLI::App& app) {
       };
     timer.start("render");
     AtomicFileSet outputs;  // the PNG and the glyphs together or not at all
-    outputs.write(out, [&](const std::string& tmp) { viz::render_png(tmp, s.mesh, *s.field, opts, lines_for); });
+    viz::PictureLayout layout;
+    outputs.write(out, [&](const std::string& tmp) {
+      layout = viz::render_png(tmp, s.mesh, *s.field, opts, lines_for);
+    });
     if (!ro.dirs_out.empty())
       outputs.write(ro.dirs_out, [&](const std::string& tmp) {
         viz::write_glyphs(tmp, viz::direction_glyphs(s.mesh, *s.field, viz::glyph_options(opts)));
@@ -75,6 +77,10 @@ void register_render(CLI::App& app) {
       nlohmann::json r = surface_report(s);
       r["input"] = in;
       r["output"] = out;
+      if (!layout.ticks.empty())  // the legend's ends are the colour range
+        r["color"] = {{"array", opts.color},
+                      {"cmap", viz::resolve_color_map(opts.cmap, opts.color)},
+                      {"range", {layout.ticks.front(), layout.ticks.back()}}};
       r["timings_ms"] = timer.json();
       std::cout << r.dump(2) << "\n";
     } else if (!o.quiet) {

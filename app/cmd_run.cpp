@@ -62,8 +62,9 @@ nlohmann::json run_one(const std::string& in, const std::string& dir, const Comm
     mesh_bytes = file_bytes(tmp);
   });
   timer.start("render");
-  const viz::RenderOptions opts = render_options_for(ro, in, s.isovalue, with_ao(estimator_title(s.estimator), o),
-                                                     s.volume ? s.volume->format : "");
+  const viz::RenderOptions opts =
+      render_options_for(ro, in, s.isovalue, with_ao(estimator_title(s.estimator), o),
+                         s.volume ? s.volume->world_space : "", &*s.field);
   viz::LinesForCamera lines_for;
   if (lo.lines.any())
     lines_for = [&](const Camera& cam) {

@@ -22,12 +22,15 @@ namespace isocurv::app {
 
 void register_view(CLI::App& app) {
   auto* cmd = app.add_subcommand("view", "Explore a volume interactively: isovalue slider, surface coloured by curvature");
-  cmd->footer("Example: isocurv view headsq.raw --dims 64 64 93 --type int16 --iso 500\n"
-              "Keys: c cycles the colour quantity, a toggles AO, d toggles direction glyphs, l toggles the feature\n"
-              "lines (--lines; they follow the camera and the isovalue), v cycles the views, r resets the camera,\n"
-              "i types an isovalue, o opens a mesh file, w saves the surface shown, k saves the camera (for\n"
-              "render --camera), s saves a screenshot, q quits; with --time-series FILES... a time slider, and\n"
-              "space plays / pauses the frames. Needs an X display.");
+  cmd->footer(
+      "Example: isocurv view headsq.raw --dims 64 64 93 --type int16 --iso 500\n"
+      "Keys: c cycles the colour through every point array of the surface (H ... AO, then\n"
+      "extras such as H_s2 or an opened mesh's LBE, H_ii), a toggles AO, d toggles direction\n"
+      "glyphs, l toggles the feature lines (--lines; they follow the camera and the isovalue),\n"
+      "v cycles the views, r resets the camera, i types an isovalue, o opens a mesh file, w saves\n"
+      "the surface shown, k saves the camera (for render --camera), s saves a screenshot, q quits;\n"
+      "with --time-series FILES... a time slider, and space plays / pauses the frames. Needs an X\n"
+      "display.");
   static CommonOptions o;
   static RenderCli ro;
   static std::vector<std::string> ins;
@@ -100,7 +103,7 @@ void register_view(CLI::App& app) {
     setup.isovalue = iso;
     setup.min_value = static_cast<float>(vol->stats.min);
     setup.max_value = static_cast<float>(vol->stats.max);
-    setup.view = render_options_for(ro, in, iso, with_ao(estimator_title(o), o), vol->format);
+    setup.view = render_options_for(ro, in, iso, with_ao(estimator_title(o), o), vol->world_space);
     if (ro.title.empty())
       setup.title_for = [](float value, const std::string& quantity) {
         return picture_title(in, quantity, value, with_ao(estimator_title(o), o));
@@ -126,10 +129,8 @@ void register_view(CLI::App& app) {
       }
       StageTimer ignored;
       Surface s = load_surface(path, mesh_options, ignored);
-      if (!s.field || s.field->H.size() != s.mesh.positions.size()) {
-        prepare_mesh_for_curvature(s, path, mesh_options);
-        s.field = estimate_curvature(s.mesh, nullptr, 0.f, mesh_options, ignored);
-      }
+      if (!s.field || s.field->H.size() != s.mesh.positions.size())
+        reestimate_keeping_extras(s, path, mesh_options, ignored);
       return viz::Surface{std::move(s.mesh), std::move(*s.field), 0, "opened " + path};
     };
     setup.surface = [cur](float value) {

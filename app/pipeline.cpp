@@ -351,6 +351,22 @@ void require_curvature_format(const std::string& path) {
   throw Error(path, "unknown mesh extension: write .vtp or .ply (they carry the curvature arrays)");
 }
 
+void reestimate_keeping_extras(Surface& s, const std::string& path, const CommonOptions& o,
+                               StageTimer& timer) {
+  std::vector<curvature::CurvatureField::Named> extras;
+  if (s.field) extras = std::move(s.field->extra);
+  prepare_mesh_for_curvature(s, path, o);
+  curvature::CurvatureField f = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr,
+                                                   s.isovalue, o, timer, &s.normals, &s.estimator);
+  const std::size_t nv = s.mesh.positions.size();
+  for (auto& e : extras) {
+    const bool present = std::any_of(f.extra.begin(), f.extra.end(),
+                                     [&](const auto& x) { return x.name == e.name; });
+    if (e.values.size() == nv && !present && s.welded == 0) f.extra.push_back(std::move(e));
+  }
+  s.field = std::move(f);
+}
+
 curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Volume* volume,
                                              float isovalue, const CommonOptions& o,
                                              StageTimer& timer, NormalsUsed* used,

@@ -156,6 +156,13 @@ void require_curvature_format(const std::string& path);
 /// input), and warns (one line on stderr) when the closed part of the mesh is oriented inward.
 void prepare_mesh_for_curvature(Surface& s, const std::string& path, const CommonOptions& o);
 
+/// Re-estimates the curvature of `s` (prepare_mesh_for_curvature, then estimate_curvature into
+/// s.field, s.normals, s.estimator) keeping the extra arrays the file carried (features, _s<S>
+/// scales) when the vertices are still the file's (no welding): render with --flip or a mesh
+/// without H must not lose what it is asked to colour.
+void reestimate_keeping_extras(Surface& s, const std::string& path, const CommonOptions& o,
+                               StageTimer& timer);
+
 /// Estimates the curvature of `mesh` (stage "curvature") on the chosen device with --estimator
 /// (curvature::estimate_field), then the AO --ao-method chooses (apply_ao). Rusinkiewicz's normals: --normals, by default volume when `volume`
 /// is given, else mesh; volume normals come from volume::gradient_normals_for_mesh (face normals

@@ -12,14 +12,16 @@ namespace isocurv::app {
 
 void add_render_options(CLI::App& cmd, RenderCli& r, bool files) {
   viz::RenderOptions& opts = r.opts;
-  cmd.add_option("--color", opts.color, "Quantity to colour by")
-      ->check(CLI::IsMember(viz::color_quantities()))
+  cmd.add_option("--color", opts.color,
+                 "Point array to colour by: H, K, k1, k2, ShapeIndex, Curvedness, AO, or any other "
+                 "array of the mesh (H_s2, H_ii, LBE_r0.3, ...; an unknown name lists them)")
       ->capture_default_str()
       ->group("Rendering");
   cmd.add_option(
          "--cmap", opts.cmap,
-         "Colour map: auto (diverging for H K k1 k2 ShapeIndex, viridis for Curvedness, grey "
-         "for AO), diverging (colour-blind-safe blue - light grey at zero - red), viridis "
+         "Colour map: auto (diverging for H K k1 k2 ShapeIndex and arrays named after them, grey "
+         "for AO, viridis for the others), diverging (colour-blind-safe blue - light grey at zero "
+         "- red), viridis "
          "(perceptually uniform), grey, bgr (the papers' blue-green-red)")
       ->check(CLI::IsMember(viz::color_map_names()))
       ->capture_default_str()
@@ -114,16 +116,16 @@ void add_camera_options(CLI::App& cmd, ViewSpec& view, std::string* anatomical) 
              throw CLI::ValidationError(
                  "--view",
                  std::string(e.what()) +
-                     (anatomical
-                          ? "; for NIfTI and MetaImage volumes also anterior, posterior, left, "
-                            "right, superior or inferior"
-                          : ""));
+                     (anatomical ? "; for NIfTI, MetaImage and NRRD (with a space) volumes also "
+                                   "anterior, posterior, left, right, superior or inferior"
+                                 : ""));
            }
          },
          std::string("Viewpoint: iso (three-quarter view from above, the default), or +x -x +y -y "
                      "+z -z (the camera on that side of the centre, looking at it)") +
-             (anatomical ? "; NIfTI (world RAS) and MetaImage (world LPS) volumes also take "
-                           "anterior, posterior, left, right, superior, inferior"
+             (anatomical ? "; NIfTI (world RAS), MetaImage (world LPS) and NRRD volumes with a "
+                           "space field also take anterior, posterior, left, right, superior, "
+                           "inferior"
                          : ""))
       ->group("Camera");
   cmd.add_option("--azimuth", view.azimuth_deg,
@@ -141,24 +143,30 @@ void add_camera_options(CLI::App& cmd, ViewSpec& view, std::string* anatomical) 
       ->group("Camera");
 }
 
-std::optional<AnatomicalFrame> anatomical_frame(const std::string& volume_format) {
-  if (volume_format == "nifti") return AnatomicalFrame::ras;
-  if (volume_format == "metaimage") return AnatomicalFrame::lps;
-  return std::nullopt;
+std::optional<AnatomicalFrame> anatomical_frame(const std::string& world_space) {
+  return anatomical_frame_named(world_space);
 }
 
 viz::RenderOptions render_options_for(const RenderCli& r, const std::string& input,
                                       std::optional<float> isovalue, const std::string& estimator,
-                                      const std::string& volume_format) {
+                                      const std::string& world_space,
+                                      const curvature::CurvatureField* field) {
   viz::RenderOptions o = r.opts;
   if (!r.anatomical_view.empty()) {
-    const auto frame = anatomical_frame(volume_format);
+    const auto frame = anatomical_frame(world_space);
     if (!frame)
       throw Error(input,
                   "--view " + r.anatomical_view +
                       " needs a volume whose world axes are anatomical (NIfTI: RAS, MetaImage: "
-                      "LPS); use iso, +x, -x, +y, -y, +z or -z");
+                      "LPS, NRRD with a space field); use iso, +x, -x, +y, -y, +z or -z");
     o.view.axes = anatomical_axes(r.anatomical_view, *frame);
+  }
+  if (field) {
+    try {
+      o.color = viz::resolve_quantity(*field, o.color);
+    } catch (const Error& e) {
+      throw Error(input, e.what());
+    }
   }
   if (!r.camera_file.empty()) o.camera = viz::load_camera(r.camera_file);
   o.title = r.title.empty() ? picture_title(input, o.color, isovalue, estimator) : r.title;

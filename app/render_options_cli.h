@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 
+#include "curvature/curvature_field.h"
 #include "viz/render_options.h"
 
 namespace isocurv::app {
@@ -27,16 +28,19 @@ void add_render_options(CLI::App& cmd, RenderCli& r, bool files = true);
 /// (stored there, resolved by render_options_for).
 void add_camera_options(CLI::App& cmd, ViewSpec& view, std::string* anatomical = nullptr);
 
-/// The anatomical frame of a volume's world coordinates, from its format: NIfTI RAS,
-/// MetaImage LPS (ITK's convention); none for the others.
-std::optional<AnatomicalFrame> anatomical_frame(const std::string& volume_format);
+/// The anatomical frame of a volume's world coordinates, from its Volume::world_space ("RAS" for
+/// NIfTI, "LPS" for MetaImage, NRRD's `space`); none for an empty or other value.
+std::optional<AnatomicalFrame> anatomical_frame(const std::string& world_space);
 
 /// The options to render with: r.opts with --camera loaded, an anatomical --view resolved for
-/// `volume_format` (the input volume's format; empty for a mesh file), and the title set
-/// (r.title, else picture_title(input, quantity, isovalue, estimator)). @throw Error for a bad
-/// camera file or an anatomical view of an input without an anatomical frame.
+/// `world_space` (the input volume's Volume::world_space; empty for a mesh file), the colour
+/// array resolved in `field` when given (viz::resolve_quantity: its spelling there), and the
+/// title set (r.title, else picture_title(input, quantity, isovalue, estimator)). @throw Error
+/// for a bad camera file, an anatomical view of an input without an anatomical frame, or a
+/// colour array `field` does not carry (the message lists those it does).
 viz::RenderOptions render_options_for(const RenderCli& r, const std::string& input,
                                       std::optional<float> isovalue, const std::string& estimator,
-                                      const std::string& volume_format = "");
+                                      const std::string& world_space = "",
+                                      const curvature::CurvatureField* field = nullptr);
 
 }  // namespace isocurv::app

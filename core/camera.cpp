@@ -76,6 +76,13 @@ std::array<double, 3> Camera::view_vector(const std::array<double, 3>& p) const 
   return ortho ? toward_camera() : normalized(sub(position, p));
 }
 
+std::optional<AnatomicalFrame> anatomical_frame_named(const std::string& letters) {
+  if (letters == "RAS") return AnatomicalFrame::ras;
+  if (letters == "LPS") return AnatomicalFrame::lps;
+  if (letters == "LAS") return AnatomicalFrame::las;
+  return std::nullopt;
+}
+
 bool is_anatomical_view(const std::string& name) {
   for (const char* n : {"anterior", "posterior", "left", "right", "superior", "inferior"})
     if (name == n) return true;
@@ -84,8 +91,9 @@ bool is_anatomical_view(const std::string& name) {
 
 std::pair<Vec, Vec> anatomical_axes(const std::string& name, AnatomicalFrame frame) {
   // World directions of the patient's right, anterior and superior.
-  const double s = frame == AnatomicalFrame::ras ? 1 : -1;  // LPS flips x and y
-  const Vec right{s, 0, 0}, anterior{0, s, 0}, superior{0, 0, 1};
+  const double sx = frame == AnatomicalFrame::ras ? 1 : -1;  // LPS and LAS: +x is left
+  const double sy = frame == AnatomicalFrame::lps ? -1 : 1;  // LPS: +y is posterior
+  const Vec right{sx, 0, 0}, anterior{0, sy, 0}, superior{0, 0, 1};
   if (name == "anterior") return {anterior, superior};
   if (name == "posterior") return {scale(anterior, -1), superior};
   if (name == "right") return {right, superior};

@@ -51,8 +51,11 @@ struct Camera {
 
 /// The anatomical frame of a volume's world coordinates. RAS: +x towards the patient's right,
 /// +y anterior, +z superior (NIfTI). LPS: +x left, +y posterior, +z superior (DICOM, ITK,
-/// MetaImage).
-enum class AnatomicalFrame { ras, lps };
+/// MetaImage). LAS: +x left, +y anterior, +z superior (NRRD's left-anterior-superior).
+enum class AnatomicalFrame { ras, lps, las };
+
+/// The frame named by Volume::world_space's letters ("RAS", "LPS", "LAS"); nullopt otherwise.
+std::optional<AnatomicalFrame> anatomical_frame_named(const std::string& letters);
 
 /// The names anatomical_axes accepts: anterior, posterior, left, right, superior, inferior.
 bool is_anatomical_view(const std::string& name);

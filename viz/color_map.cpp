@@ -60,35 +60,34 @@ const std::vector<std::string>& color_map_names() {
 }
 
 std::string resolve_color_map(const std::string& cmap, const std::string& quantity) {
-  const std::string q = canonical_quantity(quantity);
   if (cmap != "auto") {
     stops(cmap);  // throws for an unknown name
     return cmap;
   }
-  if (is_signed_quantity(q)) return "diverging";
-  return q == "AO" ? "grey" : "viridis";
+  if (is_signed_quantity(quantity)) return "diverging";
+  return quantity_kind(quantity) == QuantityKind::occlusion ? "grey" : "viridis";
 }
 
 bool is_centred_map(const std::string& cmap) { return cmap == "diverging" || cmap == "bgr"; }
 
 ColorRange color_range(const std::vector<float>& values, const std::string& name,
                        double clamp_percentile, const std::optional<ColorRange>& fixed) {
-  const std::string q = canonical_quantity(name);
+  const QuantityKind kind = quantity_kind(name);
   if (fixed) {
     if (!(fixed->lo < fixed->hi) || !std::isfinite(fixed->lo) || !std::isfinite(fixed->hi))
       throw Error("colour range " + std::to_string(fixed->lo) + " .. " + std::to_string(fixed->hi) +
                   " is empty: MIN must be below MAX");
     return *fixed;
   }
-  if (q == "ShapeIndex") return {-1, 1};
-  if (q == "AO") return {0, 1};
+  if (kind == QuantityKind::shape_index) return {-1, 1};
+  if (kind == QuantityKind::occlusion || kind == QuantityKind::flag) return {0, 1};
   const double c = std::clamp(clamp_percentile, 0.0, kMaxClampPercentile);
   std::vector<double> finite;
   finite.reserve(values.size());
   for (float v : values)
     if (std::isfinite(v)) finite.push_back(v);
   ColorRange range{0, 0};
-  if (is_signed_quantity(q)) {
+  if (kind == QuantityKind::curvature) {
     const double lo = percentile(finite, c), hi = percentile(finite, 100.0 - c);
     if (lo < 0 && hi > 0) {
       for (double& v : finite) v = std::fabs(v);
@@ -99,12 +98,18 @@ ColorRange color_range(const std::vector<float>& values, const std::string& name
     } else {
       range = {lo, 0};
     }
-  } else {
+  } else if (kind == QuantityKind::magnitude) {
     range = {0, percentile(finite, 100.0 - c)};
+  } else {
+    range = {percentile(finite, c), percentile(finite, 100.0 - c)};
   }
-  if (!(range.hi > range.lo)) {  // all zero (or nothing finite): a small range around zero
+  if (!(range.hi > range.lo)) {  // all equal (or nothing finite): a small range around them
+    if (kind == QuantityKind::other) {
+      const double v = range.lo, half = std::max(1e-6, 1e-3 * std::fabs(v));
+      return {v - half, v + half};
+    }
     const double half = std::max({1e-6, std::fabs(range.lo), std::fabs(range.hi)});
-    range = is_signed_quantity(q) ? ColorRange{-half, half} : ColorRange{0, half};
+    range = kind == QuantityKind::curvature ? ColorRange{-half, half} : ColorRange{0, half};
   }
   return range;
 }

@@ -4,8 +4,8 @@
 // Maps (--cmap): "diverging" (blue - light grey - red, ColorBrewer's colour-blind-safe RdBu run
 // from blue to red, neutral #f7f7f7), "viridis" (perceptually uniform sequential, matplotlib's),
 // "grey" (black to white) and "bgr" (the papers' blue-green-red, green at the centre). "auto"
-// picks diverging for signed quantities (H, K, k1, k2, ShapeIndex), grey for AO and viridis for
-// the other unsigned ones (Curvedness).
+// picks diverging for signed quantities (H, K, k1, k2, ShapeIndex and the arrays named after
+// them: H_s2, H_ii, SI_ii, ...; viz::QuantityKind), grey for AO and viridis for the others.
 #include <vtkSmartPointer.h>
 
 #include <optional>
@@ -25,24 +25,27 @@ struct ColorRange {
 /// The names --cmap accepts, "auto" first.
 const std::vector<std::string>& color_map_names();
 
-/// The map "auto" means for quantity `name` (see the file comment); any other name is checked
-/// and returned. @throw Error for an unknown map or quantity name.
+/// The map "auto" means for quantity `name` (see the file comment); any other map name is checked
+/// and returned. @throw Error for an unknown map.
 std::string resolve_color_map(const std::string& cmap, const std::string& quantity);
 
 /// True for the maps with a neutral centre (diverging, bgr): over a range that contains zero,
 /// the centre colour lands exactly at zero (make_color_map).
 bool is_centred_map(const std::string& cmap);
 
-/// The range for `values` of quantity `name`, ignoring non-finite values. `fixed`, when given,
-/// is returned exactly (--range; it must have lo < hi). Otherwise, with p = clamp_percentile
-/// (clamped to [0, 49]) so that a few outliers do not wash the map out:
-///  - H, K, k1, k2 that take both signs (the p-th percentile below zero and the (100-p)-th above):
-///    symmetric [-r, r], r = the (100-p)-th percentile of |value|; one-signed: [0, the
-///    (100-p)-th percentile] or [the p-th percentile, 0] (zero to the extreme);
-///  - ShapeIndex: its natural range [-1, 1]; AO: [0, 1];
-///  - Curvedness (never negative): [0, the (100-p)-th percentile].
-/// A degenerate range (all values equal, or nothing finite) is widened so it is never empty.
-/// @throw Error for an unknown quantity or a fixed range with !(lo < hi).
+/// The range for `values` of quantity `name` (any array name: its viz::quantity_kind decides),
+/// ignoring non-finite values. `fixed`, when given, is returned exactly (--range; it must have
+/// lo < hi). Otherwise, with p = clamp_percentile (clamped to [0, 49]) so that a few outliers do
+/// not wash the map out:
+///  - curvature (H, K, k1, k2, H_s2, H_ii, ...) that takes both signs (the p-th percentile below
+///    zero and the (100-p)-th above): symmetric [-r, r], r = the (100-p)-th percentile of
+///    |value|; one-signed: [0, the (100-p)-th percentile] or [the p-th percentile, 0];
+///  - shape index (ShapeIndex, SI_ii): [-1, 1]; AO and the 0/1 flags: [0, 1];
+///  - magnitude (Curvedness, never negative): [0, the (100-p)-th percentile];
+///  - other arrays (LBE, NSV, Vr, ...): [the p-th, the (100-p)-th percentile].
+/// A degenerate range (all values equal, or nothing finite) is widened so it is never empty
+/// (other arrays: by 0.1% of the value each side, at least 1e-6).
+/// @throw Error for a fixed range with !(lo < hi).
 ColorRange color_range(const std::vector<float>& values, const std::string& name,
                        double clamp_percentile,
                        const std::optional<ColorRange>& fixed = std::nullopt);

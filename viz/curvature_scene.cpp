@@ -119,7 +119,7 @@ struct CurvatureScene::Impl {
     resolve_color_map(o.cmap, o.color);
     if (o.range) color_range({}, o.color, 0, o.range);
     if (mesh.positions.empty()) return;
-    quantity_values(field, o.color);
+    resolve_quantity(field, o.color);
     if (uses_ao(o.shading) && field.ao.empty())
       throw Error("AO shading requested but the curvature field has no AO values");
   }
@@ -127,9 +127,10 @@ struct CurvatureScene::Impl {
   void relayout() {
     const std::string q = canonical_quantity(options.color);
     const std::string unit = quantity_unit(q, options.length_unit);
-    layout =
-        layout_picture(options.width, options.height, options.title,
-                       unit.empty() ? q : q + "\n" + unit, range.lo, range.hi, bottom_reserved);
+    const std::string label = quantity_label(q);
+    layout = layout_picture(options.width, options.height, options.title,
+                            unit.empty() ? label : label + "\n" + unit, range.lo, range.hi,
+                            bottom_reserved);
     const PixelBox& s = layout.surface;
     const double w = std::max(1, options.width), h = std::max(1, options.height);
     renderer->SetViewport(s.x0 / w, s.y0 / h, s.x1 / w, s.y1 / h);
@@ -160,7 +161,7 @@ struct CurvatureScene::Impl {
       relayout();
       return;
     }
-    const std::vector<float>& values = quantity_values(field, q);
+    const std::vector<float> values = quantity_values(field, q);
     // The range leaves out open-boundary vertices (a surface cut by the volume's box), whose
     // one-sided curvature is an artefact that would otherwise set the scale.
     std::vector<float> inner;

@@ -126,10 +126,9 @@ class Explorer {
     }
     RenderOptions o = scene_.options();
     switch (key) {
-      case 'c': {
-        const auto& q = color_quantities();
+      case 'c': {  // every point array of the surface shown: the curvature ones, then its extras
+        const std::vector<std::string> q = field_quantities(current_.field);
         auto it = std::find(q.begin(), q.end(), canonical_quantity(o.color));
-        // skip quantities the field does not carry
         for (std::size_t step = 0; step < q.size(); ++step) {
           it = (it == q.end() || it + 1 == q.end()) ? q.begin() : it + 1;
           o.color = *it;
@@ -217,8 +216,9 @@ class Explorer {
     } else if (e == Entry::open) {
       try {
         Surface s = setup_.open_mesh(typed_);
-        scene_.set_surface(s.mesh, s.field);
+        const std::string note = show_surface(s);
         note_update(s);
+        message_ = note;
         shown_ = typed_;
         reset_camera();
       } catch (const Error& err) {
@@ -320,16 +320,34 @@ class Explorer {
     }
   }
 
+  /// Shows `s`; when it lacks the array coloured now (an extra of an opened mesh, say) the colour
+  /// goes back to H first, and the status line says so.
+  std::string show_surface(const Surface& s) {
+    RenderOptions o = scene_.options();
+    const std::vector<std::string> q = field_quantities(s.field);
+    if (!q.empty() && std::find(q.begin(), q.end(), canonical_quantity(o.color)) == q.end()) {
+      const std::string was = o.color;
+      o.color = std::find(q.begin(), q.end(), "H") != q.end() ? "H" : q.front();
+      if (setup_.title_for) o.title = setup_.title_for(iso_, o.color);
+      scene_.set_options(o);  // the old surface has H too (every estimate gives it)
+      scene_.set_surface(s.mesh, s.field);
+      return "colour " + was + " is not on this surface: showing " + o.color;
+    }
+    scene_.set_surface(s.mesh, s.field);
+    return "";
+  }
+
   /// Re-extracts at `iso`; on failure keeps the previous surface and reports on the status line.
   void update(float iso) {
     if (iso == attempted_) return;  // the slider's release after a live update, or no move
     attempted_ = iso;
     try {
       Surface s = call(iso);
-      scene_.set_surface(s.mesh, s.field);
+      const std::string note = show_surface(s);
       iso_ = iso;
       shown_.clear();
       note_update(s);
+      message_ = note;
       retitle();
     } catch (const Error& e) {
       message_ = "isovalue " + format(iso) + ": " + e.what();
@@ -348,10 +366,11 @@ class Explorer {
     try {
       setup_.set_frame(k);
       Surface s = call(iso_);
-      scene_.set_surface(s.mesh, s.field);
+      const std::string note = show_surface(s);
       frame_ = k;
       shown_.clear();
       note_update(s);
+      message_ = note;
       retitle();
     } catch (const Error& e) {
       message_ = "frame " + std::to_string(k) + ": " + e.what();
@@ -419,7 +438,14 @@ class Explorer {
                        std::to_string(vertices_) + " vertices, " + std::to_string(triangles_) +
                        " triangles   update " + format_ms(last_ms_);
     if (!detail_.empty()) line += "   (" + detail_ + ")";
-    line += "\n[c] colour: " + canonical_quantity(o.color) + "  [a] AO: " + (uses_ao(o.shading) ? "on" : "off") +
+    const std::vector<std::string> arrays = field_quantities(current_.field);
+    const auto at = std::find(arrays.begin(), arrays.end(), canonical_quantity(o.color));
+    const std::string of = at == arrays.end()
+                               ? ""
+                               : " (" + std::to_string(at - arrays.begin() + 1) + " of " +
+                                     std::to_string(arrays.size()) + " arrays)";
+    line += "\n[c] colour: " + canonical_quantity(o.color) + of +
+            "  [a] AO: " + (uses_ao(o.shading) ? "on" : "off") +
             "  [d] directions: " + (o.dirs ? "on" : "off") + "  [v] view: " + to_string(view_) +
             "\n[r] reset view  [i] isovalue  [o] open  [w] save  [k] camera  [s] screenshot";
     if (setup_.lines) line += std::string("  [l] lines: ") + (lines_on_ ? "on" : "off");

@@ -78,17 +78,20 @@ struct ExplorerSetup {
 
 /// Opens the explorer and returns when its window is closed (or 'q'/'e' pressed, or the script is
 /// done). The surface is framed beside the legend and above the status line and the isovalue
-/// slider, which have a strip of their own. Keys: c cycles the colour quantity (H, K, k1, k2,
-/// ShapeIndex, Curvedness, AO), a toggles AO shading (lambert / ambient-ao), d toggles direction
-/// glyphs, l toggles the feature lines (when setup.lines is given), v cycles the named views (iso, +x, -x, +y, -y, +z, -z) and r resets the camera to the
-/// current one, i types an isovalue, o types a mesh file to open, w types a path to save the
-/// surface shown (proposing surface_path), k saves the camera to camera_path, s saves a
-/// screenshot (name printed on stdout), space plays / pauses a time series (setup.frames). While typing, Enter applies, Escape cancels, BackSpace
-/// deletes. The mouse rotates, pans and zooms. Dragging the slider re-runs the callback
-/// live while updates take under 150 ms, otherwise on release. A failed update (Error from the
-/// callback) is shown on the status line and the previous surface stays. Interactive use needs an X
-/// display; a scripted run starts a private Xvfb when there is none (ensure_display). Throws Error
-/// for a bad setup or when the initial surface cannot be made.
+/// slider, which have a strip of their own. Keys: c cycles the colour through every point array of
+/// the surface shown (H, K, k1, k2, ShapeIndex, Curvedness, AO, Unreliable, Boundary, then its
+/// extra arrays: H_s2, LBE, H_ii, ...; a new surface without the array coloured goes back to
+/// H), a toggles AO shading (lambert / ambient-ao), d toggles direction
+/// glyphs, l toggles the feature lines (when setup.lines is given), v cycles the named views (iso,
+/// +x, -x, +y, -y, +z, -z) and r resets the camera to the current one, i types an isovalue, o types
+/// a mesh file to open, w types a path to save the surface shown (proposing surface_path), k saves
+/// the camera to camera_path, s saves a screenshot (name printed on stdout), space plays / pauses a
+/// time series (setup.frames). While typing, Enter applies, Escape cancels, BackSpace deletes. The
+/// mouse rotates, pans and zooms. Dragging the slider re-runs the callback live while updates take
+/// under 150 ms, otherwise on release. A failed update (Error from the callback) is shown on the
+/// status line and the previous surface stays. Interactive use needs an X display; a scripted run
+/// starts a private Xvfb when there is none (ensure_display). Throws Error for a bad setup or when
+/// the initial surface cannot be made.
 void run_explorer(const ExplorerSetup& setup);
 
 }  // namespace isocurv::viz

@@ -63,8 +63,17 @@ PixelBox measure_text(const std::string& text, int font_px) {
 
 std::string tick_label(double value, double range) {
   if (std::fabs(value) <= 1e-9 * std::fabs(range)) value = 0;
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", value);
+  // Enough significant digits that neighbouring ticks (a quarter of the range apart) differ:
+  // one below the step's leading digit, at least 3 ("0.52359" on a range of 2e-5, not "0.524").
+  int digits = 3;
+  const double step = std::fabs(range) / (kTicks - 1);
+  if (value != 0 && step > 0 && std::isfinite(step))
+    digits = std::clamp(
+        static_cast<int>(std::floor(std::log10(std::fabs(value))) - std::floor(std::log10(step))) +
+            1,
+        3, 15);
+  char text[40];
+  std::snprintf(text, sizeof text, "%.*g", digits, value);
   return text;
 }
 

@@ -56,7 +56,9 @@ PictureLayout layout_picture(int width, int height, const std::string& title,
                              const std::string& legend_title, double lo, double hi,
                              int bottom_reserved = 0);
 
-/// A tick label: %.3g, with values within 1e-9 of the range of zero shown as 0.
+/// A tick label for a legend spanning `range` (hi - lo): %g with at least 3 significant digits,
+/// more when the range is small beside the value, so that the 5 ticks of a near-constant array
+/// still read apart; values within 1e-9 of the range of zero are shown as 0.
 std::string tick_label(double value, double range);
 
 }  // namespace isocurv::viz

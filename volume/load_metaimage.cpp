@@ -139,7 +139,9 @@ Volume load_metaimage(const std::string& path, const LoadOptions& options) {
                                  std::to_string(bytes_needed));
     decode_into(image, read_bytes(data_path, data_offset, bytes_needed), 0, count, *type, msb);
   }
-  return finish_dense(std::move(image), path, "metaimage", options);
+  Volume v = finish_dense(std::move(image), path, "metaimage", options);
+  v.world_space = "LPS";
+  return v;
 }
 
 }  // namespace isocurv::volume

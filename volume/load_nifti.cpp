@@ -140,7 +140,9 @@ Volume load_nifti(const std::string& path, const LoadOptions& options) {
                         for (std::size_t i = r.begin(); i != r.end(); ++i) v[i] = slope * v[i] + inter;
                       });
   }
-  return finish_dense(std::move(image), path, "nifti", options);
+  Volume v = finish_dense(std::move(image), path, "nifti", options);
+  v.world_space = "RAS";
+  return v;
 }
 
 }  // namespace isocurv::volume

@@ -1,5 +1,6 @@
 // NRRD (.nrrd with attached data, .nhdr with a detached data file): 3-D scalar images with raw,
-// gzip or ASCII encoding; geometry from "space directions" + "space origin", else "spacings".
+// gzip or ASCII encoding; geometry from "space directions" + "space origin", else "spacings";
+// the anatomical meaning of the world axes from "space" (Volume::world_space).
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -66,6 +67,23 @@ std::vector<std::string> vector_tokens(const std::string& s) {
   return out;
 }
 
+/// NRRD's `space` (any case, full name or abbreviation) as the letters of +x +y +z ("RAS",
+/// "LAS", "LPS"), empty for the non-anatomical 3-D spaces; throws for a time space or an unknown
+/// name.
+std::string world_space_of(const std::string& path, const std::string& space) {
+  const std::string s = to_lower(space);
+  if (s == "right-anterior-superior" || s == "ras") return "RAS";
+  if (s == "left-anterior-superior" || s == "las") return "LAS";
+  if (s == "left-posterior-superior" || s == "lps") return "LPS";
+  if (s == "scanner-xyz" || s == "3d-right-handed" || s == "3d-left-handed") return "";
+  if ((s.size() > 5 && s.compare(s.size() - 5, 5, "-time") == 0) || s == "rast" || s == "last" ||
+      s == "lpst")
+    throw Error(path, "NRRD space '" + space + "' has a time axis; only 3-D spaces are supported");
+  throw Error(path, "unknown NRRD space '" + space +
+                        "' (expected right-anterior-superior, left-anterior-superior, "
+                        "left-posterior-superior, scanner-xyz, 3D-right-handed or 3D-left-handed)");
+}
+
 }  // namespace
 
 Volume load_nrrd(const std::string& path, const LoadOptions& options) {
@@ -116,6 +134,7 @@ Volume load_nrrd(const std::string& path, const LoadOptions& options) {
     throw Error(path, "NRRD header has no valid endian field");
   const bool big_endian = endian == "big";
 
+  const std::string world_space = fields.count("space") ? world_space_of(path, get("space")) : "";
   DenseImage image;
   if (fields.count("space directions")) {
     const auto tokens = vector_tokens(get("space directions"));
@@ -199,7 +218,9 @@ Volume load_nrrd(const std::string& path, const LoadOptions& options) {
     decode_into(image, read_bytes(data_path, data_offset + std::uint64_t(byte_skip), bytes_needed), 0, count, *type,
                 big_endian);
   }
-  return finish_dense(std::move(image), path, "nrrd", options);
+  Volume v = finish_dense(std::move(image), path, "nrrd", options);
+  v.world_space = world_space;
+  return v;
 }
 
 }  // namespace isocurv::volume

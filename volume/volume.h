@@ -35,6 +35,9 @@ struct Volume {
   std::string voxel_type;         ///< type on disk: "uint8", "int16", "uint16", "int32", "float", "double", "half"
   std::string grid_class;         ///< "level set", "fog volume" or "unknown"
   std::string grid_name;          ///< VDB grid name, or the array name for VTK files
+  /// What the world axes mean anatomically, as three letters for +x +y +z: "RAS" (NIfTI),
+  /// "LPS" (MetaImage, ITK), or NRRD's `space` ("RAS", "LAS", "LPS"); empty when unknown.
+  std::string world_space;
   bool dense = true;              ///< true when every voxel of `domain` was stored in the file
   openvdb::CoordBBox domain;      ///< index-space data domain (inclusive)
   Inside inside = Inside::Above;  ///< which side is the object

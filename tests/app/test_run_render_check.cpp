@@ -1,12 +1,13 @@
 // isocurv run, render, check and view end to end (headless: DISPLAY unset, the CLI starts Xvfb).
-#include "tests/test_paths.h"
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "cli.h"
 #include "io/mesh_file.h"
 #include "mesh_compare.h"
+#include "tests/test_paths.h"
 
 using namespace isocurv;
 using namespace isocurv::test;
@@ -283,4 +284,101 @@ TEST(RenderOptions, AnatomicalViewsNeedAnAnatomicalFrame) {
   const auto plus_y = run_isocurv({"render", nifti, "--view", "+y", "--size", "120x90", "-o", dir / "y.png", "--quiet"});
   ASSERT_TRUE(ant.ok() && plus_y.ok()) << ant.describe() << plus_y.describe();
   EXPECT_EQ(read_file(dir / "ant.png"), read_file(dir / "y.png"));
+}
+
+namespace {
+
+/// A 32^3 uint8 NRRD: a ball at the centre and a small one towards +x +y +z, so the views
+/// from +y and -y differ (mirror images).
+std::string write_blobs_nrrd(const std::string& path, const std::string& space,
+                             const std::string& directions) {
+  std::string data(32 * 32 * 32, '\0');
+  for (int z = 0; z < 32; ++z)
+    for (int y = 0; y < 32; ++y)
+      for (int x = 0; x < 32; ++x) {
+        const double a = std::hypot(x - 14.0, y - 14.0, z - 14.0),
+                     b = std::hypot(x - 22.0, y - 22.0, z - 20.0);
+        const bool in = a < 8 || b < 4;
+        data[static_cast<std::size_t>(x + 32 * (y + 32 * z))] = static_cast<char>(in ? 200 : 10);
+      }
+  write_file(
+      path, "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 32 32 32\nencoding: raw\nspace: " + space +
+                "\nspace directions: " + directions + "\nspace origin: (0,0,0)\n\n" + data);
+  return path;
+}
+
+}  // namespace
+
+TEST(RenderOptions, NrrdSpaceGivesTheAnatomicalViews) {
+  TempDir dir("nrrd_views");
+  auto render = [&](const std::string& in, const std::string& view, const std::string& png) {
+    const auto r = run_isocurv({"render", in, "--iso", "100", "--view", view, "--size", "120x90",
+                                "-o", dir / png, "--quiet"});
+    EXPECT_TRUE(r.ok()) << r.describe();
+    return read_file(dir / png);
+  };
+  // LPS with flipped x and y directions: anterior is world -y
+  const std::string lps =
+      write_blobs_nrrd(dir / "lps.nrrd", "left-posterior-superior", "(-1,0,0) (0,-1,0) (0,0,1)");
+  const std::string ant = render(lps, "anterior", "lps_ant.png");
+  EXPECT_EQ(ant, render(lps, "-y", "lps_my.png"));
+  EXPECT_NE(ant, render(lps, "+y", "lps_py.png")) << "anterior must not be +y in LPS";
+  // RAS: anterior is world +y
+  const std::string ras =
+      write_blobs_nrrd(dir / "ras.nrrd", "right-anterior-superior", "(1,0,0) (0,1,0) (0,0,1)");
+  EXPECT_EQ(render(ras, "anterior", "ras_ant.png"), render(ras, "+y", "ras_py.png"));
+  const auto info = run_isocurv({"info", lps, "--json"});
+  ASSERT_TRUE(info.ok()) << info.describe();
+  EXPECT_EQ(parse_json(info.out, "info").value("world_space", ""), "LPS");
+}
+
+TEST(RenderColor, AnyPointArrayWithItsRangeAndUnknownNamesListed) {
+  TempDir dir("color_arrays");
+  const std::string base = dir / "torus.vtp";
+  const auto c = run_isocurv({"curvature", dataset("torus"), "-o", base, "--quiet"});
+  ASSERT_TRUE(c.ok()) << c.describe();
+  io::MeshFile m = io::read_mesh(base);
+  ASSERT_TRUE(m.field);
+  const std::size_t n = m.mesh.positions.size();
+  std::vector<float> lbe(n), h2(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    lbe[i] = 3.f + float(i % 1000) / 1000.f;  // [3, 4)
+    h2[i] = 0.5f * m.field->H[i] + 0.01f;     // both signs, more positive
+  }
+  m.field->extra.push_back({"LBE_r0.3", lbe});
+  m.field->extra.push_back({"H_s2", h2});
+  const std::string mesh = dir / "extras.vtp";
+  io::write_mesh(mesh, m.mesh, &*m.field);
+
+  auto range_of = [&](const std::vector<std::string>& extra) {
+    std::vector<std::string> args = {"render", mesh,          "--size", "200x150",
+                                     "-o",     dir / "x.png", "--json"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto r = run_isocurv(args);
+    EXPECT_TRUE(r.ok()) << r.describe();
+    const json j = parse_json(r.out, "render --json");
+    return std::pair<double, double>{j["color"]["range"][0].get<double>(),
+                                     j["color"]["range"][1].get<double>()};
+  };
+  std::vector<float> sorted = lbe;
+  std::sort(sorted.begin(), sorted.end());
+  const auto [lo, hi] = range_of({"--color", "LBE_r0.3"});
+  EXPECT_NEAR(lo, sorted[static_cast<std::size_t>(0.02 * double(n - 1) + 0.5)], 2e-3);
+  EXPECT_NEAR(hi, sorted[static_cast<std::size_t>(0.98 * double(n - 1) + 0.5)], 2e-3);
+  const auto [hlo, hhi] = range_of({"--color", "H_s2"});
+  EXPECT_DOUBLE_EQ(hlo, -hhi) << "a suffixed H is symmetric about zero";
+  const auto [flo, fhi] = range_of({"--color", "LBE_r0.3", "--range", "3.25", "3.5"});
+  EXPECT_EQ(flo, 3.25);
+  EXPECT_EQ(fhi, 3.5);
+  // --flip re-estimates the curvature: the file's extra arrays must survive it
+  const auto flipped = run_isocurv({"render", mesh, "--flip", "--color", "LBE_r0.3", "--size",
+                                    "200x150", "-o", dir / "f.png", "--quiet"});
+  EXPECT_TRUE(flipped.ok()) << flipped.describe();
+  const auto bad = run_isocurv({"render", mesh, "--color", "H_ii", "-o", dir / "bad.png"});
+  EXPECT_EQ(bad.exit_code, 1) << bad.describe();
+  EXPECT_EQ(bad.err_lines().size(), 1u) << bad.describe();
+  EXPECT_NE(bad.err.find("H_ii"), std::string::npos) << bad.describe();
+  EXPECT_NE(bad.err.find("LBE_r0.3"), std::string::npos)
+      << "the error lists the mesh's arrays: " << bad.describe();
+  EXPECT_FALSE(fs::exists(dir / "bad.png"));
 }

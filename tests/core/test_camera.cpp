@@ -155,6 +155,14 @@ TEST(Camera, AnatomicalViewsInRasAndLps) {
   std::tie(t, u) = anatomical_axes("superior", AnatomicalFrame::ras);
   expect_vec(t, {0, 0, 1});
   expect_vec(u, {0, 1, 0});
+  // LAS (NRRD's left-anterior-superior): right is -x, anterior +y
+  std::tie(t, u) = anatomical_axes("right", AnatomicalFrame::las);
+  expect_vec(t, {-1, 0, 0});
+  std::tie(t, u) = anatomical_axes("anterior", AnatomicalFrame::las);
+  expect_vec(t, {0, 1, 0});
+  EXPECT_EQ(anatomical_frame_named("LPS"), AnatomicalFrame::lps);
+  EXPECT_EQ(anatomical_frame_named("LAS"), AnatomicalFrame::las);
+  EXPECT_FALSE(anatomical_frame_named(""));
   EXPECT_TRUE(is_anatomical_view("inferior"));
   EXPECT_FALSE(is_anatomical_view("+x"));
   EXPECT_THROW(anatomical_axes("front", AnatomicalFrame::ras), Error);

@@ -1,15 +1,17 @@
 // Colour map, ranges, quantities and glyphs: no rendering needed.
 #include <gtest/gtest.h>
-
 #include <vtkCellData.h>
 #include <vtkColorTransferFunction.h>
 #include <vtkPolyData.h>
 #include <vtkUnsignedCharArray.h>
 
+#include <cmath>
+
 #include "core/error.h"
 #include "test_surfaces.h"
 #include "viz/color_map.h"
 #include "viz/direction_glyphs.h"
+#include "viz/picture_layout.h"
 #include "viz/quantity.h"
 
 using namespace isocurv;
@@ -154,8 +156,9 @@ TEST(VizQuantity, NamesAndMissingArrays) {
   const auto torus = test::torus(16, 8);
   EXPECT_EQ(viz::canonical_quantity("shapeindex"), "ShapeIndex");
   EXPECT_EQ(viz::canonical_quantity("K"), "K");
-  EXPECT_EQ(&viz::quantity_values(torus.field, "k2"), &torus.field.k2);
-  EXPECT_THROW(viz::canonical_quantity("Gauss"), Error);
+  EXPECT_EQ(viz::quantity_values(torus.field, "k2"), torus.field.k2);
+  EXPECT_EQ(viz::canonical_quantity("Gauss"), "Gauss") << "other names are array names";
+  EXPECT_THROW(viz::quantity_values(torus.field, "Gauss"), Error);
   curvature::CurvatureField empty;
   EXPECT_THROW(viz::quantity_values(empty, "H"), Error);
   EXPECT_TRUE(viz::is_signed_quantity("K"));
@@ -163,6 +166,111 @@ TEST(VizQuantity, NamesAndMissingArrays) {
   EXPECT_EQ(viz::quantity_unit("H", "mm"), "1/mm");
   EXPECT_EQ(viz::quantity_unit("K", ""), "1/length\u00b2");
   EXPECT_EQ(viz::quantity_unit("ShapeIndex", "mm"), "");
+}
+
+TEST(VizQuantity, AnyArrayByItsNameKindAndSuffix) {
+  using viz::QuantityKind;
+  EXPECT_EQ(viz::quantity_kind("H_s2"), QuantityKind::curvature);
+  EXPECT_EQ(viz::quantity_kind("H_ii_r0.3"), QuantityKind::curvature);
+  EXPECT_EQ(viz::quantity_kind("K_ii"), QuantityKind::curvature);
+  EXPECT_EQ(viz::quantity_kind("k1_s4"), QuantityKind::curvature);
+  EXPECT_EQ(viz::quantity_kind("Hattori"), QuantityKind::other) << "H only as a word";
+  EXPECT_EQ(viz::quantity_kind("SI_ii"), QuantityKind::shape_index);
+  EXPECT_EQ(viz::quantity_kind("ShapeIndex_s2"), QuantityKind::shape_index);
+  EXPECT_EQ(viz::quantity_kind("Unreliable_s2"), QuantityKind::flag);
+  EXPECT_EQ(viz::quantity_kind("FeatureBoundary"), QuantityKind::flag);
+  EXPECT_EQ(viz::quantity_kind("Curvedness_s2"), QuantityKind::magnitude);
+  EXPECT_EQ(viz::quantity_kind("LBE_r0.3"), QuantityKind::other);
+  const viz::QuantityName n = viz::split_quantity_name("H_ii_r2%");
+  EXPECT_EQ(n.base, "H_ii");
+  EXPECT_EQ(n.radius, "2%");
+  EXPECT_EQ(viz::split_quantity_name("SI_ii").base, "SI_ii");
+  EXPECT_EQ(viz::quantity_label("H_s2"), "H (scale 2)");
+  EXPECT_EQ(viz::quantity_label("H_ii_r0.3"), "H_ii (r = 0.3)");
+  EXPECT_EQ(viz::quantity_description("H_s2"), "mean curvature H (scale 2)");
+  EXPECT_EQ(viz::quantity_description("H_ii_r0.3"),
+            "H_ii (integral-invariant mean curvature, r = 0.3)");
+  EXPECT_EQ(viz::quantity_unit("K_ii", "mm"), "1/mm\u00b2");
+  EXPECT_EQ(viz::quantity_unit("H_s2", "mm"), "1/mm");
+  EXPECT_EQ(viz::quantity_unit("LBE_r4", "mm"), "1/mm\u00b2");
+  EXPECT_EQ(viz::quantity_unit("NSV", "mm"), "");
+  EXPECT_EQ(viz::resolve_color_map("auto", "H_ii_r0.3"), "diverging");
+  EXPECT_EQ(viz::resolve_color_map("auto", "SI_ii"), "diverging");
+  EXPECT_EQ(viz::resolve_color_map("auto", "LBE"), "viridis");
+}
+
+TEST(VizQuantity, ExtraArraysAreListedResolvedAndUnknownNamesListThem) {
+  auto torus = test::torus(16, 8);
+  const std::size_t n = torus.field.size();
+  std::vector<float> lbe(n), h2(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    lbe[i] = 3.f + float(i) / float(n);  // [3, 4)
+    h2[i] = 0.5f * torus.field.H[i];
+  }
+  torus.field.extra.push_back({"LBE_r0.3", lbe});
+  torus.field.extra.push_back({"H_s2", h2});
+  const auto names = viz::field_quantities(torus.field);
+  ASSERT_GE(names.size(), 2u);
+  EXPECT_EQ(names[names.size() - 2], "LBE_r0.3");
+  EXPECT_EQ(names.back(), "H_s2");
+  EXPECT_EQ(names.front(), "H");
+  EXPECT_EQ(viz::resolve_quantity(torus.field, "lbe_r0.3"), "LBE_r0.3") << "any letter case";
+  EXPECT_EQ(viz::quantity_values(torus.field, "LBE_r0.3"), lbe);
+  try {
+    viz::quantity_values(torus.field, "H_ii");
+    ADD_FAILURE() << "no H_ii on this field";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("'H_ii'"), std::string::npos) << m;
+    EXPECT_NE(m.find("LBE_r0.3"), std::string::npos) << m;
+    EXPECT_NE(m.find("H_s2"), std::string::npos) << m;
+    EXPECT_NE(m.find("Curvedness"), std::string::npos) << m;
+  }
+  // an arbitrary array: its percentile range, not zero-based, not symmetric
+  const viz::ColorRange r = viz::color_range(lbe, "LBE_r0.3", 2);
+  EXPECT_NEAR(r.lo, 3.02, 2e-3);
+  EXPECT_NEAR(r.hi, 3.98, 2e-3);
+  const viz::ColorRange r0 = viz::color_range(lbe, "LBE_r0.3", 0);
+  EXPECT_FLOAT_EQ(float(r0.lo), lbe.front());
+  EXPECT_FLOAT_EQ(float(r0.hi), lbe.back());
+  // a constant array still gets a range around its value
+  const viz::ColorRange c = viz::color_range(std::vector<float>(10, 7.f), "Vr", 2);
+  EXPECT_LT(c.lo, 7.0);
+  EXPECT_GT(c.hi, 7.0);
+  EXPECT_NEAR(c.hi - c.lo, 0.014, 1e-9);
+}
+
+TEST(VizQuantity, SuffixedCurvatureIsDivergingWithItsNeutralAtZero) {
+  std::vector<float> v;
+  for (int i = 0; i < 1000; ++i) v.push_back(-0.2f + 0.8f * float(i) / 999.f);  // [-0.2, 0.6]
+  const viz::ColorRange r = viz::color_range(v, "H_s2", 2);
+  EXPECT_DOUBLE_EQ(r.lo, -r.hi) << "symmetric about zero, as H";
+  EXPECT_NEAR(r.hi, 0.584, 0.01);
+  const std::string cmap = viz::resolve_color_map("auto", "H_s2");
+  ASSERT_EQ(cmap, "diverging");
+  auto map = viz::make_color_map(r, cmap);
+  double zero[3], neutral[3] = {0xf7 / 255., 0xf7 / 255., 0xf7 / 255.};
+  map->GetColor(0.0, zero);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(zero[c], neutral[c], 1e-6) << c;
+  // one-signed: zero to the extreme, as for H
+  std::vector<float> pos(v.begin() + 300, v.end());
+  for (float& x : pos) x = std::fabs(x) + 0.01f;
+  const viz::ColorRange p = viz::color_range(pos, "K_ii_r4", 2);
+  EXPECT_EQ(p.lo, 0.0);
+  EXPECT_GT(p.hi, 0.5);
+  EXPECT_EQ(viz::color_range(v, "SI_ii", 2).lo, -1.0);
+  EXPECT_EQ(viz::color_range(v, "Unreliable_s2", 2).hi, 1.0);
+}
+
+TEST(VizLegend, TickLabelsOfANearConstantArrayReadApart) {
+  const double lo = 0.52359, hi = 0.52361;
+  std::vector<std::string> labels;
+  for (int i = 0; i < 5; ++i) labels.push_back(viz::tick_label(lo + (hi - lo) * i / 4, hi - lo));
+  for (int i = 1; i < 5; ++i) EXPECT_NE(labels[i], labels[i - 1]) << labels[i];
+  EXPECT_EQ(labels.front(), "0.52359");
+  EXPECT_EQ(viz::tick_label(0.25, 1.0), "0.25") << "ordinary ranges keep %.3g";
+  EXPECT_EQ(viz::tick_label(-0.123456, 1.0), "-0.123");
+  EXPECT_EQ(viz::tick_label(1e-12, 1.0), "0");
 }
 
 TEST(VizDirectionGlyphs, EvenSubsampleTwoColouredSegmentsPerVertex) {

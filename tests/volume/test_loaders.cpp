@@ -128,6 +128,44 @@ TEST(VolumeLoadNrrd, AttachedRawWithSpaceDirections) {
   expect_ramp(load(path), axis_aligned({0.5, 0.25, 2}, {1, 2, 3}), "nrrd", "int16");
 }
 
+TEST(VolumeLoadNrrd, SpaceNamesTheWorldAxesAndDirectionsFlipThem) {
+  TempDir dir;
+  auto bytes = to_bytes(ramp_values<std::int16_t>());
+  auto write = [&](const std::string& name, const std::string& space, const std::string& dirs) {
+    std::string header =
+        "NRRD0004\ntype: short\ndimension: 3\nsizes: 5 4 3\nendian: little\n"
+        "encoding: raw\n" +
+        (space.empty() ? "" : "space: " + space + "\n") + "space directions: " + dirs +
+        "\nspace origin: (10,20,30)\n\n";
+    header.append(bytes.begin(), bytes.end());
+    write_file(dir.file(name), header);
+    return dir.file(name);
+  };
+  // LPS, as ITK/Slicer write it: index x runs towards -x (the patient's right), y towards -y
+  const Volume lps =
+      load(write("lps.nrrd", "left-posterior-superior", "(-0.5,0,0) (0,-0.25,0) (0,0,2)"));
+  EXPECT_EQ(lps.world_space, "LPS");
+  expect_ramp(
+      lps,
+      [](int x, int y, int z) { return openvdb::Vec3d(10 - 0.5 * x, 20 - 0.25 * y, 30 + 2.0 * z); },
+      "nrrd", "int16");
+  EXPECT_EQ(load(write("ras.nrrd", "RAS", "(0.5,0,0) (0,0.25,0) (0,0,2)")).world_space, "RAS");
+  EXPECT_EQ(
+      load(write("las.nrrd", "Left-Anterior-Superior", "(0.5,0,0) (0,0.25,0) (0,0,2)")).world_space,
+      "LAS");
+  EXPECT_EQ(load(write("xyz.nrrd", "scanner-xyz", "(0.5,0,0) (0,0.25,0) (0,0,2)")).world_space, "");
+  EXPECT_EQ(load(write("none.nrrd", "", "(0.5,0,0) (0,0.25,0) (0,0,2)")).world_space, "");
+  EXPECT_THROW(
+      load(write("time.nrrd", "right-anterior-superior-time", "(0.5,0,0) (0,0.25,0) (0,0,2)")),
+      isocurv::Error);
+  try {
+    load(write("bad.nrrd", "upside-down", "(0.5,0,0) (0,0.25,0) (0,0,2)"));
+    ADD_FAILURE() << "an unknown space must fail";
+  } catch (const isocurv::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("upside-down"), std::string::npos) << e.what();
+  }
+}
+
 TEST(VolumeLoadNrrd, AttachedGzipBigEndianFloatWithSpacings) {
   TempDir dir;
   const std::string path = dir.file("ramp.nrrd");
