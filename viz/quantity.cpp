@@ -132,7 +132,7 @@ std::string resolve_quantity(const curvature::CurvatureField& field, const std::
   std::string list;
   for (const std::string& q : names) list += (list.empty() ? "" : ", ") + q;
   throw Error("no point array '" + name +
-              "' to colour by; this mesh has: " + (list.empty() ? "none" : list));
+              "' to colour by (--color); this mesh has: " + (list.empty() ? "none" : list));
 }
 
 std::vector<float> quantity_values(const curvature::CurvatureField& field,

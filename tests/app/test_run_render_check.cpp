@@ -343,7 +343,7 @@ TEST(RenderColor, AnyPointArrayWithItsRangeAndUnknownNamesListed) {
   std::vector<float> lbe(n), h2(n);
   for (std::size_t i = 0; i < n; ++i) {
     lbe[i] = 3.f + float(i % 1000) / 1000.f;  // [3, 4)
-    h2[i] = 0.5f * m.field->H[i] + 0.01f;     // both signs, more positive
+    h2[i] = float(i % 100) / 100.f - 0.4f;    // [-0.4, 0.59]: both signs, more positive
   }
   m.field->extra.push_back({"LBE_r0.3", lbe});
   m.field->extra.push_back({"H_s2", h2});

@@ -26,8 +26,8 @@ TEST(CliUsage, ParseErrorsAreOnePrefixedLineWithStatus2) {
       "--device");
   expect_usage_error(run_isocurv({"--bogus"}), "--bogus");
   // The message says where to look.
-  const auto r = run_isocurv({"render", dataset("sphere"), "-o", dir / "o.png", "--color", "Z"});
-  expect_usage_error(r, "--color");
+  const auto r = run_isocurv({"render", dataset("sphere"), "-o", dir / "o.png", "--cmap", "Z"});
+  expect_usage_error(r, "--cmap");
   EXPECT_NE(r.err.find("isocurv render --help"), std::string::npos) << r.describe();
   EXPECT_TRUE(dir.entries().empty()) << ::testing::PrintToString(dir.entries());
 }
