@@ -1,13 +1,13 @@
 #pragma once
 // Reading a PNG back and measuring its colours, for the rendering tests.
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPNGReader.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <string>
-
-#include <vtkImageData.h>
-#include <vtkNew.h>
-#include <vtkPNGReader.h>
 
 namespace isocurv::test {
 
@@ -15,6 +15,7 @@ struct PngStats {
   int width = 0, height = 0, components = 0;
   double luminance_mean = 0, luminance_variance = 0;
   double bluish = 0, reddish = 0, white = 0;  ///< fractions of the inspected pixels
+  double greenish = 0;  ///< green above red and blue: viridis's middle, absent from RdBu and grey
 };
 
 /// Reads `path` and measures pixels with x < max_x_fraction * width (to leave out the scalar bar,
@@ -45,12 +46,14 @@ inline PngStats png_stats(const std::string& path, double max_x_fraction = 0.8) 
       if (b > 90 && b > r + 40 && b > g + 30) s.bluish += 1;
       if (r > 90 && r > g + 40 && r > b + 40) s.reddish += 1;
       if (r > 235 && g > 235 && b > 235) s.white += 1;
+      if (g > 90 && g > r + 30 && g > b + 10) s.greenish += 1;
     }
   s.luminance_mean = sum / count;
   s.luminance_variance = sum2 / count - s.luminance_mean * s.luminance_mean;
   s.bluish /= count;
   s.reddish /= count;
   s.white /= count;
+  s.greenish /= count;
   return s;
 }
 
@@ -79,7 +82,8 @@ inline Box foreground_box(const std::string& path, const double bottom[3], const
     for (int c = 0; c < 3; ++c) bg[c] = 255 * (bottom[c] + t * (top[c] - bottom[c]));
     for (int x = 0; x < dims[0]; ++x) {
       bool skipped = false;
-      for (const auto& s : skip) skipped = skipped || (x >= s.x0 && x < s.x1 && y >= s.y0 && y < s.y1);
+      for (const auto& s : skip)
+        skipped = skipped || (x >= s.x0 && x < s.x1 && y >= s.y0 && y < s.y1);
       if (skipped) continue;
       const unsigned char* p = pixels + (static_cast<std::size_t>(y) * dims[0] + x) * n;
       bool fg = false;
@@ -116,7 +120,8 @@ inline MaskedStats surface_stats(const std::string& path, const Box& box, const 
     for (int x = std::max(0, box.x0); x < std::min(dims[0], box.x1); ++x) {
       const unsigned char* p = pixels + (static_cast<std::size_t>(y) * dims[0] + x) * n;
       bool fg = false;
-      for (int c = 0; c < 3; ++c) fg = fg || std::abs(p[c] - 255 * (bottom[c] + t * (top[c] - bottom[c]))) > tolerance;
+      for (int c = 0; c < 3; ++c)
+        fg = fg || std::abs(p[c] - 255 * (bottom[c] + t * (top[c] - bottom[c]))) > tolerance;
       if (!fg) continue;
       m.luminance += 0.299 * p[0] + 0.587 * p[1] + 0.114 * p[2];
       m.chroma += std::abs(p[0] - p[1]) + std::abs(p[1] - p[2]);
@@ -137,7 +142,8 @@ inline long pixel_difference(const std::string& a, const std::string& b) {
   vtkImageData* ia = ra->GetOutput();
   vtkImageData* ib = rb->GetOutput();
   const long n = static_cast<long>(ia->GetNumberOfPoints()) * ia->GetNumberOfScalarComponents();
-  if (n == 0 || n != static_cast<long>(ib->GetNumberOfPoints()) * ib->GetNumberOfScalarComponents()) return -1;
+  if (n == 0 || n != static_cast<long>(ib->GetNumberOfPoints()) * ib->GetNumberOfScalarComponents())
+    return -1;
   const auto* pa = static_cast<const unsigned char*>(ia->GetScalarPointer());
   const auto* pb = static_cast<const unsigned char*>(ib->GetScalarPointer());
   long differ = 0;

@@ -12,6 +12,7 @@
 #include "test_surfaces.h"
 #include "viz/camera_file.h"
 #include "viz/explorer.h"
+#include "viz/quantity.h"
 
 namespace fs = std::filesystem;
 using namespace isocurv;
@@ -19,7 +20,8 @@ using namespace isocurv;
 namespace {
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("isocurv_explorer_test_" + std::to_string(::getpid()) + "_" + name);
+  const fs::path dir = fs::temp_directory_path() /
+                       ("isocurv_explorer_test_" + std::to_string(::getpid()) + "_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -46,8 +48,9 @@ TEST(VizExplorer, ScriptedSliderMoveAndKeysChangeTheImage) {
   const std::string before = (dir / "before.png").string(), after = (dir / "after.png").string(),
                     colour = (dir / "colour.png").string(), glyphs = (dir / "glyphs.png").string();
   using A = viz::ExplorerAction;
-  setup.script = {A::screenshot(before), A::set_isovalue(0.5f), A::screenshot(after), A::press('c'),
-                  A::screenshot(colour), A::press('d'), A::screenshot(glyphs), A::press('s')};
+  setup.script = {A::screenshot(before), A::set_isovalue(0.5f), A::screenshot(after),
+                  A::press('c'),         A::screenshot(colour), A::press('d'),
+                  A::screenshot(glyphs), A::press('s')};
   viz::run_explorer(setup);
 
   ASSERT_EQ(calls.size(), 2u);
@@ -60,11 +63,52 @@ TEST(VizExplorer, ScriptedSliderMoveAndKeysChangeTheImage) {
     EXPECT_EQ(s.height, 480);
     EXPECT_GT(s.luminance_variance, 100.0) << p;
   }
-  EXPECT_GT(test::pixel_difference(before, after), 5000) << "slider move did not change the surface";
+  EXPECT_GT(test::pixel_difference(before, after), 5000)
+      << "slider move did not change the surface";
   EXPECT_GT(test::pixel_difference(after, colour), 5000) << "'c' did not recolour";
   EXPECT_GT(test::pixel_difference(colour, glyphs), 1000) << "'d' did not draw glyphs";
   EXPECT_GT(test::png_stats(colour).bluish, 0.005) << "K on a torus has a negative part";
   EXPECT_TRUE(fs::exists(dir / "shot-001.png")) << "'s' saves <prefix>-001.png";
+  if (!HasFailure()) fs::remove_all(dir);
+}
+
+TEST(VizExplorer, ColourKeyReachesTheSurfacesExtraArrays) {
+  const fs::path dir = fresh_dir("extras");
+  viz::ExplorerSetup setup;
+  setup.isovalue = 0.4f;
+  setup.min_value = 0.1f;
+  setup.max_value = 0.6f;
+  setup.view.width = 480;
+  setup.view.height = 360;
+  // A torus carrying one extra array (as `features` writes): its x coordinate, a left-right ramp
+  // that the sequential (viridis) map shows in greens the diverging map never has.
+  auto make = [](float iso) {
+    auto t = test::torus(1.f, iso, 64, 32);
+    std::vector<float> ramp(t.mesh.positions.size());
+    for (std::size_t i = 0; i < ramp.size(); ++i) ramp[i] = t.mesh.positions[i][0];
+    t.field.extra.push_back({"LBE_r0.3", ramp});
+    return t;
+  };
+  setup.surface = [&](float iso) {
+    auto t = make(iso);
+    return viz::Surface{std::move(t.mesh), std::move(t.field), 0, "torus with an extra array"};
+  };
+  const std::vector<std::string> names = viz::field_quantities(make(0.4f).field);
+  const auto at = [&](const std::string& n) {
+    return std::find(names.begin(), names.end(), n) - names.begin();
+  };
+  ASSERT_LT(at("LBE_r0.3"), static_cast<long>(names.size())) << "the extra array is listed";
+  const long presses = at("LBE_r0.3") - at("H");  // the explorer starts on H
+  ASSERT_GT(presses, 0);
+  const std::string h = (dir / "h.png").string(), extra = (dir / "extra.png").string();
+  using A = viz::ExplorerAction;
+  setup.script = {A::screenshot(h)};
+  for (long i = 0; i < presses; ++i) setup.script.push_back(A::press('c'));
+  setup.script.push_back(A::screenshot(extra));
+  viz::run_explorer(setup);
+  ASSERT_TRUE(fs::exists(h) && fs::exists(extra));
+  EXPECT_LT(test::png_stats(h).greenish, 0.002) << "H is drawn with the diverging map";
+  EXPECT_GT(test::png_stats(extra).greenish, 0.01) << "'c' did not reach the extra array";
   if (!HasFailure()) fs::remove_all(dir);
 }
 
@@ -121,7 +165,9 @@ TEST(VizExplorer, TypedIsovalueOpenSaveCameraViewsAndResize) {
   setup.view.height = 300;
   setup.camera_path = (dir / "camera.json").string();
   setup.surface_path = (dir / "surface.vtp").string();
-  setup.title_for = [](float iso, const std::string& q) { return q + " at " + std::to_string(iso); };
+  setup.title_for = [](float iso, const std::string& q) {
+    return q + " at " + std::to_string(iso);
+  };
   setup.surface = [&](float iso) {
     calls.push_back(iso);
     auto t = test::torus(1.f, iso, 48, 24);
@@ -132,7 +178,8 @@ TEST(VizExplorer, TypedIsovalueOpenSaveCameraViewsAndResize) {
     auto s = test::saddle(32);
     return viz::Surface{std::move(s.mesh), std::move(s.field), 0, "opened"};
   };
-  setup.save_surface = [&](const std::string& path, const Mesh& mesh, const curvature::CurvatureField& field) {
+  setup.save_surface = [&](const std::string& path, const Mesh& mesh,
+                           const curvature::CurvatureField& field) {
     EXPECT_EQ(field.H.size(), mesh.positions.size());
     saved.push_back(path);
   };
@@ -140,14 +187,18 @@ TEST(VizExplorer, TypedIsovalueOpenSaveCameraViewsAndResize) {
                     reset = (dir / "reset.png").string(), mesh = (dir / "mesh.png").string(),
                     big = (dir / "big.png").string();
   using A = viz::ExplorerAction;
-  setup.script = {A::screenshot(iso),
-                  A::press('i'), A::type("0.4x"), A::press(8), A::press('\r'),  // typed, one typo deleted
-                  A::press('i'), A::type("7"), A::press('\r'),                   // outside the range: refused
-                  A::press('v'), A::screenshot(side),                           // the +x view
-                  A::press('k'),                                                // camera saved
-                  A::press('w'), A::press('\r'),                                // saved at surface_path
-                  A::press('i'), A::type("0.3"), A::press(27),                  // Escape: nothing
-                  A::press('o'), A::type("elsewhere.ply"), A::press('\r'), A::screenshot(mesh),
+  setup.script = {A::screenshot(iso),  A::press('i'),
+                  A::type("0.4x"),     A::press(8),
+                  A::press('\r'),  // typed, one typo deleted
+                  A::press('i'),       A::type("7"),
+                  A::press('\r'),                            // outside the range: refused
+                  A::press('v'),       A::screenshot(side),  // the +x view
+                  A::press('k'),                             // camera saved
+                  A::press('w'),       A::press('\r'),       // saved at surface_path
+                  A::press('i'),       A::type("0.3"),
+                  A::press(27),  // Escape: nothing
+                  A::press('o'),       A::type("elsewhere.ply"),
+                  A::press('\r'),      A::screenshot(mesh),
                   A::resize(640, 360), A::screenshot(big)};
   viz::run_explorer(setup);
 
@@ -183,10 +234,12 @@ TEST(VizCameraFile, RoundTripAndBadFiles) {
   EXPECT_DOUBLE_EQ(back.parallel_scale, 2.5);
   const auto d = back.toward_camera();
   EXPECT_NEAR(d[0] * back.view_up[0] + d[1] * back.view_up[1] + d[2] * back.view_up[2], 0.0, 1e-12);
-  for (const char* bad : {"", "[1, 2]", R"({"position": [0, 0, 1]})",
-                          R"({"position": [0, 0, 1], "focal_point": [0, 0, 0], "view_up": [0, 0, 1]})",
-                          R"({"position": [0, 0, 1], "focal_point": [0, 0, 0], "view_up": [0, 1, 0], "view_angle_deg": 200})",
-                          R"({"position": [0, 0, "a"], "focal_point": [0, 0, 0], "view_up": [0, 1, 0]})"}) {
+  for (
+      const char* bad :
+      {"", "[1, 2]", R"({"position": [0, 0, 1]})",
+       R"({"position": [0, 0, 1], "focal_point": [0, 0, 0], "view_up": [0, 0, 1]})",
+       R"({"position": [0, 0, 1], "focal_point": [0, 0, 0], "view_up": [0, 1, 0], "view_angle_deg": 200})",
+       R"({"position": [0, 0, "a"], "focal_point": [0, 0, 0], "view_up": [0, 1, 0]})"}) {
     const std::string b = (dir / "bad.json").string();
     std::ofstream(b) << bad;
     EXPECT_THROW(viz::load_camera(b), Error) << bad;
@@ -218,12 +271,14 @@ TEST(VizExplorer, LinesKeyDrawsLinesThatFollowSurfaceAndCamera) {
                     iso = (dir / "iso.png").string();
   using A = viz::ExplorerAction;
   setup.script = {A::screenshot(off), A::press('l'), A::screenshot(on), A::set_isovalue(0.45f),
-                  A::screenshot(iso), A::press('r'), A::press('l'), A::press('l')};
+                  A::screenshot(iso), A::press('r'), A::press('l'),     A::press('l')};
   viz::run_explorer(setup);
   ASSERT_GE(changed.size(), 2u);
-  EXPECT_TRUE(changed[0]);                                           // first lines: a new surface
-  EXPECT_NE(std::find(changed.begin() + 1, changed.end(), true), changed.end());  // the slider moved
-  EXPECT_NE(std::find(changed.begin() + 1, changed.end(), false), changed.end()) << "'r' moved the camera";
+  EXPECT_TRUE(changed[0]);  // first lines: a new surface
+  EXPECT_NE(std::find(changed.begin() + 1, changed.end(), true),
+            changed.end());  // the slider moved
+  EXPECT_NE(std::find(changed.begin() + 1, changed.end(), false), changed.end())
+      << "'r' moved the camera";
   EXPECT_GT(test::pixel_difference(off, on), 300) << "'l' drew no lines";
   EXPECT_GT(test::pixel_difference(on, iso), 1000);
   fs::remove_all(dir);
