@@ -51,14 +51,20 @@ void expect_ramp(const Volume& v, const WorldOf& world, const std::string& forma
 
 }  // namespace
 
-TEST(VolumeLoadRaw, OptionsGiveTheLayout) {
-  TempDir dir;
+/// Writes the 5x4x3 big-endian uint16 ramp as dir/ramp.raw; `o` gets its layout.
+std::string big_endian_ramp(TempDir& dir, LoadOptions& o) {
   const std::string path = dir.file("ramp.raw");
   write_file(path, to_bytes(ramp_values<std::uint16_t>(), /*big_endian=*/true));
-  LoadOptions o;
   o.raw.dims = {5, 4, 3};
   o.raw.type = "uint16";
   o.raw.big_endian = true;
+  return path;
+}
+
+TEST(VolumeLoadRaw, OptionsGiveTheLayout) {
+  TempDir dir;
+  LoadOptions o;
+  const std::string path = big_endian_ramp(dir, o);
   o.raw.spacing = {0.5, 0.25, 2};
   o.raw.origin = {1, 2, 3};
   expect_ramp(load(path, o), axis_aligned({0.5, 0.25, 2}, {1, 2, 3}), "raw", "uint16");
@@ -66,12 +72,8 @@ TEST(VolumeLoadRaw, OptionsGiveTheLayout) {
 
 TEST(VolumeLoadRaw, BuildingTheGridReportsProgressToTheLoadStage) {
   TempDir dir;
-  const std::string path = dir.file("ramp.raw");
-  write_file(path, to_bytes(ramp_values<std::uint16_t>(), /*big_endian=*/true));
   LoadOptions o;
-  o.raw.dims = {5, 4, 3};
-  o.raw.type = "uint16";
-  o.raw.big_endian = true;
+  const std::string path = big_endian_ramp(dir, o);
   isocurv::StageBar bar("load");
   ASSERT_EQ(isocurv::stage_progress(), -1.0);
   load(path, o);
