@@ -275,9 +275,11 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
             q.enqueueReadBuffer(d_snap_vertices, CL_TRUE, 0, nsnap * sizeof(cl_uint), vertices.data());
             std::vector<SnapCandidate> candidates(nsnap);
             for (std::size_t i = 0; i < nsnap; ++i) candidates[i] = {edges[i], vertices[i]};
-            const SnapReport r = snap_vertices(mesh, std::move(candidates), f, kSnapMinArea * voxel_face_area(st.volume));
+            const SnapReport r = snap_vertices(mesh, std::move(candidates), f, kSnapMinArea * voxel_face_area(st.volume),
+                                               options.snap);
             tm.snapped = r.moved;
             tm.merged = r.merged;
+            tm.pushed = r.pushed;
             if (timings) {
               tm.snap += ms_since(step);
               step = Clock::now();

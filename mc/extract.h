@@ -27,6 +27,7 @@ struct ExtractTimings {
   std::size_t seam_vertices = 0;  ///< vertices other bricks look up (hashed, sorted, searched)
   std::size_t snapped = 0;        ///< vertices placed by snapping, one a merged group (Options::snap)
   std::size_t merged = 0;         ///< vertices merged into another there
+  std::size_t pushed = 0;         ///< vertices moved out along their edge where no merge could be
 };
 
 /// A volume prepared for repeated extraction (the explorer's slider): the per-block value ranges

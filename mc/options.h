@@ -20,7 +20,9 @@ struct Options {
   /// triangle), wherever the mesh stays a consistently wound 2-manifold (mc/snap_vertices.h, after
   /// SnapMC). Removes the clusters of nearly coincident vertices and the slivers that voxels equal
   /// to the isovalue (integer CT and MR data) otherwise leave. A merged vertex moves by at most
-  /// twice this distance and stays within it of the voxel. 0 turns snapping off; at most 0.5.
+  /// twice this distance and stays within it of the voxel. Where no merge is possible the
+  /// vertices move out along their edges to this distance from the voxel instead. 0 turns
+  /// snapping off; at most 0.5.
   float snap = kDefaultSnap;
 };
 

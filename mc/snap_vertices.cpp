@@ -296,6 +296,48 @@ class Snapper {
     return true;
   }
 
+  // Moves the candidates [b, e) of the voxel `point`, whose merge was refused, along their own
+  // cube edges away from the voxel to the fraction `push` of the edge (only outwards: one already
+  // farther keeps its place). The connectivity stays as the mesher made it; the triangles between
+  // the voxel's vertices grow from the mesher's 1/1024-voxel nudge to about push. Returns the
+  // vertices moved: none where a triangle using them would turn over or shrink below min_area.
+  std::size_t push_group(std::uint32_t b, std::uint32_t e, std::uint64_t point, double push) {
+    const Vec3d at = voxel_position(point, frame_);
+    std::vector<std::pair<std::uint32_t, Vec3f>> old;
+    for (std::uint32_t i = b; i < e; ++i) {
+      const std::uint64_t edge = cand_[i].edge;
+      const std::uint64_t other = point_key((edge & kSnapUpper) ? edge & ~kSnapUpper : edge | kSnapUpper);
+      const Vec3d d = sub(voxel_position(other, frame_), at);
+      Vec3f& p = mesh_.positions[cand_[i].vertex];
+      const Vec3d now = sub(to_d(p), at);
+      if (dot(now, now) >= push * push * dot(d, d)) continue;
+      old.emplace_back(cand_[i].vertex, p);
+      p = {float(at[0] + push * d[0]), float(at[1] + push * d[1]), float(at[2] + push * d[2])};
+    }
+    auto position_before = [&](std::uint32_t v) {
+      for (const auto& [u, q] : old)
+        if (u == v) return q;
+      return mesh_.positions[v];
+    };
+    bool sound = true;
+    for (std::uint32_t i = b; i < e && sound; ++i)
+      for (std::uint32_t k = first_[i]; k < first_[i + 1]; ++k) {
+        const Tri& t = mesh_.triangles[incident_[k]];
+        if (t[0] == kNone) continue;
+        const Vec3d before = area_vector(to_d(position_before(t[0])), to_d(position_before(t[1])),
+                                         to_d(position_before(t[2])));
+        const Vec3d after = area_vector(to_d(mesh_.positions[t[0]]), to_d(mesh_.positions[t[1]]),
+                                        to_d(mesh_.positions[t[2]]));
+        if (dot(after, before) <= 0 || 0.5 * std::sqrt(dot(after, after)) < min_area_) {
+          sound = false;
+          break;
+        }
+      }
+    if (!sound)
+      for (const auto& [u, q] : old) mesh_.positions[u] = q;
+    return sound ? old.size() : 0;
+  }
+
   // Removes collapsed triangles, then every vertex no triangle uses any more (those merged
   // away, and those whose every triangle collapsed), keeping the order of the rest.
   void compact(SnapReport& report) {
@@ -469,7 +511,7 @@ class Snapper {
 }  // namespace
 
 SnapReport snap_vertices(Mesh& mesh, std::vector<SnapCandidate> candidates, const Frame& frame,
-                         double min_area) {
+                         double min_area, double push) {
   SnapReport report;
   report.candidates = candidates.size();
   if (candidates.empty()) return report;
@@ -531,8 +573,13 @@ SnapReport snap_vertices(Mesh& mesh, std::vector<SnapCandidate> candidates, cons
     report.dropped += w.report.dropped;
     report.split += w.report.split;
   }
+  // The voxels still refused: their vertices move out along their edges instead (a voxel's star
+  // touches no other voxel's of its class; classes in order, so the result is deterministic).
   for (const auto& cls : todo)
-    for (std::uint32_t g : cls) report.kept += groups[g + 1] - groups[g];
+    for (std::uint32_t g : cls) {
+      report.kept += groups[g + 1] - groups[g];
+      if (push > 0) report.pushed += s.push_group(groups[g], groups[g + 1], sorted[groups[g]].first, push);
+    }
   s.compact(report);
   return report;
 

@@ -39,7 +39,8 @@ struct SnapReport {
   std::size_t vanished = 0;    ///< other vertices removed: every triangle of theirs collapsed
   std::size_t dropped = 0;     ///< triangles removed (collapsed to an edge or a point)
   std::size_t split = 0;       ///< voxels where the surface meets in several fans, one vertex each
-  std::size_t kept = 0;        ///< candidates left in place (a collapse there would break the mesh)
+  std::size_t kept = 0;        ///< candidates not merged (a collapse there would break the mesh)
+  std::size_t pushed = 0;      ///< of those, vertices moved along their edge out to `push`
 };
 
 /// Snaps the listed vertices of `mesh` (a marching-cubes mesh from `frame`) onto their voxels,
@@ -50,13 +51,17 @@ struct SnapReport {
 /// there, or a tunnel narrower than the snap distance pinched to a point) each get a vertex of
 /// their own, 2/1024 voxel from it towards the fan, so no two vertices coincide and no edge or
 /// vertex becomes non-manifold. Where a fan would not be a disc, or a triangle would fall below
-/// `min_area` (world units^2) or turn over, that voxel's vertices stay where they were.
+/// `min_area` (world units^2) or turn over, that voxel's vertices are not merged: each moves
+/// instead along its own cube edge, away from the voxel, to `push` (a fraction of the edge; the
+/// snap distance), so the triangles between them grow from about 1e-6 voxel^2 (the mesher's
+/// 1/1024-voxel nudge) to about push^2 with the mesh's connectivity unchanged; where that would
+/// turn a triangle over they stay where they were.
 /// Vertices merged away or left without triangles, and collapsed triangles, are removed (the rest
 /// keep their order; `mesh.edge_keys`, when present, follows the vertices). The result depends
 /// only on the mesh's geometry and the candidates' edges, not on vertex numbering or candidate
 /// order.
 SnapReport snap_vertices(Mesh& mesh, std::vector<SnapCandidate> candidates, const Frame& frame,
-                         double min_area);
+                         double min_area, double push);
 
 
 }  // namespace isocurv::mc

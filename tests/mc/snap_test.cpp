@@ -109,6 +109,38 @@ TEST(Snap, IntegerVolumesAtVoxelValuesHaveNoSliversAndStayManifold) {
     }
 }
 
+TEST(Snap, AVoxelThatCannotMergeMovesItsVerticesOutToTheSnapDistance) {
+  // A 3^3 block of 80 in a 0 border, its centre at the isovalue 40, the centre's -y neighbour and
+  // its (+1, 0, -1) diagonal neighbour 0: the triangles around the centre form a disc whose rim
+  // passes one vertex twice, so merging there would leave a non-manifold edge. Its vertices move
+  // out along their edges instead: no triangle keeps the 1/1024-voxel nudge's 1e-6 voxel^2.
+  auto block = [](double x, double y, double z) {
+    const int i = int(x), j = int(y), k = int(z);
+    if (i < 1 || i > 3 || j < 1 || j > 3 || k < 1 || k > 3) return 0.0f;
+    if (i == 2 && j == 2 && k == 2) return 40.0f;
+    if ((i == 2 && j == 1 && k == 2) || (i == 3 && j == 2 && k == 1)) return 0.0f;
+    return 80.0f;
+  };
+  const volume::Volume v = test::sampled(block, {5, 5, 5});
+  mc::ExtractTimings t;
+  const Mesh plain = mc::extract(v, 40.0f, dev(), capped(0, false));
+  EXPECT_LT(mc::triangle_quality(plain, 1.0).min_area, 1e-6);  // the slivers snapping is for
+  const Mesh m = mc::extract(v, 40.0f, dev(), capped(mc::kDefaultSnap, true), &t);
+  expect_sound(m, "snapped");
+  expect_same_mesh(m, mc::extract_reference(v, 40.0f, capped(mc::kDefaultSnap, true)));
+  EXPECT_GT(t.pushed, 0u);
+  const mc::TriangleQuality q = mc::triangle_quality(m, 1.0);
+  EXPECT_GE(q.min_area, 1e-6);
+  // The moved vertices lie on their edges at the snap distance from the centre.
+  std::size_t at_snap = 0;
+  for (const Vec3f& p : m.positions) {
+    const double d = std::hypot(p[0] - 2.0, p[1] - 2.0, p[2] - 2.0);
+    if (std::fabs(d - mc::kDefaultSnap) < 1e-5) ++at_snap;
+    EXPECT_FALSE(d > 1e-6 && d < mc::kDefaultSnap - 1e-5) << "a vertex left inside the snap distance";
+  }
+  EXPECT_EQ(at_snap, t.pushed);
+}
+
 TEST(Snap, VerticesMoveAtMostTheSnapDistance) {
   const volume::Volume v = ct_like(3);
   for (float snap : {0.05f, 0.2f, 0.5f}) {
