@@ -35,20 +35,52 @@ struct GradientSampler {
     return g;
   }
 
-  /// Trilinear interpolation of the voxel gradients around index-space point q.
+  /// Trilinear interpolation of the voxel gradients around index-space point q: the central
+  /// differences at the 8 voxels around q, from the 32 samples they use (each read once; `at` per
+  /// corner would read 48), summed in the same order as `at`, so the result is the same.
   openvdb::Vec3d interpolate(const openvdb::Vec3d& q) {
     openvdb::Vec3d qc = q;
     if (clamp)
       for (int a = 0; a < 3; ++a) qc[a] = std::min(std::max(qc[a], double(lo[a])), double(hi[a]));
-    const int x0 = int(std::floor(qc[0])), y0 = int(std::floor(qc[1])), z0 = int(std::floor(qc[2]));
-    const double fx = qc[0] - x0, fy = qc[1] - y0, fz = qc[2] - z0;
+    const int base[3] = {int(std::floor(qc[0])), int(std::floor(qc[1])), int(std::floor(qc[2]))};
+    const double f[3] = {qc[0] - base[0], qc[1] - base[1], qc[2] - base[2]};
+    // Per axis the coordinates cx(base - 1) .. cx(base + 2): every corner cx(base + i) and its
+    // neighbours cx(corner -+ 1) that `at` reads are among them (q is clamped into the domain).
+    int coord[3][4];
+    for (int a = 0; a < 3; ++a)
+      for (int t = 0; t < 4; ++t) coord[a][t] = cx(base[a] + t - 1, a);
+    // Where coordinate c sits in its axis's row: the corners' slots 1 and 2 first, so a
+    // neighbour that clamping folds onto a corner reads the corner's sample.
+    auto slot = [&](int a, int c) {
+      for (int t : {1, 2, 0, 3})
+        if (coord[a][t] == c) return t;
+      return 1;  // not reached: every coordinate `at` reads is in the row
+    };
+    // The 32 samples: the 2x2x2 corners (slots 1..2 on every axis) and those one step beyond a
+    // corner along one axis (slot 0 or 3 on exactly one axis).
+    float v[4][4][4];
+    for (int k = 0; k < 4; ++k)
+      for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i)
+          if ((i % 3 == 0) + (j % 3 == 0) + (k % 3 == 0) <= 1)
+            v[k][j][i] = value(coord[0][i], coord[1][j], coord[2][k]);
     openvdb::Vec3d g(0.0);
     for (int k = 0; k < 2; ++k)
       for (int j = 0; j < 2; ++j)
         for (int i = 0; i < 2; ++i) {
-          const double w = (i ? fx : 1 - fx) * (j ? fy : 1 - fy) * (k ? fz : 1 - fz);
+          const double w = (i ? f[0] : 1 - f[0]) * (j ? f[1] : 1 - f[1]) * (k ? f[2] : 1 - f[2]);
           if (w == 0) continue;
-          g += w * at(cx(x0 + i, 0), cx(y0 + j, 1), cx(z0 + k, 2));
+          const int corner[3] = {1 + i, 1 + j, 1 + k};
+          openvdb::Vec3d d;
+          for (int a = 0; a < 3; ++a) {  // `at`'s central (or one-sided) difference
+            const int c = coord[a][corner[a]], up = cx(c + 1, a), down = cx(c - 1, a);
+            int p[3] = {corner[0], corner[1], corner[2]}, m[3] = {corner[0], corner[1], corner[2]};
+            p[a] = slot(a, up);
+            m[a] = slot(a, down);
+            const int span = up - down;
+            d[a] = span == 0 ? 0.0 : (double(v[p[2]][p[1]][p[0]]) - double(v[m[2]][m[1]][m[0]])) / span;
+          }
+          g += w * d;
         }
     return g;
   }
