@@ -12,6 +12,7 @@
 #include "app/render_options_cli.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/framing_points.h"
 #include "core/mesh_measures.h"
 #include "screen/cast_volume.h"
 #include "screen/estimate.h"
@@ -159,7 +160,8 @@ void register_screen(CLI::App& app) {
     std::optional<screen::CastVolume> cast;
     std::optional<Surface> surf;
     std::vector<Vec3f> normals;
-    std::array<double, 6> bounds{};
+    std::array<double, 6> bounds{};  // a volume's: the box around its surface's bricks
+    std::vector<std::array<double, 3>> frame_points;  // a mesh's: its vertices without specks
     float iso = 0;
     std::string format;
     std::size_t triangles = 0;
@@ -169,11 +171,7 @@ void register_screen(CLI::App& app) {
       prepare_mesh_for_curvature(*surf, in, o);
       normals = area_weighted_normals(surf->mesh);
       triangles = surf->mesh.triangles.size();
-      bounds = {1e300, -1e300, 1e300, -1e300, 1e300, -1e300};
-      for (const Vec3f& p : surf->mesh.positions)
-        for (int c = 0; c < 3; ++c)
-          bounds[2 * c] = std::min(bounds[2 * c], double(p[c])),
-                     bounds[2 * c + 1] = std::max(bounds[2 * c + 1], double(p[c]));
+      frame_points = framing_points(surf->mesh);
       empty = surf->mesh.triangles.empty();
       if (empty) throw Error(in, "the mesh has no triangles");
     } else {
@@ -211,7 +209,8 @@ void register_screen(CLI::App& app) {
       const int sw = layout.surface.x1 - layout.surface.x0,
                 sh = layout.surface.y1 - layout.surface.y0;
       if (sw < 1 || sh < 1) throw Error(out, "the picture leaves no room for the surface");
-      camera = fit_camera(bounds, view, double(sw) / sh);
+      camera = surf ? fit_camera_to_points(frame_points, view, double(sw) / sh)
+                    : fit_camera(bounds, view, double(sw) / sh);
       const screen::ViewFrame frame = screen::view_frame(camera, sw, sh);
       timer.start(cast ? "cast" : "rasterise");
       if (cast)

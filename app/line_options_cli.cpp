@@ -1,5 +1,7 @@
 #include "app/line_options_cli.h"
 
+#include "core/framing_points.h"
+
 #include <algorithm>
 #include <iostream>
 #include <limits>
@@ -56,17 +58,7 @@ lines::Options line_options(const LineCli &cli) {
 
 Camera picture_camera(const Mesh &mesh, const ViewSpec &view, int width,
                       int height) {
-  std::array<double, 6> b = {1, 0, 1, 0, 1, 0}; // empty
-  if (!mesh.positions.empty()) {
-    const double inf = std::numeric_limits<double>::infinity();
-    b = {inf, -inf, inf, -inf, inf, -inf};
-    for (const Vec3f &p : mesh.positions)
-      for (int c = 0; c < 3; ++c) {
-        b[2 * c] = std::min(b[2 * c], double(p[c]));
-        b[2 * c + 1] = std::max(b[2 * c + 1], double(p[c]));
-      }
-  }
-  return fit_camera(b, view, double(width) / double(height));
+  return fit_camera_to_points(framing_points(mesh), view, double(width) / double(height));
 }
 
 lines::Segments extract_lines(const Mesh &mesh,

@@ -135,12 +135,25 @@ Camera fit_camera(const std::array<double, 6>& bounds, const ViewSpec& spec, dou
   bool empty = false;
   for (int a = 0; a < 3; ++a) empty = empty || !(hi[a] >= lo[a]) || !std::isfinite(lo[a] + hi[a]);
   if (empty) lo = {-0.5, -0.5, -0.5}, hi = {0.5, 0.5, 0.5};
-  double diag = std::sqrt(dot(sub(hi, lo), sub(hi, lo)));
-  if (!(diag > 0)) {
+  if (!(std::sqrt(dot(sub(hi, lo), sub(hi, lo))) > 0)) {
     lo = sub(lo, {0.5, 0.5, 0.5});
     hi = add(hi, {0.5, 0.5, 0.5});
-    diag = std::sqrt(3.0);
   }
+  std::vector<Vec> corners(8);
+  for (int i = 0; i < 8; ++i)
+    corners[i] = {(i & 1) ? hi[0] : lo[0], (i & 2) ? hi[1] : lo[1], (i & 4) ? hi[2] : lo[2]};
+  return fit_camera_to_points(corners, spec, aspect, margin);
+}
+
+Camera fit_camera_to_points(const std::vector<std::array<double, 3>>& points, const ViewSpec& spec,
+                            double aspect, double margin) {
+  Vec lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  for (const Vec& p : points)
+    for (int a = 0; a < 3; ++a)
+      if (std::isfinite(p[a])) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
+  const double diag = std::sqrt(dot(sub(hi, lo), sub(hi, lo)));
+  if (points.empty() || !(hi[0] >= lo[0] && hi[1] >= lo[1] && hi[2] >= lo[2]) || !(diag > 0))
+    return fit_camera({lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]}, spec, aspect, margin);
   if (!(aspect > 0)) aspect = 1;
 
   Camera cam;
@@ -150,17 +163,16 @@ Camera fit_camera(const std::array<double, 6>& bounds, const ViewSpec& spec, dou
   const Vec right = cross(up, toward);  // image x to the right when looking along -toward
   cam.view_up = up;
 
-  // The corners in view coordinates (right, up, toward) about the box centre; recentre so the
-  // projection (for ortho exactly, for perspective nearly) is centred.
+  // The points in view coordinates (right, up, toward) about their box's centre; recentre so
+  // the projection (for ortho exactly, for perspective nearly) is centred.
   const Vec centre = scale(add(lo, hi), 0.5);
-  Vec corners[8];
   double rmin = 1e300, rmax = -1e300, umin = 1e300, umax = -1e300;
-  for (int i = 0; i < 8; ++i) {
-    const Vec p{(i & 1) ? hi[0] : lo[0], (i & 2) ? hi[1] : lo[1], (i & 4) ? hi[2] : lo[2]};
+  for (const Vec& p : points) {
     const Vec d = sub(p, centre);
-    corners[i] = {dot(d, right), dot(d, up), dot(d, toward)};
-    rmin = std::min(rmin, corners[i][0]), rmax = std::max(rmax, corners[i][0]);
-    umin = std::min(umin, corners[i][1]), umax = std::max(umax, corners[i][1]);
+    const double r = dot(d, right), u = dot(d, up);
+    if (!std::isfinite(r + u)) continue;
+    rmin = std::min(rmin, r), rmax = std::max(rmax, r);
+    umin = std::min(umin, u), umax = std::max(umax, u);
   }
   const double rc = 0.5 * (rmin + rmax), uc = 0.5 * (umin + umax);
   cam.focal_point = add(centre, add(scale(right, rc), scale(up, uc)));
@@ -173,12 +185,14 @@ Camera fit_camera(const std::array<double, 6>& bounds, const ViewSpec& spec, dou
     cam.position = add(cam.focal_point, scale(toward, 2 * diag));
     return cam;
   }
-  // Perspective: the distance D from the focal point at which every corner (r, u, t) satisfies
+  // Perspective: the distance D from the focal point at which every point (r, u, t) satisfies
   // |u| <= (D - t) tan(a/2) fill and |r| <= (D - t) tan(a/2) aspect fill.
   const double tan_half = std::tan(0.5 * cam.view_angle_deg * kPi / 180);
   double dist = 0;
-  for (const Vec& c : corners) {
-    const double r = std::abs(c[0] - rc), u = std::abs(c[1] - uc), t = c[2];
+  for (const Vec& p : points) {
+    const Vec d = sub(p, centre);
+    const double r = std::abs(dot(d, right) - rc), u = std::abs(dot(d, up) - uc), t = dot(d, toward);
+    if (!std::isfinite(r + u + t)) continue;
     dist = std::max(dist, t + u / (tan_half * fill));
     dist = std::max(dist, t + r / (tan_half * aspect * fill));
   }

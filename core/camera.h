@@ -5,6 +5,7 @@
 // that a line drawing and a rendered PNG of the same options see the same thing. No VTK here;
 // viz/ applies a Camera to a vtkCamera.
 #include <array>
+#include <vector>
 #include <optional>
 #include <string>
 #include <utility>
@@ -78,5 +79,12 @@ void view_axes(const ViewSpec& spec, std::array<double, 3>& toward_camera,
 /// projection is centred. An empty or degenerate box gets a unit box around its centre.
 Camera fit_camera(const std::array<double, 6>& bounds, const ViewSpec& spec, double aspect,
                   double margin = 0.08);
+
+/// The camera of `spec` that shows every one of `points` (world units) as fit_camera shows a
+/// box's corners: their projection centred, each at least `margin` inside the image edges. Fitted
+/// to the points themselves rather than their box, an object that does not fill its box's corners
+/// (the lobster seen from above at an angle) fills the picture. No points: fit_camera's unit box.
+Camera fit_camera_to_points(const std::vector<std::array<double, 3>>& points, const ViewSpec& spec,
+                            double aspect, double margin = 0.08);
 
 }  // namespace isocurv

@@ -124,14 +124,42 @@ std::array<double, 3> CastVolume::world(const std::array<double, 3>& q) const {
 }
 
 bool CastVolume::surface_bounds(float iso, std::array<double, 6>& box) const {
+  // The straddling bricks, grouped 26-connected (union-find over brick numbers).
+  const std::size_t nb = std::size_t(bx) * by * bz;
+  std::vector<std::int64_t> parent(nb, -1);  // -1: not straddling
+  auto root = [&](std::int64_t b) {
+    while (parent[b] != b) b = parent[b] = parent[parent[b]];
+    return b;
+  };
+  for (std::size_t b = 0; b < nb; ++b)
+    if (brick_straddles(b, iso)) parent[b] = std::int64_t(b);
+  for (int c = 0; c < bz; ++c)
+    for (int b = 0; b < by; ++b)
+      for (int a = 0; a < bx; ++a) {
+        const std::int64_t i = a + std::int64_t(bx) * (b + std::int64_t(by) * c);
+        if (parent[i] < 0) continue;
+        for (int dc = -1; dc <= 0; ++dc)  // the neighbours before it in brick order
+          for (int db = -1; db <= 1; ++db)
+            for (int da = -1; da <= 1; ++da) {
+              const std::int64_t j = i + da + std::int64_t(bx) * (db + std::int64_t(by) * dc);
+              if (j >= i || a + da < 0 || a + da >= bx || b + db < 0 || b + db >= by || c + dc < 0)
+                continue;
+              if (parent[j] >= 0) parent[root(i)] = root(j);
+            }
+      }
+  std::vector<std::uint32_t> count(nb, 0);
+  std::uint32_t largest = 0;
+  for (std::size_t b = 0; b < nb; ++b)
+    if (parent[b] >= 0) largest = std::max(largest, ++count[root(std::int64_t(b))]);
   int lo[3] = {bx, by, bz}, hi[3] = {-1, -1, -1};
   for (int c = 0; c < bz; ++c)
     for (int b = 0; b < by; ++b)
-      for (int a = 0; a < bx; ++a)
-        if (brick_straddles(std::size_t(a) + std::size_t(bx) * (b + std::size_t(by) * c), iso)) {
-          const int q[3] = {a, b, c};
-          for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
-        }
+      for (int a = 0; a < bx; ++a) {
+        const std::int64_t i = a + std::int64_t(bx) * (b + std::int64_t(by) * c);
+        if (parent[i] < 0 || count[root(i)] < kSpeckBrickFraction * largest) continue;
+        const int q[3] = {a, b, c};
+        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
+      }
   if (hi[0] < 0) return false;
   const int n[3] = {nx, ny, nz};
   box = {1e300, -1e300, 1e300, -1e300, 1e300, -1e300};

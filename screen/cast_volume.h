@@ -14,6 +14,8 @@ namespace isocurv::screen {
 inline constexpr std::uint64_t kMaxCastSamples = std::uint64_t(1) << 28;
 /// Cells per brick edge of the skipping grid (the mesher's brick size, mc::kBrick).
 inline constexpr int kCastBrick = 8;
+/// CastVolume::surface_bounds ignores groups of bricks under this fraction of the largest group.
+inline constexpr double kSpeckBrickFraction = 0.01;
 
 /// Index space here counts from the domain's first voxel: sample (i, j, k) is voxel
 /// domain.min() + (i, j, k), at values[i + nx (j + ny k)].
@@ -68,6 +70,9 @@ struct CastVolume {
   std::array<double, 3> world(const std::array<double, 3>& index) const;
   /// The world box (xmin, xmax, ymin, ymax, zmin, zmax) of the bricks that straddle `iso` (a
   /// box around the isosurface, within a brick of it), or false when none does (no surface).
+  /// Specks are left out, as core/framing_points leaves them out of a mesh's box: groups of
+  /// straddling bricks (26-connected) with under kSpeckBrickFraction of the largest group's
+  /// bricks (noise blobs far from a CT's object would otherwise shrink it in the picture).
   bool surface_bounds(float iso, std::array<double, 6>& box) const;
   std::array<double, 3> index(const std::array<double, 3>& world) const;
 };

@@ -1,5 +1,7 @@
 #include "viz/curvature_scene.h"
 
+#include "core/framing_points.h"
+
 #include <vtkActor.h>
 #include <vtkCamera.h>
 #include <vtkColorTransferFunction.h>
@@ -271,12 +273,10 @@ Camera CurvatureScene::frame_camera() {
     apply_camera(impl_->renderer, *o.camera);
     return *o.camera;
   }
-  double b[6];
-  impl_->surface->GetBounds(b);
   const PixelBox& s = impl_->layout.surface;
   const double aspect =
       s.empty() ? double(o.width) / double(o.height) : double(s.x1 - s.x0) / double(s.y1 - s.y0);
-  const Camera cam = fit_camera({b[0], b[1], b[2], b[3], b[4], b[5]}, o.view, aspect);
+  const Camera cam = fit_camera_to_points(framing_points(impl_->mesh), o.view, aspect);
   apply_camera(impl_->renderer, cam);
   return cam;
 }

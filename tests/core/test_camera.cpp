@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <tuple>
+#include <vector>
 
 #include "core/error.h"
 
@@ -107,6 +108,55 @@ TEST(Camera, FitKeepsEveryCornerInsideTheMarginAndIsTight) {
         // focal point centres the box's parallel projection, not its perspective one).
         EXPECT_GT(std::max(vert, horiz), (1 - margin) * (ortho ? 1 - 1e-9 : 0.98));
       }
+}
+
+/// Largest |projected coordinate| of `points` as fractions of the half-height and half-width.
+void points_in_image(const Camera& c, const std::vector<Vec>& points, double aspect, double& vert,
+                     double& horiz) {
+  const Vec back = c.toward_camera(), up = c.view_up, right = cross(up, back);
+  const double tan_half = std::tan(0.5 * c.view_angle_deg * kPi / 180);
+  vert = horiz = 0;
+  for (const Vec& p : points) {
+    const Vec d = sub(p, c.focal_point);
+    double x = dot(d, right), y = dot(d, up);
+    if (c.ortho) {
+      x /= c.parallel_scale * aspect, y /= c.parallel_scale;
+    } else {
+      const double depth = dot(sub(c.position, p), back);
+      ASSERT_GT(depth, 0) << "a point lies behind the eye";
+      x /= depth * tan_half * aspect, y /= depth * tan_half;
+    }
+    vert = std::max(vert, std::abs(y)), horiz = std::max(horiz, std::abs(x));
+  }
+}
+
+TEST(Camera, FitToPointsKeepsThemInsideAndFillsMoreThanTheirBox) {
+  // Points along the box's long diagonal: seen from +z they leave most of the box's corners empty.
+  std::vector<Vec> points;
+  for (int i = 0; i <= 20; ++i) points.push_back({-3 + 0.4 * i, 0.05 * i, 10 + 0.2 * i});
+  const std::array<double, 6> box{-3, 5, 0, 1, 10, 14};
+  for (bool ortho : {false, true})
+    for (NamedView v : {NamedView::iso, NamedView::plus_z, NamedView::minus_y}) {
+      ViewSpec s{v};
+      s.ortho = ortho;
+      SCOPED_TRACE(to_string(v) + (ortho ? " ortho" : " perspective"));
+      const Camera c = fit_camera_to_points(points, s, 4.0 / 3.0, 0.1);
+      double vert, horiz, box_vert, box_horiz;
+      points_in_image(c, points, 4.0 / 3.0, vert, horiz);
+      EXPECT_LE(vert, 0.9 + 1e-9);
+      EXPECT_LE(horiz, 0.9 + 1e-9);
+      EXPECT_GT(std::max(vert, horiz), 0.9 * (ortho ? 1 - 1e-9 : 0.98));  // tight
+      points_in_image(fit_camera(box, s, 4.0 / 3.0, 0.1), points, 4.0 / 3.0, box_vert, box_horiz);
+      EXPECT_GE(std::max(vert, horiz), std::max(box_vert, box_horiz) - 1e-9);
+    }
+  // Eight corners are the box: the same camera as fit_camera's.
+  std::vector<Vec> corners;
+  for (int i = 0; i < 8; ++i)
+    corners.push_back({box[(i & 1) ? 1 : 0], box[(i & 2) ? 3 : 2], box[(i & 4) ? 5 : 4]});
+  const Camera a = fit_camera(box, ViewSpec{}, 1.5), b = fit_camera_to_points(corners, ViewSpec{}, 1.5);
+  expect_vec(a.position, b.position);
+  expect_vec(a.focal_point, b.focal_point);
+  EXPECT_TRUE(std::isfinite(fit_camera_to_points({}, ViewSpec{}, 1).position[0]));
 }
 
 TEST(Camera, ZoomMagnifiesAndEmptyBoxesStillGiveACamera) {

@@ -4,10 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "core/cl_device.h"
 #include "screen/ray_cast.h"
+#include "tests/mc/volumes.h"
 #include "tests/screen/scenes.h"
 #include "volume/gradient_normals.h"
 
@@ -191,6 +193,32 @@ TEST(ScreenRayCast, AnIsovalueThatMissesGivesAnEmptyBuffer) {
   EXPECT_EQ(screen::ray_cast(*s.cast, 1e6f, frame, Device::default_device()).valid_count(), 0u);
   EXPECT_EQ(screen::ray_cast_reference(*s.cast, -1e6f, frame).valid_count(), 0u);
   EXPECT_TRUE(s.cast->surface_bounds(float(s.field->isovalue()), box));
+}
+
+TEST(ScreenRayCast, SurfaceBoundsLeaveOutSpecksButNotComparablePieces) {
+  // A ball of radius 40 (about 300 bricks of surface) with a speck (radius 0.8, one brick) far
+  // away: the speck is drawn but not framed. A second ball of radius 6 there instead is framed.
+  auto ball = [](double x, double y, double z, double c, double r) {
+    return r - std::sqrt((x - c) * (x - c) + (y - c) * (y - c) + (z - c) * (z - c));
+  };
+  for (double far_radius : {0.8, 6.0}) {
+    const volume::Volume v = test::sampled(
+        [&](double x, double y, double z) {
+          const double far = far_radius < 1 ? 116 : 112;  // the speck inside one brick
+          return float(std::max(ball(x, y, z, 48, 40), ball(x, y, z, far, far_radius)));
+        },
+        {128, 128, 128});
+    const screen::CastVolume c(v);
+    std::array<double, 6> box;
+    ASSERT_TRUE(c.surface_bounds(0.0f, box));
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_LE(box[2 * k], 8.0) << k;  // within a brick of the big ball
+      if (far_radius < 1)
+        EXPECT_LE(box[2 * k + 1], 96.0) << k;
+      else
+        EXPECT_GE(box[2 * k + 1], 112.0) << k;
+    }
+  }
 }
 
 TEST(ScreenRayCast, BadSizesAndStepsAreRefused) {
