@@ -90,11 +90,15 @@ void register_features(CLI::App &app) {
       fo.features = features::parse_features(list);
     StageTimer timer;
     Surface s = load_surface(in, o, timer);
-    prepare_mesh_for_curvature(s, in, o);
-    if (!s.field || s.field->normals.size() != s.mesh.vertex_count() ||
-        s.field->area.size() != s.mesh.vertex_count())
-      s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o,
-                                   timer, &s.normals);
+    const std::size_t nv = s.mesh.vertex_count();
+    if (s.field && s.field->normals.size() == nv && s.field->area.size() == nv) {
+      prepare_mesh_for_curvature(s, in, o);
+      if (!s.field)  // welded or flipped: the file's curvature no longer applies
+        s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o,
+                                     timer, &s.normals);
+    } else {
+      reestimate_keeping_extras(s, in, o, timer);  // a mesh file's other arrays stay
+    }
     parse_radii(radius, bounding_box_diagonal(s.mesh), fo);
     fo.isovalue = s.isovalue;
     timer.start("features");

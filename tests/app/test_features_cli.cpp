@@ -64,4 +64,19 @@ TEST(CliFeatures, MeshInputAndBadRadii) {
   EXPECT_FALSE(fs::exists(dir / "n.vtp"));
 }
 
+TEST(CliFeatures, AMeshFileKeepsItsEarlierArraysWhenCurvatureIsEstimatedAgain) {
+  // A .ply carries the arrays but not Area, so features estimates the curvature again: the
+  // file's arrays from the earlier run (other radii) must stay.
+  TempDir dir("features_keep");
+  ASSERT_TRUE(run_isocurv({"features", dataset("sphere"), "--radius", "0.2,0.3", "--features", "LBE,H_ii",
+                           "-o", dir / "f.ply", "--quiet"})
+                  .ok());
+  const auto again = run_isocurv({"features", dir / "f.ply", "--radius", "0.25", "--features", "LBE", "-o",
+                                  dir / "g.vtp", "--quiet"});
+  ASSERT_TRUE(again.ok()) << again.describe();
+  const io::MeshFile m = io::read_mesh(dir / "g.vtp");
+  for (const char* name : {"LBE", "LBE_r0.2", "H_ii_r0.3", "FeatureBoundary"}) EXPECT_NE(extra(m, name), nullptr) << name;
+  ASSERT_FALSE(m.field->H.empty());
+}
+
 }  // namespace

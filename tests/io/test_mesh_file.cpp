@@ -118,6 +118,24 @@ TEST_P(IoExactFormats, NoFieldReadsBackAsNoField) {
   EXPECT_FALSE(back.field.has_value());
 }
 
+TEST_P(IoExactFormats, ExtraArraysRoundTripUnderTheirNames) {
+  // The features and multi-scale arrays (names with '_' and '.') come back, in order, bit for bit.
+  const Mesh mesh = test::grid_mesh();
+  const auto full = test::random_field(mesh.vertex_count());
+  curvature::CurvatureField f;
+  f.H = full.H;
+  f.extra.push_back({"LBE_r0.2", full.k1});
+  f.extra.push_back({"H_s2", full.k2});
+  const std::string p = path(std::string("extras") + GetParam());
+  io::write_mesh(p, mesh, &f);
+  const io::MeshFile back = io::read_mesh(p);
+  ASSERT_TRUE(back.field.has_value());
+  ASSERT_EQ(back.field->extra.size(), 2u);
+  EXPECT_EQ(back.field->extra[0].name, "LBE_r0.2");
+  EXPECT_EQ(back.field->extra[1].name, "H_s2");
+  expect_same_field(*back.field, f);
+}
+
 TEST_P(IoExactFormats, EmptyMeshRoundTrips) {
   const std::string p = path(std::string("empty") + GetParam());
   io::write_mesh(p, Mesh{});
@@ -235,14 +253,18 @@ TEST_F(IoMeshFileTest, AsciiPlyWithPolygonsReads) {
   const std::string p = path("ascii.ply");
   spit(p,
        "ply\nformat ascii 1.0\ncomment hand made\nelement vertex 4\nproperty double x\nproperty double y\n"
-       "property double z\nproperty float k1\nelement face 1\nproperty list uchar uint vertex_index\n"
-       "end_header\n0 0 0 1\n1 0 0 2\n1 1 0 3\n0 1 0 4\n4 0 1 2 3\n");
+       "property double z\nproperty float k1\nproperty uchar quality\nelement face 1\n"
+       "property list uchar uint vertex_index\n"
+       "end_header\n0 0 0 1 7\n1 0 0 2 8\n1 1 0 3 9\n0 1 0 4 10\n4 0 1 2 3\n");
   const io::MeshFile back = io::read_mesh(p);
   ASSERT_EQ(back.mesh.triangle_count(), 2u);
   EXPECT_EQ(back.mesh.triangles[1], (Tri{0, 2, 3}));
   ASSERT_TRUE(back.field.has_value());
   EXPECT_EQ(back.field->k1, (std::vector<float>{1, 2, 3, 4}));
   EXPECT_TRUE(back.field->k2.empty());
+  ASSERT_EQ(back.field->extra.size(), 1u);  // another tool's property is kept as an extra array
+  EXPECT_EQ(back.field->extra[0].name, "quality");
+  EXPECT_EQ(back.field->extra[0].values, (std::vector<float>{7, 8, 9, 10}));
 }
 
 // ---- bad files
