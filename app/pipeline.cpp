@@ -128,6 +128,10 @@ void add_curvature_options(CLI::App& cmd, CommonOptions& o, bool mesh_input) {
                  "normals weighted by area) or face-average (the plain average of unit face normals, "
                  "Batagelo's protocol)")
       ->check(CLI::IsMember({"mesh", "area", "face-average", "volume"}));
+  cmd.add_option("--batagelo-weights", o.batagelo_weights,
+                 "--estimator batagelo: each 1-ring neighbour's weight in the one-pass tensor, uniform (the "
+                 "default, as the paper) or inverse-square (1/|x|^2 of its offset in the tangent plane)")
+      ->check(CLI::IsMember({"uniform", "inverse-square"}));
   if (mesh_input)
     cmd.add_flag("--flip", o.flip,
                  "Reverse the triangles of a mesh file before estimating (for a closed mesh oriented inward)");
@@ -383,6 +387,10 @@ curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Vol
                 " takes its normals from the volume's gradient at --scale");
   if (mesh_estimator && o.scale != "auto")
     throw Error("--scale applies to --estimator volume");
+  if (!o.batagelo_weights.empty() && co.estimator != curvature::Estimator::batagelo)
+    throw Error("--batagelo-weights applies to --estimator batagelo");
+  if (o.batagelo_weights == "inverse-square")
+    co.batagelo_weights = curvature::NeighbourWeights::inverse_square;
   const std::vector<std::string> scales = parse_scales(o.scale);
   co.scale = scales[0] == "auto" ? 0.0 : std::strtod(scales[0].c_str(), nullptr);
   NormalsUsed chosen;
@@ -493,6 +501,8 @@ nlohmann::json surface_report(const Surface& s) {
     for (const auto& [key, how] : s.estimator.notes) {
       if (key == "scales")
         e["scales"] = parse_scales(how);  // --scale S1,S2,...: arrays suffixed _s<S> per scale
+      else if (key == "neighbour_weights")
+        e[key] = how;  // --batagelo-weights
       else
         e[key + "_chosen"] = how;
     }

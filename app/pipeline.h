@@ -37,6 +37,7 @@ struct CommonOptions {
   io::Compression compress;       ///< --compress (.vtp outputs)
   std::string estimator;          ///< --estimator (curvature::estimator_names); empty: rusinkiewicz
   std::string scale = "auto";     ///< --scale: sigma in world units, a list "1,2,4", or "auto"
+  std::string batagelo_weights;   ///< --batagelo-weights uniform|inverse-square; empty: uniform
   std::string ao;                 ///< --ao-method (ao::method_names); empty: griffin, the estimators' own
   bool hattori_half = false;      ///< --hattori-half
 };
@@ -47,7 +48,8 @@ std::vector<std::string> parse_scales(const std::string& text);
 
 /// Adds --iso --device --cap --snap --json --quiet and the volume options.
 void add_common_options(CLI::App& cmd, CommonOptions& o, bool with_iso = true);
-/// Adds --estimator, --scale, --normals and --ao-scale, and --flip when the command takes mesh files.
+/// Adds --estimator, --scale, --normals, --batagelo-weights and --ao-scale, and --flip when the
+/// command takes mesh files.
 void add_curvature_options(CLI::App& cmd, CommonOptions& o, bool mesh_input = false);
 
 /// Adds --ao-method METHOD and --hattori-half (named so, as SEEDS-SPEC G-AO2 does: --ao is

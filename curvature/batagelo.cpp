@@ -12,10 +12,11 @@ namespace {
 using detail::V3;
 using Vec4d = Eigen::Vector4d;
 
-// Step 2: the one-pass tensor (e, f, g) of vertex i in its frame (u, v). False when the
-// neighbours' projections do not span the plane.
+// Step 2: the one-pass tensor (e, f, g) of vertex i in its frame (u, v), each neighbour's rows
+// weighted per `weights`. False when the neighbours' projections do not span the plane.
 bool one_pass_tensor(std::uint32_t i, const Mesh& mesh, const std::vector<V3>& normal,
-                     const detail::Neighbours& nb, const V3& u, const V3& v, V3& tensor) {
+                     const detail::Neighbours& nb, const V3& u, const V3& v,
+                     curvature::NeighbourWeights weights, V3& tensor) {
   const V3 p = detail::to_v3(mesh.positions[i]);
   Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
   V3 rhs = V3::Zero();
@@ -23,11 +24,13 @@ bool one_pass_tensor(std::uint32_t i, const Mesh& mesh, const std::vector<V3>& n
     const std::uint32_t q = nb.ids[k];
     const V3 dx = detail::to_v3(mesh.positions[q]) - p, dn = normal[q] - normal[i];
     const double xu = dx.dot(u), xv = dx.dot(v), yu = dn.dot(u), yv = dn.dot(v);
-    // Rows [xu xv 0; 0 xu xv] (e, f, g)^T = (yu, yv)^T.
-    A(0, 0) += xu * xu;
-    A(0, 1) += xu * xv;
-    A(2, 2) += xv * xv;
-    rhs += V3(xu * yu, xv * yu + xu * yv, xv * yv);
+    const double r2 = xu * xu + xv * xv;
+    const double w = weights == curvature::NeighbourWeights::uniform ? 1.0 : r2 > 0 ? 1.0 / r2 : 0.0;
+    // Rows [xu xv 0; 0 xu xv] (e, f, g)^T = (yu, yv)^T, times w.
+    A(0, 0) += w * xu * xu;
+    A(0, 1) += w * xu * xv;
+    A(2, 2) += w * xv * xv;
+    rhs += w * V3(xu * yu, xv * yu + xu * yv, xv * yv);
   }
   A(1, 1) = A(0, 0) + A(2, 2);
   A(1, 2) = A(2, 1) = A(1, 0) = A(0, 1);
@@ -83,7 +86,7 @@ CurvatureField estimate_batagelo_reference(const Mesh& mesh, const Options& opti
   for (std::uint32_t i = 0; i < nv; ++i) {
     V3 u, v, k = V3::Zero();
     detail::tangent_basis(normal[i], u, v);
-    const bool ok = normal[i].squaredNorm() > 0 && one_pass_tensor(i, mesh, normal, nb, u, v, k);
+    const bool ok = normal[i].squaredNorm() > 0 && one_pass_tensor(i, mesh, normal, nb, u, v, options.batagelo_weights, k);
     if (ok) {
       pr[i] = detail::diagonalise(k[0], k[1], k[2], u, v, normal[i]);  // 3
     } else {

@@ -16,7 +16,8 @@ namespace isocurv::curvature {
 ///     options.normal_weights).
 ///  2. Tensor (section 4.1): for each distinct 1-ring neighbour q, x = (q - P) and
 ///     y = (n_q - n_P), both projected on (U, V); least squares on II x = y for the symmetric
-///     II = [[e, f], [f, g]] (normal equations, LDL^T with the project's pivot tolerance).
+///     II = [[e, f], [f, g]] (normal equations, LDL^T with the project's pivot tolerance), each
+///     neighbour weighted 1 or 1 / |x|^2 (options.batagelo_weights; x projected).
 ///  3. Directions: II diagonalised, k1 >= k2, (dir1, dir2, normal) right-handed.
 ///  4. Derivative (section 4.2, in the corrected full-tensor form of SEEDS-SPEC 3.3; the printed
 ///     eq. 15-16 do not converge): for each neighbour, the difference of q's second fundamental

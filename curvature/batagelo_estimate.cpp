@@ -17,7 +17,8 @@ void batagelo_passes(MeshPassSession& s, Device& device, const MeshBuffers& m,
   const std::size_t nv = m.nv;
   const cl_uint vcount = cl_uint(nv);
   set_args(s.batagelo_tensor, *m.positions, s.normals.buffer, *m.nb_offsets, *m.nb_ids, vcount,
-           cl_float(options.ao_scale), s.k1.buffer, s.k2.buffer, s.dir1.buffer, s.dir2.buffer,
+           cl_float(options.ao_scale),
+           cl_uint(options.batagelo_weights == NeighbourWeights::inverse_square), s.k1.buffer, s.k2.buffer, s.dir1.buffer, s.dir2.buffer,
            s.H.buffer, s.K.buffer, s.shape.buffer, s.curved.buffer, s.ao.buffer,
            s.no_tensor.buffer);
   launch(q, s.batagelo_tensor, nv, kGroup);

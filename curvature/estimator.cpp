@@ -93,6 +93,10 @@ CurvatureField estimate_field(const Mesh& mesh, const VolumeSource& source, Devi
       const MeshEstimator m = *as_mesh_estimator(options.estimator);
       field = estimate_mesh(m, mesh, device, options);
       r.parameters.emplace_back("ao_scale", options.ao_scale);
+      if (options.estimator == Estimator::batagelo)
+        r.notes.emplace_back("neighbour_weights", options.batagelo_weights == NeighbourWeights::uniform
+                                                      ? "uniform"
+                                                      : "inverse-square");
       for (std::uint8_t u : field.unreliable) r.unreliable += u;
       break;
     }

@@ -34,16 +34,17 @@ INLINE void store_derived(uint v, float k1, float k2, float ao_scale, __global f
 
 // Batagelo 1. Per vertex: the one-pass tensor from the distinct 1-ring (rows
 // [xu xv 0; 0 xu xv] (e, f, g) = (yu, yv), x = q - P and y = n_q - n_P on P's basis), solved by
-// LDL^T (solve_tensor: the same structured system as a triangle's) and diagonalised. A vertex
+// LDL^T (solve_tensor: the same structured system as a triangle's) and diagonalised; each
+// neighbour's rows weighted 1, or 1 / |x|^2 when inverse_square (x projected). A vertex
 // whose neighbours do not span the plane (or with a zero normal) gets zeros, dir1 = bu and
 // no_tensor = 1.
 __kernel void batagelo_tensor(__global const float* positions, __global const float* normals,
                               __global const uint* nb_offsets, __global const uint* nb_ids,
                               const uint vertex_count, const float ao_scale,
-                              __global float* k1_out, __global float* k2_out,
-                              __global float* dir1_out, __global float* dir2_out,
-                              __global float* H, __global float* K, __global float* shape,
-                              __global float* curved, __global float* ao,
+                              const uint inverse_square, __global float* k1_out,
+                              __global float* k2_out, __global float* dir1_out,
+                              __global float* dir2_out, __global float* H, __global float* K,
+                              __global float* shape, __global float* curved, __global float* ao,
                               __global uchar* no_tensor) {
   const uint v = min((uint)get_global_id(0), vertex_count - 1);
   const vec3 p = load3(positions, v), n = load3(normals, v);
@@ -55,8 +56,10 @@ __kernel void batagelo_tensor(__global const float* positions, __global const fl
     const uint q = nb_ids[i];
     const vec3 dx = sub3(load3(positions, q), p), dn = sub3(load3(normals, q), n);
     const float xu = dot3(dx, bu), xv = dot3(dx, bv), yu = dot3(dn, bu), yv = dot3(dn, bv);
-    a += xu * xu, b += xu * xv, c += xv * xv;
-    r.u += xu * yu, r.uv += xv * yu + xu * yv, r.v += xv * yv;
+    const float r2 = xu * xu + xv * xv;
+    const float w = !inverse_square ? 1.0f : r2 > 0.0f ? 1.0f / r2 : 0.0f;
+    a += w * xu * xu, b += w * xu * xv, c += w * xv * xv;
+    r.u += w * xu * yu, r.uv += w * (xv * yu + xu * yv), r.v += w * xv * yv;
   }
   tensor2 k;
   const bool ok = solve_tensor(a, b, c, r, &k) && dot3(n, n) > 0.0f;

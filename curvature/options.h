@@ -16,6 +16,12 @@ enum class NormalWeights {
   area,
 };
 
+/// How Batagelo & Wu's one-pass tensor weighs each 1-ring neighbour's row (their section 4.1).
+enum class NeighbourWeights {
+  uniform,         ///< w = 1: every neighbour alike (the paper's default)
+  inverse_square,  ///< w = 1 / |x|^2, x the neighbour's offset in the tangent plane: near ones count more
+};
+
 /// The curvature estimators behind curvature::estimate_field (curvature/estimator.h).
 enum class Estimator {
   /// Rusinkiewicz's estimator on the mesh (Griffin et al.'s parallel form): curvature from the
@@ -51,6 +57,9 @@ struct Options {
   const std::vector<Vec3f>* vertex_normals = nullptr;
   /// Weighting of face normals when the normals come from the mesh (mesh estimators).
   NormalWeights normal_weights = NormalWeights::max;
+  /// Batagelo estimator: the weight of each neighbour in the one-pass tensor's least squares (the
+  /// derivative tensor's fit is unweighted either way). Ignored by the other estimators.
+  NeighbourWeights batagelo_weights = NeighbourWeights::uniform;
   /// Radius, in world units, of the hemisphere the ambient occlusion integrates over (Griffin et
   /// al. section 3.7): curvatures are multiplied by it before the polynomial is evaluated, so a
   /// larger value darkens concave regions more.

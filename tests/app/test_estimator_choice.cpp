@@ -49,4 +49,26 @@ TEST(CliEstimatorChoice, MeshEstimatorsFillWhatTheyCan) {
   for (std::size_t i = 1; i < normals.size(); ++i) EXPECT_NE(normals[i], normals[0]) << "source " << i;
 }
 
+TEST(CliEstimatorChoice, BatageloNeighbourWeights) {
+  TempDir dir("batagelo_weights");
+  std::vector<float> k[2];
+  int i = 0;
+  for (const char* w : {"uniform", "inverse-square"}) {
+    const std::string out = dir / (std::string(w) + ".vtp");
+    const auto r = run_isocurv(
+        {"curvature", dataset("torus"), "--estimator", "batagelo", "--batagelo-weights", w, "-o", out, "--json"});
+    ASSERT_TRUE(r.ok()) << r.describe();
+    EXPECT_EQ(parse_json(r.out, "curvature --json")["estimator"]["neighbour_weights"], w);
+    k[i++] = io::read_mesh(out).field->K;
+  }
+  ASSERT_EQ(k[0].size(), k[1].size());
+  EXPECT_NE(k[0], k[1]) << "the weights change the least squares on a marching-cubes mesh";
+  expect_clean_failure(run_isocurv({"curvature", dataset("torus"), "--batagelo-weights", "inverse-square", "-o",
+                                    dir / "x.vtp"}),
+                       "--estimator batagelo");
+  expect_usage_error(run_isocurv({"curvature", dataset("torus"), "--estimator", "batagelo", "--batagelo-weights",
+                                  "cubed", "-o", dir / "y.vtp"}),
+                     "--batagelo-weights");
+}
+
 }  // namespace

@@ -32,14 +32,18 @@ TEST(Batagelo, SphereWithExactNormals) {  // acceptance (a)
   const std::vector<Vec3f> n = sphere_normals(m);
   curvature::Options o;
   o.vertex_normals = &n;
-  const CurvatureField f = curvature::estimate_batagelo_reference(m, o);
-  ASSERT_EQ(f.size(), m.vertex_count());
-  for (std::size_t i = 0; i < f.size(); ++i) {
-    ASSERT_NEAR(f.k1[i], 1 / R, 2e-5);
-    ASSERT_NEAR(f.k2[i], 1 / R, 2e-5);
-    ASSERT_EQ(f.unreliable[i], 0);
-    // An umbilic: the derivative vanishes.
-    for (float c : f.dcurv[i]) ASSERT_NEAR(c, 0, 1e-4);
+  // With exact normals every row is exact (n_q - n_P = (q - P) / R): any weights give 1/R.
+  for (auto w : {curvature::NeighbourWeights::uniform, curvature::NeighbourWeights::inverse_square}) {
+    o.batagelo_weights = w;
+    const CurvatureField f = curvature::estimate_batagelo_reference(m, o);
+    ASSERT_EQ(f.size(), m.vertex_count());
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      ASSERT_NEAR(f.k1[i], 1 / R, 2e-5);
+      ASSERT_NEAR(f.k2[i], 1 / R, 2e-5);
+      ASSERT_EQ(f.unreliable[i], 0);
+      // An umbilic: the derivative vanishes.
+      for (float c : f.dcurv[i]) ASSERT_NEAR(c, 0, 1e-4);
+    }
   }
 }
 

@@ -76,6 +76,11 @@ TEST(MeshEstimatorKernels, MatchReferenceOnClosedFormMeshes) {
   o.vertex_normals = &n;
   o.normal_weights = curvature::NormalWeights::area;
   check_all(t.mesh, o, "jittered torus, exact normals");
+  curvature::Options w;  // Batagelo's inverse-square neighbour weights
+  w.batagelo_weights = curvature::NeighbourWeights::inverse_square;
+  Device& dev = Device::default_device();
+  expect_close(curvature::estimate_batagelo(t.mesh, dev, w), curvature::estimate_batagelo_reference(t.mesh, w),
+               true, "jittered torus batagelo, inverse-square weights");
   Mesh open = t.mesh;  // an open boundary: drop a band of triangles
   open.triangles.resize(open.triangles.size() * 3 / 4);
   check_all(open, {}, "open torus");
