@@ -24,6 +24,49 @@ std::string format_seconds(double s) {
     std::snprintf(buf, sizeof buf, "%d min %d s", int(s / 60), int(s) % 60);
   return buf;
 }
+
+constexpr int kBarWidth = 24;  // the bar's inner width, in characters
+
+/// The bar's text after the label: "[########        ]  33%  2.1 s, 4.2 s left" for a known
+/// fraction, "[   =====        ]  2.1 s" (the block at `frame`'s place) for an unknown one (< 0).
+std::string bar_text(double fraction, double seconds, int frame) {
+  constexpr int kBlock = 5;  // the bouncing block's width
+  char bar[kBarWidth + 1];
+  std::string tail = format_seconds(seconds);
+  if (fraction >= 0) {  // known progress: a filled bar, the percentage, the time left
+    const int filled = static_cast<int>(kBarWidth * std::min(fraction, 1.0));
+    for (int i = 0; i < kBarWidth; ++i) bar[i] = i < filled ? '#' : ' ';
+    char pct[16];
+    std::snprintf(pct, sizeof pct, "%3d%%  ", static_cast<int>(100 * std::min(fraction, 1.0)));
+    tail = pct + tail;
+    if (fraction > 0.02 && fraction < 1)
+      tail += ", " + format_seconds(seconds * (1 - fraction) / fraction) + " left";
+  } else {  // unknown: the block bounces from end to end
+    const int period = 2 * (kBarWidth - kBlock);
+    const int phase = frame % period, at = phase <= kBarWidth - kBlock ? phase : period - phase;
+    for (int i = 0; i < kBarWidth; ++i) bar[i] = (i >= at && i < at + kBlock) ? '=' : ' ';
+  }
+  bar[kBarWidth] = '\0';
+  return std::string("[") + bar + "] " + tail;
+}
+
+/// Draws "\r<label> <bar text>" on stderr, padded over what a longer earlier line left; `widest`
+/// is the longest line drawn so far (updated).
+void draw_line(const std::string& label, const std::string& text, std::size_t& widest) {
+  char line[256];
+  const int len = std::snprintf(line, sizeof line, "\r%-12s %s", label.c_str(), text.c_str());
+  const std::size_t shown = len > 0 ? std::min(std::size_t(len), sizeof line - 1) : 0;
+  std::fprintf(stderr, "%s%*s", line, int(widest > shown ? widest - shown : 0), "");
+  widest = std::max(widest, shown);
+  std::fflush(stderr);
+}
+
+/// Erases a line of `widest` characters drawn by draw_line.
+void erase_line(std::size_t widest) {
+  if (widest == 0) return;
+  std::fprintf(stderr, "\r%*s\r", static_cast<int>(widest), "");
+  std::fflush(stderr);
+}
 }  // namespace
 
 void report_stage_progress(double fraction) {
@@ -78,20 +121,13 @@ void Progress::draw(bool force) {
   if (!force && (now - start_ < progress_delay() || now - last_ < std::chrono::milliseconds(100)))
     return;
   last_ = now;
-  const int width = 30;
-  const int filled = static_cast<int>(width * done_ / total_);
-  std::fprintf(stderr, "\r%-12s [", label_.c_str());
-  for (int i = 0; i < width; ++i) std::fputc(i < filled ? '#' : ' ', stderr);
-  std::fprintf(stderr, "] %3d%%", static_cast<int>(100 * done_ / total_));
-  std::fflush(stderr);
-  drawn_ = true;
+  const double seconds = std::chrono::duration<double>(now - start_).count();
+  draw_line(label_, bar_text(double(done_) / double(total_), seconds, 0), widest_);
 }
 
 void Progress::finish() {
-  if (active_ && drawn_) {
-    std::fprintf(stderr, "\r%60s\r", "");
-    std::fflush(stderr);
-  }
+  if (active_) erase_line(widest_);
+  widest_ = 0;
   active_ = false;
 }
 
@@ -115,7 +151,6 @@ void StageBar::finish() {
 }
 
 void StageBar::run() {
-  constexpr int kWidth = 24, kBlock = 5;  // the bar's inner width; the moving block's
   constexpr auto kRedraw = std::chrono::milliseconds(100);
   const auto start = std::chrono::steady_clock::now();
   std::unique_lock<std::mutex> lock(mutex_);
@@ -124,37 +159,10 @@ void StageBar::run() {
   for (int frame = 0; !done_; ++frame) {
     const double s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const double fraction = g_stage_fraction.load(std::memory_order_relaxed);
-    char bar[kWidth + 1];
-    std::string tail = format_seconds(s);
-    if (fraction >= 0) {  // known progress: a filled bar, the percentage, the time left
-      const int filled = static_cast<int>(kWidth * fraction);
-      for (int i = 0; i < kWidth; ++i) bar[i] = i < filled ? '#' : ' ';
-      char pct[16];
-      std::snprintf(pct, sizeof pct, "%3d%%  ", static_cast<int>(100 * fraction));
-      tail = pct + tail;
-      if (fraction > 0.02 && fraction < 1)
-        tail += ", " + format_seconds(s * (1 - fraction) / fraction) + " left";
-    } else {  // unknown: the block bounces from end to end
-      const int period = 2 * (kWidth - kBlock);
-      const int phase = frame % period, at = phase <= kWidth - kBlock ? phase : period - phase;
-      for (int i = 0; i < kWidth; ++i) bar[i] = (i >= at && i < at + kBlock) ? '=' : ' ';
-    }
-    bar[kWidth] = '\0';
-    char line[256];
-    const int len =
-        std::snprintf(line, sizeof line, "\r%-12s [%s] %s", label_.c_str(), bar, tail.c_str());
-    // Pad over what a longer earlier line left on the terminal.
-    const std::size_t shown = len > 0 ? std::size_t(len) : 0;
-    std::fprintf(stderr, "%s%*s", line, int(widest > shown ? widest - shown : 0), "");
-    widest = std::max(widest, shown);
-    std::fflush(stderr);
+    draw_line(label_, bar_text(g_stage_fraction.load(std::memory_order_relaxed), s, frame), widest);
     wake_.wait_for(lock, kRedraw, [this] { return done_; });
   }
-  if (widest > 0) {
-    std::fprintf(stderr, "\r%*s\r", static_cast<int>(widest), "");
-    std::fflush(stderr);
-  }
+  erase_line(widest);
 }
 
 }  // namespace isocurv

@@ -42,8 +42,9 @@ class StageCounter {
 };
 
 /// Progress of one step with `total` units. Inside a running StageBar it draws nothing itself and
-/// feeds that bar (report_stage_progress), so one line shows one bar; otherwise it draws its own,
-/// at most ~10 times a second, and erases itself when finished or destroyed. Thread-compatible:
+/// feeds that bar (report_stage_progress), so one line shows one bar; otherwise it draws its own
+/// as a StageBar with known progress does ("label  [####      ]  42%  1.2 s, 1.6 s left"), at most
+/// ~10 times a second, and erases itself when finished or destroyed. Thread-compatible:
 /// call advance() from one thread.
 class Progress {
  public:
@@ -59,7 +60,8 @@ class Progress {
   void draw(bool force);
   std::string label_;
   std::uint64_t total_, done_ = 0;
-  bool active_, drawn_ = false;
+  bool active_;
+  std::size_t widest_ = 0;  // the longest line drawn (0: nothing drawn yet)
   std::chrono::steady_clock::time_point start_, last_;
 };
 

@@ -67,26 +67,33 @@ TEST(Camera, AzimuthAndElevationTurnTheNamedView) {
   expect_vec(u, {0, 1, 0});
 }
 
-/// Largest |projected coordinate| of the box corners as a fraction of the half-height (vertical)
-/// and half-width (horizontal) of the image.
-void extent_in_image(const Camera& c, const std::array<double, 6>& b, double aspect,
-                     double& vert, double& horiz) {
+/// Largest |projected coordinate| of `points` as fractions of the half-height and half-width.
+void points_in_image(const Camera& c, const std::vector<Vec>& points, double aspect, double& vert,
+                     double& horiz) {
   const Vec back = c.toward_camera(), up = c.view_up, right = cross(up, back);
   const double tan_half = std::tan(0.5 * c.view_angle_deg * kPi / 180);
   vert = horiz = 0;
-  for (int i = 0; i < 8; ++i) {
-    const Vec p{b[(i & 1) ? 1 : 0], b[(i & 2) ? 3 : 2], b[(i & 4) ? 5 : 4]};
+  for (const Vec& p : points) {
     const Vec d = sub(p, c.focal_point);
     double x = dot(d, right), y = dot(d, up);
     if (c.ortho) {
       x /= c.parallel_scale * aspect, y /= c.parallel_scale;
     } else {
       const double depth = dot(sub(c.position, p), back);
-      ASSERT_GT(depth, 0) << "a corner lies behind the eye";
+      ASSERT_GT(depth, 0) << "a point lies behind the eye";
       x /= depth * tan_half * aspect, y /= depth * tan_half;
     }
     vert = std::max(vert, std::abs(y)), horiz = std::max(horiz, std::abs(x));
   }
+}
+
+/// Largest |projected coordinate| of the box corners as a fraction of the half-height (vertical)
+/// and half-width (horizontal) of the image.
+void extent_in_image(const Camera& c, const std::array<double, 6>& b, double aspect,
+                     double& vert, double& horiz) {
+  std::vector<Vec> corners;
+  for (int i = 0; i < 8; ++i) corners.push_back({b[(i & 1) ? 1 : 0], b[(i & 2) ? 3 : 2], b[(i & 4) ? 5 : 4]});
+  points_in_image(c, corners, aspect, vert, horiz);
 }
 
 TEST(Camera, FitKeepsEveryCornerInsideTheMarginAndIsTight) {
@@ -108,26 +115,6 @@ TEST(Camera, FitKeepsEveryCornerInsideTheMarginAndIsTight) {
         // focal point centres the box's parallel projection, not its perspective one).
         EXPECT_GT(std::max(vert, horiz), (1 - margin) * (ortho ? 1 - 1e-9 : 0.98));
       }
-}
-
-/// Largest |projected coordinate| of `points` as fractions of the half-height and half-width.
-void points_in_image(const Camera& c, const std::vector<Vec>& points, double aspect, double& vert,
-                     double& horiz) {
-  const Vec back = c.toward_camera(), up = c.view_up, right = cross(up, back);
-  const double tan_half = std::tan(0.5 * c.view_angle_deg * kPi / 180);
-  vert = horiz = 0;
-  for (const Vec& p : points) {
-    const Vec d = sub(p, c.focal_point);
-    double x = dot(d, right), y = dot(d, up);
-    if (c.ortho) {
-      x /= c.parallel_scale * aspect, y /= c.parallel_scale;
-    } else {
-      const double depth = dot(sub(c.position, p), back);
-      ASSERT_GT(depth, 0) << "a point lies behind the eye";
-      x /= depth * tan_half * aspect, y /= depth * tan_half;
-    }
-    vert = std::max(vert, std::abs(y)), horiz = std::max(horiz, std::abs(x));
-  }
 }
 
 TEST(Camera, FitToPointsKeepsThemInsideAndFillsMoreThanTheirBox) {

@@ -105,6 +105,24 @@ TEST(StageBar, ProgressAndCountersFeedTheRunningBarInsteadOfDrawingTheirOwn) {
   EXPECT_NE(t.find("100%"), std::string::npos) << t;
 }
 
+TEST(Progress, OnItsOwnDrawsTheStageBarsLineAndErasesIt) {
+  // Outside a stage (deform's frames): the same line as a StageBar with known progress.
+  StderrOnATerminal term;
+  ASSERT_TRUE(term.ok());
+  {
+    Progress p("frames", 8);
+    p.set(4);
+    std::this_thread::sleep_for(std::chrono::milliseconds(120));  // one redraw per 100 ms
+    p.set(6);
+  }
+  term.restore();
+  const std::string t = term.text();
+  EXPECT_NE(t.find("frames"), std::string::npos) << t;
+  EXPECT_NE(t.find("[##################      ]  75%"), std::string::npos) << "three quarters of 24: " << t;
+  EXPECT_NE(t.find(" left"), std::string::npos) << t;
+  EXPECT_EQ(t.back(), '\r') << "the bar is erased at the end: " << t;
+}
+
 TEST(StageBar, NothingWhenStderrIsNotATerminal) {
   // The test's stderr is a pipe or a file under ctest; a bar must not draw, but progress is kept.
   if (isatty(STDERR_FILENO)) GTEST_SKIP() << "stderr is a terminal here";
