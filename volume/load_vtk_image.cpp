@@ -18,6 +18,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstdlib>
 #include <cctype>
@@ -254,6 +255,46 @@ void check_legacy_attributes(const std::string& path, const std::string& head, s
   }
 }
 
+/// Refuses a .vti whose pieces do not cover its WholeExtent: VTK's reader allocates the whole
+/// extent and fills only the pieces, so the rest would load as zeros (silent data loss). Checked
+/// only when every Piece tag lies in `head` (it reaches the appended data or the end of the
+/// ImageData element); the pieces must span the whole extent on each axis and hold together at
+/// least its number of points.
+void check_vti_pieces(const std::string& path, const std::string& head) {
+  if (head.find("<AppendedData") == std::string::npos && head.find("</ImageData>") == std::string::npos)
+    return;
+  std::size_t from = 0;
+  const std::optional<std::string> whole_text = attribute(head, "WholeExtent", from);
+  if (!whole_text) return;  // VTK reports it
+  const auto whole = integers(*whole_text, 6);
+  if (!whole) return;
+  long double whole_points = 1, piece_points = 0;
+  std::array<long long, 6> span = {LLONG_MAX, LLONG_MIN, LLONG_MAX, LLONG_MIN, LLONG_MAX, LLONG_MIN};
+  for (std::size_t i = 0; i < 3; ++i) whole_points *= (long double)((*whole)[2 * i + 1] - (*whole)[2 * i] + 1);
+  int pieces = 0;
+  for (std::size_t at = 0; (at = head.find("<Piece", at)) != std::string::npos; at += 6) {
+    std::size_t f = at;
+    const std::optional<std::string> e = attribute(head, "Extent", f);
+    const auto v = e ? integers(*e, 6) : std::nullopt;
+    if (!v) throw Error(path, "a Piece without a readable Extent");
+    ++pieces;
+    long double n = 1;
+    for (std::size_t i = 0; i < 3; ++i) {
+      span[2 * i] = std::min(span[2 * i], (*v)[2 * i]);
+      span[2 * i + 1] = std::max(span[2 * i + 1], (*v)[2 * i + 1]);
+      n *= (long double)std::max(0LL, (*v)[2 * i + 1] - (*v)[2 * i] + 1);
+    }
+    piece_points += n;
+  }
+  if (pieces == 0) return;  // VTK reports it
+  bool spans = true;
+  for (std::size_t i = 0; i < 3; ++i)
+    spans = spans && span[2 * i] <= (*whole)[2 * i] && span[2 * i + 1] >= (*whole)[2 * i + 1];
+  if (!spans || piece_points < whole_points)
+    throw Error(path, "the pieces' extents do not cover the WholeExtent " + *whole_text +
+                          " (the rest would read as zeros)");
+}
+
 /// Refuses, before VTK allocates for it, a header claiming more voxels than the file can hold:
 /// a .vtk stores at least a byte per value, a .vti at most ~1000 values per byte (deflate).
 void check_claim(const std::string& path, const std::string& format, std::uint64_t size) {
@@ -265,6 +306,7 @@ void check_claim(const std::string& path, const std::string& format, std::uint64
   if (format == "vtk" && to_lower(head_text).find("field") != std::string::npos)
     throw Error(path, "legacy .vtk files with FIELD data (or the word 'field' in their header) are not "
                       "supported: VTK's reader can crash on them; save the image as .vti");
+  if (format == "vti") check_vti_pieces(path, head_text);
   const Claim c = read_claim(head_text, format);
   if (c.dims[0] == 0 && c.dims[1] == 0 && c.dims[2] == 0) {  // the reader will complain
     if (format == "vtk") check_legacy_attributes(path, to_lower(head_text), size);

@@ -433,6 +433,10 @@ TEST(VolumeBadInput, HeaderValuesOutOfRange) {
   expect_error([&] { load(dir.file("big.vol")); }, "big.vol", "bad Y size");
   const std::string vti = std::string(isocurv::test_paths::source_dir()) + "/tests/data/fuzz/volume/vti_direction_4e31.vti";
   expect_error([&] { load(vti); }, "vti_direction_4e31.vti", "degenerate direction matrix");
+  // The fuzzer's: a WholeExtent of 4 x 9003 x 11 with one piece of 4 x 3 x 2 loaded as zeros.
+  const std::string short_piece = std::string(isocurv::test_paths::source_dir()) +
+                                  "/tests/data/fuzz/volume/vti_piece_short_of_whole_extent.vti";
+  expect_error([&] { load(short_piece); }, "vti_piece_short_of_whole_extent.vti", "do not cover the WholeExtent");
   auto image = [](const std::string& direction) {
     return "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"1.0\">\n"
            "<ImageData WholeExtent=\"0 1 0 1 0 1\" Origin=\"0 0 0\" Spacing=\"1 1 1\" Direction=\"" +
