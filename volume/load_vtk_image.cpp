@@ -227,26 +227,30 @@ void check_legacy_attributes(const std::string& path, const std::string& head, s
     if (n * bytes_each > (long double)size)
       throw Error(path, keyword + " claims " + w[i] + " entries but the file holds " + bytes_text(size));
   };
+  // VTK's reader matches a keyword by its first letters (strncmp): "scalars\314" is SCALARS.
+  auto is = [](const std::string& word, const char* keyword) { return word.rfind(keyword, 0) == 0; };
   for (std::size_t i = 0; i < w.size(); ++i) {
     const std::string& k = w[i];
     std::string upper = k;  // for messages: the keyword as files write it
     for (char& ch : upper) ch = char(std::toupper(static_cast<unsigned char>(ch)));
+    upper.erase(std::remove_if(upper.begin(), upper.end(), [](char ch) { return !(std::isupper(static_cast<unsigned char>(ch)) || ch == '_'); }),
+                upper.end());  // the keyword VTK matched, without the bytes after it
     // Each keyword's arguments are passed over (a name may be a keyword: "SCALARS scalars float").
-    if (k == "scalars" || k == "vectors" || k == "normals" || k == "tensors") {
+    if (is(k, "scalars") || is(k, "vectors") || is(k, "normals") || is(k, "tensors")) {
       numeric(i + 2, upper);
       i += 2;
-    } else if (k == "texture_coordinates") {
+    } else if (is(k, "texture_coordinates")) {
       numeric(i + 3, upper);
       i += 3;
-    } else if (k == "point_data" || k == "cell_data") {
+    } else if (is(k, "point_data") || is(k, "cell_data")) {
       count(i + 1, upper, 1);
       i += 1;
-    } else if (k == "lookup_table") {
+    } else if (is(k, "lookup_table")) {
       // A table of its own has a name and a size; the line naming the scalars' table just a name.
-      const bool of_scalars = (i >= 3 && w[i - 3] == "scalars") || (i >= 4 && w[i - 4] == "scalars");
+      const bool of_scalars = (i >= 3 && is(w[i - 3], "scalars")) || (i >= 4 && is(w[i - 4], "scalars"));
       if (!of_scalars) count(i + 2, upper, 4);
       i += of_scalars ? 1 : 2;
-    } else if (k == "color_scalars") {
+    } else if (is(k, "color_scalars")) {
       count(i + 2, upper, 1);
       if (i + 2 < w.size() && std::strtold(w[i + 2].c_str(), nullptr) > 16)
         throw Error(path, "COLOR_SCALARS claims " + w[i + 2] + " values per point (at most 4 are meaningful)");
