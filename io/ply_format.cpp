@@ -372,10 +372,7 @@ MeshFile read_ply(const std::string& path) {
       });
       // Every other scalar vertex property is an extra array (features, another tool's
       // quality or colour), read as float under its own name, so nothing the file holds is lost.
-      std::size_t extras = 0;
-      for (std::size_t i = 0; i < e.properties.size(); ++i)
-        extras += !e.properties[i].is_list && !targets[i].base && !targets[i].bytes;
-      field.extra.reserve(field.extra.size() + extras);  // the targets point into these arrays
+      field.extra.reserve(e.properties.size());  // the targets point into these arrays
       for (std::size_t i = 0; i < e.properties.size(); ++i) {
         if (e.properties[i].is_list || targets[i].base || targets[i].bytes) continue;
         field.extra.push_back({e.properties[i].name, std::vector<float>(n)});
