@@ -124,18 +124,25 @@ void check_compressed_blocks(const std::string& path) {
   if (!in || ec) return;  // VTK reports it
   // The XML text: everything before the appended data's '_' (or the whole file without it).
   std::string text;
-  std::size_t appended = std::string::npos;
+  std::size_t appended = std::string::npos, tag = std::string::npos;
   for (std::string chunk(1 << 20, '\0'); in;) {
     in.read(chunk.data(), std::streamsize(chunk.size()));
     const std::size_t from = text.size() > 16 ? text.size() - 16 : 0;
     text.append(chunk.data(), std::size_t(in.gcount()));
-    const std::size_t tag = text.find("<AppendedData", from);
+    if (tag == std::string::npos) tag = text.find("<AppendedData", from);
     if (tag == std::string::npos) continue;
-    const std::size_t mark = text.find('_', tag);
-    if (mark == std::string::npos) {
+    // VTK takes the first character after the tag and its whitespace as the '_' marker, whatever
+    // it is, and reads the data from the next byte: anything else there shifts every header.
+    const std::size_t close = text.find('>', tag);
+    std::size_t mark = close == std::string::npos ? close : close + 1;
+    while (mark < text.size() && std::isspace(static_cast<unsigned char>(text[mark]))) ++mark;
+    if (mark >= text.size()) {
       if (in) continue;
       break;
     }
+    if (text[mark] != '_')
+      throw Error(path, "appended data does not begin with '_' (found byte " +
+                            std::to_string(static_cast<unsigned char>(text[mark])) + ")");
     appended = mark + 1;
     text.resize(appended);
     break;
