@@ -52,9 +52,11 @@ std::string build_options() {
   std::snprintf(buf, sizeof buf,
                 "-DPIVOT_TOLERANCE=%.9g -DOPPOSITE_NORMALS=%.9g -DAO_C0=%.9g -DAO_C1=%.9g "
                 "-DAO_C2=%.9g -DAO_SMIN=%.9g -DMAX_TAPS=%d -DGAUSSIAN_RADIUS=%.9g "
-                "-DNEWTON_STEPS=%d -DON_SURFACE_VOXELS=%.9g",
+                "-DFIRST_ORDER_RADIUS=%.9g -DNEWTON_STEPS=%d -DON_SURFACE_VOXELS=%.9g "
+                "-DMAX_FINAL_STEP_VOXELS=%.9g",
                 kPivotTolerance, kOppositeNormals, kAoC0, kAoC1, kAoC2, kAoSMin, kMaxTaps,
-                volume::kGaussianRadius, kNewtonSteps, kOnSurfaceVoxels);
+                volume::kGaussianRadius, volume::kFirstOrderRadius, kNewtonSteps,
+                kOnSurfaceVoxels, kMaxFinalStepVoxels);
   return buf;
 }
 

@@ -4,9 +4,11 @@
 //
 // At each vertex x0 (on the mesh, which is not moved): the gradient g0 there gives the line
 // x0 + t g0/|g0|; kNewtonSteps Newton steps find where it meets the reconstructed isosurface
-// (|t| capped at kMaxShiftVoxels voxels); there the gradient, Hessian and third derivatives give
-// the curvature by curvature/implicit_curvature.h (Normals, k1 >= k2, dir1, dir2, H, K, dcurv,
-// ShapeIndex, Curvedness, AO). Area and Boundary come from the mesh (curvature/mesh_areas.h).
+// (|t| capped at kMaxShiftVoxels voxels; value and gradient only, with filters reaching
+// volume::kFirstOrderRadius deviations, then one last step on the full jet's Taylor expansion);
+// there the gradient, Hessian and third derivatives give the curvature by
+// curvature/implicit_curvature.h (Normals, k1 >= k2, dir1, dir2, H, K, dcurv, ShapeIndex,
+// Curvedness, AO). Area and Boundary come from the mesh (curvature/mesh_areas.h).
 // A vertex is Unreliable (flag 1, its curvature zero, AO that of a plane, its normal the
 // area-weighted face normal) where the gradient is at most volume::kWeakGradientFraction of its
 // median over the vertices, or the reconstructed surface was not found within the cap.
@@ -28,6 +30,8 @@ inline constexpr double kMaxShiftVoxels = 1.5;
 /// The reconstructed surface counts as found when the field there is within this many voxels
 /// (|F - iso| / |g|, in the largest spacing) of the isovalue.
 inline constexpr double kOnSurfaceVoxels = 0.05;
+/// The last Newton step, taken on the full jet's Taylor expansion, moves at most this many voxels.
+inline constexpr double kMaxFinalStepVoxels = 0.1;
 
 /// What one volume estimate did.
 struct VolumeEstimateStats {

@@ -1,7 +1,8 @@
 // The volume estimator's kernel: one work item per mesh vertex, the float twin of
 // volume_estimate_reference (curvature/volume_reference.cpp, volume/gaussian_jet.cpp and
 // curvature/implicit_curvature.cpp). Appended to curvature_math.cl; built with -DMAX_TAPS,
-// -DGAUSSIAN_RADIUS, -DNEWTON_STEPS, -DON_SURFACE_VOXELS and curvature_math.cl's constants.
+// -DGAUSSIAN_RADIUS, -DFIRST_ORDER_RADIUS, -DNEWTON_STEPS, -DON_SURFACE_VOXELS,
+// -DMAX_FINAL_STEP_VOXELS and curvature_math.cl's constants.
 //
 // The samples come as 8^3 bricks (`pool`, x fastest within a brick) found through `table`, a
 // dense grid of brick numbers (-1: not gathered) over the gathered region; voxel coordinates are
@@ -23,8 +24,8 @@ typedef struct {
 
 // Gaussian derivative weights at coordinate q for deviation s, each order normalised by its
 // discrete moment (volume::axis_weights).
-INLINE void axis_weights(float q, float s, axis_t* a) {
-  const float reach = (float)GAUSSIAN_RADIUS * s, s2 = s * s;
+INLINE void axis_weights(float q, float s, float radius, axis_t* a) {
+  const float reach = radius * s, s2 = s * s;
   a->first = (int)ceil(q - reach);
   const int last = (int)floor(q + reach);
   a->count = min(last - a->first + 1, MAX_TAPS);
@@ -90,9 +91,12 @@ INLINE jet_t gaussian_jet(const samples_t* s, const frame_t* f, vec3 p, int orde
                       f->b[3] * rel.x + f->b[4] * rel.y + f->b[5] * rel.z,
                       f->b[6] * rel.x + f->b[7] * rel.y + f->b[8] * rel.z};
   axis_t ax, ay, az;
-  axis_weights(q[0], f->deviation[0], &ax);
-  axis_weights(q[1], f->deviation[1], &ay);
-  axis_weights(q[2], f->deviation[2], &az);
+  // Orders <= 1 (the Newton steps) reach FIRST_ORDER_RADIUS deviations, the full jet
+  // GAUSSIAN_RADIUS (volume::kFirstOrderRadius, volume::kGaussianRadius).
+  const float radius = order <= 1 ? (float)FIRST_ORDER_RADIUS : (float)GAUSSIAN_RADIUS;
+  axis_weights(q[0], f->deviation[0], radius, &ax);
+  axis_weights(q[1], f->deviation[1], radius, &ay);
+  axis_weights(q[2], f->deviation[2], radius, &az);
   float d[4][4][4];  // index-space derivatives of orders (nx, ny, nz)
   for (int i = 0; i < 64; ++i) ((float*)d)[i] = 0.0f;
   for (int tz = 0; tz < az.count; ++tz) {
@@ -159,6 +163,44 @@ INLINE jet_t gaussian_jet(const samples_t* s, const frame_t* f, vec3 p, int orde
   return j;
 }
 
+// The jet's Taylor expansion moved by a small world-space step (volume::shifted_jet).
+INLINE jet_t shifted_jet(const jet_t* j, vec3 step) {
+  const int pair[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+  const int triple[3][3][3] = {{{0, 1, 2}, {1, 3, 4}, {2, 4, 5}},
+                               {{1, 3, 4}, {3, 6, 7}, {4, 7, 8}},
+                               {{2, 4, 5}, {4, 7, 8}, {5, 8, 9}}};
+  const float s[3] = {step.x, step.y, step.z};
+  float ts[3][3], hs[3];  // T(., ., s) and H s
+  for (int k = 0; k < 3; ++k) {
+    hs[k] = 0.0f;
+    for (int l = 0; l < 3; ++l) {
+      ts[k][l] = 0.0f;
+      for (int m = 0; m < 3; ++m) ts[k][l] += j->t[triple[k][l][m]] * s[m];
+      hs[k] += j->h[pair[k][l]] * s[l];
+    }
+  }
+  jet_t out = *j;
+  for (int k = 0; k < 3; ++k) {
+    float tss = 0.0f;
+    for (int l = 0; l < 3; ++l) tss += ts[k][l] * s[l];
+    out.g[k] += hs[k] + tss * 0.5f;
+    out.value += s[k] * (j->g[k] + hs[k] * 0.5f + tss * (1.0f / 6.0f));
+  }
+  const int pairs[6][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
+  for (int e = 0; e < 6; ++e) out.h[e] += ts[pairs[e][0]][pairs[e][1]];
+  return out;
+}
+
+// The last Newton step along d on the full jet's Taylor expansion (final_step in
+// curvature/volume_reference.cpp); steps over MAX_FINAL_STEP_VOXELS voxels are not taken.
+INLINE jet_t final_step(const jet_t* j, vec3 d, float isovalue, float voxel) {
+  const float slope = j->g[0] * d.x + j->g[1] * d.y + j->g[2] * d.z;
+  if (!(fabs(slope) > 0.0f)) return *j;
+  const float t = -(j->value - isovalue) / slope;
+  if (!(fabs(t) <= (float)MAX_FINAL_STEP_VOXELS * voxel)) return *j;
+  return shifted_jet(j, mul3(d, t));
+}
+
 // Hs x for the symmetric Hessian (xx xy xz yy yz zz).
 INLINE vec3 hess_mul(const float* h, vec3 x) {
   return v3(h[0] * x.x + h[1] * x.y + h[2] * x.z, h[1] * x.x + h[3] * x.y + h[4] * x.z,
@@ -223,7 +265,8 @@ __kernel void volume_curvature(__global const float* positions, uint count,
       if (!(fabs(slope) > 0.0f)) break;
       t = clamp(t - (j.value - isovalue) / slope, -max_shift, max_shift);
     }
-    const jet_t jet = gaussian_jet(&s, &f, add3(x0, mul3(d, t)), 3);
+    const jet_t found = gaussian_jet(&s, &f, add3(x0, mul3(d, t)), 3);
+    const jet_t jet = final_step(&found, d, isovalue, voxel);
     const vec3 g = v3(jet.g[0], jet.g[1], jet.g[2]);
     len = sqrt(dot3(g, g));
     if (len > 0.0f && finite(len)) {
@@ -245,7 +288,7 @@ __kernel void volume_curvature(__global const float* positions, uint count,
                     dcurv_form(&jet, hm, sign, len, e1, e1, e2),
                     dcurv_form(&jet, hm, sign, len, e1, e2, e2),
                     dcurv_form(&jet, hm, sign, len, e2, e2, e2));
-      missed = !(fabs(jet.value - isovalue) <= (float)ON_SURFACE_VOXELS * voxel * len);
+      missed = !(fabs(found.value - isovalue) <= (float)ON_SURFACE_VOXELS * voxel * len);
     } else {
       len = 0.0f;
     }

@@ -92,6 +92,19 @@ namespace {
 
 Vec3f to_f3(const Eigen::Vector3d& v) { return {float(v.x()), float(v.y()), float(v.z())}; }
 
+/// The last Newton step along `d`, taken on the full jet's Taylor expansion: it moves the jet onto
+/// the full-reach surface that the shorter-reach steps before it found to within a few 1e-3 voxel
+/// (their truncated filters jump as a tap enters), so the curvature does not inherit those jumps.
+/// Steps over kMaxFinalStepVoxels are not taken (the surface was missed; the caller flags it).
+volume::Jet final_step(const volume::Jet& jet, const openvdb::Vec3d& d, float isovalue,
+                       double voxel) {
+  const double slope = jet.gradient[0] * d[0] + jet.gradient[1] * d[1] + jet.gradient[2] * d[2];
+  if (!(std::abs(slope) > 0)) return jet;
+  const double t = -(jet.value - isovalue) / slope;
+  if (!(std::abs(t) <= kMaxFinalStepVoxels * voxel)) return jet;
+  return volume::shifted_jet(jet, t * d);
+}
+
 }  // namespace
 
 CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume& volume,
@@ -112,7 +125,7 @@ CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume&
       const Vec3f& p = mesh.positions[i];
       const openvdb::Vec3d x0(p[0], p[1], p[2]);
       // The gradient line through the vertex, and Newton steps along it to F = isovalue.
-      const volume::Jet j0 = volume::gaussian_jet(grid, s.frame, x0, s.sigma, 1);
+      const volume::Jet j0 = volume::gaussian_jet(grid, s.frame, x0, s.sigma, 1, volume::kFirstOrderRadius);
       const openvdb::Vec3d g0(j0.gradient[0], j0.gradient[1], j0.gradient[2]);
       const double g0len = g0.length();
       PointCurvature c;
@@ -122,13 +135,14 @@ CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume&
         double t = 0;
         volume::Jet j = j0;
         for (int step = 0; step < kNewtonSteps; ++step) {
-          if (step > 0) j = volume::gaussian_jet(grid, s.frame, x0 + t * d, s.sigma, 1);
+          if (step > 0)
+            j = volume::gaussian_jet(grid, s.frame, x0 + t * d, s.sigma, 1, volume::kFirstOrderRadius);
           const double slope = j.gradient[0] * d[0] + j.gradient[1] * d[1] + j.gradient[2] * d[2];
           if (!(std::abs(slope) > 0)) break;
           t = std::clamp(t - (j.value - isovalue) / slope, -s.max_shift, s.max_shift);
         }
         const volume::Jet jet = volume::gaussian_jet(grid, s.frame, x0 + t * d, s.sigma, 3);
-        c = implicit_curvature(jet, s.inside);
+        c = implicit_curvature(final_step(jet, d, isovalue, s.voxel), s.inside);
         missed = !(std::abs(jet.value - isovalue) <= kOnSurfaceVoxels * s.voxel * c.gradient_norm);
       }
       raw.gradient_norm[i] = float(c.gradient_norm);

@@ -36,9 +36,9 @@ GridFrame grid_frame(const Volume& volume) {
   return f;
 }
 
-AxisWeights axis_weights(double q, double s) {
+AxisWeights axis_weights(double q, double s, double radius) {
   AxisWeights aw;
-  const double reach = kGaussianRadius * s;
+  const double reach = radius * s;
   aw.first = int(std::ceil(q - reach));
   const int last = int(std::floor(q + reach));
   aw.count = std::min(last - aw.first + 1, AxisWeights::kMaxTaps);
@@ -64,10 +64,10 @@ AxisWeights axis_weights(double q, double s) {
 }
 
 Jet gaussian_jet(const openvdb::FloatGrid& grid, const GridFrame& frame, const openvdb::Vec3d& p,
-                 double sigma, int order) {
+                 double sigma, int order, double radius) {
   const openvdb::Vec3d q = frame.to_index(p);
   AxisWeights w[3];
-  for (int a = 0; a < 3; ++a) w[a] = axis_weights(q[a], sigma / frame.spacing[a]);
+  for (int a = 0; a < 3; ++a) w[a] = axis_weights(q[a], sigma / frame.spacing[a], radius);
   openvdb::FloatGrid::ConstAccessor acc = grid.getConstAccessor();
   auto clamp = [&](int v, int a) {
     return frame.clamp ? std::min(std::max(v, frame.lo[a]), frame.hi[a]) : v;
@@ -130,6 +130,30 @@ Jet gaussian_jet(const openvdb::FloatGrid& grid, const GridFrame& frame, const o
       jet.third[e] = sum;
     }
   return jet;
+}
+
+Jet shifted_jet(const Jet& jet, const openvdb::Vec3d& step) {
+  // Symmetric storage: Hessian (xx xy xz yy yz zz), third (xxx xxy xxz xyy xyz xzz yyy yyz yzz zzz).
+  static const int kPair[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+  static const int kTriple[3][3][3] = {{{0, 1, 2}, {1, 3, 4}, {2, 4, 5}},
+                                       {{1, 3, 4}, {3, 6, 7}, {4, 7, 8}},
+                                       {{2, 4, 5}, {4, 7, 8}, {5, 8, 9}}};
+  double ts[3][3] = {}, hs[3] = {};  // T(., ., s) and H s
+  for (int k = 0; k < 3; ++k)
+    for (int l = 0; l < 3; ++l) {
+      for (int m = 0; m < 3; ++m) ts[k][l] += jet.third[kTriple[k][l][m]] * step[m];
+      hs[k] += jet.hessian[kPair[k][l]] * step[l];
+    }
+  Jet out = jet;
+  for (int k = 0; k < 3; ++k) {
+    double tss = 0;
+    for (int l = 0; l < 3; ++l) tss += ts[k][l] * step[l];
+    out.gradient[k] += hs[k] + tss / 2;
+    out.value += step[k] * (jet.gradient[k] + hs[k] / 2 + tss / 6);
+  }
+  static const int kPairs[6][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
+  for (int e = 0; e < 6; ++e) out.hessian[e] += ts[kPairs[e][0]][kPairs[e][1]];
+  return out;
 }
 
 }  // namespace isocurv::volume

@@ -16,6 +16,12 @@ namespace isocurv::volume {
 /// their moments by percents and biased the curvature as much; at 5 by about 1e-4).
 inline constexpr double kGaussianRadius = 5.0;
 
+/// A shorter reach for the value and gradient alone (order <= 1), whose filters' tails are light:
+/// at 3 deviations they miss their moments by under 1e-3 of a voxel's worth, enough to find where
+/// a gradient line meets the isosurface before the full-reach evaluation there (about 4.6 times
+/// fewer taps at 2.5 voxels).
+inline constexpr double kFirstOrderRadius = 3.0;
+
 /// Value and derivatives at one point, in world coordinates. Symmetric tensors are stored by their
 /// distinct components: hessian (xx, xy, xz, yy, yz, zz); third (xxx, xxy, xxz, xyy, xyz, xzz,
 /// yyy, yyz, yzz, zzz).
@@ -47,7 +53,7 @@ struct GridFrame {
 GridFrame grid_frame(const Volume& volume);
 
 /// Per-axis filter weights at one evaluation coordinate q (index units) for deviation s (index
-/// units): taps j = first .. first + count - 1 cover |j - q| <= kGaussianRadius * s, and w[n][t] is
+/// units): taps j = first .. first + count - 1 cover |j - q| <= radius * s, and w[n][t] is
 /// the n-th derivative (n = 0..3) of the Gaussian G(q - j) at tap first + t, each order scaled by
 /// one factor so that it is exact on the monomial (j - q)^n / n! (a correction of the sampling and
 /// the truncation of 1e-4 or less for s >= 0.7). The filters stay isotropic: an exactness
@@ -60,15 +66,20 @@ struct AxisWeights {
 };
 
 /// The weights of AxisWeights for coordinate q and deviation s (0 < s <= kMaxDeviation).
-AxisWeights axis_weights(double q, double s);
+AxisWeights axis_weights(double q, double s, double radius = kGaussianRadius);
 
 /// The largest per-axis deviation in index units axis_weights accepts (taps stay <= kMaxTaps).
 inline constexpr double kMaxDeviation = 6.0;
 
 /// The jet of `volume` smoothed at world deviation `sigma` at world point `p`; derivatives above
-/// `order` (0..3) are left zero. Samples outside a dense volume's domain repeat the nearest
-/// domain sample; a sparse grid's inactive voxels read as its background. Thread-safe.
+/// `order` (0..3) are left zero; the filters reach `radius` deviations (kFirstOrderRadius is
+/// enough for order <= 1). Samples outside a dense volume's domain repeat the nearest domain
+/// sample; a sparse grid's inactive voxels read as its background. Thread-safe.
 Jet gaussian_jet(const openvdb::FloatGrid& grid, const GridFrame& frame, const openvdb::Vec3d& p,
-                 double sigma, int order = 3);
+                 double sigma, int order = 3, double radius = kGaussianRadius);
+
+/// The jet's Taylor expansion moved by a small world-space `step`: the value to third order, the
+/// gradient to second, the Hessian to first, the third derivatives unchanged.
+Jet shifted_jet(const Jet& jet, const openvdb::Vec3d& step);
 
 }  // namespace isocurv::volume
