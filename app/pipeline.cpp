@@ -423,6 +423,7 @@ curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Vol
   timer.start("curvature");
   curvature::EstimatorReport r;
   Device* device = reference_device(o) ? nullptr : &device_for(o);
+  if (scales.size() > 1) co.finer_scales = false;  // each scale shows only what it resolves
   curvature::CurvatureField field = curvature::estimate_field(mesh, {volume, isovalue}, device, co, &r);
   if (scales.size() > 1) {
     // Every scale's scalar arrays under its suffix; the first scale's also stay unsuffixed.
@@ -506,7 +507,10 @@ nlohmann::json surface_report(const Surface& s) {
       else
         e[key + "_chosen"] = how;
     }
-    if (s.estimator.estimator == "volume") e["unreliable_vertices"] = s.estimator.unreliable;
+    if (s.estimator.estimator == "volume") {
+      e["unreliable_vertices"] = s.estimator.unreliable;
+      e["finer_scale_vertices"] = s.estimator.finer_scale;
+    }
     r["estimator"] = e;
   }
   if (s.field && !s.field->ao.empty()) {  // which AO the field carries (ao/ao.h's metadata)

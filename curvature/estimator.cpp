@@ -124,10 +124,11 @@ CurvatureField estimate_field(const Mesh& mesh, const VolumeSource& source, Devi
       r.parameters.emplace_back("ao_scale", options.ao_scale);
       VolumeEstimateStats st;
       field = device ? volume_estimate(mesh, *source.volume, source.isovalue, scale,
-                                       options.ao_scale, *device, &st)
+                                       options.ao_scale, *device, &st, options.finer_scales)
                      : volume_estimate_reference(mesh, *source.volume, source.isovalue, scale,
-                                                 options.ao_scale, &st);
+                                                 options.ao_scale, &st, options.finer_scales);
       r.unreliable = st.unreliable;
+      r.finer_scale = st.finer_scale;
       break;
     }
   }

@@ -42,6 +42,8 @@ struct EstimatorReport {
   /// How a parameter chosen from the data was chosen, e.g. {"scale", "auto"}; empty otherwise.
   std::vector<std::pair<std::string, std::string>> notes;
   std::size_t unreliable = 0;  ///< vertices flagged "Unreliable" (volume: vanishing gradient)
+  /// volume: vertices measured at a finer scale than asked (Options::finer_scales)
+  std::size_t finer_scale = 0;
 };
 
 /// Per-vertex curvature of `mesh` by options.estimator, on `device` or, when device is nullptr,

@@ -49,6 +49,10 @@ struct Options {
   /// Volume estimator: the Gaussian's standard deviation sigma, world units; 0 (the default)
   /// chooses it from the data (curvature/auto_scale.h). Ignored by the mesh estimators.
   double scale = 0;
+  /// Volume estimator: a vertex whose smoothed surface vanishes at the scale (a structure thinner
+  /// than about twice the scale) is measured at half the scale, and so on down to one voxel
+  /// (curvature/volume_estimate.h). false: such vertices are Unreliable (--scale S1,S2,...).
+  bool finer_scales = true;
   /// Per-vertex outward normals supplied from outside (e.g. the volume gradient), one per mesh
   /// vertex; they need not be unit length (they are normalised). A zero or non-finite entry falls
   /// back to the mesh normal of that vertex. nullptr (the default): normals from the mesh faces.

@@ -95,24 +95,21 @@ void download(cl::CommandQueue& q, cl::Buffer& b, std::vector<T>& v, std::size_t
   if (n) q.enqueueReadBuffer(b, CL_FALSE, 0, n * sizeof(T), v.data());
 }
 
-CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalue, double sigma,
-                   float ao_scale, Device& device, VolumeEstimateStats* stats) {
-  const detail::VolumeSetup setup = detail::volume_setup(mesh, volume, sigma);
-  if (!std::isfinite(ao_scale)) throw Error("curvature: ao_scale must be finite");
-  const std::size_t nv = mesh.positions.size();
-  CurvatureField out;
-  if (nv == 0) {
-    if (stats) *stats = {};
-    return out;
-  }
+// One evaluation at setup.sigma for `positions` (detail::VolumeEvaluate); `s` is locked.
+detail::VolumeEvaluation evaluate(const Positions& positions, const volume::Volume& volume,
+                                  const detail::VolumeSetup& setup, float isovalue,
+                                  float ao_scale, Device& device, VolumeSession& s) {
+  const std::size_t nv = positions.size();
+  detail::VolumeEvaluation e;
+  if (nv == 0) return e;
   const volume::GridFrame& fr = setup.frame;
   // Every voxel a vertex's filters can read: the taps' reach plus the largest Newton move.
   openvdb::Vec3d reach, deviation;
   for (int a = 0; a < 3; ++a) {
-    deviation[a] = sigma / fr.spacing[a];
+    deviation[a] = setup.sigma / fr.spacing[a];
     reach[a] = volume::kGaussianRadius * deviation[a] + setup.max_shift / fr.spacing[a] + 1;
   }
-  const volume::BrickGather gather = volume::gather_bricks(*volume.grid, fr, mesh.positions, reach);
+  const volume::BrickGather gather = volume::gather_bricks(*volume.grid, fr, positions, reach);
   const openvdb::Vec3d region = fr.to_world(openvdb::Vec3d(gather.origin.asVec3d()));
   std::vector<float> frame(15);
   for (int r = 0; r < 3; ++r)
@@ -120,10 +117,8 @@ CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalu
   for (int a = 0; a < 3; ++a) frame[9 + a] = float(region[a]), frame[12 + a] = float(deviation[a]);
   const openvdb::Coord lo = fr.lo - gather.origin, hi = fr.hi - gather.origin;
 
-  VolumeSession& s = session_for(device);
-  std::lock_guard<std::mutex> lock(s.mutex);
   cl::CommandQueue& q = device.queue();
-  cl::Buffer& positions = upload(q, s, kPositions, mesh.positions);
+  cl::Buffer& pos = upload(q, s, kPositions, positions);
   cl::Buffer& pool = upload(q, s, kPool, gather.samples);
   cl::Buffer& table = upload(q, s, kTable, gather.table);
   cl::Buffer& params = upload(q, s, kFrame, frame);
@@ -138,12 +133,12 @@ CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalu
   const cl_int4 dims = {{gather.dims[0], gather.dims[1], gather.dims[2], 0}};
   const cl_int4 clo = {{lo[0], lo[1], lo[2], 0}}, chi = {{hi[0], hi[1], hi[2], 0}};
   const float sign = volume.inside == volume::Inside::Above ? -1.0f : 1.0f;
-  set_args(s.kernel, positions, cl_uint(nv), pool, table, dims, clo, chi, cl_int(fr.clamp),
+  set_args(s.kernel, pos, cl_uint(nv), pool, table, dims, clo, chi, cl_int(fr.clamp),
            cl_float(volume.grid->background()), params, cl_float(isovalue), cl_float(sign),
            cl_float(setup.max_shift), cl_float(setup.voxel), cl_float(ao_scale), normals, *f1[0],
            *f1[1], dir1, dir2, *f1[2], *f1[3], dcurv, *f1[4], *f1[5], *f1[6], *f1[7], missed);
   launch(q, s.kernel, nv, kGroup);
-  detail::RawVertex raw;
+  CurvatureField& out = e.field;
   download(q, normals, out.normals, nv);
   download(q, *f1[0], out.k1, nv);
   download(q, *f1[1], out.k2, nv);
@@ -155,21 +150,42 @@ CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalu
   download(q, *f1[4], out.shape_index, nv);
   download(q, *f1[5], out.curvedness, nv);
   download(q, *f1[6], out.ao, nv);
-  download(q, *f1[7], raw.gradient_norm, nv);
-  download(q, missed, raw.missed, nv);
+  download(q, *f1[7], e.raw.gradient_norm, nv);
+  download(q, missed, e.raw.missed, nv);
   q.finish();
-  const std::size_t unreliable = detail::finish_volume_field(mesh, raw, ao_scale, out);
-  if (stats) *stats = VolumeEstimateStats{unreliable, gather.bricks()};
-  return out;
+  e.bricks = gather.bricks();
+  return e;
+}
+
+CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalue, double sigma,
+                   float ao_scale, Device& device, VolumeEstimateStats* stats, bool finer_scales) {
+  const detail::VolumeSetup setup = detail::volume_setup(mesh, volume, sigma);
+  if (!std::isfinite(ao_scale)) throw Error("curvature: ao_scale must be finite");
+  if (mesh.positions.empty()) {
+    if (stats) *stats = {};
+    return {};
+  }
+  VolumeSession& s = session_for(device);
+  std::lock_guard<std::mutex> lock(s.mutex);
+  std::size_t refined = 0;
+  detail::VolumeEvaluation e = detail::evaluate_with_finer_scales(
+      mesh, setup, finer_scales,
+      [&](const Positions& positions, const detail::VolumeSetup& at) {
+        return evaluate(positions, volume, at, isovalue, ao_scale, device, s);
+      },
+      refined);
+  const std::size_t unreliable = detail::finish_volume_field(mesh, e.raw, ao_scale, e.field);
+  if (stats) *stats = VolumeEstimateStats{unreliable, e.bricks, refined};
+  return std::move(e.field);
 }
 
 }  // namespace
 
 CurvatureField volume_estimate(const Mesh& mesh, const volume::Volume& volume, float isovalue,
                                double sigma, float ao_scale, Device& device,
-                               VolumeEstimateStats* stats) {
+                               VolumeEstimateStats* stats, bool finer_scales) {
   try {
-    return run(mesh, volume, isovalue, sigma, ao_scale, device, stats);
+    return run(mesh, volume, isovalue, sigma, ao_scale, device, stats, finer_scales);
   } catch (const cl::Error& e) {
     try {
       device.queue().finish();

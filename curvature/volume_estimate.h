@@ -11,7 +11,8 @@
 // Curvedness, AO). Area and Boundary come from the mesh (curvature/mesh_areas.h).
 // A vertex is Unreliable (flag 1, its curvature zero, AO that of a plane, its normal the
 // area-weighted face normal) where the gradient is at most volume::kWeakGradientFraction of its
-// median over the vertices, or the reconstructed surface was not found within the cap.
+// median over the vertices, or the reconstructed surface was not found within the cap at sigma
+// nor at any finer scale down to one voxel (see finer_scales below).
 #include <cstddef>
 
 #include "core/cl_device.h"
@@ -36,7 +37,8 @@ inline constexpr double kMaxFinalStepVoxels = 0.1;
 /// What one volume estimate did.
 struct VolumeEstimateStats {
   std::size_t unreliable = 0;  ///< vertices flagged Unreliable
-  std::size_t bricks = 0;      ///< 8^3 bricks of samples read (device path)
+  std::size_t bricks = 0;      ///< 8^3 bricks of samples read (device path), all scales
+  std::size_t finer_scale = 0;  ///< vertices whose surface was found only at a finer scale
 };
 
 /// The volume estimator on `device` (float; the same steps as volume_estimate_reference), at
@@ -46,14 +48,20 @@ struct VolumeEstimateStats {
 /// not positive and finite, larger than the volume, or so large against a spacing that a filter
 /// would exceed volume::kMaxDeviation voxels; when the grid transform is not affine with
 /// orthogonal axes; for invalid meshes (check_input); or on an OpenCL failure.
+/// `finer_scales` (the default): a vertex whose smoothed surface is missed at sigma (a structure
+/// thinner than about twice the scale) is evaluated again at sigma / 2, sigma / 4, ... down to
+/// one voxel (the largest spacing) and keeps the first scale at which its surface is found; only
+/// the vertices missed at every scale are Unreliable. Off, they are all Unreliable (the
+/// multi-scale arrays use that, so that each scale shows only what it resolves).
 CurvatureField volume_estimate(const Mesh& mesh, const volume::Volume& volume, float isovalue,
                                double sigma, float ao_scale, Device& device,
-                               VolumeEstimateStats* stats = nullptr);
+                               VolumeEstimateStats* stats = nullptr, bool finer_scales = true);
 
 /// The specification: the same in double precision on the host, single-threaded per vertex
 /// batch (TBB), reading the grid directly.
 CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume& volume,
                                          float isovalue, double sigma, float ao_scale,
-                                         VolumeEstimateStats* stats = nullptr);
+                                         VolumeEstimateStats* stats = nullptr,
+                                         bool finer_scales = true);
 
 }  // namespace isocurv::curvature

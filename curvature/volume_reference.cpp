@@ -86,6 +86,38 @@ std::size_t finish_volume_field(const Mesh& mesh, const RawVertex& raw, float ao
   return count;
 }
 
+VolumeEvaluation evaluate_with_finer_scales(const Mesh& mesh, VolumeSetup setup,
+                                            bool finer_scales, const VolumeEvaluate& evaluate,
+                                            std::size_t& refined) {
+  refined = 0;
+  VolumeEvaluation all = evaluate(mesh.positions, setup);
+  CurvatureField& f = all.field;
+  while (finer_scales && setup.sigma > setup.voxel) {
+    std::vector<std::size_t> which;
+    for (std::size_t i = 0; i < all.raw.missed.size(); ++i)
+      if (all.raw.missed[i]) which.push_back(i);
+    if (which.empty()) break;
+    setup.sigma = std::max(setup.sigma / 2, setup.voxel);
+    Positions positions(which.size());
+    for (std::size_t j = 0; j < which.size(); ++j) positions[j] = mesh.positions[which[j]];
+    const VolumeEvaluation finer = evaluate(positions, setup);
+    all.bricks += finer.bricks;
+    const CurvatureField& g = finer.field;
+    for (std::size_t j = 0; j < which.size(); ++j) {
+      if (finer.raw.missed[j]) continue;
+      const std::size_t i = which[j];
+      f.normals[i] = g.normals[j], f.k1[i] = g.k1[j], f.k2[i] = g.k2[j];
+      f.dir1[i] = g.dir1[j], f.dir2[i] = g.dir2[j], f.H[i] = g.H[j], f.K[i] = g.K[j];
+      f.dcurv[i] = g.dcurv[j], f.shape_index[i] = g.shape_index[j];
+      f.curvedness[i] = g.curvedness[j], f.ao[i] = g.ao[j];
+      all.raw.gradient_norm[i] = finer.raw.gradient_norm[j];
+      all.raw.missed[i] = 0;
+      ++refined;
+    }
+  }
+  return all;
+}
+
 }  // namespace detail
 
 namespace {
@@ -107,22 +139,23 @@ volume::Jet final_step(const volume::Jet& jet, const openvdb::Vec3d& d, float is
 
 }  // namespace
 
-CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume& volume,
-                                         float isovalue, double sigma, float ao_scale,
-                                         VolumeEstimateStats* stats) {
-  const detail::VolumeSetup s = detail::volume_setup(mesh, volume, sigma);
-  if (!std::isfinite(ao_scale)) throw Error("curvature: ao_scale must be finite");
-  const std::size_t nv = mesh.positions.size();
-  CurvatureField out;
+namespace {
+
+detail::VolumeEvaluation evaluate_reference(const Positions& positions,
+                                            const openvdb::FloatGrid& grid,
+                                            const detail::VolumeSetup& s, float isovalue,
+                                            float ao_scale) {
+  const std::size_t nv = positions.size();
+  detail::VolumeEvaluation e;
+  CurvatureField& out = e.field;
   out.normals.resize(nv), out.k1.resize(nv), out.k2.resize(nv), out.dir1.resize(nv);
   out.dir2.resize(nv), out.H.resize(nv), out.K.resize(nv), out.dcurv.resize(nv);
   out.shape_index.resize(nv), out.curvedness.resize(nv), out.ao.resize(nv);
-  detail::RawVertex raw{std::vector<float>(nv, 0.0f), std::vector<std::uint8_t>(nv, 0)};
-  const openvdb::FloatGrid& grid = *volume.grid;
-
+  e.raw = {std::vector<float>(nv, 0.0f), std::vector<std::uint8_t>(nv, 0)};
+  detail::RawVertex& raw = e.raw;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 256), [&](const auto& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      const Vec3f& p = mesh.positions[i];
+      const Vec3f& p = positions[i];
       const openvdb::Vec3d x0(p[0], p[1], p[2]);
       // The gradient line through the vertex, and Newton steps along it to F = isovalue.
       const volume::Jet j0 = volume::gaussian_jet(grid, s.frame, x0, s.sigma, 1, volume::kFirstOrderRadius);
@@ -157,9 +190,27 @@ CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume&
       out.ao[i] = float(ambient_occlusion(c.k1, c.k2, double(ao_scale)));
     }
   });
-  const std::size_t unreliable = detail::finish_volume_field(mesh, raw, ao_scale, out);
-  if (stats) *stats = VolumeEstimateStats{unreliable, 0};
-  return out;
+  return e;
+}
+
+}  // namespace
+
+CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume& volume,
+                                         float isovalue, double sigma, float ao_scale,
+                                         VolumeEstimateStats* stats, bool finer_scales) {
+  const detail::VolumeSetup setup = detail::volume_setup(mesh, volume, sigma);
+  if (!std::isfinite(ao_scale)) throw Error("curvature: ao_scale must be finite");
+  const openvdb::FloatGrid& grid = *volume.grid;
+  std::size_t refined = 0;
+  detail::VolumeEvaluation e = detail::evaluate_with_finer_scales(
+      mesh, setup, finer_scales,
+      [&](const Positions& positions, const detail::VolumeSetup& s) {
+        return evaluate_reference(positions, grid, s, isovalue, ao_scale);
+      },
+      refined);
+  const std::size_t unreliable = detail::finish_volume_field(mesh, e.raw, ao_scale, e.field);
+  if (stats) *stats = VolumeEstimateStats{unreliable, 0, refined};
+  return std::move(e.field);
 }
 
 }  // namespace isocurv::curvature

@@ -2,6 +2,7 @@
 // Internals the volume estimator's device path and its reference share
 // (curvature/volume_estimate.h).
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/mesh.h"
@@ -29,6 +30,26 @@ struct RawVertex {
   std::vector<float> gradient_norm;
   std::vector<std::uint8_t> missed;
 };
+
+/// One evaluation of the estimator at setup.sigma for some positions: the field's per-vertex
+/// arrays (Normals, k1, k2, dir1, dir2, H, K, dcurv, ShapeIndex, Curvedness, AO), one entry per
+/// position, and the raw flags.
+struct VolumeEvaluation {
+  CurvatureField field;
+  RawVertex raw;
+  std::size_t bricks = 0;  ///< 8^3 brick gathers summed over the evaluations (device path)
+};
+using VolumeEvaluate =
+    std::function<VolumeEvaluation(const Positions& positions, const VolumeSetup& setup)>;
+
+/// Evaluates every vertex of `mesh` at setup.sigma; then, when `finer_scales`, the vertices whose
+/// smoothed surface was missed (a structure thinner than about twice the scale: its peak sinks
+/// below the isovalue when smoothed) again at half the scale, and so on down to one voxel
+/// (setup.voxel), each keeping the first scale at which its surface is found. `refined` counts
+/// the vertices that took a finer scale.
+VolumeEvaluation evaluate_with_finer_scales(const Mesh& mesh, VolumeSetup setup,
+                                            bool finer_scales, const VolumeEvaluate& evaluate,
+                                            std::size_t& refined);
 
 /// Fills Area, Boundary and Unreliable, and resets the unreliable vertices (see volume_estimate.h).
 /// Returns the number of unreliable vertices.

@@ -80,7 +80,9 @@ TEST(EstimatorProtocols, BatageloFig2Jitter) {
     std::printf("    batagelo with 1/|x|^2 weights %.4f (uniform %.4f)\n", e.at("batagelo_w"), e.at("batagelo"));
     // Measured: near neighbours weighted up lower the one-pass error up to jitter 0.3 (to half of
     // it on the regular grid, below Rusinkiewicz's); at 0.4 both are alike.
-    if (k <= 3) EXPECT_LT(e.at("batagelo_w"), e.at("batagelo"));
+    if (k <= 3) {
+      EXPECT_LT(e.at("batagelo_w"), e.at("batagelo"));
+    }
     EXPECT_LT(e.at("batagelo_w"), 1.1 * e.at("batagelo"));
     // Acceptance (b): one-pass within 1.7x (regular) and 1.3x (jittered) of Rusinkiewicz.
     EXPECT_LT(e.at("batagelo"), (k == 0 ? 1.7 : 1.3) * e.at("rusinkiewicz"));
