@@ -97,8 +97,8 @@ void download(cl::CommandQueue& q, cl::Buffer& b, std::vector<T>& v, std::size_t
 
 // One evaluation at setup.sigma for `positions` (detail::VolumeEvaluate); `s` is locked.
 detail::VolumeEvaluation evaluate(const Positions& positions, const volume::Volume& volume,
-                                  const detail::VolumeSetup& setup, float isovalue,
-                                  float ao_scale, Device& device, VolumeSession& s) {
+                                  const detail::VolumeSetup& setup, float isovalue, float ao_scale,
+                                  Device& device, VolumeSession& s) {
   const std::size_t nv = positions.size();
   detail::VolumeEvaluation e;
   if (nv == 0) return e;

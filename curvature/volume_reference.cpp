@@ -86,9 +86,8 @@ std::size_t finish_volume_field(const Mesh& mesh, const RawVertex& raw, float ao
   return count;
 }
 
-VolumeEvaluation evaluate_with_finer_scales(const Mesh& mesh, VolumeSetup setup,
-                                            bool finer_scales, const VolumeEvaluate& evaluate,
-                                            std::size_t& refined) {
+VolumeEvaluation evaluate_with_finer_scales(const Mesh& mesh, VolumeSetup setup, bool finer_scales,
+                                            const VolumeEvaluate& evaluate, std::size_t& refined) {
   refined = 0;
   VolumeEvaluation all = evaluate(mesh.positions, setup);
   CurvatureField& f = all.field;

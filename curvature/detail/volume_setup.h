@@ -47,9 +47,8 @@ using VolumeEvaluate =
 /// below the isovalue when smoothed) again at half the scale, and so on down to one voxel
 /// (setup.voxel), each keeping the first scale at which its surface is found. `refined` counts
 /// the vertices that took a finer scale.
-VolumeEvaluation evaluate_with_finer_scales(const Mesh& mesh, VolumeSetup setup,
-                                            bool finer_scales, const VolumeEvaluate& evaluate,
-                                            std::size_t& refined);
+VolumeEvaluation evaluate_with_finer_scales(const Mesh& mesh, VolumeSetup setup, bool finer_scales,
+                                            const VolumeEvaluate& evaluate, std::size_t& refined);
 
 /// Fills Area, Boundary and Unreliable, and resets the unreliable vertices (see volume_estimate.h).
 /// Returns the number of unreliable vertices.

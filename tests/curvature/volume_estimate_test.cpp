@@ -340,9 +340,10 @@ TEST(VolumeEstimator, ThinShellFallsBackToFinerScale) {
     EXPECT_GT(on.finer_scale, n * 9 / 10) << path;
     EXPECT_EQ(on.parameters.front().second, 3.0) << path << ": the reported scale is the asked one";
     const Errors e = errors(f, H, K);
-    std::printf("  %s: %zu vertices, %zu unreliable without the fallback; with it %zu at a finer "
-                "scale, %zu unreliable, H RMS %.4f, K RMS %.4f\n",
-                path.c_str(), n, off.unreliable, on.finer_scale, on.unreliable, e.H, e.K);
+    std::printf(
+        "  %s: %zu vertices, %zu unreliable without the fallback; with it %zu at a finer "
+        "scale, %zu unreliable, H RMS %.4f, K RMS %.4f\n",
+        path.c_str(), n, off.unreliable, on.finer_scale, on.unreliable, e.H, e.K);
     EXPECT_LT(e.H, 0.06) << path;  // measured 0.027 and 0.052 (the noise at 1.5 voxels)
     EXPECT_LT(e.K, 0.12) << path;
   }
