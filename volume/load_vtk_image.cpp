@@ -277,8 +277,12 @@ void check_vti_pieces(const std::string& path, const std::string& head) {
   for (std::size_t i = 0; i < 3; ++i) whole_points *= (long double)((*whole)[2 * i + 1] - (*whole)[2 * i] + 1);
   int pieces = 0;
   for (std::size_t at = 0; (at = head.find("<Piece", at)) != std::string::npos; at += 6) {
-    std::size_t f = at;
-    const std::optional<std::string> e = attribute(head, "Extent", f);
+    // The Extent of this Piece tag only: a Piece without one must not take the next one's.
+    const std::size_t close = head.find('>', at);
+    const std::string tag =
+        head.substr(at, close == std::string::npos ? std::string::npos : close - at);
+    std::size_t f = 0;
+    const std::optional<std::string> e = attribute(tag, "Extent", f);
     const auto v = e ? integers(*e, 6) : std::nullopt;
     if (!v) throw Error(path, "a Piece without a readable Extent");
     ++pieces;

@@ -437,6 +437,17 @@ TEST(VolumeBadInput, HeaderValuesOutOfRange) {
   const std::string short_piece = std::string(isocurv::test_paths::source_dir()) +
                                   "/tests/data/fuzz/volume/vti_piece_short_of_whole_extent.vti";
   expect_error([&] { load(short_piece); }, "vti_piece_short_of_whole_extent.vti", "do not cover the WholeExtent");
+  // A Piece without an Extent before one with it: the check read the second's Extent for both.
+  write_file(
+      dir.file("no_extent.vti"),
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"1.0\">\n"
+      "<ImageData WholeExtent=\"0 1 0 1 0 1\" Origin=\"0 0 0\" Spacing=\"1 1 1\">\n"
+      "<Piece><PointData Scalars=\"s\"><DataArray type=\"UInt8\" Name=\"s\" format=\"ascii\">"
+      "0 1 2 3 4 5 6 7</DataArray></PointData></Piece>\n<Piece Extent=\"0 1 0 1 0 1\"><PointData "
+      "Scalars=\"s\"><DataArray type=\"UInt8\" Name=\"s\" format=\"ascii\">0 1 2 3 4 5 6 7"
+      "</DataArray></PointData></Piece></ImageData></VTKFile>\n");
+  expect_error([&] { load(dir.file("no_extent.vti")); }, "no_extent.vti",
+               "a Piece without a readable Extent");
   auto image = [](const std::string& direction) {
     return "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"1.0\">\n"
            "<ImageData WholeExtent=\"0 1 0 1 0 1\" Origin=\"0 0 0\" Spacing=\"1 1 1\" Direction=\"" +
