@@ -91,13 +91,13 @@ void register_features(CLI::App &app) {
     StageTimer timer;
     Surface s = load_surface(in, o, timer);
     const std::size_t nv = s.mesh.vertex_count();
-    if (s.field && s.field->normals.size() == nv && s.field->area.size() == nv) {
+    if (s.field && s.field->normals.size() == nv && s.field->area.size() == nv && !o.flip) {
       prepare_mesh_for_curvature(s, in, o);
-      if (!s.field)  // welded or flipped: the file's curvature no longer applies
+      if (!s.field)  // welded: the file's curvature and arrays no longer apply
         s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o,
                                      timer, &s.normals);
     } else {
-      reestimate_keeping_extras(s, in, o, timer);  // a mesh file's other arrays stay
+      reestimate_keeping_extras(s, in, o, timer);  // --flip or no field: the file's arrays stay
     }
     parse_radii(radius, bounding_box_diagonal(s.mesh), fo);
     fo.isovalue = s.isovalue;

@@ -77,6 +77,19 @@ TEST(CliFeatures, AMeshFileKeepsItsEarlierArraysWhenCurvatureIsEstimatedAgain) {
   const io::MeshFile m = io::read_mesh(dir / "g.vtp");
   for (const char* name : {"LBE", "LBE_r0.2", "H_ii_r0.3", "FeatureBoundary"}) EXPECT_NE(extra(m, name), nullptr) << name;
   ASSERT_FALSE(m.field->H.empty());
+  // A .vtp carries a complete field, which --flip makes stale: estimated again, the arrays stay.
+  ASSERT_TRUE(run_isocurv({"features", dataset("sphere"), "--radius", "0.3", "--features", "H_ii",
+                           "-o", dir / "f.vtp", "--quiet"})
+                  .ok());
+  const auto flipped = run_isocurv({"features", dir / "f.vtp", "--flip", "--radius", "0.25",
+                                    "--features", "LBE", "-o", dir / "h.vtp", "--quiet"});
+  ASSERT_TRUE(flipped.ok()) << flipped.describe();
+  const io::MeshFile h = io::read_mesh(dir / "h.vtp");
+  EXPECT_NE(extra(h, "H_ii"), nullptr) << "the file's array from the first run";
+  EXPECT_NE(extra(h, "LBE"), nullptr);
+  const io::MeshFile f = io::read_mesh(dir / "f.vtp");
+  ASSERT_EQ(h.field->H.size(), f.field->H.size());
+  EXPECT_LT(h.field->H[0] * f.field->H[0], 0.0f) << "flipped: H changes sign";
 }
 
 }  // namespace
