@@ -1,6 +1,8 @@
 // Image files read through VTK: XML image data (.vti) and legacy STRUCTURED_POINTS (.vtk); VolVis
 // SLC (.slc) is handed to load_slc. VTK's error messages are caught by an observer and become the
 // Error text.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <vtkCallbackCommand.h>
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
@@ -14,21 +16,19 @@
 #include <vtkStructuredPointsReader.h>
 #include <vtkXMLImageDataReader.h>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
+#include <cctype>
 #include <climits>
 #include <cmath>
 #include <cstdlib>
-#include <cctype>
 #include <mutex>
 #include <optional>
 #include <sstream>
 #include <vector>
 
-#include "core/vtk_progress.h"
 #include "core/error.h"
+#include "core/vtk_progress.h"
+#include "core/vtk_xml_blocks.h"
 #include "volume/dense_image.h"
 #include "volume/file_bytes.h"
 #include "volume/header_text.h"
@@ -314,7 +314,10 @@ void check_claim(const std::string& path, const std::string& format, std::uint64
   if (format == "vtk" && to_lower(head_text).find("field") != std::string::npos)
     throw Error(path, "legacy .vtk files with FIELD data (or the word 'field' in their header) are not "
                       "supported: VTK's reader can crash on them; save the image as .vti");
-  if (format == "vti") check_vti_pieces(path, head_text);
+  if (format == "vti") {
+    check_vti_pieces(path, head_text);
+    isocurv::detail::check_vtk_xml_compressed_blocks(path);  // VTK allocates from block headers
+  }
   const Claim c = read_claim(head_text, format);
   if (c.dims[0] == 0 && c.dims[1] == 0 && c.dims[2] == 0) {  // the reader will complain
     if (format == "vtk") check_legacy_attributes(path, to_lower(head_text), size);
