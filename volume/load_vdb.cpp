@@ -12,6 +12,7 @@
 #include <new>
 
 #include "core/error.h"
+#include "volume/detail/vdb_length_check.h"
 #include "volume/file_bytes.h"
 #include "volume/from_dense.h"
 #include "volume/loaders.h"
@@ -58,101 +59,11 @@ void check_against_file_stats(const openvdb::GridBase& grid, const std::string& 
   }
 }
 
-/// Walks the parts of a .vdb that OpenVDB sizes from the file before reading them (names, type
-/// names and metadata values: a uint32 length, then that many bytes; OpenVDB allocates and
-/// zero-fills the length first, 4.3 GB resident for a 1,978-byte file the vdb fuzzer made) and
-/// refuses any length the rest of the file cannot hold. Covers the header, the file's metadata and
-/// every grid descriptor; where the file records its grids' offsets (io::File writes them), each
-/// grid's metadata and transform name too; without them, the first grid's. A layout it does not
-/// know (a version before 211, a short file) ends the walk and leaves the rest to OpenVDB, so it
-/// never refuses what OpenVDB reads correctly.
-class VdbSizeCheck {
- public:
-  VdbSizeCheck(const std::string& path, std::uint64_t size)
-      : path_(path), size_(size), in_(path, std::ios::binary) {}
-
-  void run() {
-    std::int64_t magic = 0;
-    std::uint32_t version = 0, major = 0, minor = 0;
-    if (!read(magic) || magic != openvdb::OPENVDB_MAGIC || !read(version) || version < 211 ||
-        !read(major) || !read(minor))
-      return;
-    char has_offsets = 1, compressed = 0;
-    if (version >= 212 && !read(has_offsets)) return;
-    if (version >= openvdb::OPENVDB_FILE_VERSION_SELECTIVE_COMPRESSION &&
-        version < openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION && !read(compressed))
-      return;
-    if (!skip(version >= openvdb::OPENVDB_FILE_VERSION_BOOST_UUID ? 36 : 16)) return;  // the UUID
-    if (!metadata("the file's")) return;
-    std::int32_t grids = 0;
-    if (!read(grids)) return;
-    for (std::int32_t g = 0; g < grids; ++g) {
-      if (!sized("a grid name") || !sized("a grid type name")) return;
-      if (version >= openvdb::OPENVDB_FILE_VERSION_GRID_INSTANCING &&
-          !sized("an instance parent name"))
-        return;
-      std::int64_t grid_pos = 0, block_pos = 0, end_pos = 0;
-      if (!read(grid_pos) || !read(block_pos) || !read(end_pos)) return;
-      const bool skippable = has_offsets && std::uint64_t(grid_pos) == pos_ &&
-                             end_pos >= grid_pos && std::uint64_t(end_pos) <= size_;
-      std::uint32_t compression = 0;
-      if (version >= openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION && !read(compression))
-        return;
-      if (!metadata("a grid's")) return;
-      if (version >= openvdb::OPENVDB_FILE_VERSION_NEW_TRANSFORM && !sized("a transform type name"))
-        return;
-      if (!skippable) return;  // the topology and voxels follow, unframed
-      pos_ = std::uint64_t(end_pos);
-    }
-  }
-
- private:
-  template <class T>
-  bool read(T& value) {
-    if (size_ - pos_ < sizeof(T)) return false;
-    in_.seekg(std::streamoff(pos_));
-    in_.read(reinterpret_cast<char*>(&value), sizeof(T));
-    pos_ += sizeof(T);
-    return bool(in_);
-  }
-  bool skip(std::uint64_t n) {
-    if (size_ - pos_ < n) return false;
-    pos_ += n;
-    return true;
-  }
-  /// A uint32 length and that many bytes.
-  bool sized(const std::string& what) {
-    std::uint32_t n = 0;
-    if (!read(n)) return false;
-    if (n > size_ - pos_)
-      throw Error(path_, "file is truncated or corrupt: " + what + " of " + std::to_string(n) +
-                             " bytes at byte " + std::to_string(pos_ - 4) + " runs past its end (" +
-                             std::to_string(size_) + " bytes)");
-    pos_ += n;
-    return true;
-  }
-  /// A MetaMap: a count, then per entry a name, a type name and a sized value.
-  bool metadata(const std::string& whose) {
-    std::uint32_t count = 0;
-    if (!read(count)) return false;
-    for (std::uint32_t i = 0; i < count; ++i)  // each entry takes 12 bytes or more
-      if (!sized(whose + " metadata name") || !sized(whose + " metadata type name") ||
-          !sized(whose + " metadata value"))
-        return false;
-    return true;
-  }
-
-  const std::string& path_;
-  const std::uint64_t size_;
-  std::ifstream in_;
-  std::uint64_t pos_ = 0;
-};
-
 }  // namespace
 
 Volume load_vdb(const std::string& path, const LoadOptions& options) {
   const std::uint64_t size = file_size(path);
-  VdbSizeCheck(path, size).run();  // before OpenVDB allocates from a corrupt length
+  detail::check_vdb_lengths(path, size);  // before OpenVDB allocates from a corrupt length
   // Every grid is read eagerly from a stream we own (no delayed loading, no memory mapping) that
   // throws at the first read past the end of the file: OpenVDB does not check its reads, and
   // would go on with sizes it never read (allocating and filling gigabytes for a file cut in its

@@ -11,6 +11,7 @@
 
 #include "test_files.h"
 #include "tests/test_paths.h"
+#include "volume/detail/vdb_length_check.h"
 #include "volume/load.h"
 
 using namespace isocurv::volume;
@@ -523,4 +524,124 @@ TEST(VolumeBadInput, VdbLengthsBeyondTheFileAreRefusedBeforeAllocating) {
     write_file(dir.file("corrupt.vdb"), corrupt);
     expect_error([&] { load(dir.file("corrupt.vdb")); }, "corrupt.vdb", message);
   }
+}
+
+namespace {
+
+/// Grids that between them make OpenVDB write every kind of value block: a level set (inactive
+/// values of both signs, interior tiles), a fog volume with tiles at each level, a grid with more
+/// than two inactive values, a double grid and an empty one.
+openvdb::GridPtrVec grids_of_every_block_kind(bool half) {
+  auto level_set =
+      openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(20.0f, openvdb::Vec3f(3), 1.0f);
+  level_set->setName("level_set");
+  auto fog = openvdb::FloatGrid::create(0.0f);
+  fog->setName("fog");
+  fog->tree().fill(openvdb::CoordBBox(openvdb::Coord(-200), openvdb::Coord(300)), 0.5f, true);
+  fog->tree().setValue(openvdb::Coord(7, 8, 9), 2.0f);
+  auto mixed = openvdb::FloatGrid::create(1.0f);
+  mixed->setName("mixed");
+  for (int i = 0; i < 40; ++i) {
+    mixed->tree().setValue(openvdb::Coord(i, 2 * i, 3), float(i) * 0.25f);
+    mixed->tree().setValueOff(openvdb::Coord(i, 2 * i + 1, 3), float(i % 5) - 7.0f);
+  }
+  auto dbl = openvdb::DoubleGrid::create(0.0);
+  dbl->setName("double");
+  for (int i = 0; i < 30; ++i) dbl->tree().setValue(openvdb::Coord(i, -i, 5 * i), 0.1 * i);
+  auto empty = openvdb::FloatGrid::create(3.0f);
+  empty->setName("empty");
+  openvdb::GridPtrVec grids{level_set, fog, mixed, dbl, empty};
+  for (auto& g : grids) g->setSaveFloatAsHalf(half);
+  return grids;
+}
+
+/// The first 8-byte position p in `bytes` holding an int64 equal to the bytes after it: the
+/// length before the file's last compressed block.
+std::size_t last_block_length_at(const std::string& bytes) {
+  for (std::size_t p = bytes.size() - 9; p > 0; --p) {
+    std::int64_t n = 0;
+    std::memcpy(&n, &bytes[p], 8);
+    if (n > 0 && std::uint64_t(n) == bytes.size() - p - 8) return p;
+  }
+  return std::string::npos;
+}
+
+}  // namespace
+
+// The length walk must know every layout OpenVDB writes, or it would leave them unchecked (and a
+// wrong model could refuse good files): each grid of each compression and precision is walked to
+// exactly the end the file records for it, and loads.
+TEST(VolumeBadInput, VdbLengthWalkCoversEveryBlockLayoutOpenVdbWrites) {
+  openvdb::initialize();
+  TempDir dir;
+  using openvdb::io::COMPRESS_ACTIVE_MASK;
+  std::vector<std::uint32_t> compressions{openvdb::io::COMPRESS_NONE, COMPRESS_ACTIVE_MASK,
+                                          openvdb::io::COMPRESS_ZIP,
+                                          openvdb::io::COMPRESS_ZIP | COMPRESS_ACTIVE_MASK};
+  if (openvdb::io::Archive::hasBloscCompression())
+    compressions.push_back(openvdb::io::COMPRESS_BLOSC | COMPRESS_ACTIVE_MASK);
+  for (std::uint32_t compression : compressions) {
+    for (bool half : {false, true}) {
+      SCOPED_TRACE("compression " + std::to_string(compression) + (half ? ", half" : ""));
+      const std::string path = dir.file("every.vdb");
+      openvdb::io::File file(path);
+      file.setCompression(compression);
+      file.write(grids_of_every_block_kind(half));
+      const auto walk = isocurv::volume::detail::check_vdb_lengths(path, file_text(path).size());
+      EXPECT_EQ(walk.grids, 5);
+      EXPECT_EQ(walk.trees_walked, 5);
+      LoadOptions options;
+      for (const char* grid : {"level_set", "fog", "mixed", "double"}) {
+        options.grid = grid;
+        EXPECT_NO_THROW(load(path, options)) << grid;
+      }
+    }
+  }
+  // And the real files, from other writers.
+  for (const char* name : {"vdb_sphere/sphere.vdb", "vdb_cube/cube.vdb", "vdb_smoke/smoke.vdb"}) {
+    const std::string path = std::string(isocurv::test_paths::shared_datasets()) + "/" + name;
+    if (!std::ifstream(path)) continue;
+    const auto walk = isocurv::volume::detail::check_vdb_lengths(path, file_text(path).size());
+    EXPECT_GT(walk.grids, 0) << name;
+    EXPECT_EQ(walk.trees_walked, walk.grids) << name;
+  }
+}
+
+// OpenVDB allocates a zip block whole from its int64 length, and builds tree nodes from child
+// masks until the file runs out: both are refused from the lengths, before anything is read.
+TEST(VolumeBadInput, VdbTreeLengthsBeyondTheFileAreRefused) {
+  openvdb::initialize();
+  TempDir dir;
+  auto g = openvdb::FloatGrid::create(0.0f);
+  g->setName("g");
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 8; ++j) g->tree().setValue(openvdb::Coord(i, j, 0), float(i + j) * 0.5f);
+  const std::string path = dir.file("one_leaf.vdb");
+  openvdb::io::File file(path);
+  file.setCompression(openvdb::io::COMPRESS_ZIP | openvdb::io::COMPRESS_ACTIVE_MASK);
+  file.write({g});
+  ASSERT_NO_THROW(load(path));
+  const std::string bytes = file_text(path);
+  const std::string corrupt = dir.file("corrupt.vdb");
+
+  const std::size_t at = last_block_length_at(bytes);
+  ASSERT_NE(at, std::string::npos) << "the leaf's values end the file, in a zip block";
+  std::string huge_block = bytes;
+  const std::int64_t huge = std::int64_t(2) << 30;
+  std::memcpy(&huge_block[at], &huge, 8);
+  write_file(corrupt, huge_block);
+  expect_error([&] { load(corrupt); }, "corrupt.vdb",
+               "grid 'g' has a compressed block of 2147483648 bytes at byte " + std::to_string(at) +
+                   " that runs past its end");
+
+  // The root's child: one child (the first bit) in a child mask of 4096 bytes, an empty value
+  // mask after it. Every bit set asks for 32,768 nodes of at least 1,025 bytes each.
+  const std::string one_child = std::string(1, '\x01') + std::string(4096 * 2 - 1, '\0');
+  const std::size_t mask = bytes.find(one_child);
+  ASSERT_NE(mask, std::string::npos);
+  std::string many_children = bytes;
+  std::memset(&many_children[mask], 0xff, 4096);
+  write_file(corrupt, many_children);
+  expect_error([&] { load(corrupt); }, "corrupt.vdb",
+               "the tree of grid 'g' needs more bytes than the file's");
 }

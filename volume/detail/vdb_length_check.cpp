@@ -1,0 +1,339 @@
+// The .vdb layout walked here is the one OpenVDB's readers follow (io::Archive::readGrid, the
+// tree nodes' readTopology and readBuffers, io::readCompressedValues); each step names the
+// OpenVDB function whose reads it mirrors.
+#include "volume/detail/vdb_length_check.h"
+
+#include <openvdb/io/Compression.h>
+#include <openvdb/version.h>
+
+#include <algorithm>
+#include <bitset>
+#include <cstring>
+#include <fstream>
+#include <vector>
+
+#include "core/error.h"
+
+namespace isocurv::volume::detail {
+namespace {
+
+/// Sequential reads through a window of the file, so that walking a tree of a million leaves
+/// costs a million memcpys, not a million system calls.
+class Cursor {
+ public:
+  Cursor(const std::string& path, std::uint64_t size) : size_(size), in_(path, std::ios::binary) {}
+
+  std::uint64_t pos() const { return pos_; }
+  std::uint64_t left() const { return size_ - pos_; }
+  void seek(std::uint64_t pos) { pos_ = std::min(pos, size_); }
+
+  /// Copies the next `n` bytes to `out`; false if the file has fewer left.
+  bool bytes(void* out, std::size_t n) {
+    if (left() < n || !in_) return false;
+    if (n > kWindow) {
+      in_.seekg(std::streamoff(pos_));
+      in_.read(static_cast<char*>(out), std::streamsize(n));
+      pos_ += n;
+      return bool(in_);
+    }
+    if (pos_ < start_ || pos_ + n > start_ + window_.size()) {
+      window_.resize(std::size_t(std::min<std::uint64_t>(kWindow, left())));
+      in_.seekg(std::streamoff(pos_));
+      in_.read(window_.data(), std::streamsize(window_.size()));
+      if (!in_) return false;
+      start_ = pos_;
+    }
+    std::memcpy(out, window_.data() + (pos_ - start_), n);
+    pos_ += n;
+    return true;
+  }
+  template <class T>
+  bool read(T& value) {
+    return bytes(&value, sizeof(T));
+  }
+  /// Moves past `n` bytes; false if the file has fewer left.
+  bool skip(std::uint64_t n) {
+    if (left() < n) return false;
+    pos_ += n;
+    return true;
+  }
+
+ private:
+  static constexpr std::size_t kWindow = 64 * 1024;
+  const std::uint64_t size_;
+  std::ifstream in_;
+  std::vector<char> window_;
+  std::uint64_t start_ = 0, pos_ = 0;
+};
+
+/// A bit mask of a tree node (util::NodeMask): 2^(3 log2dim) bits, stored as raw 64-bit words.
+struct NodeMask {
+  std::vector<std::uint64_t> words;
+  explicit NodeMask(int log2dim) : words(std::size_t(1) << (3 * log2dim) >> 6) {}
+  std::uint64_t bits() const { return words.size() * 64; }
+  std::uint64_t bytes() const { return words.size() * 8; }
+  std::uint64_t count() const {
+    std::uint64_t n = 0;
+    for (std::uint64_t w : words) n += std::bitset<64>(w).count();
+    return n;
+  }
+};
+
+/// The node layout of a grid type such as "Tree_float_5_4_3" (internal nodes of 2^5 and 2^4
+/// children per axis, leaves of 2^3 voxels per axis), for float and double values.
+struct TreeLayout {
+  int value_bytes = 0;        ///< 0: a layout the walk does not know
+  std::vector<int> log2dims;  ///< the internal nodes' from the root down, then the leaves'
+};
+
+TreeLayout tree_layout(std::string type) {
+  const std::string half_suffix = "_HalfFloat";  // GridDescriptor's marker; the metadata decides
+  if (type.size() > half_suffix.size() &&
+      type.compare(type.size() - half_suffix.size(), half_suffix.size(), half_suffix) == 0)
+    type.resize(type.size() - half_suffix.size());
+  TreeLayout layout;
+  for (const auto& [name, bytes] : {std::pair{"Tree_float", 4}, std::pair{"Tree_double", 8}}) {
+    const std::string prefix = name;
+    if (type.compare(0, prefix.size(), prefix) != 0) continue;
+    std::vector<int> dims;
+    std::size_t at = prefix.size();
+    while (at + 1 < type.size() && type[at] == '_' && type[at + 1] >= '1' && type[at + 1] <= '9' &&
+           (at + 2 == type.size() || type[at + 2] == '_')) {
+      dims.push_back(type[at + 1] - '0');
+      at += 2;
+    }
+    // NodeMask is a plain array of 64-bit words from 2^3 bits per axis up; 2^7 is the most
+    // the walk reads (a 256 KiB mask), more than any tree configuration OpenVDB registers.
+    if (at != type.size() || dims.size() < 2 ||
+        std::any_of(dims.begin(), dims.end(), [](int d) { return d < 3 || d > 7; }))
+      return layout;
+    layout.value_bytes = bytes;
+    layout.log2dims = dims;
+  }
+  return layout;
+}
+
+/// Bytes of the map a transform type name announces (the maps' read()), 0 when not fixed.
+std::uint64_t map_bytes(const std::string& type) {
+  constexpr std::uint64_t vec3d = 24, mat4d = 128;
+  if (type == "AffineMap" || type == "UnitaryMap") return mat4d;
+  if (type == "ScaleMap" || type == "UniformScaleMap") return 5 * vec3d;
+  if (type == "ScaleTranslateMap" || type == "UniformScaleTranslateMap") return 6 * vec3d;
+  if (type == "TranslationMap") return vec3d;
+  return 0;  // NonlinearFrustumMap (a nested map) or one the walk does not know
+}
+
+class VdbLengthCheck {
+ public:
+  VdbLengthCheck(const std::string& path, std::uint64_t size)
+      : path_(path), size_(size), in_(path, size) {}
+
+  VdbLengthWalk run() {
+    std::int64_t magic = 0;
+    std::uint32_t major = 0, minor = 0;
+    if (!in_.read(magic) || magic != openvdb::OPENVDB_MAGIC || !in_.read(version_) ||
+        version_ < 211 || !in_.read(major) || !in_.read(minor))
+      return walk_;
+    char has_offsets = 1, compressed = 0;
+    if (version_ >= 212 && !in_.read(has_offsets)) return walk_;
+    if (version_ >= openvdb::OPENVDB_FILE_VERSION_SELECTIVE_COMPRESSION &&
+        version_ < openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION && !in_.read(compressed))
+      return walk_;
+    if (!in_.skip(version_ >= openvdb::OPENVDB_FILE_VERSION_BOOST_UUID ? 36 : 16))  // the UUID
+      return walk_;
+    bool half = false;
+    if (!metadata("the file's", half)) return walk_;
+    std::int32_t grids = 0;
+    if (!in_.read(grids)) return walk_;
+    for (std::int32_t g = 0; g < grids; ++g) {
+      std::string name, type, parent;
+      if (!text(name, "a grid name") || !text(type, "a grid type name")) return walk_;
+      if (version_ >= openvdb::OPENVDB_FILE_VERSION_GRID_INSTANCING &&
+          !text(parent, "an instance parent name"))
+        return walk_;
+      ++walk_.grids;
+      std::int64_t grid_pos = 0, block_pos = 0, end_pos = 0;
+      if (!in_.read(grid_pos) || !in_.read(block_pos) || !in_.read(end_pos)) return walk_;
+      const bool framed = has_offsets && std::uint64_t(grid_pos) == in_.pos() &&
+                          end_pos >= grid_pos && std::uint64_t(end_pos) <= size_;
+      grid_ = name;
+      const bool walked = grid(type, !parent.empty());
+      if (framed) {
+        if (walked && in_.pos() == std::uint64_t(end_pos)) ++walk_.trees_walked;
+        in_.seek(std::uint64_t(end_pos));
+      } else if (!walked) {
+        return walk_;  // the next grid starts where this one's unframed bytes end
+      }
+    }
+    return walk_;
+  }
+
+ private:
+  /// One grid after its descriptor (Archive::readGrid): compression flags, metadata, transform,
+  /// then, unless it is an instance of another grid's tree, topology and voxel blocks. True when
+  /// the walk reached the grid's end.
+  bool grid(const std::string& type, bool instance) {
+    compression_ = openvdb::io::COMPRESS_NONE;
+    if (version_ >= openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION && !in_.read(compression_))
+      return false;
+    half_ = false;
+    if (!metadata("a grid's", half_)) return false;
+    if (version_ < openvdb::OPENVDB_FILE_VERSION_NEW_TRANSFORM) return false;
+    std::string map;
+    if (!text(map, "a transform type name")) return false;
+    const std::uint64_t map_size = map_bytes(map);
+    if (map_size == 0 || !in_.skip(map_size)) return false;
+    if (instance) return true;
+    const TreeLayout layout = tree_layout(type);
+    if (layout.value_bytes == 0 || version_ < openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION)
+      return false;
+    value_bytes_ = layout.value_bytes;
+    return tree(layout);
+  }
+
+  /// Tree::readTopology (a buffer count), RootNode::readTopology (background, tiles, children),
+  /// then the voxel blocks, one per leaf (LeafNode::readBuffers: the leaf's value mask again,
+  /// then its values).
+  bool tree(const TreeLayout& layout) {
+    std::int32_t buffer_count = 0;
+    std::uint32_t tiles = 0, children = 0;
+    need(in_.read(buffer_count) && in_.skip(value_bytes_) && in_.read(tiles) && in_.read(children));
+    const std::uint64_t tile_bytes = 12 + value_bytes_ + 1;  // origin, value, active flag
+    need(in_.skip(std::uint64_t(tiles) * tile_bytes));
+    levels_.clear();
+    for (std::size_t i = 0; i + 1 < layout.log2dims.size(); ++i)
+      levels_.push_back({NodeMask(layout.log2dims[i]), NodeMask(layout.log2dims[i])});
+    NodeMask leaf(layout.log2dims.back());
+    std::uint64_t leaves = 0;
+    for (std::uint32_t c = 0; c < children; ++c) {
+      need(in_.skip(12));  // the child's origin
+      if (!internal_topology(0, leaf.bytes(), leaves)) return false;
+    }
+    for (std::uint64_t l = 0; l < leaves; ++l) {
+      need(in_.bytes(leaf.words.data(), leaf.bytes()));
+      if (!values(leaf.bits(), leaf.count(), leaf.bytes())) return false;
+    }
+    return true;
+  }
+
+  /// InternalNode::readTopology of a node at `level` (0: the root's children): child mask, value
+  /// mask, the node's tile values, then each child; a leaf's topology is its value mask alone.
+  /// Counts the leaves into `leaves`.
+  bool internal_topology(std::size_t level, std::uint64_t leaf_mask_bytes, std::uint64_t& leaves) {
+    Level& node = levels_[level];  // deeper calls use deeper levels: the masks stay valid
+    need(in_.bytes(node.child.words.data(), node.child.bytes()) &&
+         in_.bytes(node.value.words.data(), node.value.bytes()));
+    if (!values(node.value.bits(), node.value.count(), node.value.bytes())) return false;
+    const bool leaf_children = level + 1 == levels_.size();
+    for (std::uint64_t n = node.child.count(); n > 0; --n) {
+      if (leaf_children) {
+        need(in_.skip(leaf_mask_bytes));
+        ++leaves;
+      } else if (!internal_topology(level + 1, leaf_mask_bytes, leaves)) {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  /// io::readCompressedValues: a flag byte saying what follows, up to two inactive values, a
+  /// selection mask, then the values (only the active ones under mask compression), as half
+  /// floats when the grid says so, raw or in a zip or blosc block with an int64 length before it.
+  /// False when the block's raw size is not the one expected (OpenVDB says so itself).
+  bool values(std::uint64_t count, std::uint64_t active, std::uint64_t mask_bytes) {
+    using namespace openvdb::io;
+    std::int8_t flag = 0;
+    need(in_.read(flag));
+    if (flag == NO_MASK_AND_ONE_INACTIVE_VAL || flag == MASK_AND_ONE_INACTIVE_VAL)
+      need(in_.skip(value_bytes_));
+    if (flag == MASK_AND_TWO_INACTIVE_VALS) need(in_.skip(2 * std::uint64_t(value_bytes_)));
+    if (flag == MASK_AND_NO_INACTIVE_VALS || flag == MASK_AND_ONE_INACTIVE_VAL ||
+        flag == MASK_AND_TWO_INACTIVE_VALS)
+      need(in_.skip(mask_bytes));
+    if ((compression_ & COMPRESS_ACTIVE_MASK) && flag != NO_MASK_AND_ALL_VALS) count = active;
+    if (half_ && count == 0) return true;  // HalfReader reads nothing at all then
+    const std::uint64_t bytes = count * (half_ ? 2 : value_bytes_);
+    if (!(compression_ & (COMPRESS_BLOSC | COMPRESS_ZIP))) {
+      need(in_.skip(bytes));
+      return true;
+    }
+    const std::uint64_t at = in_.pos();
+    std::int64_t length = 0;
+    need(in_.read(length));
+    if (length <= 0) {  // stored uncompressed
+      if (length != -std::int64_t(bytes)) return false;
+      need(in_.skip(bytes));
+      return true;
+    }
+    if (std::uint64_t(length) > in_.left())
+      throw Error(path_, "file is truncated or corrupt: grid '" + grid_ +
+                             "' has a compressed block of " + std::to_string(length) +
+                             " bytes at byte " + std::to_string(at) + " that runs past its end (" +
+                             std::to_string(size_) + " bytes)");
+    in_.skip(std::uint64_t(length));
+    return true;
+  }
+
+  /// A tree read that runs past the end: OpenVDB would allocate the nodes it describes until the
+  /// file ran out, then fail.
+  void need(bool ok) {
+    if (!ok)
+      throw Error(path_, "file is truncated or corrupt: the tree of grid '" + grid_ +
+                             "' needs more bytes than the file's " + std::to_string(size_) +
+                             " (it runs past the end at byte " + std::to_string(in_.pos()) + ")");
+  }
+
+  /// A uint32 length and that many bytes (io::readString); keeps short ones in `out`.
+  bool text(std::string& out, const std::string& what) {
+    const std::uint64_t at = in_.pos();
+    std::uint32_t n = 0;
+    if (!in_.read(n)) return false;
+    if (n > in_.left())
+      throw Error(path_, "file is truncated or corrupt: " + what + " of " + std::to_string(n) +
+                             " bytes at byte " + std::to_string(at) + " runs past its end (" +
+                             std::to_string(size_) + " bytes)");
+    out.clear();
+    if (n > kKeptText) return in_.skip(n);
+    out.resize(n);
+    return in_.bytes(out.data(), n);
+  }
+
+  /// A MetaMap (MetaMap::readMeta): a count, then per entry a name, a type name and a sized
+  /// value. Sets `half` from the entry that makes the grid's floats half-precision.
+  bool metadata(const std::string& whose, bool& half) {
+    std::uint32_t count = 0;
+    if (!in_.read(count)) return false;
+    std::string name, type, value;
+    for (std::uint32_t i = 0; i < count; ++i) {  // each entry takes 12 bytes or more
+      if (!text(name, whose + " metadata name") || !text(type, whose + " metadata type name") ||
+          !text(value, whose + " metadata value"))
+        return false;
+      if (name == "is_saved_as_half_float")  // GridBase::META_SAVE_HALF_FLOAT; asBool()
+        half = std::any_of(value.begin(), value.end(), [](char c) { return c != 0; });
+    }
+    return true;
+  }
+
+  static constexpr std::uint32_t kKeptText = 256;
+  const std::string& path_;
+  const std::uint64_t size_;
+  Cursor in_;
+  std::uint32_t version_ = 0;
+  std::uint32_t compression_ = 0;
+  bool half_ = false;
+  int value_bytes_ = 0;
+  std::string grid_;
+  struct Level {
+    NodeMask child, value;
+  };
+  std::vector<Level> levels_;  ///< the masks of the internal node being walked at each depth
+  VdbLengthWalk walk_;
+};
+
+}  // namespace
+
+VdbLengthWalk check_vdb_lengths(const std::string& path, std::uint64_t size) {
+  return VdbLengthCheck(path, size).run();
+}
+
+}  // namespace isocurv::volume::detail
