@@ -493,6 +493,10 @@ TEST(VolumeBadInput, VdbLengthsBeyondTheFileAreRefusedBeforeAllocating) {
                "a grid type name of 1936457728 bytes at byte 71 runs past its end (1978 bytes)");
   expect_error([&] { load(fuzz + "vdb_metadata_value_4.3e9.vdb"); }, "vdb_metadata_value_4.3e9.vdb",
                "a grid's metadata value of 4294967292 bytes");
+  // OpenVDB's delayed-load metadata sizes its tables from counts inside its value (1.6 GB asked).
+  expect_error(
+      [&] { load(fuzz + "vdb_delayed_load_table_1.6e9.vdb"); }, "vdb_delayed_load_table_1.6e9.vdb",
+      "delayed-load metadata at byte 328 lists 131 leaves, more than a file of 9987 bytes");
   openvdb::initialize();
   TempDir dir;
   openvdb::GridPtrVec grids;
@@ -524,6 +528,18 @@ TEST(VolumeBadInput, VdbLengthsBeyondTheFileAreRefusedBeforeAllocating) {
     write_file(dir.file("corrupt.vdb"), corrupt);
     expect_error([&] { load(dir.file("corrupt.vdb")); }, "corrupt.vdb", message);
   }
+  // io::File writes a delayed-load table with each grid: its compressed length, corrupted.
+  const std::size_t type = bytes.find("__delayedload");
+  ASSERT_NE(type, std::string::npos);
+  std::string corrupt = bytes;
+  const std::size_t table_length =
+      type + std::strlen("__delayedload") + 4 + 4;  // value size, leaves
+  const std::uint32_t huge = 0x7fff0000;
+  std::memcpy(&corrupt[table_length], &huge, 4);
+  write_file(dir.file("corrupt.vdb"), corrupt);
+  expect_error([&] { load(dir.file("corrupt.vdb")); }, "corrupt.vdb",
+               "a grid's delayed-load table of 1 leaves of 2147418112 bytes at byte " +
+                   std::to_string(table_length + 4) + " runs past its end");
 }
 
 namespace {

@@ -283,15 +283,18 @@ class VdbLengthCheck {
                              " (it runs past the end at byte " + std::to_string(in_.pos()) + ")");
   }
 
+  [[noreturn]] void text_past_end(const std::string& what, std::uint64_t n, std::uint64_t at) {
+    throw Error(path_, "file is truncated or corrupt: " + what + " of " + std::to_string(n) +
+                           " bytes at byte " + std::to_string(at) + " runs past its end (" +
+                           std::to_string(size_) + " bytes)");
+  }
+
   /// A uint32 length and that many bytes (io::readString); keeps short ones in `out`.
   bool text(std::string& out, const std::string& what) {
     const std::uint64_t at = in_.pos();
     std::uint32_t n = 0;
     if (!in_.read(n)) return false;
-    if (n > in_.left())
-      throw Error(path_, "file is truncated or corrupt: " + what + " of " + std::to_string(n) +
-                             " bytes at byte " + std::to_string(at) + " runs past its end (" +
-                             std::to_string(size_) + " bytes)");
+    if (n > in_.left()) text_past_end(what, n, at);
     out.clear();
     if (n > kKeptText) return in_.skip(n);
     out.resize(n);
@@ -305,13 +308,72 @@ class VdbLengthCheck {
     if (!in_.read(count)) return false;
     std::string name, type, value;
     for (std::uint32_t i = 0; i < count; ++i) {  // each entry takes 12 bytes or more
-      if (!text(name, whose + " metadata name") || !text(type, whose + " metadata type name") ||
-          !text(value, whose + " metadata value"))
+      if (!text(name, whose + " metadata name") || !text(type, whose + " metadata type name"))
         return false;
+      if (type == "__delayedload") {  // io::DelayedLoadMetadata::staticTypeName()
+        if (!delayed_load_value(whose)) return false;
+        continue;
+      }
+      if (!text(value, whose + " metadata value")) return false;
       if (name == "is_saved_as_half_float")  // GridBase::META_SAVE_HALF_FLOAT; asBool()
         half = std::any_of(value.begin(), value.end(), [](char c) { return c != 0; });
     }
     return true;
+  }
+
+  /// The value of io::DelayedLoadMetadata (which io::File writes with each grid): a leaf count,
+  /// then a table of one flag byte per leaf and one of an int64 block size per leaf, each raw or
+  /// blosc-compressed after a uint32 length. OpenVDB's readValue reads all this from the stream
+  /// whatever the value's own length says, allocates both tables from the count (and a compressed
+  /// one from its blosc header's size), and then skips what is left of the value, if anything.
+  bool delayed_load_value(const std::string& whose) {
+    std::uint32_t n = 0;
+    const std::uint64_t at = in_.pos();
+    if (!in_.read(n)) return false;
+    if (n > in_.left()) text_past_end(whose + " metadata value", n, at);
+    const std::uint64_t start = in_.pos();
+    if (n == 0) return true;
+    std::uint32_t leaves = 0, bytes = 0;
+    if (!in_.read(leaves) || !in_.read(bytes)) return false;
+    // Each leaf takes at least its value mask twice (topology, voxel block): 128 bytes.
+    if (leaves > size_ / 128)
+      throw Error(path_, "file is truncated or corrupt: " + whose +
+                             " delayed-load metadata at byte " + std::to_string(at) + " lists " +
+                             std::to_string(leaves) + " leaves, more than a file of " +
+                             std::to_string(size_) + " bytes can hold");
+    if (!delayed_load_table(whose, bytes, leaves, 1)) return false;
+    if (!in_.read(bytes)) return false;
+    if (bytes != 0xffffffffu && !delayed_load_table(whose, bytes, leaves, 8)) return false;
+    in_.seek(std::max(in_.pos(), start + n));
+    return true;
+  }
+
+  /// One table of `leaves` entries of `entry_bytes`: raw when `bytes` is 0, else `bytes` of blosc
+  /// data whose 16-byte header gives the uncompressed size at offset 4.
+  bool delayed_load_table(const std::string& whose, std::uint32_t bytes, std::uint32_t leaves,
+                          std::uint32_t entry_bytes) {
+    const std::uint64_t at = in_.pos();
+    const std::uint64_t raw = std::uint64_t(leaves) * entry_bytes;
+    const std::string what = whose + " delayed-load table of " + std::to_string(leaves) + " leaves";
+    if (bytes == 0) {
+      if (raw > in_.left()) text_past_end(what, raw, at);
+      return in_.skip(raw);
+    }
+    constexpr std::uint32_t kBloscHeader = 16;
+    if (bytes > in_.left()) text_past_end(what, bytes, at);
+    std::uint8_t header[kBloscHeader] = {};
+    if (bytes < kBloscHeader || !in_.bytes(header, kBloscHeader))
+      throw Error(path_, "file is corrupt: " + what + " at byte " + std::to_string(at) +
+                             " is compressed into " + std::to_string(bytes) +
+                             " bytes, too few for a blosc header");
+    std::uint32_t unpacked = 0;
+    std::memcpy(&unpacked, header + 4, 4);
+    constexpr std::uint32_t kBloscPad = 128;  // OpenVDB pads short tables before compressing
+    if (unpacked > raw + kBloscPad)
+      throw Error(path_, "file is corrupt: " + what + " at byte " + std::to_string(at) +
+                             " claims " + std::to_string(unpacked) +
+                             " bytes uncompressed, more than " + std::to_string(raw + kBloscPad));
+    return in_.skip(bytes - kBloscHeader);
   }
 
   static constexpr std::uint32_t kKeptText = 256;
