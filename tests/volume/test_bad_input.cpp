@@ -492,11 +492,16 @@ TEST(VolumeBadInput, VdbLengthsBeyondTheFileAreRefusedBeforeAllocating) {
   expect_error([&] { load(fuzz + "vdb_grid_type_name_1.9e9.vdb"); }, "vdb_grid_type_name_1.9e9.vdb",
                "a grid type name of 1936457728 bytes at byte 71 runs past its end (1978 bytes)");
   expect_error([&] { load(fuzz + "vdb_metadata_value_4.3e9.vdb"); }, "vdb_metadata_value_4.3e9.vdb",
-               "a grid's metadata value of 4294967292 bytes");
+               "a grid's metadata name of 4294967295 bytes at byte 290");
   // OpenVDB's delayed-load metadata sizes its tables from counts inside its value (1.6 GB asked).
   expect_error(
       [&] { load(fuzz + "vdb_delayed_load_table_1.6e9.vdb"); }, "vdb_delayed_load_table_1.6e9.vdb",
       "delayed-load metadata at byte 328 lists 131 leaves, more than a file of 9987 bytes");
+  // A vec3i value's length was 13,324, which OpenVDB ignores: it reads 12 bytes and then, in
+  // step with the walk, a type name of 1.6 GB.
+  expect_error([&] { load(fuzz + "vdb_typed_metadata_length_1.6e9.vdb"); },
+               "vdb_typed_metadata_length_1.6e9.vdb",
+               "a grid's metadata type name of 1635131493 bytes at byte 4343");
   openvdb::initialize();
   TempDir dir;
   openvdb::GridPtrVec grids;
@@ -660,4 +665,43 @@ TEST(VolumeBadInput, VdbTreeLengthsBeyondTheFileAreRefused) {
   write_file(corrupt, many_children);
   expect_error([&] { load(corrupt); }, "corrupt.vdb",
                "the tree of grid 'g' needs more bytes than the file's");
+}
+
+// TypedMetadata reads its type's size and ignores the length the file gives, so a wrong length
+// there is harmless to OpenVDB: the walk must read such values the same way, or it would refuse
+// good files and walk the rest out of step (a fuzzer-made file then slipped a 1.6 GB string past).
+TEST(VolumeBadInput, VdbFixedSizeMetadataIgnoresItsLength) {
+  openvdb::initialize();
+  const char* fixed[] = {"bool",  "float", "double", "int32", "int64", "vec2i", "vec2s", "vec2d",
+                         "vec3i", "vec3s", "vec3d",  "vec4i", "vec4s", "vec4d", "mat4s", "mat4d"};
+  for (const char* type : fixed) EXPECT_TRUE(openvdb::Metadata::isRegisteredType(type)) << type;
+  // Read by their length (UnknownMetadata); registered ones would need a size in the walk.
+  for (const char* type : {"half", "int8", "uint8", "int16", "uint32", "vec3u8", "mat3s", "mat3d",
+                           "quats", "quatd", "mask"})
+    EXPECT_FALSE(openvdb::Metadata::isRegisteredType(type)) << type;
+  TempDir dir;
+  auto g = openvdb::FloatGrid::create(0.0f);
+  g->setName("g");
+  g->tree().setValue(openvdb::Coord(1, 2, 3), 1.0f);
+  for (const char* type : fixed) {
+    auto meta = openvdb::Metadata::createMetadata(type);
+    g->insertMeta(std::string("meta_of_type_") + type, *meta);
+  }
+  const std::string path = dir.file("typed.vdb");
+  openvdb::io::File(path).write({g});
+  const std::string bytes = file_text(path);
+  std::string corrupt = bytes;
+  for (const char* type : fixed) {
+    const std::string name = std::string("meta_of_type_") + type;
+    const std::size_t at = corrupt.find(name);
+    ASSERT_NE(at, std::string::npos) << name;
+    const std::size_t length = at + name.size() + 4 + std::strlen(type);  // after the type name
+    const std::uint32_t huge = 0x7fff0000;
+    std::memcpy(&corrupt[length], &huge, 4);
+  }
+  const std::string bad = dir.file("typed_lengths.vdb");
+  write_file(bad, corrupt);
+  const auto walk = isocurv::volume::detail::check_vdb_lengths(bad, corrupt.size());
+  EXPECT_EQ(walk.trees_walked, 1);
+  EXPECT_NO_THROW(load(bad));
 }

@@ -123,6 +123,18 @@ std::uint64_t map_bytes(const std::string& type) {
   return 0;  // NonlinearFrustumMap (a nested map) or one the walk does not know
 }
 
+/// Bytes of a metadata value of a fixed-size type openvdb::initialize() registers, 0 for the
+/// others ("string", "__delayedload", and types not registered, which are read by their length).
+std::uint64_t fixed_metadata_bytes(const std::string& type) {
+  static const std::pair<const char*, std::uint64_t> sizes[] = {
+      {"bool", 1},   {"float", 4},  {"double", 8}, {"int32", 4},  {"int64", 8},  {"vec2i", 8},
+      {"vec2s", 8},  {"vec2d", 16}, {"vec3i", 12}, {"vec3s", 12}, {"vec3d", 24}, {"vec4i", 16},
+      {"vec4s", 16}, {"vec4d", 32}, {"mat4s", 64}, {"mat4d", 128}};
+  for (const auto& [name, bytes] : sizes)
+    if (type == name) return bytes;
+  return 0;
+}
+
 class VdbLengthCheck {
  public:
   VdbLengthCheck(const std::string& path, std::uint64_t size)
@@ -314,7 +326,14 @@ class VdbLengthCheck {
         if (!delayed_load_value(whose)) return false;
         continue;
       }
-      if (!text(value, whose + " metadata value")) return false;
+      if (const std::uint64_t fixed = fixed_metadata_bytes(type)) {
+        // TypedMetadata::readValue reads its type's size, whatever length the file gives.
+        std::uint32_t ignored = 0;
+        value.resize(fixed);
+        if (!in_.read(ignored) || !in_.bytes(value.data(), fixed)) return false;
+      } else if (!text(value, whose + " metadata value")) {  // a string, or a type not registered
+        return false;
+      }
       if (name == "is_saved_as_half_float")  // GridBase::META_SAVE_HALF_FLOAT; asBool()
         half = std::any_of(value.begin(), value.end(), [](char c) { return c != 0; });
     }
