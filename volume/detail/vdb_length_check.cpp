@@ -156,7 +156,16 @@ class VdbLengthCheck {
     bool half = false;
     if (!metadata("the file's", half)) return walk_;
     std::int32_t grids = 0;
+    const std::uint64_t grids_at = in_.pos();
     if (!in_.read(grids)) return walk_;
+    // io::Stream reserves a descriptor per grid first; each takes 36 bytes or more of the file
+    // (three lengths and three offsets; 32 before instancing).
+    const std::uint64_t descriptor_bytes =
+        version_ >= openvdb::OPENVDB_FILE_VERSION_GRID_INSTANCING ? 36 : 32;
+    if (grids < 0 || std::uint64_t(grids) > in_.left() / descriptor_bytes)
+      throw Error(path_, "file is truncated or corrupt: its grid count at byte " +
+                             std::to_string(grids_at) + " is " + std::to_string(grids) +
+                             ", more than its " + std::to_string(size_) + " bytes can hold");
     for (std::int32_t g = 0; g < grids; ++g) {
       std::string name, type, parent;
       if (!text(name, "a grid name") || !text(type, "a grid type name")) return walk_;
