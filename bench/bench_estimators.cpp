@@ -302,6 +302,15 @@ void speed_row(const char* name, const Mesh& m, int runs) {
               "batagelo %.1f; host adjacency: rusinkiewicz %.1f, batagelo %.1f\n",
               "", r_steps, b_steps, b_steps / r_steps, p3_steps, p3_steps / r_steps, p2_steps,
               p2_steps / r_steps, r.derivative, b.derivative, r.adjacency, b.adjacency);
+  auto parts = [](const curvature::Timings& x) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "%.1f + %.1f + %.1f", x.normals_areas, x.tensor, x.directions);
+    return std::string(buf);
+  };
+  std::printf(
+      "  %-25s the steps (normals + tensor + directions): rusinkiewicz %s | batagelo %s | "
+      "prantl3 %s | prantl2 %s\n",
+      "", parts(r).c_str(), parts(b).c_str(), parts(p3).c_str(), parts(p2).c_str());
   const double per = 1048576.0 / double(m.vertex_count());
   const double mem_r = bench::peak_extra_mib([&] { curvature::estimate(m, dev); });
   const double mem_b = bench::peak_extra_mib([&] { curvature::estimate_batagelo(m, dev); });

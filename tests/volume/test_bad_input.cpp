@@ -500,6 +500,12 @@ TEST(VolumeBadInput, VdbLengthsBeyondTheFileAreRefusedBeforeAllocating) {
   // io::Stream reserves a descriptor per grid before reading any (274 GB asked for this one).
   expect_error([&] { load(fuzz + "vdb_grid_count_1.7e9.vdb"); }, "vdb_grid_count_1.7e9.vdb",
                "its grid count at byte 61 is 1711276033, more than its 272 bytes can hold");
+  // bloscFromStream reads an uncompressed block of the length the file gives into the node's
+  // buffer before comparing it with the node's size: a heap overflow (then abort) before the walk.
+  expect_error([&] { load(fuzz + "vdb_blosc_raw_block_overflow.vdb"); },
+               "vdb_blosc_raw_block_overflow.vdb",
+               "grid 'ls' has an uncompressed block of 2025524839466146845 bytes at byte 9858 "
+               "where its node holds 220");
   // A vec3i value's length was 13,324, which OpenVDB ignores: it reads 12 bytes and then, in
   // step with the walk, a type name of 1.6 GB.
   expect_error([&] { load(fuzz + "vdb_typed_metadata_length_1.6e9.vdb"); },

@@ -209,13 +209,14 @@ class VdbLengthCheck {
     if (layout.value_bytes == 0 || version_ < openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION)
       return false;
     value_bytes_ = layout.value_bytes;
-    return tree(layout);
+    tree(layout);
+    return true;
   }
 
   /// Tree::readTopology (a buffer count), RootNode::readTopology (background, tiles, children),
   /// then the voxel blocks, one per leaf (LeafNode::readBuffers: the leaf's value mask again,
   /// then its values).
-  bool tree(const TreeLayout& layout) {
+  void tree(const TreeLayout& layout) {
     std::int32_t buffer_count = 0;
     std::uint32_t tiles = 0, children = 0;
     need(in_.read(buffer_count) && in_.skip(value_bytes_) && in_.read(tiles) && in_.read(children));
@@ -228,40 +229,37 @@ class VdbLengthCheck {
     std::uint64_t leaves = 0;
     for (std::uint32_t c = 0; c < children; ++c) {
       need(in_.skip(12));  // the child's origin
-      if (!internal_topology(0, leaf.bytes(), leaves)) return false;
+      internal_topology(0, leaf.bytes(), leaves);
     }
     for (std::uint64_t l = 0; l < leaves; ++l) {
       need(in_.bytes(leaf.words.data(), leaf.bytes()));
-      if (!values(leaf.bits(), leaf.count(), leaf.bytes())) return false;
+      values(leaf.bits(), leaf.count(), leaf.bytes());
     }
-    return true;
   }
 
   /// InternalNode::readTopology of a node at `level` (0: the root's children): child mask, value
   /// mask, the node's tile values, then each child; a leaf's topology is its value mask alone.
   /// Counts the leaves into `leaves`.
-  bool internal_topology(std::size_t level, std::uint64_t leaf_mask_bytes, std::uint64_t& leaves) {
+  void internal_topology(std::size_t level, std::uint64_t leaf_mask_bytes, std::uint64_t& leaves) {
     Level& node = levels_[level];  // deeper calls use deeper levels: the masks stay valid
     need(in_.bytes(node.child.words.data(), node.child.bytes()) &&
          in_.bytes(node.value.words.data(), node.value.bytes()));
-    if (!values(node.value.bits(), node.value.count(), node.value.bytes())) return false;
+    values(node.value.bits(), node.value.count(), node.value.bytes());
     const bool leaf_children = level + 1 == levels_.size();
     for (std::uint64_t n = node.child.count(); n > 0; --n) {
       if (leaf_children) {
         need(in_.skip(leaf_mask_bytes));
         ++leaves;
-      } else if (!internal_topology(level + 1, leaf_mask_bytes, leaves)) {
-        return false;
+      } else {
+        internal_topology(level + 1, leaf_mask_bytes, leaves);
       }
     }
-    return true;
   }
 
   /// io::readCompressedValues: a flag byte saying what follows, up to two inactive values, a
   /// selection mask, then the values (only the active ones under mask compression), as half
   /// floats when the grid says so, raw or in a zip or blosc block with an int64 length before it.
-  /// False when the block's raw size is not the one expected (OpenVDB says so itself).
-  bool values(std::uint64_t count, std::uint64_t active, std::uint64_t mask_bytes) {
+  void values(std::uint64_t count, std::uint64_t active, std::uint64_t mask_bytes) {
     using namespace openvdb::io;
     std::int8_t flag = 0;
     need(in_.read(flag));
@@ -272,19 +270,25 @@ class VdbLengthCheck {
         flag == MASK_AND_TWO_INACTIVE_VALS)
       need(in_.skip(mask_bytes));
     if ((compression_ & COMPRESS_ACTIVE_MASK) && flag != NO_MASK_AND_ALL_VALS) count = active;
-    if (half_ && count == 0) return true;  // HalfReader reads nothing at all then
+    if (half_ && count == 0) return;  // HalfReader reads nothing at all then
     const std::uint64_t bytes = count * (half_ ? 2 : value_bytes_);
     if (!(compression_ & (COMPRESS_BLOSC | COMPRESS_ZIP))) {
       need(in_.skip(bytes));
-      return true;
+      return;
     }
     const std::uint64_t at = in_.pos();
     std::int64_t length = 0;
     need(in_.read(length));
-    if (length <= 0) {  // stored uncompressed
-      if (length != -std::int64_t(bytes)) return false;
+    if (length <= 0) {  // stored uncompressed: minus its length
+      // bloscFromStream reads the block into the node's buffer before comparing the sizes (a
+      // heap overflow, found by the vdb fuzzer); unzipFromStream compares first, then throws.
+      if (length != -std::int64_t(bytes))
+        throw Error(path_, "file is corrupt: grid '" + grid_ + "' has an uncompressed block of " +
+                               std::to_string(std::uint64_t(0) - std::uint64_t(length)) +
+                               " bytes at byte " + std::to_string(at) + " where its node holds " +
+                               std::to_string(bytes));
       need(in_.skip(bytes));
-      return true;
+      return;
     }
     if (std::uint64_t(length) > in_.left())
       throw Error(path_, "file is truncated or corrupt: grid '" + grid_ +
@@ -292,7 +296,6 @@ class VdbLengthCheck {
                              " bytes at byte " + std::to_string(at) + " that runs past its end (" +
                              std::to_string(size_) + " bytes)");
     in_.skip(std::uint64_t(length));
-    return true;
   }
 
   /// A tree read that runs past the end: OpenVDB would allocate the nodes it describes until the
