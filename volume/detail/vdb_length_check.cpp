@@ -143,25 +143,31 @@ class VdbLengthCheck {
   VdbLengthWalk run() {
     std::int64_t magic = 0;
     std::uint32_t major = 0, minor = 0;
-    if (!in_.read(magic) || magic != openvdb::OPENVDB_MAGIC || !in_.read(version_) ||
-        version_ < 211 || !in_.read(major) || !in_.read(minor))
-      return walk_;
-    char has_offsets = 1, compressed = 0;
-    if (version_ >= 212 && !in_.read(has_offsets)) return walk_;
-    if (version_ >= openvdb::OPENVDB_FILE_VERSION_SELECTIVE_COMPRESSION &&
-        version_ < openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION && !in_.read(compressed))
-      return walk_;
-    if (!in_.skip(version_ >= openvdb::OPENVDB_FILE_VERSION_BOOST_UUID ? 36 : 16))  // the UUID
-      return walk_;
+    if (!in_.read(magic) || magic != openvdb::OPENVDB_MAGIC || !in_.read(version_)) return walk_;
+    // The layouts before 222 differ in every part walked here, and OpenVDB itself now refuses
+    // files before 221. (Later versions are read as OpenVDB 10 reads them: as 224.)
+    if (version_ < openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION)
+      throw Error(path_, "OpenVDB file format " + std::to_string(version_) +
+                             " is older than 222 (OpenVDB 3, 2014), the oldest isocurv reads; "
+                             "save it again with a newer OpenVDB");
+    char has_offsets = 1;
+    if (!in_.read(major) || !in_.read(minor) || !in_.read(has_offsets)) return walk_;
+    // The UUID: 32 hex digits and 4 hyphens, each read by a formatted `is >> c` (boost::uuids'
+    // operator>>), which skips white space first.
+    for (int i = 0; i < 36; ++i) {
+      char c = ' ';
+      while (in_.read(c) && (c == ' ' || (c >= '\t' && c <= '\r'))) {
+      }
+      if (c == ' ' || (c >= '\t' && c <= '\r')) return walk_;  // the file ended
+    }
     bool half = false;
     if (!metadata("the file's", half)) return walk_;
     std::int32_t grids = 0;
     const std::uint64_t grids_at = in_.pos();
     if (!in_.read(grids)) return walk_;
     // io::Stream reserves a descriptor per grid first; each takes 36 bytes or more of the file
-    // (three lengths and three offsets; 32 before instancing).
-    const std::uint64_t descriptor_bytes =
-        version_ >= openvdb::OPENVDB_FILE_VERSION_GRID_INSTANCING ? 36 : 32;
+    // (three lengths and three offsets).
+    constexpr std::uint64_t descriptor_bytes = 36;
     if (grids < 0 || std::uint64_t(grids) > in_.left() / descriptor_bytes)
       throw Error(path_, "file is truncated or corrupt: its grid count at byte " +
                              std::to_string(grids_at) + " is " + std::to_string(grids) +
@@ -169,9 +175,7 @@ class VdbLengthCheck {
     for (std::int32_t g = 0; g < grids; ++g) {
       std::string name, type, parent;
       if (!text(name, "a grid name") || !text(type, "a grid type name")) return walk_;
-      if (version_ >= openvdb::OPENVDB_FILE_VERSION_GRID_INSTANCING &&
-          !text(parent, "an instance parent name"))
-        return walk_;
+      if (!text(parent, "an instance parent name")) return walk_;
       ++walk_.grids;
       std::int64_t grid_pos = 0, block_pos = 0, end_pos = 0;
       if (!in_.read(grid_pos) || !in_.read(block_pos) || !in_.read(end_pos)) return walk_;
@@ -195,19 +199,16 @@ class VdbLengthCheck {
   /// the walk reached the grid's end.
   bool grid(const std::string& type, bool instance) {
     compression_ = openvdb::io::COMPRESS_NONE;
-    if (version_ >= openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION && !in_.read(compression_))
-      return false;
+    if (!in_.read(compression_)) return false;
     half_ = false;
     if (!metadata("a grid's", half_)) return false;
-    if (version_ < openvdb::OPENVDB_FILE_VERSION_NEW_TRANSFORM) return false;
     std::string map;
     if (!text(map, "a transform type name")) return false;
     const std::uint64_t map_size = map_bytes(map);
     if (map_size == 0 || !in_.skip(map_size)) return false;
     if (instance) return true;
     const TreeLayout layout = tree_layout(type);
-    if (layout.value_bytes == 0 || version_ < openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION)
-      return false;
+    if (layout.value_bytes == 0) return false;
     value_bytes_ = layout.value_bytes;
     tree(layout);
     return true;

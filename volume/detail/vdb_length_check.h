@@ -22,12 +22,13 @@ struct VdbLengthWalk {
 };
 
 /// Walks the header, the file's metadata and every grid: descriptor, metadata, transform and,
-/// for float and double trees written in file format 222 or later (OpenVDB 3 onwards), the
-/// topology and every voxel block. A layout the walk does not know (an older format, another
-/// value type, a frustum transform) ends the walk of that grid; where the file records where each
-/// grid ends (io::File writes it) the walk goes on with the next one, else it stops. It never
-/// refuses a file OpenVDB reads correctly. Reads the file in 64 KiB windows and allocates nothing
-/// sized by the file. Thread-safe (no shared state).
+/// for float and double trees, the topology and every voxel block, reading each part as OpenVDB 10
+/// does. A layout the walk does not know (another value type, a frustum transform) ends the walk
+/// of that grid; where the file records where each grid ends (io::File writes it) the walk goes on
+/// with the next one, else it stops. Apart from files older than format 222 (OpenVDB 3, 2014),
+/// whose layouts differ throughout and which OpenVDB itself no longer reads, it never refuses a
+/// file OpenVDB reads correctly. Reads the file in 64 KiB windows and allocates nothing sized by
+/// the file. Thread-safe (no shared state).
 /// @param path  the file
 /// @param size  its size in bytes
 /// @return what was walked (tests use it to check that the walk knows the layouts OpenVDB writes)
