@@ -500,6 +500,9 @@ TEST(VolumeBadInput, VdbLengthsBeyondTheFileAreRefusedBeforeAllocating) {
   // OpenVDB 10 still reads format 0 (a 1.6 GB metadata string here); the walk knows 222 on.
   expect_error([&] { load(fuzz + "vdb_format_0_string_1.6e9.vdb"); },
                "vdb_format_0_string_1.6e9.vdb", "OpenVDB file format 0 is older than 222");
+  // A format newer than OpenVDB 10's, which it would read as its own (with warnings on stderr).
+  expect_error([&] { load(fuzz + "vdb_format_545.vdb"); }, "vdb_format_545.vdb",
+               "OpenVDB file format 545 is newer than 224");
   // io::Stream reserves a descriptor per grid before reading any (274 GB asked for this one).
   expect_error([&] { load(fuzz + "vdb_grid_count_1.7e9.vdb"); }, "vdb_grid_count_1.7e9.vdb",
                "its grid count at byte 61 is 1711276033, more than its 272 bytes can hold");
@@ -544,6 +547,23 @@ TEST(VolumeBadInput, VdbLengthsBeyondTheFileAreRefusedBeforeAllocating) {
     std::memcpy(&corrupt[at - 4], &huge, 4);
     write_file(dir.file("corrupt.vdb"), corrupt);
     expect_error([&] { load(dir.file("corrupt.vdb")); }, "corrupt.vdb", message);
+  }
+  // io::Stream reads grid after grid and never seeks to the offsets the descriptors give: with
+  // grid a's end offset corrupted, OpenVDB still reads grid b's descriptor right after grid a.
+  {
+    const std::string tree_type = std::string("\x10\0\0\0", 4) + "Tree_float_5_4_3";
+    const std::size_t a = bytes.find(std::string("\x01\0\0\0a", 5) + tree_type);
+    const std::size_t b = bytes.find(std::string("\x01\0\0\0b", 5) + tree_type);
+    ASSERT_NE(a, std::string::npos);
+    ASSERT_NE(b, std::string::npos);
+    std::string shuffled = bytes;
+    const std::size_t offsets = a + 5 + tree_type.size() + 4;     // after the empty parent name
+    std::memcpy(&shuffled[offsets + 16], &shuffled[offsets], 8);  // end offset := start offset
+    const std::uint32_t huge = 0x7fff0000;
+    std::memcpy(&shuffled[b], &huge, 4);
+    write_file(dir.file("corrupt.vdb"), shuffled);
+    expect_error([&] { load(dir.file("corrupt.vdb")); }, "corrupt.vdb",
+                 "a grid name of 2147418112 bytes at byte " + std::to_string(b));
   }
   // io::File writes a delayed-load table with each grid: its compressed length, corrupted.
   const std::size_t type = bytes.find("__delayedload");

@@ -150,6 +150,11 @@ class VdbLengthCheck {
       throw Error(path_, "OpenVDB file format " + std::to_string(version_) +
                              " is older than 222 (OpenVDB 3, 2014), the oldest isocurv reads; "
                              "save it again with a newer OpenVDB");
+    if (version_ > openvdb::OPENVDB_FILE_VERSION)  // OpenVDB would read it as its own, warning
+      throw Error(path_, "OpenVDB file format " + std::to_string(version_) + " is newer than " +
+                             std::to_string(openvdb::OPENVDB_FILE_VERSION) +
+                             ", the newest this build's OpenVDB " OPENVDB_LIBRARY_VERSION_STRING
+                             " reads");
     char has_offsets = 1;
     if (!in_.read(major) || !in_.read(minor) || !in_.read(has_offsets)) return walk_;
     // The UUID: 32 hex digits and 4 hyphens, each read by a formatted `is >> c` (boost::uuids'
@@ -179,16 +184,11 @@ class VdbLengthCheck {
       ++walk_.grids;
       std::int64_t grid_pos = 0, block_pos = 0, end_pos = 0;
       if (!in_.read(grid_pos) || !in_.read(block_pos) || !in_.read(end_pos)) return walk_;
-      const bool framed = has_offsets && std::uint64_t(grid_pos) == in_.pos() &&
-                          end_pos >= grid_pos && std::uint64_t(end_pos) <= size_;
       grid_ = name;
-      const bool walked = grid(type, !parent.empty());
-      if (framed) {
-        if (walked && in_.pos() == std::uint64_t(end_pos)) ++walk_.trees_walked;
-        in_.seek(std::uint64_t(end_pos));
-      } else if (!walked) {
-        return walk_;  // the next grid starts where this one's unframed bytes end
-      }
+      // io::Stream reads the grids one after the other and never seeks to the offsets: the walk
+      // goes on from where the grid ends, and stops where it cannot follow a grid to its end.
+      if (!grid(type, !parent.empty())) return walk_;
+      if (has_offsets && in_.pos() == std::uint64_t(end_pos)) ++walk_.trees_walked;
     }
     return walk_;
   }

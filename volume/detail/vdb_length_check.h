@@ -18,17 +18,17 @@ namespace isocurv::volume::detail {
 /// What `check_vdb_lengths` covered.
 struct VdbLengthWalk {
   int grids = 0;         ///< grid descriptors read
-  int trees_walked = 0;  ///< grids whose topology and voxel blocks were walked to their end
+  int trees_walked = 0;  ///< grids walked to exactly the end their descriptor records
 };
 
 /// Walks the header, the file's metadata and every grid: descriptor, metadata, transform and,
 /// for float and double trees, the topology and every voxel block, reading each part as OpenVDB 10
-/// does. A layout the walk does not know (another value type, a frustum transform) ends the walk
-/// of that grid; where the file records where each grid ends (io::File writes it) the walk goes on
-/// with the next one, else it stops. Apart from files older than format 222 (OpenVDB 3, 2014),
-/// whose layouts differ throughout and which OpenVDB itself no longer reads, it never refuses a
-/// file OpenVDB reads correctly. Reads the file in 64 KiB windows and allocates nothing sized by
-/// the file. Thread-safe (no shared state).
+/// does. Like io::Stream, it goes from each grid to the next without seeking; a layout it does
+/// not know (another value type, a frustum transform) ends the walk there. Apart from files older
+/// than format 222 (OpenVDB 3, 2014), whose layouts differ throughout and which OpenVDB itself no
+/// longer reads, and files newer than the format this OpenVDB knows (which it reads as its own,
+/// with a warning), it never refuses a file OpenVDB reads correctly. Reads the file in 64 KiB
+/// windows and allocates nothing sized by the file. Thread-safe (no shared state).
 /// @param path  the file
 /// @param size  its size in bytes
 /// @return what was walked (tests use it to check that the walk knows the layouts OpenVDB writes)
