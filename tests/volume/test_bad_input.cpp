@@ -697,6 +697,21 @@ TEST(VolumeBadInput, VdbTreeLengthsBeyondTheFileAreRefused) {
   write_file(corrupt, many_children);
   expect_error([&] { load(corrupt); }, "corrupt.vdb",
                "the tree of grid 'g' needs more bytes than the file's");
+
+  // The tree starts with its buffer count, after the transform's 120-byte UniformScaleMap.
+  // OpenVDB warns on stderr about any count but 1 and then reads one buffer per leaf anyway.
+  const std::string map = "UniformScaleMap";
+  const std::size_t tree = bytes.find(map) + map.size() + 120;
+  ASSERT_LT(tree + 4, bytes.size());
+  std::int32_t buffers = 0;
+  std::memcpy(&buffers, &bytes[tree], 4);
+  ASSERT_EQ(buffers, 1);
+  std::string two_buffers = bytes;
+  buffers = 2;
+  std::memcpy(&two_buffers[tree], &buffers, 4);
+  write_file(corrupt, two_buffers);
+  expect_error([&] { load(corrupt); }, "corrupt.vdb",
+               "the tree of grid 'g' has 2 buffers per leaf");
 }
 
 // TypedMetadata reads its type's size and ignores the length the file gives, so a wrong length

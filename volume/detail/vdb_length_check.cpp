@@ -220,7 +220,13 @@ class VdbLengthCheck {
   void tree(const TreeLayout& layout) {
     std::int32_t buffer_count = 0;
     std::uint32_t tiles = 0, children = 0;
-    need(in_.read(buffer_count) && in_.skip(value_bytes_) && in_.read(tiles) && in_.read(children));
+    const std::uint64_t at = in_.pos();
+    need(in_.read(buffer_count));
+    if (buffer_count != 1)  // OpenVDB prints a warning and reads one buffer per leaf
+      throw Error(path_, "file is corrupt: the tree of grid '" + grid_ + "' has " +
+                             std::to_string(buffer_count) + " buffers per leaf (at byte " +
+                             std::to_string(at) + "); OpenVDB reads only trees of one");
+    need(in_.skip(value_bytes_) && in_.read(tiles) && in_.read(children));
     const std::uint64_t tile_bytes = 12 + value_bytes_ + 1;  // origin, value, active flag
     need(in_.skip(std::uint64_t(tiles) * tile_bytes));
     levels_.clear();
