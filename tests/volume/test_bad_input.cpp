@@ -503,6 +503,10 @@ TEST(VolumeBadInput, VdbLengthsBeyondTheFileAreRefusedBeforeAllocating) {
   // A format newer than OpenVDB 10's, which it would read as its own (with warnings on stderr).
   expect_error([&] { load(fuzz + "vdb_format_545.vdb"); }, "vdb_format_545.vdb",
                "OpenVDB file format 545 is newer than 224");
+  // A 2.2 GB grid name after an int64 grid, which the walk must follow to reach it.
+  expect_error([&] { load(fuzz + "vdb_name_after_int64_grid_2.2e9.vdb"); },
+               "vdb_name_after_int64_grid_2.2e9.vdb",
+               "a grid name of 2224193135 bytes at byte 637 runs past its end (2268 bytes)");
   // io::Stream reserves a descriptor per grid before reading any (274 GB asked for this one).
   expect_error([&] { load(fuzz + "vdb_grid_count_1.7e9.vdb"); }, "vdb_grid_count_1.7e9.vdb",
                "its grid count at byte 61 is 1711276033, more than its 272 bytes can hold");
@@ -583,7 +587,8 @@ namespace {
 
 /// Grids that between them make OpenVDB write every kind of value block: a level set (inactive
 /// values of both signs, interior tiles), a fog volume with tiles at each level, a grid with more
-/// than two inactive values, a double grid and an empty one.
+/// than two inactive values, a double grid, an empty one, and one of each other value type the
+/// walk knows.
 openvdb::GridPtrVec grids_of_every_block_kind(bool half) {
   auto level_set =
       openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(20.0f, openvdb::Vec3f(3), 1.0f);
@@ -604,6 +609,18 @@ openvdb::GridPtrVec grids_of_every_block_kind(bool half) {
   auto empty = openvdb::FloatGrid::create(3.0f);
   empty->setName("empty");
   openvdb::GridPtrVec grids{level_set, fog, mixed, dbl, empty};
+  // The other value types the walk knows, each with tiles, active and inactive voxels.
+  auto add = [&](auto grid, auto value) {
+    grid->setName(std::string("of_type_") + grid->valueType());
+    grid->tree().fill(openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(15)), value, true);
+    for (int i = 0; i < 20; ++i) grid->tree().setValueOff(openvdb::Coord(40 + i, 3, i), value);
+    grids.push_back(grid);
+  };
+  add(openvdb::Int32Grid::create(0), 7);
+  add(openvdb::Int64Grid::create(0), openvdb::Int64(1) << 40);
+  add(openvdb::Vec3SGrid::create(), openvdb::Vec3s(1, 2, 3));
+  add(openvdb::Vec3DGrid::create(), openvdb::Vec3d(1, 2, 3));
+  add(openvdb::Vec3IGrid::create(), openvdb::Vec3i(1, 2, 3));
   for (auto& g : grids) g->setSaveFloatAsHalf(half);
   return grids;
 }
@@ -641,8 +658,8 @@ TEST(VolumeBadInput, VdbLengthWalkCoversEveryBlockLayoutOpenVdbWrites) {
       file.setCompression(compression);
       file.write(grids_of_every_block_kind(half));
       const auto walk = isocurv::volume::detail::check_vdb_lengths(path, file_text(path).size());
-      EXPECT_EQ(walk.grids, 5);
-      EXPECT_EQ(walk.trees_walked, 5);
+      EXPECT_EQ(walk.grids, 10);
+      EXPECT_EQ(walk.trees_walked, 10);
       LoadOptions options;
       for (const char* grid : {"level_set", "fog", "mixed", "double"}) {
         options.grid = grid;

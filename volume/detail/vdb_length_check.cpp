@@ -80,9 +80,11 @@ struct NodeMask {
 };
 
 /// The node layout of a grid type such as "Tree_float_5_4_3" (internal nodes of 2^5 and 2^4
-/// children per axis, leaves of 2^3 voxels per axis), for float and double values.
+/// children per axis, leaves of 2^3 voxels per axis), for the scalar and vector value types
+/// openvdb::initialize() registers (bool, mask and point trees store their leaves otherwise).
 struct TreeLayout {
   int value_bytes = 0;        ///< 0: a layout the walk does not know
+  int half_bytes = 0;         ///< a value saved as half; 0 for types never saved so
   std::vector<int> log2dims;  ///< the internal nodes' from the root down, then the leaves'
 };
 
@@ -92,8 +94,15 @@ TreeLayout tree_layout(std::string type) {
       type.compare(type.size() - half_suffix.size(), half_suffix.size(), half_suffix) == 0)
     type.resize(type.size() - half_suffix.size());
   TreeLayout layout;
-  for (const auto& [name, bytes] : {std::pair{"Tree_float", 4}, std::pair{"Tree_double", 8}}) {
-    const std::string prefix = name;
+  struct Value {
+    const char* tree;
+    int bytes, half_bytes;  // half_bytes 0: not a real type, never stored as half
+  };
+  static const Value values[] = {{"Tree_float", 4, 2}, {"Tree_double", 8, 2}, {"Tree_int32", 4, 0},
+                                 {"Tree_int64", 8, 0}, {"Tree_vec3s", 12, 6}, {"Tree_vec3d", 24, 6},
+                                 {"Tree_vec3i", 12, 0}};
+  for (const Value& value : values) {
+    const std::string prefix = value.tree;
     if (type.compare(0, prefix.size(), prefix) != 0) continue;
     std::vector<int> dims;
     std::size_t at = prefix.size();
@@ -107,7 +116,8 @@ TreeLayout tree_layout(std::string type) {
     if (at != type.size() || dims.size() < 2 ||
         std::any_of(dims.begin(), dims.end(), [](int d) { return d < 3 || d > 7; }))
       return layout;
-    layout.value_bytes = bytes;
+    layout.value_bytes = value.bytes;
+    layout.half_bytes = value.half_bytes;
     layout.log2dims = dims;
   }
   return layout;
@@ -210,6 +220,7 @@ class VdbLengthCheck {
     const TreeLayout layout = tree_layout(type);
     if (layout.value_bytes == 0) return false;
     value_bytes_ = layout.value_bytes;
+    half_bytes_ = half_ ? layout.half_bytes : 0;
     tree(layout);
     return true;
   }
@@ -277,8 +288,8 @@ class VdbLengthCheck {
         flag == MASK_AND_TWO_INACTIVE_VALS)
       need(in_.skip(mask_bytes));
     if ((compression_ & COMPRESS_ACTIVE_MASK) && flag != NO_MASK_AND_ALL_VALS) count = active;
-    if (half_ && count == 0) return;  // HalfReader reads nothing at all then
-    const std::uint64_t bytes = count * (half_ ? 2 : value_bytes_);
+    if (half_bytes_ && count == 0) return;  // HalfReader reads nothing at all then
+    const std::uint64_t bytes = count * (half_bytes_ ? half_bytes_ : value_bytes_);
     if (!(compression_ & (COMPRESS_BLOSC | COMPRESS_ZIP))) {
       need(in_.skip(bytes));
       return;
@@ -422,6 +433,7 @@ class VdbLengthCheck {
   std::uint32_t compression_ = 0;
   bool half_ = false;
   int value_bytes_ = 0;
+  int half_bytes_ = 0;  ///< the size values are stored at when the grid saves them as half
   std::string grid_;
   struct Level {
     NodeMask child, value;

@@ -22,13 +22,14 @@ struct VdbLengthWalk {
 };
 
 /// Walks the header, the file's metadata and every grid: descriptor, metadata, transform and,
-/// for float and double trees, the topology and every voxel block, reading each part as OpenVDB 10
+/// for scalar and vector trees (float, double, int32, int64, vec3s, vec3d, vec3i), the topology
+/// and every voxel block, reading each part as OpenVDB 10
 /// does. Like io::Stream, it goes from each grid to the next without seeking; a layout it does
-/// not know (another value type, a frustum transform) ends the walk there. Apart from files older
-/// than format 222 (OpenVDB 3, 2014), whose layouts differ throughout and which OpenVDB itself no
-/// longer reads, and files newer than the format this OpenVDB knows (which it reads as its own,
-/// with a warning), it never refuses a file OpenVDB reads correctly. Reads the file in 64 KiB
-/// windows and allocates nothing sized by the file. Thread-safe (no shared state).
+/// not know (bool, mask and point trees, a frustum transform) ends the walk there. Apart from files
+/// older than format 222 (OpenVDB 3, 2014), whose layouts differ throughout and which OpenVDB
+/// itself no longer reads, and files newer than the format this OpenVDB knows (which it reads as
+/// its own, with a warning), it never refuses a file OpenVDB reads correctly. Reads the file in 64
+/// KiB windows and allocates nothing sized by the file. Thread-safe (no shared state).
 /// @param path  the file
 /// @param size  its size in bytes
 /// @return what was walked (tests use it to check that the walk knows the layouts OpenVDB writes)
