@@ -4,11 +4,15 @@
 
 #include "core/error.h"
 #include "core/natural_order.h"
+#include "volume/detail/vdb_length_check.h"
+#include "volume/file_bytes.h"
 
 namespace isocurv::volume {
 
 std::vector<std::string> vdb_grid_names(const std::string& path) {
   openvdb::initialize();
+  detail::check_vdb_lengths(path,
+                            file_size(path));  // before OpenVDB allocates from a corrupt length
   std::vector<std::string> names;
   try {
     openvdb::io::File file(path);

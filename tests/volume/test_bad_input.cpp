@@ -13,6 +13,7 @@
 #include "tests/test_paths.h"
 #include "volume/detail/vdb_length_check.h"
 #include "volume/load.h"
+#include "volume/vdb_grid_names.h"
 
 using namespace isocurv::volume;
 using namespace voltest;
@@ -493,6 +494,9 @@ TEST(VolumeBadInput, VdbLengthsBeyondTheFileAreRefusedBeforeAllocating) {
                "a grid type name of 1936457728 bytes at byte 71 runs past its end (1978 bytes)");
   expect_error([&] { load(fuzz + "vdb_metadata_value_4.3e9.vdb"); }, "vdb_metadata_value_4.3e9.vdb",
                "a grid's metadata name of 4294967295 bytes at byte 290");
+  // The grid listing of `isocurv series` reads the metadata through io::File: walked first too.
+  expect_error([&] { vdb_grid_names(fuzz + "vdb_grid_type_name_1.9e9.vdb"); },
+               "vdb_grid_type_name_1.9e9.vdb", "a grid type name of 1936457728 bytes");
   // OpenVDB's delayed-load metadata sizes its tables from counts inside its value (1.6 GB asked).
   expect_error(
       [&] { load(fuzz + "vdb_delayed_load_table_1.6e9.vdb"); }, "vdb_delayed_load_table_1.6e9.vdb",
