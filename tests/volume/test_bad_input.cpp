@@ -625,6 +625,8 @@ openvdb::GridPtrVec grids_of_every_block_kind(bool half) {
   add(openvdb::Vec3SGrid::create(), openvdb::Vec3s(1, 2, 3));
   add(openvdb::Vec3DGrid::create(), openvdb::Vec3d(1, 2, 3));
   add(openvdb::Vec3IGrid::create(), openvdb::Vec3i(1, 2, 3));
+  add(openvdb::BoolGrid::create(false), true);
+  add(openvdb::MaskGrid::create(false), true);
   for (auto& g : grids) g->setSaveFloatAsHalf(half);
   return grids;
 }
@@ -662,8 +664,8 @@ TEST(VolumeBadInput, VdbLengthWalkCoversEveryBlockLayoutOpenVdbWrites) {
       file.setCompression(compression);
       file.write(grids_of_every_block_kind(half));
       const auto walk = isocurv::volume::detail::check_vdb_lengths(path, file_text(path).size());
-      EXPECT_EQ(walk.grids, 10);
-      EXPECT_EQ(walk.trees_walked, 10);
+      EXPECT_EQ(walk.grids, 12);
+      EXPECT_EQ(walk.trees_walked, 12);
       LoadOptions options;
       for (const char* grid : {"level_set", "fog", "mixed", "double"}) {
         options.grid = grid;

@@ -80,12 +80,16 @@ struct NodeMask {
 };
 
 /// The node layout of a grid type such as "Tree_float_5_4_3" (internal nodes of 2^5 and 2^4
-/// children per axis, leaves of 2^3 voxels per axis), for the scalar and vector value types
-/// openvdb::initialize() registers (bool, mask and point trees store their leaves otherwise).
+/// children per axis, leaves of 2^3 voxels per axis), for the value types
+/// openvdb::initialize() registers except points.
 struct TreeLayout {
   int value_bytes = 0;        ///< 0: a layout the walk does not know
   int half_bytes = 0;         ///< a value saved as half; 0 for types never saved so
   std::vector<int> log2dims;  ///< the internal nodes' from the root down, then the leaves'
+  /// Bool and mask leaves store their voxels as bit masks (LeafNodeBool.h, LeafNodeMask.h):
+  /// leaf blocks of value mask, origin and value bits (bool), or value bits and origin (mask), in
+  /// masks; 0 for the others, whose leaf blocks are compressed values.
+  int leaf_block_masks = 0;
 };
 
 TreeLayout tree_layout(std::string type) {
@@ -97,10 +101,12 @@ TreeLayout tree_layout(std::string type) {
   struct Value {
     const char* tree;
     int bytes, half_bytes;  // half_bytes 0: not a real type, never stored as half
+    int leaf_block_masks;
   };
-  static const Value values[] = {{"Tree_float", 4, 2}, {"Tree_double", 8, 2}, {"Tree_int32", 4, 0},
-                                 {"Tree_int64", 8, 0}, {"Tree_vec3s", 12, 6}, {"Tree_vec3d", 24, 6},
-                                 {"Tree_vec3i", 12, 0}};
+  static const Value values[] = {
+      {"Tree_float", 4, 2, 0},  {"Tree_double", 8, 2, 0}, {"Tree_int32", 4, 0, 0},
+      {"Tree_int64", 8, 0, 0},  {"Tree_vec3s", 12, 6, 0}, {"Tree_vec3d", 24, 6, 0},
+      {"Tree_vec3i", 12, 0, 0}, {"Tree_bool", 1, 0, 2},   {"Tree_mask", 1, 0, 1}};
   for (const Value& value : values) {
     const std::string prefix = value.tree;
     if (type.compare(0, prefix.size(), prefix) != 0) continue;
@@ -118,6 +124,7 @@ TreeLayout tree_layout(std::string type) {
       return layout;
     layout.value_bytes = value.bytes;
     layout.half_bytes = value.half_bytes;
+    layout.leaf_block_masks = value.leaf_block_masks;
     layout.log2dims = dims;
   }
   return layout;
@@ -248,6 +255,11 @@ class VdbLengthCheck {
     for (std::uint32_t c = 0; c < children; ++c) {
       need(in_.skip(12));  // the child's origin
       internal_topology(0, leaf.bytes(), leaves);
+    }
+    if (layout.leaf_block_masks > 0) {  // fixed-size leaf blocks: masks and the origin
+      const std::uint64_t block = layout.leaf_block_masks * leaf.bytes() + 12;
+      need(leaves <= in_.left() / block && in_.skip(leaves * block));
+      return;
     }
     for (std::uint64_t l = 0; l < leaves; ++l) {
       need(in_.bytes(leaf.words.data(), leaf.bytes()));

@@ -22,10 +22,10 @@ struct VdbLengthWalk {
 };
 
 /// Walks the header, the file's metadata and every grid: descriptor, metadata, transform and,
-/// for scalar and vector trees (float, double, int32, int64, vec3s, vec3d, vec3i), the topology
-/// and every voxel block, reading each part as OpenVDB 10
-/// does. Like io::Stream, it goes from each grid to the next without seeking; a layout it does
-/// not know (bool, mask and point trees, a frustum transform) ends the walk there. Apart from files
+/// for the trees of every value type openvdb::initialize() registers but points (float, double,
+/// int32, int64, vec3s, vec3d, vec3i, bool, mask), the topology and every voxel block, reading each
+/// part as OpenVDB 10 does. Like io::Stream, it goes from each grid to the next without seeking; a
+/// layout it does not know (point trees, a frustum transform) ends the walk there. Apart from files
 /// older than format 222 (OpenVDB 3, 2014), whose layouts differ throughout and which OpenVDB
 /// itself no longer reads, and files newer than the format this OpenVDB knows (which it reads as
 /// its own, with a warning), it never refuses a file OpenVDB reads correctly. Reads the file in 64
