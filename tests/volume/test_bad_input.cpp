@@ -511,6 +511,9 @@ TEST(VolumeBadInput, VdbLengthsBeyondTheFileAreRefusedBeforeAllocating) {
   expect_error([&] { load(fuzz + "vdb_name_after_int64_grid_2.2e9.vdb"); },
                "vdb_name_after_int64_grid_2.2e9.vdb",
                "a grid name of 2224193135 bytes at byte 637 runs past its end (2268 bytes)");
+  // OpenVDB reads file bytes straight into bools; a 64 there later overran a string copy.
+  expect_error([&] { load(fuzz + "vdb_half_flag_bool_64.vdb"); }, "vdb_half_flag_bool_64.vdb",
+               "metadata 'is_saved_as_half_float' at byte 473 is a bool holding 64, not 0 or 1");
   // io::Stream reserves a descriptor per grid before reading any (274 GB asked for this one).
   expect_error([&] { load(fuzz + "vdb_grid_count_1.7e9.vdb"); }, "vdb_grid_count_1.7e9.vdb",
                "its grid count at byte 61 is 1711276033, more than its 272 bytes can hold");
@@ -735,6 +738,26 @@ TEST(VolumeBadInput, VdbTreeLengthsBeyondTheFileAreRefused) {
   write_file(corrupt, two_buffers);
   expect_error([&] { load(corrupt); }, "corrupt.vdb",
                "the tree of grid 'g' has 2 buffers per leaf");
+
+  // A root tile (a whole 4096^3 block) and its active flag, read by OpenVDB into a bool.
+  auto tiled = openvdb::FloatGrid::create(0.0f);
+  tiled->setName("g");
+  tiled->tree().fill(openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(4095)), 1.0f, true);
+  const std::string tiled_path = dir.file("tiled.vdb");
+  openvdb::io::File(tiled_path).write({tiled});
+  ASSERT_NO_THROW(load(tiled_path));
+  std::string bad_flag = file_text(tiled_path);
+  const std::size_t root = bad_flag.find(map) + map.size() + 120 + 4;  // after the buffer count
+  std::uint32_t tiles = 0;
+  std::memcpy(&tiles, &bad_flag[root + 4], 4);
+  ASSERT_EQ(tiles, 1u);
+  const std::size_t flag = root + 12 + 12 + 4;  // background, counts; the tile's origin, value
+  ASSERT_EQ(bad_flag[flag], 1);
+  bad_flag[flag] = 7;
+  write_file(corrupt, bad_flag);
+  expect_error(
+      [&] { load(corrupt); }, "corrupt.vdb",
+      "a root tile's active flag at byte " + std::to_string(flag) + " is a bool holding 7");
 }
 
 // TypedMetadata reads its type's size and ignores the length the file gives, so a wrong length

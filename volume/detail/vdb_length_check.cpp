@@ -246,7 +246,13 @@ class VdbLengthCheck {
                              std::to_string(at) + "); OpenVDB reads only trees of one");
     need(in_.skip(value_bytes_) && in_.read(tiles) && in_.read(children));
     const std::uint64_t tile_bytes = 12 + value_bytes_ + 1;  // origin, value, active flag
-    need(in_.skip(std::uint64_t(tiles) * tile_bytes));
+    need(tiles <= in_.left() / tile_bytes);
+    for (std::uint32_t t = 0; t < tiles; ++t) {
+      std::uint8_t active = 0;
+      in_.skip(12 + value_bytes_);
+      in_.read(active);
+      if (active > 1) bad_bool("a root tile's active flag", in_.pos() - 1, active);
+    }
     levels_.clear();
     for (std::size_t i = 0; i + 1 < layout.log2dims.size(); ++i)
       levels_.push_back({NodeMask(layout.log2dims[i]), NodeMask(layout.log2dims[i])});
@@ -337,6 +343,13 @@ class VdbLengthCheck {
                              " (it runs past the end at byte " + std::to_string(in_.pos()) + ")");
   }
 
+  /// OpenVDB reads such bytes straight into a bool: any value but 0 or 1 is undefined behaviour
+  /// (a fuzzer-made is_saved_as_half_float of 101 later overran a string copy in load_vdb).
+  [[noreturn]] void bad_bool(const std::string& what, std::uint64_t at, std::uint8_t byte) {
+    throw Error(path_, "file is corrupt: " + what + " at byte " + std::to_string(at) +
+                           " is a bool holding " + std::to_string(byte) + ", not 0 or 1");
+  }
+
   [[noreturn]] void text_past_end(const std::string& what, std::uint64_t n, std::uint64_t at) {
     throw Error(path_, "file is truncated or corrupt: " + what + " of " + std::to_string(n) +
                            " bytes at byte " + std::to_string(at) + " runs past its end (" +
@@ -376,6 +389,8 @@ class VdbLengthCheck {
       } else if (!text(value, whose + " metadata value")) {  // a string, or a type not registered
         return false;
       }
+      if (type == "bool" && std::uint8_t(value[0]) > 1)
+        bad_bool(whose + " metadata '" + name + "'", in_.pos() - 1, std::uint8_t(value[0]));
       if (name == "is_saved_as_half_float")  // GridBase::META_SAVE_HALF_FLOAT; asBool()
         half = std::any_of(value.begin(), value.end(), [](char c) { return c != 0; });
     }
