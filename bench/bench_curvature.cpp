@@ -3,6 +3,8 @@
 // Not a test: prints a table.
 //
 //   bench_curvature [--quick] [--runs N]
+//   bench_curvature --volume-estimator [--quick] [--runs N]   (the sphere row, then the volume
+//                                                              estimator's table only)
 //   bench_curvature --volume PATH [--iso V] [--runs N]   (any volume; iso: its suggested value)
 #include <tbb/global_control.h>
 #include <vtkCurvatures.h>
@@ -16,8 +18,10 @@
 #include "bench/bench_util.h"
 #include "core/cl_device.h"
 #include "core/error.h"
+#include "curvature/auto_scale.h"
 #include "curvature/estimate.h"
 #include "curvature/reference.h"
+#include "curvature/volume_estimate.h"
 #include "datasets/field.h"
 #include "datasets/sample.h"
 #include "io/polydata.h"
@@ -60,22 +64,79 @@ void run_case(const std::string& name, const Mesh& mesh, int runs, bool with_ref
 
 Mesh mesh_of(const volume::Volume& v, float iso) { return mc::extract(v, iso, Device::default_device()); }
 
+// The volume estimator beside the mesh estimator and vtkCurvatures on one volume's surface: at
+// the automatic scale (with its finer-scale fallback, as `curvature` runs it) and at one voxel.
+void run_volume_case(const std::string& name, const volume::Volume& v, float iso, int runs) {
+  Device& dev = Device::default_device();
+  const Mesh mesh = mesh_of(v, iso);
+  const curvature::ScaleChoice choice = curvature::auto_scale(v, mesh, iso);
+  const float ao = 1.0f;
+  curvature::VolumeEstimateStats stats;
+  auto mesh_estimator = [&] { curvature::estimate(mesh, dev, {}, nullptr); };
+  auto at = [&](double sigma) {
+    return [&, sigma] { curvature::volume_estimate(mesh, v, iso, sigma, ao, dev, &stats); };
+  };
+  auto poly = io::to_polydata(mesh, nullptr);
+  auto vtk = [&] {
+    for (int type : {VTK_CURVATURE_MEAN, VTK_CURVATURE_GAUSS}) {
+      vtkNew<vtkCurvatures> c;
+      c->SetInputData(poly);
+      c->SetCurvatureType(type);
+      c->Update();
+    }
+  };
+  const std::vector<double> t = bench::medians_ms(
+      {{mesh_estimator, runs}, {at(choice.scale), runs}, {at(choice.voxel), runs}, {vtk, runs}});
+  curvature::volume_estimate(mesh, v, iso, choice.scale, ao, dev, &stats);
+  const double mem = bench::peak_extra_mib(at(choice.scale));
+  std::printf("%-26s %9zu %8.1f %9.1f (%4.2f vox, %zu finer) %8.1f %8.1f %7.2f %7.2f %7.0f\n",
+              name.c_str(), mesh.positions.size(), t[0], t[1], choice.scale / choice.voxel,
+              stats.finer_scale, t[2], t[3], t[1] / t[0], t[3] / t[1],
+              mem * 1048576.0 / mesh.positions.size());
+  std::fflush(stdout);
+}
+
+void volume_estimator_table(int runs, bool quick) {
+  std::printf(
+      "\nvolume estimator (curvature::volume_estimate) beside the mesh estimator and "
+      "vtkCurvatures (H + K), same surface; medians of %d runs\n",
+      runs);
+  std::printf("%-26s %9s %8s %9s %24s %8s %8s %7s %7s %7s\n", "volume", "vertices", "mesh ms",
+              "auto ms", "", "1 vox ms", "VTK ms", "auto/mesh", "VTK/auto", "B/vert");
+  auto sphere = datasets::make_field("sphere");
+  run_volume_case("sphere float 128^3", datasets::sample(*sphere, 128), float(sphere->isovalue()),
+                  runs);
+  if (quick) return;
+  const std::string lobster = std::string(ISOCURV_SHARED_DATASETS) + "/lobster/lobster.vol";
+  if (std::filesystem::exists(lobster)) {
+    const volume::Volume v = volume::load(lobster);
+    run_volume_case("lobster uint8 (CT)", v, float(v.stats.suggested_isovalue), runs);
+  }
+  auto gyroid = datasets::make_field("gyroid");
+  run_volume_case("gyroid float 256^3", datasets::sample(*gyroid, 256), float(gyroid->isovalue()),
+                  runs);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   bench::keep_freed_memory();
-  bool quick = false;
+  bool quick = false, volume_only = false;
   int runs = 5;
   std::string volume_path;
   float iso = 0;
   bool iso_given = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--quick")) quick = true;
+    else if (!std::strcmp(argv[i], "--volume-estimator"))
+      volume_only = true;
     else if (!std::strcmp(argv[i], "--runs") && i + 1 < argc) runs = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--volume") && i + 1 < argc) volume_path = argv[++i];
     else if (!std::strcmp(argv[i], "--iso") && i + 1 < argc) iso = std::strtof(argv[++i], nullptr), iso_given = true;
     else {
-      std::fprintf(stderr, "usage: bench_curvature [--quick] [--runs N] | --volume PATH [--iso V] [--runs N]\n");
+      std::fprintf(stderr,
+                   "usage: bench_curvature [--quick] [--volume-estimator] [--runs N] | --volume "
+                   "PATH [--iso V] [--runs N]\n");
       return 2;
     }
   }
@@ -90,6 +151,7 @@ int main(int argc, char** argv) {
       const volume::Volume v = volume::load(volume_path);
       const float value = iso_given ? iso : float(v.stats.suggested_isovalue);
       run_case(std::filesystem::path(volume_path).filename().string(), mesh_of(v, value), runs, true);
+      run_volume_case(std::filesystem::path(volume_path).filename().string(), v, value, runs);
       return 0;
     } catch (const Error& e) {
       std::fprintf(stderr, "bench_curvature: %s\n", e.what());
@@ -98,7 +160,14 @@ int main(int argc, char** argv) {
   }
   auto sphere = datasets::make_field("sphere");
   run_case("sphere 256^3", mesh_of(datasets::sample(*sphere, 256), float(sphere->isovalue())), runs, true);
-  if (quick) return 0;
+  if (volume_only) {
+    volume_estimator_table(runs, quick);
+    return 0;
+  }
+  if (quick) {
+    volume_estimator_table(runs, quick);
+    return 0;
+  }
   const std::string flower = std::string(ISOCURV_SHARED_DATASETS) + "/aa_octaflower/octa-flower17k-512-aa-l0_1.vol";
   if (std::filesystem::exists(flower))
     run_case("octaflower 512 (aa)", mesh_of(volume::load(flower), 127.5f), runs, true);
@@ -106,5 +175,6 @@ int main(int argc, char** argv) {
   run_case("gyroid 320^3", mesh_of(datasets::sample(*gyroid, 320), float(gyroid->isovalue())), runs, true);
   run_case("gyroid 512^3", mesh_of(datasets::sample(*gyroid, 512), float(gyroid->isovalue())), std::max(1, runs / 2), true);
   std::printf("Griffin et al. (GPU, 2012): 2.7M vertices in 26.7 ms\n");
+  volume_estimator_table(runs, quick);
   return 0;
 }

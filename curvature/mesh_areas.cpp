@@ -54,19 +54,31 @@ std::vector<float> mixed_vertex_areas(const Mesh& mesh) {
 }
 
 std::vector<std::uint8_t> boundary_vertices(const Mesh& mesh) {
-  // Every edge use as (low, high); an edge used once is on the boundary.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> uses;
-  uses.reserve(3 * mesh.triangles.size());
+  // Every edge use as (low, high), bucketed by its low end (a counting sort: linear time); an edge
+  // used once is on the boundary. Buckets hold a vertex's few edges towards higher indices.
+  const std::size_t nv = mesh.positions.size();
+  std::vector<std::uint32_t> start(nv + 1, 0);
   for (const Tri& t : mesh.triangles)
     if (!repeated_index(t))
-      for (int j = 0; j < 3; ++j) uses.push_back(std::minmax(t[j], t[next(j)]));
-  std::sort(uses.begin(), uses.end());
-  std::vector<std::uint8_t> boundary(mesh.positions.size(), 0);
-  for (std::size_t i = 0; i < uses.size();) {
-    std::size_t j = i + 1;
-    while (j < uses.size() && uses[j] == uses[i]) ++j;
-    if (j - i == 1) boundary[uses[i].first] = boundary[uses[i].second] = 1;
-    i = j;
+      for (int j = 0; j < 3; ++j) ++start[std::min(t[j], t[next(j)]) + 1];
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<std::uint32_t> high(start[nv]), fill(start.begin(), start.end() - 1);
+  for (const Tri& t : mesh.triangles)
+    if (!repeated_index(t))
+      for (int j = 0; j < 3; ++j) {
+        const auto [lo, hi] = std::minmax(t[j], t[next(j)]);
+        high[fill[lo]++] = hi;
+      }
+  std::vector<std::uint8_t> boundary(nv, 0);
+  for (std::size_t v = 0; v < nv; ++v) {
+    const auto first = high.begin() + start[v], last = high.begin() + start[v + 1];
+    std::sort(first, last);
+    for (auto i = first; i != last;) {
+      auto j = i + 1;
+      while (j != last && *j == *i) ++j;
+      if (j - i == 1) boundary[v] = boundary[*i] = 1;
+      i = j;
+    }
   }
   return boundary;
 }

@@ -13,7 +13,7 @@
 #include "curvature/derived.h"
 #include "curvature/detail/volume_setup.h"
 #include "curvature/tolerances.h"
-#include "volume/brick_gather.h"
+#include "volume/prefilter.h"
 
 namespace isocurv::kernels {
 extern const char* const curvature_math_cl;
@@ -25,8 +25,21 @@ namespace {
 
 enum Slot : std::size_t {
   kPositions,
-  kPool,
-  kTable,
+  kPool0,  // kPool0 + n: stage n's samples (volume::SmoothingPlan::stages)
+  kPool1,
+  kPool2,
+  kPool3,
+  kTable0,  // kTable0 + n: stage n's brick table
+  kTable1,
+  kTable2,
+  kTable3,
+  kBricks1,  // kBricks1 + a: the output bricks of the pass along axis a
+  kBricks2,
+  kBricks3,
+  kTaps0,  // kTaps0 + a: the prefilter along axis a
+  kTaps1,
+  kTaps2,
+  kBlocks,  // the smoothed samples in padded blocks (pad_bricks)
   kFrame,
   kNormals,
   kK1,
@@ -45,18 +58,22 @@ enum Slot : std::size_t {
 };
 
 constexpr std::size_t kGroup = 64;  // work-group size of the launch (core/cl_launch.h)
-constexpr int kMaxTaps = volume::AxisWeights::kMaxTaps;
+// The padded blocks of pad_bricks: a brick's 8 voxels per axis plus the B-spline taps' reach
+// around any cell in it (floor(q) - 2 .. floor(q) + 3, see volume::spline_weights).
+constexpr int kPadBefore = 2;
+constexpr int kPadded = 8 + kPadBefore + 3;
 
 std::string build_options() {
   char buf[512];
-  std::snprintf(buf, sizeof buf,
-                "-DPIVOT_TOLERANCE=%.9g -DOPPOSITE_NORMALS=%.9g -DAO_C0=%.9g -DAO_C1=%.9g "
-                "-DAO_C2=%.9g -DAO_SMIN=%.9g -DMAX_TAPS=%d -DGAUSSIAN_RADIUS=%.9g "
-                "-DFIRST_ORDER_RADIUS=%.9g -DNEWTON_STEPS=%d -DON_SURFACE_VOXELS=%.9g "
-                "-DMAX_FINAL_STEP_VOXELS=%.9g",
-                kPivotTolerance, kOppositeNormals, kAoC0, kAoC1, kAoC2, kAoSMin, kMaxTaps,
-                volume::kGaussianRadius, volume::kFirstOrderRadius, kNewtonSteps,
-                kOnSurfaceVoxels, kMaxFinalStepVoxels);
+  std::snprintf(
+      buf, sizeof buf,
+      "-DPIVOT_TOLERANCE=%.9g -DOPPOSITE_NORMALS=%.9g -DAO_C0=%.9g -DAO_C1=%.9g "
+      "-DAO_C2=%.9g -DAO_SMIN=%.9g -DBRICK_VOXELS=512 -DBRICK_ROWS=64 "
+      "-DPREFILTER_MAX_RADIUS=%d -DSPLINE_TAPS=5 -DPADDED=%d -DPAD_BEFORE=%d "
+      "-DPADDED_VOXELS=%d -DNEWTON_STEPS=%d -DON_SURFACE_VOXELS=%.9g -DMAX_FINAL_STEP_VOXELS=%.9g",
+      kPivotTolerance, kOppositeNormals, kAoC0, kAoC1, kAoC2, kAoSMin, volume::kPrefilterMaxRadius,
+      kPadded, kPadBefore, kPadded * kPadded * kPadded, kNewtonSteps, kOnSurfaceVoxels,
+      kMaxFinalStepVoxels);
   return buf;
 }
 
@@ -67,10 +84,12 @@ struct VolumeSession {
         std::string(kernels::curvature_math_cl) + "\n" + kernels::volume_kernels_cl;
     cl::Program& program = device.program("volume_curvature", source.c_str(), build_options());
     kernel = cl::Kernel(program, "volume_curvature");
+    smooth = cl::Kernel(program, "smooth_axis");
+    pad = cl::Kernel(program, "pad_bricks");
   }
   std::mutex mutex;  // one estimate at a time per device (kernel arguments are shared state)
   ScratchBuffers buffers;
-  cl::Kernel kernel;
+  cl::Kernel kernel, smooth, pad;
   cl::Buffer& get(Slot slot, std::size_t bytes) {
     return buffers.get(slot, std::max<std::size_t>(bytes, 16));
   }
@@ -103,24 +122,49 @@ detail::VolumeEvaluation evaluate(const Positions& positions, const volume::Volu
   detail::VolumeEvaluation e;
   if (nv == 0) return e;
   const volume::GridFrame& fr = setup.frame;
-  // Every voxel a vertex's filters can read: the taps' reach plus the largest Newton move.
-  openvdb::Vec3d reach, deviation;
-  for (int a = 0; a < 3; ++a) {
-    deviation[a] = setup.sigma / fr.spacing[a];
-    reach[a] = volume::kGaussianRadius * deviation[a] + setup.max_shift / fr.spacing[a] + 1;
-  }
-  const volume::BrickGather gather = volume::gather_bricks(*volume.grid, fr, positions, reach);
-  const openvdb::Vec3d region = fr.to_world(openvdb::Vec3d(gather.origin.asVec3d()));
-  std::vector<float> frame(15);
+  const volume::SmoothingPlan plan =
+      volume::plan_smoothing(fr, positions, detail::spline_reach(setup), setup.sigma);
+  const openvdb::Coord first(plan.origin[0] * 8, plan.origin[1] * 8, plan.origin[2] * 8);
+  const openvdb::Vec3d region = fr.to_world(openvdb::Vec3d(first.asVec3d()));
+  std::vector<float> frame(12);
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) frame[3 * r + c] = float(fr.B(r, c));
-  for (int a = 0; a < 3; ++a) frame[9 + a] = float(region[a]), frame[12 + a] = float(deviation[a]);
-  const openvdb::Coord lo = fr.lo - gather.origin, hi = fr.hi - gather.origin;
+  for (int a = 0; a < 3; ++a) frame[9 + a] = float(region[a]);
+  const cl_int4 dims = {{plan.dims[0], plan.dims[1], plan.dims[2], 0}};
+  const cl_float background = volume.grid->background();
 
   cl::CommandQueue& q = device.queue();
   cl::Buffer& pos = upload(q, s, kPositions, positions);
-  cl::Buffer& pool = upload(q, s, kPool, gather.samples);
-  cl::Buffer& table = upload(q, s, kTable, gather.table);
+  const std::vector<float> samples = volume::gather_stage_samples(*volume.grid, plan);
+  upload(q, s, kPool0, samples);  // every host array stays alive until q.finish() below
+  for (int n = 0; n < 4; ++n) upload(q, s, Slot(kTable0 + n), plan.stages[n].table);
+  // The three passes of the prefilter: along x from stage 0 into stage 1, along y, along z.
+  std::vector<cl_int4> bricks[3];
+  std::vector<float> taps[3];
+  for (int a = 0; a < 3; ++a) {
+    const volume::BrickSet& out = plan.stages[a + 1];
+    for (const openvdb::Coord& b : out.bricks) {
+      const openvdb::Coord r = b - plan.origin;
+      bricks[a].push_back({{r[0], r[1], r[2], 0}});
+    }
+    taps[a].assign(plan.taps[a].w.begin(), plan.taps[a].w.end());
+    cl::Buffer& from = s.get(Slot(kPool0 + a), plan.stages[a].bricks.size() * 512 * sizeof(float));
+    cl::Buffer& to = s.get(Slot(kPool0 + a + 1), out.bricks.size() * 512 * sizeof(float));
+    cl::Buffer& list = upload(q, s, Slot(kBricks1 + a), bricks[a]);
+    cl::Buffer& weights = upload(q, s, Slot(kTaps0 + a), taps[a]);
+    set_args(s.smooth, from, s.get(Slot(kTable0 + a), 0), dims, background, list,
+             cl_uint(out.bricks.size()), to, cl_int(a), cl_int(fr.clamp),
+             cl_int(fr.lo[a] - first[a]), cl_int(fr.hi[a] - first[a]), weights,
+             cl_int(plan.taps[a].radius));
+    launch(q, s.smooth, out.bricks.size() * 64, kGroup);
+  }
+  cl::Buffer& table = s.get(kTable3, 0);
+  const std::size_t n3 = plan.stages[3].bricks.size(),
+                    padded = std::size_t(kPadded) * kPadded * kPadded;
+  cl::Buffer& blocks = s.get(kBlocks, n3 * padded * sizeof(float));
+  set_args(s.pad, s.get(kPool3, 0), table, dims, background, s.get(kBricks3, 0), cl_uint(n3),
+           blocks);
+  launch(q, s.pad, n3 * kPadded * kPadded, kGroup);
   cl::Buffer& params = upload(q, s, kFrame, frame);
   cl::Buffer* f1[] = {&s.get(kK1, nv * 4), &s.get(kK2, nv * 4),          &s.get(kH, nv * 4),
                       &s.get(kK, nv * 4),  &s.get(kShape, nv * 4),       &s.get(kCurved, nv * 4),
@@ -130,13 +174,11 @@ detail::VolumeEvaluation evaluate(const Positions& positions, const volume::Volu
   cl::Buffer& dir2 = s.get(kDir2, nv * sizeof(Vec3f));
   cl::Buffer& dcurv = s.get(kDcurv, nv * sizeof(cl_float4));
   cl::Buffer& missed = s.get(kMissed, nv);
-  const cl_int4 dims = {{gather.dims[0], gather.dims[1], gather.dims[2], 0}};
-  const cl_int4 clo = {{lo[0], lo[1], lo[2], 0}}, chi = {{hi[0], hi[1], hi[2], 0}};
   const float sign = volume.inside == volume::Inside::Above ? -1.0f : 1.0f;
-  set_args(s.kernel, pos, cl_uint(nv), pool, table, dims, clo, chi, cl_int(fr.clamp),
-           cl_float(volume.grid->background()), params, cl_float(isovalue), cl_float(sign),
-           cl_float(setup.max_shift), cl_float(setup.voxel), cl_float(ao_scale), normals, *f1[0],
-           *f1[1], dir1, dir2, *f1[2], *f1[3], dcurv, *f1[4], *f1[5], *f1[6], *f1[7], missed);
+  set_args(s.kernel, pos, cl_uint(nv), blocks, table, dims, params, cl_float(isovalue),
+           cl_float(sign), cl_float(setup.max_shift), cl_float(setup.voxel), cl_float(ao_scale),
+           normals, *f1[0], *f1[1], dir1, dir2, *f1[2], *f1[3], dcurv, *f1[4], *f1[5], *f1[6],
+           *f1[7], missed);
   launch(q, s.kernel, nv, kGroup);
   CurvatureField& out = e.field;
   download(q, normals, out.normals, nv);
@@ -153,7 +195,8 @@ detail::VolumeEvaluation evaluate(const Positions& positions, const volume::Volu
   download(q, *f1[7], e.raw.gradient_norm, nv);
   download(q, missed, e.raw.missed, nv);
   q.finish();
-  e.bricks = gather.bricks();
+  e.bricks = 0;
+  for (const volume::BrickSet& stage : plan.stages) e.bricks += stage.bricks.size();
   return e;
 }
 

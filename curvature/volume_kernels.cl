@@ -1,79 +1,170 @@
-// The volume estimator's kernel: one work item per mesh vertex, the float twin of
-// volume_estimate_reference (curvature/volume_reference.cpp, volume/gaussian_jet.cpp and
-// curvature/implicit_curvature.cpp). Appended to curvature_math.cl; built with -DMAX_TAPS,
-// -DGAUSSIAN_RADIUS, -DFIRST_ORDER_RADIUS, -DNEWTON_STEPS, -DON_SURFACE_VOXELS,
-// -DMAX_FINAL_STEP_VOXELS and curvature_math.cl's constants.
-//
-// The samples come as 8^3 bricks (`pool`, x fastest within a brick) found through `table`, a
-// dense grid of brick numbers (-1: not gathered) over the gathered region; voxel coordinates are
-// relative to the region's first voxel. Dense volumes clamp coordinates to the domain [lo, hi].
+// The volume estimator's kernels, the float twins of volume_estimate_reference
+// (curvature/volume_reference.cpp, volume/prefilter.cpp, volume/spline_jet.cpp and
+// curvature/implicit_curvature.cpp): smooth_axis, three times (one pass of the separable
+// prefilter per axis, one work item per voxel of the bricks the next pass reads), then
+// volume_curvature (one work item per mesh vertex, reading 5^3 smoothed samples per evaluation).
+// Appended to curvature_math.cl; built with -DBRICK_VOXELS, -DBRICK_ROWS, -DPREFILTER_MAX_RADIUS,
+// -DSPLINE_TAPS, -DNEWTON_STEPS,
+// -DON_SURFACE_VOXELS, -DMAX_FINAL_STEP_VOXELS and curvature_math.cl's constants.
 
-// Index-space frame and filter: the world -> index matrix B (row-major), the world position of
-// the region's first voxel, and the Gaussian's deviation along each index axis (voxels).
+// Index-space frame: the world -> index matrix B (row-major) and the world position of the
+// region's first voxel.
 typedef struct {
   float b[9];
   float origin[3];
-  float deviation[3];
 } frame_t;
 
-// One axis's taps first .. first + count - 1 and their weights, derivative orders 0..3.
-typedef struct {
-  int first, count;
-  float w[4][MAX_TAPS];
-} axis_t;
-
-// Gaussian derivative weights at coordinate q for deviation s, each order normalised by its
-// discrete moment (volume::axis_weights).
-INLINE void axis_weights(float q, float s, float radius, axis_t* a) {
-  const float reach = radius * s, s2 = s * s;
-  a->first = (int)ceil(q - reach);
-  const int last = (int)floor(q + reach);
-  a->count = min(last - a->first + 1, MAX_TAPS);
-  float m0 = 0.0f, m1 = 0.0f, m2 = 0.0f, m3 = 0.0f;
-  for (int t = 0; t < a->count; ++t) {
-    const float d = (float)(a->first + t) - q;
-    const float g = exp(-d * d / (2.0f * s2));
-    a->w[0][t] = g;
-    a->w[1][t] = d / s2 * g;
-    a->w[2][t] = (d * d / s2 - 1.0f) / s2 * g;
-    a->w[3][t] = (d * d / s2 - 3.0f) * d / (s2 * s2) * g;
-    m0 += a->w[0][t];
-    m1 += a->w[1][t] * d;
-    m2 += a->w[2][t] * d * d * 0.5f;
-    m3 += a->w[3][t] * d * d * d * (1.0f / 6.0f);
-  }
-  const float i0 = 1.0f / m0, i1 = 1.0f / m1, i2 = 1.0f / m2, i3 = 1.0f / m3;
-  for (int t = 0; t < a->count; ++t) {
-    a->w[0][t] *= i0;
-    a->w[1][t] *= i1;
-    a->w[2][t] *= i2;
-    a->w[3][t] *= i3;
-  }
-}
-
-// The sample at region voxel (x, y, z), clamped to the domain for dense volumes; `background`
-// outside the gathered bricks.
+// Samples in 8^3 bricks (x fastest within a brick) found through `table`, a dense grid of brick
+// numbers (-1: not in the set) over the region; voxel coordinates relative to the region's first
+// voxel.
 typedef struct {
   __global const float* pool;
   __global const int* table;
   int4 dims;  // table size in bricks
-  int4 lo, hi;
-  int clamp;
-  float background;
 } samples_t;
 
-INLINE float sample_at(const samples_t* s, int x, int y, int z) {
-  if (s->clamp) {
-    x = min(max(x, s->lo.x), s->hi.x);
-    y = min(max(y, s->lo.y), s->hi.y);
-    z = min(max(z, s->lo.z), s->hi.z);
+// The number of brick (bx, by, bz) (region brick coordinates), -1 where there is none.
+INLINE int brick_number(const samples_t* s, int bx, int by, int bz) {
+  if (bx < 0 || by < 0 || bz < 0 || bx >= s->dims.x || by >= s->dims.y || bz >= s->dims.z)
+    return -1;
+  return s->table[(bz * s->dims.y + by) * s->dims.x + bx];
+}
+
+// One pass of the separable prefilter along `axis` (volume::smooth_reference): voxel v of an
+// output brick (region brick coordinates out_bricks[b]) gets sum_k taps[k + radius] in(v + k e),
+// e the unit step along the axis, the coordinate along the axis clamped to [lo, hi] when
+// clamp_axis (a dense volume's domain). One work item per row of 8 voxels along the axis (64
+// rows per brick): it reads the row's 8 + 2 radius input samples once, looking up a brick only
+// when the row enters it.
+__kernel void smooth_axis(__global const float* in_pool, __global const int* in_table, int4 dims,
+                          float background, __global const int4* out_bricks, uint out_count,
+                          __global float* out_pool, int axis, int clamp_axis, int lo, int hi,
+                          __constant const float* taps, int radius) {
+  const uint item = get_global_id(0);
+  if (item >= out_count * BRICK_ROWS) return;
+  const uint b = item / BRICK_ROWS, row = item % BRICK_ROWS;
+  const int4 brick = out_bricks[b];
+  // The row's other two local coordinates, and the strides of the axis in a brick and the table.
+  const int u = (int)(row & 7), w = (int)(row >> 3);
+  int at[3], start[3] = {brick.x * 8, brick.y * 8, brick.z * 8};
+  at[axis] = 0;
+  at[axis == 0 ? 1 : 0] = u;
+  at[axis == 2 ? 1 : 2] = w;
+  const int stride = axis == 0 ? 1 : (axis == 1 ? 8 : 64);
+  const int table_stride = axis == 0 ? 1 : (axis == 1 ? dims.x : dims.x * dims.y);
+  const int extent = axis == 0 ? dims.x : (axis == 1 ? dims.y : dims.z);
+  const int row_offset = (at[2] * 8 + at[1]) * 8 + at[0];
+  int cell = 0;  // the table cell of the output brick with its coordinate along the axis zeroed
+  {
+    int bc[3] = {brick.x, brick.y, brick.z};
+    bc[axis] = 0;
+    cell = (bc[2] * dims.y + bc[1]) * dims.x + bc[0];
   }
-  if (x < 0 || y < 0 || z < 0) return s->background;
-  const int bx = x >> 3, by = y >> 3, bz = z >> 3;
-  if (bx >= s->dims.x || by >= s->dims.y || bz >= s->dims.z) return s->background;
-  const int brick = s->table[(bz * s->dims.y + by) * s->dims.x + bx];
-  if (brick < 0) return s->background;
-  return s->pool[(size_t)brick * 512 + (((z & 7) * 8 + (y & 7)) * 8 + (x & 7))];
+  float line[8 + 2 * PREFILTER_MAX_RADIUS];
+  const int from = start[axis] - radius, to = start[axis] + 7 + radius;
+  if (clamp_axis && (from < lo || to > hi)) {
+    // Near the domain's border: clamp every coordinate.
+    int current = -1, number = -1;
+    for (int p = 0; p < 8 + 2 * radius; ++p) {
+      const int c = clamp(from + p, lo, hi), cb = c >> 3;
+      if (cb != current) {
+        current = cb;
+        number = c >= 0 && cb < extent ? in_table[cell + cb * table_stride] : -1;
+      }
+      line[p] = number < 0 ? background
+                           : in_pool[(size_t)number * BRICK_VOXELS + row_offset + (c & 7) * stride];
+    }
+  } else {
+    // Brick by brick: one lookup, then a strided copy of the row's part in that brick.
+    int p = 0;
+    for (int cb = from >> 3; cb <= to >> 3; ++cb) {
+      const int number = cb >= 0 && cb < extent ? in_table[cell + cb * table_stride] : -1;
+      const int first = max(from - cb * 8, 0), last = min(to - cb * 8, 7);
+      if (number < 0) {
+        for (int l = first; l <= last; ++l) line[p++] = background;
+      } else {
+        __global const float* src = in_pool + (size_t)number * BRICK_VOXELS + row_offset;
+        for (int l = first; l <= last; ++l) line[p++] = src[l * stride];
+      }
+    }
+  }
+  // The row's 8 outputs at once: out[k] = sum_t taps[t] line[k + t].
+  float8 sum = (float8)(0.0f);
+  for (int t = 0; t <= 2 * radius; ++t) sum += taps[t] * vload8(0, line + t);
+  __global float* out = out_pool + (size_t)b * BRICK_VOXELS + row_offset;
+  if (stride == 1) {
+    vstore8(sum, 0, out);
+  } else {
+    const float values[8] = {sum.s0, sum.s1, sum.s2, sum.s3, sum.s4, sum.s5, sum.s6, sum.s7};
+    for (int k = 0; k < 8; ++k) out[k * stride] = values[k];
+  }
+}
+
+// The smoothed samples copied into padded blocks for the per-vertex kernel: block b holds the
+// PADDED^3 voxels from 8 brick - PAD_BEFORE on of stage brick b, so that every tap of an
+// evaluation whose cell lies in brick b comes from block b at a fixed offset (no brick lookups
+// per tap). Voxels outside the stage's bricks (never read: every tap lies in the stage) get
+// `background`. One work item per row of PADDED voxels along x (it looks a brick up only when
+// the row enters it).
+__kernel void pad_bricks(__global const float* pool, __global const int* table, int4 dims,
+                         float background, __global const int4* bricks, uint count,
+                         __global float* blocks) {
+  const uint item = get_global_id(0);
+  if (item >= count * PADDED * PADDED) return;
+  const samples_t s = {pool, table, dims};
+  const uint b = item / (PADDED * PADDED), r = item % (PADDED * PADDED);
+  const int4 brick = bricks[b];
+  const int y = brick.y * 8 - PAD_BEFORE + (int)(r % PADDED);
+  const int z = brick.z * 8 - PAD_BEFORE + (int)(r / PADDED);
+  const int row = ((z & 7) * 8 + (y & 7)) * 8;
+  __global float* out = blocks + (size_t)item * PADDED;
+  int current = -2, n = -1;
+  for (int i = 0; i < PADDED; ++i) {
+    const int x = brick.x * 8 - PAD_BEFORE + i;
+    if ((x >> 3) != current) {
+      current = x >> 3;
+      n = x < 0 || y < 0 || z < 0 ? -1 : brick_number(&s, x >> 3, y >> 3, z >> 3);
+    }
+    out[i] = n < 0 ? background : pool[(size_t)n * BRICK_VOXELS + row + (x & 7)];
+  }
+}
+
+// The quartic B-spline's weights along one axis at q (volume::spline_weights): taps first ..
+// first + 4, w[n][t] the n-th derivative of beta4(q - first - t).
+typedef struct {
+  int first;
+  float w[4][SPLINE_TAPS];
+} axis_t;
+
+INLINE void spline_weights(float q, axis_t* a) {
+  const float x = q + 2.5f, base = floor(x), u = x - base;
+  float m[SPLINE_TAPS][SPLINE_TAPS];  // m[p][j] = M_p(u + j), the cardinal B-spline of degree p
+  #pragma unroll
+  for (int i = 0; i < SPLINE_TAPS * SPLINE_TAPS; ++i) ((float*)m)[i] = 0.0f;
+  m[0][0] = 1.0f;
+  #pragma unroll
+  for (int p = 1; p < SPLINE_TAPS; ++p)
+    #pragma unroll
+    for (int j = 0; j <= p; ++j) {
+      const float y = u + (float)j;
+      const float left = j <= p - 1 ? m[p - 1][j] : 0.0f, right = j >= 1 ? m[p - 1][j - 1] : 0.0f;
+      m[p][j] = (y * left + ((float)(p + 1) - y) * right) / (float)p;
+    }
+  // d^n/dq^n M4(y) = sum_k (-1)^k C(n, k) M_{4-n}(y - k).
+  const float binomial[4][4] = {{1, 0, 0, 0}, {1, 1, 0, 0}, {1, 2, 1, 0}, {1, 3, 3, 1}};
+  a->first = (int)base - (SPLINE_TAPS - 1);
+  #pragma unroll
+  for (int n = 0; n < 4; ++n)
+    #pragma unroll
+    for (int j = 0; j < SPLINE_TAPS; ++j) {
+      float sum = 0.0f;
+      #pragma unroll
+      for (int k = 0; k <= n; ++k) {
+        const int at = j - k, p = SPLINE_TAPS - 1 - n;
+        if (at >= 0 && at <= p) sum += ((k & 1) ? -1.0f : 1.0f) * binomial[n][k] * m[p][at];
+      }
+      a->w[n][SPLINE_TAPS - 1 - j] = sum;
+    }
 }
 
 // The world-space jet: value, gradient g, Hessian h (xx xy xz yy yz zz), third derivatives t
@@ -85,62 +176,95 @@ typedef struct {
   float t[10];
 } jet_t;
 
-INLINE jet_t gaussian_jet(const samples_t* s, const frame_t* f, vec3 p, int order) {
+// The jet of the reconstructed field sum_i S_i beta4(q - i) at world point p
+// (volume::spline_jet), S the smoothed samples.
+INLINE jet_t spline_jet(const samples_t* s, __global const float* blocks, const frame_t* f, vec3 p,
+                        int order) {
   const vec3 rel = sub3(p, v3(f->origin[0], f->origin[1], f->origin[2]));
   const float q[3] = {f->b[0] * rel.x + f->b[1] * rel.y + f->b[2] * rel.z,
                       f->b[3] * rel.x + f->b[4] * rel.y + f->b[5] * rel.z,
                       f->b[6] * rel.x + f->b[7] * rel.y + f->b[8] * rel.z};
   axis_t ax, ay, az;
-  // Orders <= 1 (the Newton steps) reach FIRST_ORDER_RADIUS deviations, the full jet
-  // GAUSSIAN_RADIUS (volume::kFirstOrderRadius, volume::kGaussianRadius).
-  const float radius = order <= 1 ? (float)FIRST_ORDER_RADIUS : (float)GAUSSIAN_RADIUS;
-  axis_weights(q[0], f->deviation[0], radius, &ax);
-  axis_weights(q[1], f->deviation[1], radius, &ay);
-  axis_weights(q[2], f->deviation[2], radius, &az);
-  float d[4][4][4];  // index-space derivatives of orders (nx, ny, nz)
-  for (int i = 0; i < 64; ++i) ((float*)d)[i] = 0.0f;
-  for (int tz = 0; tz < az.count; ++tz) {
-    float dxy[4][4];
-    for (int i = 0; i < 16; ++i) ((float*)dxy)[i] = 0.0f;
-    for (int ty = 0; ty < ay.count; ++ty) {
-      float dx[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-      if (order == 1) {  // the Newton steps: value and first derivative only
-        for (int tx = 0; tx < ax.count; ++tx) {
-          const float v = sample_at(s, ax.first + tx, ay.first + ty, az.first + tz);
-          dx[0] += v * ax.w[0][tx];
-          dx[1] += v * ax.w[1][tx];
-        }
-      } else {
-        for (int tx = 0; tx < ax.count; ++tx) {
-          const float v = sample_at(s, ax.first + tx, ay.first + ty, az.first + tz);
-          dx[0] += v * ax.w[0][tx];
-          dx[1] += v * ax.w[1][tx];
-          dx[2] += v * ax.w[2][tx];
-          dx[3] += v * ax.w[3][tx];
-        }
-      }
-      for (int nx = 0; nx <= order; ++nx)
-        for (int ny = 0; nx + ny <= order; ++ny) dxy[nx][ny] += dx[nx] * ay.w[ny][ty];
-    }
-    for (int nx = 0; nx <= order; ++nx)
-      for (int ny = 0; nx + ny <= order; ++ny)
-        for (int nz = 0; nx + ny + nz <= order; ++nz) d[nx][ny][nz] += dxy[nx][ny] * az.w[nz][tz];
+  spline_weights(q[0], &ax);
+  spline_weights(q[1], &ay);
+  spline_weights(q[2], &az);
+  // The block of the brick holding the evaluation's cell floor(q): it holds all 5^3 taps, the
+  // tap (tx, ty, tz) at a constant offset from the first.
+  const int cx = (int)floor(q[0]), cy = (int)floor(q[1]), cz = (int)floor(q[2]);
+  const int block = brick_number(s, cx >> 3, cy >> 3, cz >> 3);
+  if (block < 0) {  // outside the smoothed bricks (a plan never lets that happen)
+    jet_t none = {0};
+    return none;
   }
+  __global const float* first =
+      blocks + (size_t)block * PADDED_VOXELS +
+      ((az.first - (cz & ~7) + PAD_BEFORE) * PADDED + (ay.first - (cy & ~7) + PAD_BEFORE)) * PADDED +
+      (ax.first - (cx & ~7) + PAD_BEFORE);
+  // d[nx][ny][nz]: the index-space derivative of orders (nx, ny, nz), nx + ny + nz <= order, by
+  // separable sums: along x within each row, then y, then z. The x orders ride in the lanes of a
+  // float4 (lane nx): a row's sum is five vector FMAs. Every loop has a constant trip count and
+  // `order` is a constant where this is inlined, so the sums unroll into straight code.
+  float4 wx[SPLINE_TAPS];
+  #pragma unroll
+  for (int t = 0; t < SPLINE_TAPS; ++t)
+    wx[t] = (float4)(ax.w[0][t], ax.w[1][t], ax.w[2][t], ax.w[3][t]);
+  float4 dyz[4][4];  // [ny][nz], lanes nx
+  #pragma unroll
+  for (int ny = 0; ny < 4; ++ny)
+    #pragma unroll
+    for (int nz = 0; nz < 4; ++nz) dyz[ny][nz] = (float4)(0.0f);
+  #pragma unroll
+  for (int tz = 0; tz < SPLINE_TAPS; ++tz) {
+    float4 dy4[4];  // [ny], lanes nx
+    #pragma unroll
+    for (int ny = 0; ny < 4; ++ny) dy4[ny] = (float4)(0.0f);
+    #pragma unroll
+    for (int ty = 0; ty < SPLINE_TAPS; ++ty) {
+      __global const float* row = first + (tz * PADDED + ty) * PADDED;
+      float4 dx = (float4)(0.0f);
+      #pragma unroll
+      for (int tx = 0; tx < SPLINE_TAPS; ++tx) dx += row[tx] * wx[tx];
+      #pragma unroll
+      for (int ny = 0; ny < 4; ++ny)
+        if (ny <= order) dy4[ny] += dx * ay.w[ny][ty];
+    }
+    #pragma unroll
+    for (int ny = 0; ny < 4; ++ny)
+      #pragma unroll
+      for (int nz = 0; nz < 4; ++nz)
+        if (ny + nz <= order) dyz[ny][nz] += dy4[ny] * az.w[nz][tz];
+  }
+  float d[4][4][4];
+  #pragma unroll
+  for (int ny = 0; ny < 4; ++ny)
+    #pragma unroll
+    for (int nz = 0; nz < 4; ++nz) {
+      d[0][ny][nz] = dyz[ny][nz].s0;
+      d[1][ny][nz] = dyz[ny][nz].s1;
+      d[2][ny][nz] = dyz[ny][nz].s2;
+      d[3][ny][nz] = dyz[ny][nz].s3;
+    }
   // To world space: d/dworld_k = sum_a B(a, k) d/dindex_a on each index of each tensor.
   jet_t j;
   j.value = d[0][0][0];
+  #pragma unroll
   for (int k = 0; k < 3; ++k)
     j.g[k] = f->b[k] * d[1][0][0] + f->b[3 + k] * d[0][1][0] + f->b[6 + k] * d[0][0][1];
+  #pragma unroll
   for (int i = 0; i < 6; ++i) j.h[i] = 0.0f;
+  #pragma unroll
   for (int i = 0; i < 10; ++i) j.t[i] = 0.0f;
   if (order < 3) return j;
   const int pairs[6][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
   const int triples[10][3] = {{0, 0, 0}, {0, 0, 1}, {0, 0, 2}, {0, 1, 1}, {0, 1, 2},
                               {0, 2, 2}, {1, 1, 1}, {1, 1, 2}, {1, 2, 2}, {2, 2, 2}};
+  #pragma unroll
   for (int e = 0; e < 6; ++e) {
     const int k = pairs[e][0], l = pairs[e][1];
     float sum = 0.0f;
+    #pragma unroll
     for (int a = 0; a < 3; ++a)
+      #pragma unroll
       for (int b = 0; b < 3; ++b) {
         int n[3] = {0, 0, 0};
         ++n[a], ++n[b];
@@ -148,11 +272,15 @@ INLINE jet_t gaussian_jet(const samples_t* s, const frame_t* f, vec3 p, int orde
       }
     j.h[e] = sum;
   }
+  #pragma unroll
   for (int e = 0; e < 10; ++e) {
     const int k = triples[e][0], l = triples[e][1], m = triples[e][2];
     float sum = 0.0f;
+    #pragma unroll
     for (int a = 0; a < 3; ++a)
+      #pragma unroll
       for (int b = 0; b < 3; ++b)
+        #pragma unroll
         for (int c = 0; c < 3; ++c) {
           int n[3] = {0, 0, 0};
           ++n[a], ++n[b], ++n[c];
@@ -171,22 +299,28 @@ INLINE jet_t shifted_jet(const jet_t* j, vec3 step) {
                                {{2, 4, 5}, {4, 7, 8}, {5, 8, 9}}};
   const float s[3] = {step.x, step.y, step.z};
   float ts[3][3], hs[3];  // T(., ., s) and H s
+  #pragma unroll
   for (int k = 0; k < 3; ++k) {
     hs[k] = 0.0f;
+    #pragma unroll
     for (int l = 0; l < 3; ++l) {
       ts[k][l] = 0.0f;
+      #pragma unroll
       for (int m = 0; m < 3; ++m) ts[k][l] += j->t[triple[k][l][m]] * s[m];
       hs[k] += j->h[pair[k][l]] * s[l];
     }
   }
   jet_t out = *j;
+  #pragma unroll
   for (int k = 0; k < 3; ++k) {
     float tss = 0.0f;
+    #pragma unroll
     for (int l = 0; l < 3; ++l) tss += ts[k][l] * s[l];
     out.g[k] += hs[k] + tss * 0.5f;
     out.value += s[k] * (j->g[k] + hs[k] * 0.5f + tss * (1.0f / 6.0f));
   }
   const int pairs[6][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
+  #pragma unroll
   for (int e = 0; e < 6; ++e) out.h[e] += ts[pairs[e][0]][pairs[e][1]];
   return out;
 }
@@ -212,8 +346,11 @@ INLINE float cubic3(const float* t, vec3 a, vec3 b, vec3 c) {
   const int index[27] = {0, 1, 2, 1, 3, 4, 2, 4, 5, 1, 3, 4, 3, 6, 7, 4, 7, 8, 2, 4, 5, 4, 7, 8, 5, 8, 9};
   const float av[3] = {a.x, a.y, a.z}, bv[3] = {b.x, b.y, b.z}, cv[3] = {c.x, c.y, c.z};
   float sum = 0.0f;
+  #pragma unroll
   for (int i = 0; i < 3; ++i)
+    #pragma unroll
     for (int j = 0; j < 3; ++j)
+      #pragma unroll
       for (int k = 0; k < 3; ++k) sum += t[index[9 * i + 3 * j + k]] * av[i] * bv[j] * cv[k];
   return sum;
 }
@@ -228,8 +365,7 @@ INLINE float dcurv_form(const jet_t* j, vec3 hm, float s, float len, vec3 a, vec
 }
 
 __kernel void volume_curvature(__global const float* positions, uint count,
-                               __global const float* pool, __global const int* table, int4 dims,
-                               int4 lo, int4 hi, int clamp_domain, float background,
+                               __global const float* blocks, __global const int* table, int4 dims,
                                __constant const float* frame_params, float isovalue, float sign,
                                float max_shift, float voxel, float ao_scale,
                                __global float* normals, __global float* k1_out,
@@ -241,13 +377,15 @@ __kernel void volume_curvature(__global const float* positions, uint count,
                                __global uchar* missed_out) {
   const uint i = get_global_id(0);
   if (i >= count) return;
-  const samples_t s = {pool, table, dims, lo, hi, clamp_domain, background};
+  const samples_t s = {0, table, dims};
   frame_t f;
+  #pragma unroll
   for (int k = 0; k < 9; ++k) f.b[k] = frame_params[k];
-  for (int k = 0; k < 3; ++k) f.origin[k] = frame_params[9 + k], f.deviation[k] = frame_params[12 + k];
+  #pragma unroll
+  for (int k = 0; k < 3; ++k) f.origin[k] = frame_params[9 + k];
 
   const vec3 x0 = load3(positions, i);
-  const jet_t j0 = gaussian_jet(&s, &f, x0, 1);
+  const jet_t j0 = spline_jet(&s, blocks, &f, x0, 1);
   const vec3 g0 = v3(j0.g[0], j0.g[1], j0.g[2]);
   const float g0len = sqrt(dot3(g0, g0));
   vec3 n = v3(0.0f, 0.0f, 0.0f), e1 = n, e2 = n;
@@ -260,12 +398,12 @@ __kernel void volume_curvature(__global const float* positions, uint count,
     float t = 0.0f;
     jet_t j = j0;
     for (int step = 0; step < NEWTON_STEPS; ++step) {
-      if (step > 0) j = gaussian_jet(&s, &f, add3(x0, mul3(d, t)), 1);
+      if (step > 0) j = spline_jet(&s, blocks, &f, add3(x0, mul3(d, t)), 1);
       const float slope = j.g[0] * d.x + j.g[1] * d.y + j.g[2] * d.z;
       if (!(fabs(slope) > 0.0f)) break;
       t = clamp(t - (j.value - isovalue) / slope, -max_shift, max_shift);
     }
-    const jet_t found = gaussian_jet(&s, &f, add3(x0, mul3(d, t)), 3);
+    const jet_t found = spline_jet(&s, blocks, &f, add3(x0, mul3(d, t)), 3);
     const jet_t jet = final_step(&found, d, isovalue, voxel);
     const vec3 g = v3(jet.g[0], jet.g[1], jet.g[2]);
     len = sqrt(dot3(g, g));

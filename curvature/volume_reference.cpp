@@ -16,6 +16,8 @@
 #include "curvature/mesh_areas.h"
 #include "curvature/volume_estimate.h"
 #include "volume/gradient_normals.h"
+#include "volume/prefilter.h"
+#include "volume/spline_jet.h"
 
 namespace isocurv::curvature {
 namespace detail {
@@ -43,10 +45,23 @@ VolumeSetup volume_setup(const Mesh& mesh, const volume::Volume& volume, double 
                                  std::to_string(sigma / finest) +
                                  " voxels along the finest axis; at most " +
                                  std::to_string(int(volume::kMaxDeviation)) + " are supported");
+  if (sigma / s.voxel < volume::kMinScaleVoxels)
+    throw Error(volume.path, "scale " + std::to_string(sigma) + " is " +
+                                 std::to_string(sigma / s.voxel) +
+                                 " voxels along the coarsest axis; at least " +
+                                 std::to_string(volume::kMinScaleVoxels) +
+                                 " are supported (the reconstruction's B-spline alone smooths "
+                                 "by 0.645 voxel)");
   s.sigma = sigma;
   s.max_shift = kMaxShiftVoxels * s.voxel;
   s.inside = volume.inside;
   return s;
+}
+
+openvdb::Vec3d spline_reach(const VolumeSetup& setup) {
+  openvdb::Vec3d reach;
+  for (int a = 0; a < 3; ++a) reach[a] = setup.max_shift / setup.frame.spacing[a] + 1;
+  return reach;
 }
 
 std::size_t finish_volume_field(const Mesh& mesh, const RawVertex& raw, float ao_scale,
@@ -123,10 +138,9 @@ namespace {
 
 Vec3f to_f3(const Eigen::Vector3d& v) { return {float(v.x()), float(v.y()), float(v.z())}; }
 
-/// The last Newton step along `d`, taken on the full jet's Taylor expansion: it moves the jet onto
-/// the full-reach surface that the shorter-reach steps before it found to within a few 1e-3 voxel
-/// (their truncated filters jump as a tap enters), so the curvature does not inherit those jumps.
-/// Steps over kMaxFinalStepVoxels are not taken (the surface was missed; the caller flags it).
+/// The last Newton step along `d`, taken on the full jet's Taylor expansion: it moves the jet the
+/// last few 1e-3 voxel onto the surface without another evaluation. Steps over
+/// kMaxFinalStepVoxels are not taken (the surface was missed; the caller flags it).
 volume::Jet final_step(const volume::Jet& jet, const openvdb::Vec3d& d, float isovalue,
                        double voxel) {
   const double slope = jet.gradient[0] * d[0] + jet.gradient[1] * d[1] + jet.gradient[2] * d[2];
@@ -146,6 +160,10 @@ detail::VolumeEvaluation evaluate_reference(const Positions& positions,
                                             float ao_scale) {
   const std::size_t nv = positions.size();
   detail::VolumeEvaluation e;
+  if (nv == 0) return e;
+  const volume::SmoothingPlan plan =
+      volume::plan_smoothing(s.frame, positions, detail::spline_reach(s), s.sigma);
+  const volume::SmoothedSamples smoothed = volume::smooth_reference(grid, plan);
   CurvatureField& out = e.field;
   out.normals.resize(nv), out.k1.resize(nv), out.k2.resize(nv), out.dir1.resize(nv);
   out.dir2.resize(nv), out.H.resize(nv), out.K.resize(nv), out.dcurv.resize(nv);
@@ -157,7 +175,7 @@ detail::VolumeEvaluation evaluate_reference(const Positions& positions,
       const Vec3f& p = positions[i];
       const openvdb::Vec3d x0(p[0], p[1], p[2]);
       // The gradient line through the vertex, and Newton steps along it to F = isovalue.
-      const volume::Jet j0 = volume::gaussian_jet(grid, s.frame, x0, s.sigma, 1, volume::kFirstOrderRadius);
+      const volume::Jet j0 = volume::spline_jet(smoothed, x0, 1);
       const openvdb::Vec3d g0(j0.gradient[0], j0.gradient[1], j0.gradient[2]);
       const double g0len = g0.length();
       PointCurvature c;
@@ -167,13 +185,12 @@ detail::VolumeEvaluation evaluate_reference(const Positions& positions,
         double t = 0;
         volume::Jet j = j0;
         for (int step = 0; step < kNewtonSteps; ++step) {
-          if (step > 0)
-            j = volume::gaussian_jet(grid, s.frame, x0 + t * d, s.sigma, 1, volume::kFirstOrderRadius);
+          if (step > 0) j = volume::spline_jet(smoothed, x0 + t * d, 1);
           const double slope = j.gradient[0] * d[0] + j.gradient[1] * d[1] + j.gradient[2] * d[2];
           if (!(std::abs(slope) > 0)) break;
           t = std::clamp(t - (j.value - isovalue) / slope, -s.max_shift, s.max_shift);
         }
-        const volume::Jet jet = volume::gaussian_jet(grid, s.frame, x0 + t * d, s.sigma, 3);
+        const volume::Jet jet = volume::spline_jet(smoothed, x0 + t * d, 3);
         c = implicit_curvature(final_step(jet, d, isovalue, s.voxel), s.inside);
         missed = !(std::abs(jet.value - isovalue) <= kOnSurfaceVoxels * s.voxel * c.gradient_norm);
       }

@@ -63,6 +63,42 @@ AxisWeights axis_weights(double q, double s, double radius) {
   return aw;
 }
 
+Jet world_jet(const double (&d)[4][4][4], const openvdb::Mat3d& B, int order) {
+  // Index-space tensors by axis indices, then to world space: each index of a derivative tensor
+  // picks up B (d/dworld_k = sum_a B(a, k) d/dindex_a).
+  auto idx = [&](std::initializer_list<int> axes) {
+    int n[3] = {0, 0, 0};
+    for (int a : axes) ++n[a];
+    return d[n[0]][n[1]][n[2]];
+  };
+  Jet jet;
+  jet.value = d[0][0][0];
+  if (order >= 1)
+    for (int k = 0; k < 3; ++k)
+      for (int a = 0; a < 3; ++a) jet.gradient[k] += B(a, k) * idx({a});
+  static const int kPairs[6][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
+  static const int kTriples[10][3] = {{0, 0, 0}, {0, 0, 1}, {0, 0, 2}, {0, 1, 1}, {0, 1, 2},
+                                      {0, 2, 2}, {1, 1, 1}, {1, 1, 2}, {1, 2, 2}, {2, 2, 2}};
+  if (order >= 2)
+    for (int e = 0; e < 6; ++e) {
+      const int k = kPairs[e][0], l = kPairs[e][1];
+      double sum = 0;
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) sum += B(a, k) * B(b, l) * idx({a, b});
+      jet.hessian[e] = sum;
+    }
+  if (order >= 3)
+    for (int e = 0; e < 10; ++e) {
+      const int k = kTriples[e][0], l = kTriples[e][1], m = kTriples[e][2];
+      double sum = 0;
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b)
+          for (int c = 0; c < 3; ++c) sum += B(a, k) * B(b, l) * B(c, m) * idx({a, b, c});
+      jet.third[e] = sum;
+    }
+  return jet;
+}
+
 Jet gaussian_jet(const openvdb::FloatGrid& grid, const GridFrame& frame, const openvdb::Vec3d& p,
                  double sigma, int order, double radius) {
   const openvdb::Vec3d q = frame.to_index(p);
@@ -93,43 +129,7 @@ Jet gaussian_jet(const openvdb::FloatGrid& grid, const GridFrame& frame, const o
         for (int nz = 0; nx + ny + nz <= order; ++nz) d[nx][ny][nz] += dxy[nx][ny] * w[2].w[nz][tz];
   }
 
-  // Index-space tensors by axis indices, then to world space: each index of a derivative tensor
-  // picks up B (d/dworld_k = sum_a B(a, k) d/dindex_a).
-  auto orders = [](std::initializer_list<int> axes) {
-    int n[3] = {0, 0, 0};
-    for (int a : axes) ++n[a];
-    return std::array<int, 3>{n[0], n[1], n[2]};
-  };
-  auto idx = [&](std::initializer_list<int> axes) {
-    const std::array<int, 3> n = orders(axes);
-    return d[n[0]][n[1]][n[2]];
-  };
-  const openvdb::Mat3d& B = frame.B;
-  Jet jet;
-  jet.value = d[0][0][0];
-  for (int k = 0; k < 3; ++k)
-    for (int a = 0; a < 3; ++a) jet.gradient[k] += B(a, k) * idx({a});
-  static const int kPairs[6][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
-  static const int kTriples[10][3] = {{0, 0, 0}, {0, 0, 1}, {0, 0, 2}, {0, 1, 1}, {0, 1, 2},
-                                      {0, 2, 2}, {1, 1, 1}, {1, 1, 2}, {1, 2, 2}, {2, 2, 2}};
-  if (order >= 2)
-    for (int e = 0; e < 6; ++e) {
-      const int k = kPairs[e][0], l = kPairs[e][1];
-      double sum = 0;
-      for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) sum += B(a, k) * B(b, l) * idx({a, b});
-      jet.hessian[e] = sum;
-    }
-  if (order >= 3)
-    for (int e = 0; e < 10; ++e) {
-      const int k = kTriples[e][0], l = kTriples[e][1], m = kTriples[e][2];
-      double sum = 0;
-      for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b)
-          for (int c = 0; c < 3; ++c) sum += B(a, k) * B(b, l) * B(c, m) * idx({a, b, c});
-      jet.third[e] = sum;
-    }
-  return jet;
+  return world_jet(d, frame.B, order);
 }
 
 Jet shifted_jet(const Jet& jet, const openvdb::Vec3d& step) {

@@ -1,8 +1,9 @@
 #pragma once
-// Derivatives of a volume reconstructed at a scale: the value, gradient, Hessian and third
-// derivatives of the volume's samples convolved with a Gaussian of standard deviation sigma
-// (world units), evaluated at any world point. The double-precision specification that the
-// curvature stage's OpenCL kernel (curvature/volume_kernels.cl) follows.
+// Derivatives of a volume at a scale by direct Gaussian derivative filters: the value, gradient,
+// Hessian and third derivatives of the volume's samples convolved with a Gaussian of standard
+// deviation sigma (world units), evaluated at any world point, each tap read from the grid (the
+// automatic scale's edge measure uses it). Also the grid frame, the jet type and its Taylor shift
+// that the volume estimator's reconstruction (volume/prefilter.h, volume/spline_jet.h) shares.
 #include <openvdb/openvdb.h>
 
 #include <array>
@@ -15,12 +16,6 @@ namespace isocurv::volume {
 /// second and third derivatives' tails are heavy (at 3.5 deviations the truncated filters missed
 /// their moments by percents and biased the curvature as much; at 5 by about 1e-4).
 inline constexpr double kGaussianRadius = 5.0;
-
-/// A shorter reach for the value and gradient alone (order <= 1), whose filters' tails are light:
-/// at 3 deviations they miss their moments by under 1e-3 of a voxel's worth, enough to find where
-/// a gradient line meets the isosurface before the full-reach evaluation there (about 4.6 times
-/// fewer taps at 2.5 voxels).
-inline constexpr double kFirstOrderRadius = 3.0;
 
 /// Value and derivatives at one point, in world coordinates. Symmetric tensors are stored by their
 /// distinct components: hessian (xx, xy, xz, yy, yz, zz); third (xxx, xxy, xxz, xyy, xyz, xzz,
@@ -72,11 +67,15 @@ AxisWeights axis_weights(double q, double s, double radius = kGaussianRadius);
 inline constexpr double kMaxDeviation = 6.0;
 
 /// The jet of `volume` smoothed at world deviation `sigma` at world point `p`; derivatives above
-/// `order` (0..3) are left zero; the filters reach `radius` deviations (kFirstOrderRadius is
-/// enough for order <= 1). Samples outside a dense volume's domain repeat the nearest domain
-/// sample; a sparse grid's inactive voxels read as its background. Thread-safe.
+/// `order` (0..3) are left zero; the filters reach `radius` deviations (3 are enough for
+/// order <= 1, whose filters' tails are light). Samples outside a dense volume's domain repeat the
+/// nearest domain sample; a sparse grid's inactive voxels read as its background. Thread-safe.
 Jet gaussian_jet(const openvdb::FloatGrid& grid, const GridFrame& frame, const openvdb::Vec3d& p,
                  double sigma, int order = 3, double radius = kGaussianRadius);
+
+/// The world-space jet from index-space derivatives d[nx][ny][nz] (of orders nx, ny, nz along the
+/// index axes; only nx + ny + nz <= order are read) for the world -> index matrix B.
+Jet world_jet(const double (&d)[4][4][4], const openvdb::Mat3d& B, int order);
 
 /// The jet's Taylor expansion moved by a small world-space `step`: the value to third order, the
 /// gradient to second, the Hessian to first, the third derivatives unchanged.

@@ -24,6 +24,10 @@ struct VolumeSetup {
 /// Checks mesh, sigma and the grid (see volume_estimate) and derives the setup.
 VolumeSetup volume_setup(const Mesh& mesh, const volume::Volume& volume, double sigma);
 
+/// How far from a vertex (index units per axis, beyond the B-spline's own support) the estimator
+/// may evaluate the field: the largest Newton move plus a voxel.
+openvdb::Vec3d spline_reach(const VolumeSetup& setup);
+
 /// Per-vertex results before the reliability pass: |g| at the evaluation point (0 where the
 /// gradient vanished) and whether the reconstructed surface was missed.
 struct RawVertex {
