@@ -89,10 +89,14 @@ void run_volume_case(const std::string& name, const volume::Volume& v, float iso
       {{mesh_estimator, runs}, {at(choice.scale), runs}, {at(choice.voxel), runs}, {vtk, runs}});
   curvature::volume_estimate(mesh, v, iso, choice.scale, ao, dev, &stats);
   const double mem = bench::peak_extra_mib(at(choice.scale));
-  std::printf("%-26s %9zu %8.1f %9.1f (%4.2f vox, %zu finer) %8.1f %8.1f %7.2f %7.2f %7.0f\n",
-              name.c_str(), mesh.positions.size(), t[0], t[1], choice.scale / choice.voxel,
-              stats.finer_scale, t[2], t[3], t[1] / t[0], t[3] / t[1],
-              mem * 1048576.0 / mesh.positions.size());
+  const curvature::VolumeStepTimes& st = stats.steps;
+  std::printf(
+      "%-26s %9zu %8.1f %9.1f (%4.2f vox, %6zu finer) %8.1f %8.1f %7.2f %7.2f %7.0f | %5.1f "
+      "%5.1f %5.1f %5.1f %5.1f\n",
+      name.c_str(), mesh.positions.size(), t[0], t[1], choice.scale / choice.voxel,
+      stats.finer_scale, t[2], t[3], t[1] / t[0], t[3] / t[1],
+      mem * 1048576.0 / mesh.positions.size(), st.plan, st.gather, st.smooth, st.vertices,
+      st.finish);
   std::fflush(stdout);
 }
 
@@ -101,8 +105,9 @@ void volume_estimator_table(int runs, bool quick) {
       "\nvolume estimator (curvature::volume_estimate) beside the mesh estimator and "
       "vtkCurvatures (H + K), same surface; medians of %d runs\n",
       runs);
-  std::printf("%-26s %9s %8s %9s %24s %8s %8s %7s %7s %7s\n", "volume", "vertices", "mesh ms",
-              "auto ms", "", "1 vox ms", "VTK ms", "auto/mesh", "VTK/auto", "B/vert");
+  std::printf("%-26s %9s %8s %9s %24s %8s %8s %7s %7s %7s | %5s %5s %5s %5s %5s\n", "volume",
+              "vertices", "mesh ms", "auto ms", "", "1 vox ms", "VTK ms", "auto/mesh", "VTK/auto",
+              "B/vert", "plan", "gathr", "pass", "verts", "host");
   auto sphere = datasets::make_field("sphere");
   run_volume_case("sphere float 128^3", datasets::sample(*sphere, 128), float(sphere->isovalue()),
                   runs);

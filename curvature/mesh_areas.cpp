@@ -1,5 +1,8 @@
 #include "curvature/mesh_areas.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -40,47 +43,76 @@ std::array<double, 3> mixed_corner_areas(const std::array<P3, 3>& p) {
   return {scale * (w[1] + w[2]), scale * (w[2] + w[0]), scale * (w[0] + w[1])};
 }
 
+std::vector<float> mixed_vertex_areas(const Mesh& mesh, const VertexCorners& corners) {
+  // Every corner's area (parallel over triangles), then each vertex's corners summed in
+  // increasing order (parallel over vertices): the order a serial pass over the triangles takes,
+  // so the result does not depend on the threads.
+  const std::size_t nt = mesh.triangles.size(), nv = mesh.positions.size();
+  std::vector<double> corner(3 * nt, 0.0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nt, 4096), [&](const auto& r) {
+    for (std::size_t f = r.begin(); f != r.end(); ++f) {
+      const Tri& t = mesh.triangles[f];
+      if (repeated_index(t)) continue;
+      std::array<P3, 3> p;
+      for (int j = 0; j < 3; ++j)
+        for (int k = 0; k < 3; ++k) p[j][k] = mesh.positions[t[j]][k];
+      const std::array<double, 3> a = mixed_corner_areas(p);
+      for (int j = 0; j < 3; ++j) corner[3 * f + j] = a[j];
+    }
+  });
+  std::vector<float> area(nv);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 4096), [&](const auto& r) {
+    for (std::size_t v = r.begin(); v != r.end(); ++v) {
+      double sum = 0;
+      for (std::uint32_t c = corners.offsets[v]; c < corners.offsets[v + 1]; ++c)
+        sum += corner[corners.corners[c]];
+      area[v] = float(sum);
+    }
+  });
+  return area;
+}
+
 std::vector<float> mixed_vertex_areas(const Mesh& mesh) {
-  std::vector<double> area(mesh.positions.size(), 0.0);
-  for (const Tri& t : mesh.triangles) {
-    if (repeated_index(t)) continue;
-    std::array<P3, 3> p;
-    for (int j = 0; j < 3; ++j)
-      for (int k = 0; k < 3; ++k) p[j][k] = mesh.positions[t[j]][k];
-    const std::array<double, 3> a = mixed_corner_areas(p);
-    for (int j = 0; j < 3; ++j) area[t[j]] += a[j];
-  }
-  return std::vector<float>(area.begin(), area.end());
+  VertexCorners corners;
+  build_vertex_corners(mesh, corners);
+  return mixed_vertex_areas(mesh, corners);
+}
+
+std::vector<std::uint8_t> boundary_vertices(const Mesh& mesh, const VertexCorners& corners) {
+  // An edge (v, w) used by one triangle puts w once among the neighbours v's triangles list
+  // (each triangle through the edge lists w once: a triangle without a repeated index has w
+  // either after or before v, not both). Parallel over vertices, each writing its own flag.
+  const std::size_t nv = mesh.positions.size();
+  std::vector<std::uint8_t> boundary(nv, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 4096), [&](const auto& r) {
+    std::vector<std::uint32_t> around;
+    for (std::size_t v = r.begin(); v != r.end(); ++v) {
+      around.clear();
+      for (std::uint32_t c = corners.offsets[v]; c < corners.offsets[v + 1]; ++c) {
+        const Tri& t = mesh.triangles[corners.corners[c] / 3];
+        const int j = int(corners.corners[c] % 3);
+        around.push_back(t[next(j)]);
+        around.push_back(t[prev(j)]);
+      }
+      std::sort(around.begin(), around.end());
+      for (std::size_t i = 0; i < around.size();) {
+        std::size_t k = i + 1;
+        while (k < around.size() && around[k] == around[i]) ++k;
+        if (k - i == 1) {
+          boundary[v] = 1;
+          break;
+        }
+        i = k;
+      }
+    }
+  });
+  return boundary;
 }
 
 std::vector<std::uint8_t> boundary_vertices(const Mesh& mesh) {
-  // Every edge use as (low, high), bucketed by its low end (a counting sort: linear time); an edge
-  // used once is on the boundary. Buckets hold a vertex's few edges towards higher indices.
-  const std::size_t nv = mesh.positions.size();
-  std::vector<std::uint32_t> start(nv + 1, 0);
-  for (const Tri& t : mesh.triangles)
-    if (!repeated_index(t))
-      for (int j = 0; j < 3; ++j) ++start[std::min(t[j], t[next(j)]) + 1];
-  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  std::vector<std::uint32_t> high(start[nv]), fill(start.begin(), start.end() - 1);
-  for (const Tri& t : mesh.triangles)
-    if (!repeated_index(t))
-      for (int j = 0; j < 3; ++j) {
-        const auto [lo, hi] = std::minmax(t[j], t[next(j)]);
-        high[fill[lo]++] = hi;
-      }
-  std::vector<std::uint8_t> boundary(nv, 0);
-  for (std::size_t v = 0; v < nv; ++v) {
-    const auto first = high.begin() + start[v], last = high.begin() + start[v + 1];
-    std::sort(first, last);
-    for (auto i = first; i != last;) {
-      auto j = i + 1;
-      while (j != last && *j == *i) ++j;
-      if (j - i == 1) boundary[v] = boundary[*i] = 1;
-      i = j;
-    }
-  }
-  return boundary;
+  VertexCorners corners;
+  build_vertex_corners(mesh, corners);
+  return boundary_vertices(mesh, corners);
 }
 
 }  // namespace isocurv::curvature

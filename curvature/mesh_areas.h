@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/mesh.h"
+#include "curvature/vertex_corners.h"
 
 namespace isocurv::curvature {
 
@@ -15,12 +16,17 @@ namespace isocurv::curvature {
 /// a zero-area triangle.
 std::array<double, 3> mixed_corner_areas(const std::array<std::array<double, 3>, 3>& p);
 
-/// Per vertex, the sum of its corners' mixed areas (double precision, stored as float). Triangles
-/// with a repeated index contribute nothing. Indices must be in range (curvature::check_input).
+/// Per vertex, the sum of its corners' mixed areas (double precision, stored as float), summed in
+/// triangle order. Triangles with a repeated index contribute nothing. Indices must be in range
+/// (curvature::check_input). Parallel (TBB), deterministic.
 std::vector<float> mixed_vertex_areas(const Mesh& mesh);
+/// The same with the mesh's vertex -> corner adjacency already built.
+std::vector<float> mixed_vertex_areas(const Mesh& mesh, const VertexCorners& corners);
 
 /// Per vertex, 1 when it lies on an edge that only one triangle (without a repeated index) uses,
-/// else 0. Indices must be in range.
+/// else 0. Indices must be in range. Parallel (TBB), deterministic.
 std::vector<std::uint8_t> boundary_vertices(const Mesh& mesh);
+/// The same with the mesh's vertex -> corner adjacency already built.
+std::vector<std::uint8_t> boundary_vertices(const Mesh& mesh, const VertexCorners& corners);
 
 }  // namespace isocurv::curvature

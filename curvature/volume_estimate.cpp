@@ -3,6 +3,7 @@
 #include "curvature/volume_estimate.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <mutex>
 #include <string>
@@ -69,11 +70,10 @@ std::string build_options() {
       buf, sizeof buf,
       "-DPIVOT_TOLERANCE=%.9g -DOPPOSITE_NORMALS=%.9g -DAO_C0=%.9g -DAO_C1=%.9g "
       "-DAO_C2=%.9g -DAO_SMIN=%.9g -DBRICK_VOXELS=512 -DBRICK_ROWS=64 "
-      "-DPREFILTER_MAX_RADIUS=%d -DSPLINE_TAPS=5 -DPADDED=%d -DPAD_BEFORE=%d "
+      "-DSPLINE_TAPS=5 -DPADDED=%d -DPAD_BEFORE=%d "
       "-DPADDED_VOXELS=%d -DNEWTON_STEPS=%d -DON_SURFACE_VOXELS=%.9g -DMAX_FINAL_STEP_VOXELS=%.9g",
-      kPivotTolerance, kOppositeNormals, kAoC0, kAoC1, kAoC2, kAoSMin, volume::kPrefilterMaxRadius,
-      kPadded, kPadBefore, kPadded * kPadded * kPadded, kNewtonSteps, kOnSurfaceVoxels,
-      kMaxFinalStepVoxels);
+      kPivotTolerance, kOppositeNormals, kAoC0, kAoC1, kAoC2, kAoSMin, kPadded, kPadBefore,
+      kPadded * kPadded * kPadded, kNewtonSteps, kOnSurfaceVoxels, kMaxFinalStepVoxels);
   return buf;
 }
 
@@ -101,6 +101,51 @@ VolumeSession& session_for(Device& device) {
   return device.state<VolumeSession>();
 }
 
+// The kernel's maps from the distinct index-space derivatives of orders 2 and 3 to the world-space
+// Hessian and third derivatives (frame_t in volume_kernels.cl), appended to `out` row by row:
+// m2[e][f] = sum over the ordered index pairs (a, b) of f's orders of B(a, k) B(b, l) for the
+// world pair e = (k, l); m3 likewise over ordered triples.
+void append_world_maps(const openvdb::Mat3d& B, std::vector<float>& out) {
+  static const int kPairs[6][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
+  static const int kTriples[10][3] = {{0, 0, 0}, {0, 0, 1}, {0, 0, 2}, {0, 1, 1}, {0, 1, 2},
+                                      {0, 2, 2}, {1, 1, 1}, {1, 1, 2}, {1, 2, 2}, {2, 2, 2}};
+  auto pair_of = [](int a, int b) {  // the distinct pair (index of kPairs) of ordered (a, b)
+    for (int f = 0; f < 6; ++f)
+      if (std::min(a, b) == kPairs[f][0] && std::max(a, b) == kPairs[f][1]) return f;
+    return -1;
+  };
+  auto triple_of = [](int a, int b, int c) {
+    int v[3] = {a, b, c};
+    std::sort(v, v + 3);
+    for (int f = 0; f < 10; ++f)
+      if (v[0] == kTriples[f][0] && v[1] == kTriples[f][1] && v[2] == kTriples[f][2]) return f;
+    return -1;
+  };
+  double m2[6][6] = {}, m3[10][10] = {};
+  for (int e = 0; e < 6; ++e)
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) m2[e][pair_of(a, b)] += B(a, kPairs[e][0]) * B(b, kPairs[e][1]);
+  for (int e = 0; e < 10; ++e)
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b)
+        for (int c = 0; c < 3; ++c)
+          m3[e][triple_of(a, b, c)] +=
+              B(a, kTriples[e][0]) * B(b, kTriples[e][1]) * B(c, kTriples[e][2]);
+  for (auto& row : m2)
+    for (double v : row) out.push_back(float(v));
+  for (auto& row : m3)
+    for (double v : row) out.push_back(float(v));
+}
+
+using Clock = std::chrono::steady_clock;
+// Milliseconds since t, which moves to now.
+double lap(Clock::time_point& t) {
+  const Clock::time_point now = Clock::now();
+  const double ms = std::chrono::duration<double, std::milli>(now - t).count();
+  t = now;
+  return ms;
+}
+
 template <class T, class A>
 cl::Buffer& upload(cl::CommandQueue& q, VolumeSession& s, Slot slot, const std::vector<T, A>& v) {
   cl::Buffer& b = s.get(slot, v.size() * sizeof(T));
@@ -122,20 +167,24 @@ detail::VolumeEvaluation evaluate(const Positions& positions, const volume::Volu
   detail::VolumeEvaluation e;
   if (nv == 0) return e;
   const volume::GridFrame& fr = setup.frame;
+  Clock::time_point t = Clock::now();
   const volume::SmoothingPlan plan =
       volume::plan_smoothing(fr, positions, detail::spline_reach(setup), setup.sigma);
+  e.steps.plan = lap(t);
   const openvdb::Coord first(plan.origin[0] * 8, plan.origin[1] * 8, plan.origin[2] * 8);
   const openvdb::Vec3d region = fr.to_world(openvdb::Vec3d(first.asVec3d()));
   std::vector<float> frame(12);
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) frame[3 * r + c] = float(fr.B(r, c));
   for (int a = 0; a < 3; ++a) frame[9 + a] = float(region[a]);
+  append_world_maps(fr.B, frame);
   const cl_int4 dims = {{plan.dims[0], plan.dims[1], plan.dims[2], 0}};
   const cl_float background = volume.grid->background();
 
   cl::CommandQueue& q = device.queue();
   cl::Buffer& pos = upload(q, s, kPositions, positions);
   const std::vector<float> samples = volume::gather_stage_samples(*volume.grid, plan);
+  e.steps.gather = lap(t);
   upload(q, s, kPool0, samples);  // every host array stays alive until q.finish() below
   for (int n = 0; n < 4; ++n) upload(q, s, Slot(kTable0 + n), plan.stages[n].table);
   // The three passes of the prefilter: along x from stage 0 into stage 1, along y, along z.
@@ -147,7 +196,10 @@ detail::VolumeEvaluation evaluate(const Positions& positions, const volume::Volu
       const openvdb::Coord r = b - plan.origin;
       bricks[a].push_back({{r[0], r[1], r[2], 0}});
     }
-    taps[a].assign(plan.taps[a].w.begin(), plan.taps[a].w.end());
+    // smooth_axis's `spread`: the taps reversed with 7 zeros either side.
+    const int radius = plan.taps[a].radius;
+    taps[a].assign(2 * radius + 15, 0.0f);
+    for (int k = 0; k <= 2 * radius; ++k) taps[a][2 * radius + 7 - k] = float(plan.taps[a].w[k]);
     cl::Buffer& from = s.get(Slot(kPool0 + a), plan.stages[a].bricks.size() * 512 * sizeof(float));
     cl::Buffer& to = s.get(Slot(kPool0 + a + 1), out.bricks.size() * 512 * sizeof(float));
     cl::Buffer& list = upload(q, s, Slot(kBricks1 + a), bricks[a]);
@@ -165,6 +217,8 @@ detail::VolumeEvaluation evaluate(const Positions& positions, const volume::Volu
   set_args(s.pad, s.get(kPool3, 0), table, dims, background, s.get(kBricks3, 0), cl_uint(n3),
            blocks);
   launch(q, s.pad, n3 * kPadded * kPadded, kGroup);
+  q.finish();
+  e.steps.smooth = lap(t);
   cl::Buffer& params = upload(q, s, kFrame, frame);
   cl::Buffer* f1[] = {&s.get(kK1, nv * 4), &s.get(kK2, nv * 4),          &s.get(kH, nv * 4),
                       &s.get(kK, nv * 4),  &s.get(kShape, nv * 4),       &s.get(kCurved, nv * 4),
@@ -195,6 +249,7 @@ detail::VolumeEvaluation evaluate(const Positions& positions, const volume::Volu
   download(q, *f1[7], e.raw.gradient_norm, nv);
   download(q, missed, e.raw.missed, nv);
   q.finish();
+  e.steps.vertices = lap(t);
   e.bricks = 0;
   for (const volume::BrickSet& stage : plan.stages) e.bricks += stage.bricks.size();
   return e;
@@ -217,8 +272,10 @@ CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalu
         return evaluate(positions, volume, at, isovalue, ao_scale, device, s);
       },
       refined);
+  Clock::time_point t = Clock::now();
   const std::size_t unreliable = detail::finish_volume_field(mesh, e.raw, ao_scale, e.field);
-  if (stats) *stats = VolumeEstimateStats{unreliable, e.bricks, refined};
+  e.steps.finish = lap(t);
+  if (stats) *stats = VolumeEstimateStats{unreliable, e.bricks, refined, e.steps};
   return std::move(e.field);
 }
 

@@ -39,11 +39,20 @@ inline constexpr double kOnSurfaceVoxels = 0.05;
 /// The last Newton step, taken on the full jet's Taylor expansion, moves at most this many voxels.
 inline constexpr double kMaxFinalStepVoxels = 0.1;
 
+/// Wall time of the volume estimator's steps in ms (device path, summed over the finer scales;
+/// the queue is drained between steps): planning the bricks, gathering the samples, the
+/// prefilter's passes (with the padded copy), the per-vertex kernel with the downloads, and the
+/// host's Area, Boundary and Unreliable pass.
+struct VolumeStepTimes {
+  double plan = 0, gather = 0, smooth = 0, vertices = 0, finish = 0;
+};
+
 /// What one volume estimate did.
 struct VolumeEstimateStats {
   std::size_t unreliable = 0;  ///< vertices flagged Unreliable
-  std::size_t bricks = 0;      ///< 8^3 bricks of samples read (device path), all scales
+  std::size_t bricks = 0;      ///< 8^3 bricks filtered or gathered (device path), all scales
   std::size_t finer_scale = 0;  ///< vertices whose surface was found only at a finer scale
+  VolumeStepTimes steps;        ///< device path only
 };
 
 /// The volume estimator on `device` (float; the same steps as volume_estimate_reference), at

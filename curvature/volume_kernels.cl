@@ -3,16 +3,26 @@
 // curvature/implicit_curvature.cpp): smooth_axis, three times (one pass of the separable
 // prefilter per axis, one work item per voxel of the bricks the next pass reads), then
 // volume_curvature (one work item per mesh vertex, reading 5^3 smoothed samples per evaluation).
-// Appended to curvature_math.cl; built with -DBRICK_VOXELS, -DBRICK_ROWS, -DPREFILTER_MAX_RADIUS,
-// -DSPLINE_TAPS, -DNEWTON_STEPS,
+// Appended to curvature_math.cl; built with -DBRICK_VOXELS, -DBRICK_ROWS, -DSPLINE_TAPS,
+// -DPADDED, -DPAD_BEFORE, -DPADDED_VOXELS, -DNEWTON_STEPS,
 // -DON_SURFACE_VOXELS, -DMAX_FINAL_STEP_VOXELS and curvature_math.cl's constants.
 
-// Index-space frame: the world -> index matrix B (row-major) and the world position of the
-// region's first voxel.
+// Index-space frame: the world -> index matrix B (row-major), the world position of the
+// region's first voxel, and the maps of index-space derivatives to world space by order
+// (volume_estimate.cpp, world_maps): h[e] = sum_f m2[e][f] d_f over the 6 distinct second
+// derivatives f (in PAIR_ORDERS order), t[e] = sum_f m3[e][f] d_f over the 10 third (TRIPLE_ORDERS).
 typedef struct {
   float b[9];
   float origin[3];
+  float m2[6][6];
+  float m3[10][10];
 } frame_t;
+
+// The orders (nx, ny, nz) of the distinct second and third index-space derivatives, in the order
+// of the Hessian (xx xy xz yy yz zz) and third-derivative (xxx xxy ... zzz) components.
+__constant int PAIR_ORDERS[6][3] = {{2, 0, 0}, {1, 1, 0}, {1, 0, 1}, {0, 2, 0}, {0, 1, 1}, {0, 0, 2}};
+__constant int TRIPLE_ORDERS[10][3] = {{3, 0, 0}, {2, 1, 0}, {2, 0, 1}, {1, 2, 0}, {1, 1, 1},
+                                       {1, 0, 2}, {0, 3, 0}, {0, 2, 1}, {0, 1, 2}, {0, 0, 3}};
 
 // Samples in 8^3 bricks (x fastest within a brick) found through `table`, a dense grid of brick
 // numbers (-1: not in the set) over the region; voxel coordinates relative to the region's first
@@ -31,7 +41,8 @@ INLINE int brick_number(const samples_t* s, int bx, int by, int bz) {
 }
 
 // One pass of the separable prefilter along `axis` (volume::smooth_reference): voxel v of an
-// output brick (region brick coordinates out_bricks[b]) gets sum_k taps[k + radius] in(v + k e),
+// output brick (region brick coordinates out_bricks[b]) gets sum_k taps[k + radius] in(v + k e)
+// (taps as `spread` holds them, below),
 // e the unit step along the axis, the coordinate along the axis clamped to [lo, hi] when
 // clamp_axis (a dense volume's domain). One work item per row of 8 voxels along the axis (64
 // rows per brick): it reads the row's 8 + 2 radius input samples once, looking up a brick only
@@ -39,7 +50,7 @@ INLINE int brick_number(const samples_t* s, int bx, int by, int bz) {
 __kernel void smooth_axis(__global const float* in_pool, __global const int* in_table, int4 dims,
                           float background, __global const int4* out_bricks, uint out_count,
                           __global float* out_pool, int axis, int clamp_axis, int lo, int hi,
-                          __constant const float* taps, int radius) {
+                          __constant const float* spread, int radius) {
   const uint item = get_global_id(0);
   if (item >= out_count * BRICK_ROWS) return;
   const uint b = item / BRICK_ROWS, row = item % BRICK_ROWS;
@@ -60,37 +71,41 @@ __kernel void smooth_axis(__global const float* in_pool, __global const int* in_
     bc[axis] = 0;
     cell = (bc[2] * dims.y + bc[1]) * dims.x + bc[0];
   }
-  float line[8 + 2 * PREFILTER_MAX_RADIUS];
-  const int from = start[axis] - radius, to = start[axis] + 7 + radius;
+  // Each input sample p of the row (0 .. 8 + 2 radius - 1) adds to all 8 outputs at once:
+  // out[k] += in[p] taps[p - k], the weights of sample p being 8 consecutive entries of
+  // `spread` (the taps reversed, with 7 zeros either side: spread[L - 8 - p + k] = taps[p - k],
+  // L = 2 radius + 15). Two accumulators halve the chain of dependent FMAs.
+  const int from = start[axis] - radius, to = start[axis] + 7 + radius, last_weight = 2 * radius + 7;
+  float8 even = (float8)(0.0f), odd = (float8)(0.0f);
+  int p = 0;
   if (clamp_axis && (from < lo || to > hi)) {
     // Near the domain's border: clamp every coordinate.
     int current = -1, number = -1;
-    for (int p = 0; p < 8 + 2 * radius; ++p) {
+    for (; p < 8 + 2 * radius; ++p) {
       const int c = clamp(from + p, lo, hi), cb = c >> 3;
       if (cb != current) {
         current = cb;
         number = c >= 0 && cb < extent ? in_table[cell + cb * table_stride] : -1;
       }
-      line[p] = number < 0 ? background
-                           : in_pool[(size_t)number * BRICK_VOXELS + row_offset + (c & 7) * stride];
+      const float v = number < 0 ? background
+                                 : in_pool[(size_t)number * BRICK_VOXELS + row_offset + (c & 7) * stride];
+      if (p & 1) odd += v * vload8(0, spread + last_weight - p);
+      else even += v * vload8(0, spread + last_weight - p);
     }
   } else {
-    // Brick by brick: one lookup, then a strided copy of the row's part in that brick.
-    int p = 0;
+    // Brick by brick: one lookup, then the row's part in that brick.
     for (int cb = from >> 3; cb <= to >> 3; ++cb) {
       const int number = cb >= 0 && cb < extent ? in_table[cell + cb * table_stride] : -1;
       const int first = max(from - cb * 8, 0), last = min(to - cb * 8, 7);
-      if (number < 0) {
-        for (int l = first; l <= last; ++l) line[p++] = background;
-      } else {
-        __global const float* src = in_pool + (size_t)number * BRICK_VOXELS + row_offset;
-        for (int l = first; l <= last; ++l) line[p++] = src[l * stride];
+      __global const float* src = in_pool + (size_t)max(number, 0) * BRICK_VOXELS + row_offset;
+      for (int l = first; l <= last; ++l, ++p) {
+        const float v = number < 0 ? background : src[l * stride];
+        if (p & 1) odd += v * vload8(0, spread + last_weight - p);
+        else even += v * vload8(0, spread + last_weight - p);
       }
     }
   }
-  // The row's 8 outputs at once: out[k] = sum_t taps[t] line[k + t].
-  float8 sum = (float8)(0.0f);
-  for (int t = 0; t <= 2 * radius; ++t) sum += taps[t] * vload8(0, line + t);
+  const float8 sum = even + odd;
   __global float* out = out_pool + (size_t)b * BRICK_VOXELS + row_offset;
   if (stride == 1) {
     vstore8(sum, 0, out);
@@ -104,8 +119,7 @@ __kernel void smooth_axis(__global const float* in_pool, __global const int* in_
 // PADDED^3 voxels from 8 brick - PAD_BEFORE on of stage brick b, so that every tap of an
 // evaluation whose cell lies in brick b comes from block b at a fixed offset (no brick lookups
 // per tap). Voxels outside the stage's bricks (never read: every tap lies in the stage) get
-// `background`. One work item per row of PADDED voxels along x (it looks a brick up only when
-// the row enters it).
+// `background`. One work item per row of PADDED voxels along x.
 __kernel void pad_bricks(__global const float* pool, __global const int* table, int4 dims,
                          float background, __global const int4* bricks, uint count,
                          __global float* blocks) {
@@ -118,15 +132,21 @@ __kernel void pad_bricks(__global const float* pool, __global const int* table, 
   const int z = brick.z * 8 - PAD_BEFORE + (int)(r / PADDED);
   const int row = ((z & 7) * 8 + (y & 7)) * 8;
   __global float* out = blocks + (size_t)item * PADDED;
-  int current = -2, n = -1;
-  for (int i = 0; i < PADDED; ++i) {
-    const int x = brick.x * 8 - PAD_BEFORE + i;
-    if ((x >> 3) != current) {
-      current = x >> 3;
-      n = x < 0 || y < 0 || z < 0 ? -1 : brick_number(&s, x >> 3, y >> 3, z >> 3);
-    }
-    out[i] = n < 0 ? background : pool[(size_t)n * BRICK_VOXELS + row + (x & 7)];
+  // The row's three parts: PAD_BEFORE voxels from the brick before, the brick's own 8, and the
+  // rest from the brick after.
+  const bool inside = y >= 0 && z >= 0;
+  const int before = inside ? brick_number(&s, brick.x - 1, y >> 3, z >> 3) : -1;
+  const int own = inside ? brick_number(&s, brick.x, y >> 3, z >> 3) : -1;
+  const int after = inside ? brick_number(&s, brick.x + 1, y >> 3, z >> 3) : -1;
+  for (int i = 0; i < PAD_BEFORE; ++i)
+    out[i] = before < 0 ? background : pool[(size_t)before * BRICK_VOXELS + row + 8 - PAD_BEFORE + i];
+  if (own < 0) {
+    for (int i = 0; i < 8; ++i) out[PAD_BEFORE + i] = background;
+  } else {
+    vstore8(vload8(0, pool + (size_t)own * BRICK_VOXELS + row), 0, out + PAD_BEFORE);
   }
+  for (int i = 0; i < PADDED - 8 - PAD_BEFORE; ++i)
+    out[PAD_BEFORE + 8 + i] = after < 0 ? background : pool[(size_t)after * BRICK_VOXELS + row + i];
 }
 
 // The quartic B-spline's weights along one axis at q (volume::spline_weights): taps first ..
@@ -136,35 +156,35 @@ typedef struct {
   float w[4][SPLINE_TAPS];
 } axis_t;
 
+// The weights as polynomials in u = frac(q + 2.5): tap t's weight is M4(u + 4 - t), whose pieces
+// are 24 M4(u + j) = 1 + 4u + 6u^2 + 4u^3 - 4u^4 (j = 1), 11 + 12u - 6u^2 - 12u^3 + 6u^4 (j = 2),
+// 11 - 12u - 6u^2 + 12u^3 - 4u^4 (j = 3), (1 - u)^4 (j = 4) and u^4 (j = 0): the same values as
+// volume::spline_weights's recursion. SPLINE_U[k] holds the u^k coefficients of taps 0..4 in
+// lanes 0..4; the derivatives in q are those in u.
+__constant float8 SPLINE_U[5] = {
+    (float8)(1.0f, 11.0f, 11.0f, 1.0f, 0.0f, 0.0f, 0.0f, 0.0f) / 24.0f,
+    (float8)(-4.0f, -12.0f, 12.0f, 4.0f, 0.0f, 0.0f, 0.0f, 0.0f) / 24.0f,
+    (float8)(6.0f, -6.0f, -6.0f, 6.0f, 0.0f, 0.0f, 0.0f, 0.0f) / 24.0f,
+    (float8)(-4.0f, 12.0f, -12.0f, 4.0f, 0.0f, 0.0f, 0.0f, 0.0f) / 24.0f,
+    (float8)(1.0f, -4.0f, 6.0f, -4.0f, 1.0f, 0.0f, 0.0f, 0.0f) / 24.0f};
+
 INLINE void spline_weights(float q, axis_t* a) {
   const float x = q + 2.5f, base = floor(x), u = x - base;
-  float m[SPLINE_TAPS][SPLINE_TAPS];  // m[p][j] = M_p(u + j), the cardinal B-spline of degree p
-  #pragma unroll
-  for (int i = 0; i < SPLINE_TAPS * SPLINE_TAPS; ++i) ((float*)m)[i] = 0.0f;
-  m[0][0] = 1.0f;
-  #pragma unroll
-  for (int p = 1; p < SPLINE_TAPS; ++p)
-    #pragma unroll
-    for (int j = 0; j <= p; ++j) {
-      const float y = u + (float)j;
-      const float left = j <= p - 1 ? m[p - 1][j] : 0.0f, right = j >= 1 ? m[p - 1][j - 1] : 0.0f;
-      m[p][j] = (y * left + ((float)(p + 1) - y) * right) / (float)p;
-    }
-  // d^n/dq^n M4(y) = sum_k (-1)^k C(n, k) M_{4-n}(y - k).
-  const float binomial[4][4] = {{1, 0, 0, 0}, {1, 1, 0, 0}, {1, 2, 1, 0}, {1, 3, 3, 1}};
+  const __constant float8* c = SPLINE_U;
+  const float8 w0 = (((c[4] * u + c[3]) * u + c[2]) * u + c[1]) * u + c[0];
+  const float8 w1 = ((4.0f * c[4] * u + 3.0f * c[3]) * u + 2.0f * c[2]) * u + c[1];
+  const float8 w2 = (12.0f * c[4] * u + 6.0f * c[3]) * u + 2.0f * c[2];
+  const float8 w3 = 24.0f * c[4] * u + 6.0f * c[3];
   a->first = (int)base - (SPLINE_TAPS - 1);
+  const float8 w[4] = {w0, w1, w2, w3};
   #pragma unroll
-  for (int n = 0; n < 4; ++n)
-    #pragma unroll
-    for (int j = 0; j < SPLINE_TAPS; ++j) {
-      float sum = 0.0f;
-      #pragma unroll
-      for (int k = 0; k <= n; ++k) {
-        const int at = j - k, p = SPLINE_TAPS - 1 - n;
-        if (at >= 0 && at <= p) sum += ((k & 1) ? -1.0f : 1.0f) * binomial[n][k] * m[p][at];
-      }
-      a->w[n][SPLINE_TAPS - 1 - j] = sum;
-    }
+  for (int n = 0; n < 4; ++n) {
+    a->w[n][0] = w[n].s0;
+    a->w[n][1] = w[n].s1;
+    a->w[n][2] = w[n].s2;
+    a->w[n][3] = w[n].s3;
+    a->w[n][4] = w[n].s4;
+  }
 }
 
 // The world-space jet: value, gradient g, Hessian h (xx xy xz yy yz zz), third derivatives t
@@ -244,7 +264,8 @@ INLINE jet_t spline_jet(const samples_t* s, __global const float* blocks, const 
       d[2][ny][nz] = dyz[ny][nz].s2;
       d[3][ny][nz] = dyz[ny][nz].s3;
     }
-  // To world space: d/dworld_k = sum_a B(a, k) d/dindex_a on each index of each tensor.
+  // To world space: d/dworld_k = sum_a B(a, k) d/dindex_a on each index of each tensor, the
+  // products of B precomputed per order (frame_t).
   jet_t j;
   j.value = d[0][0][0];
   #pragma unroll
@@ -255,39 +276,16 @@ INLINE jet_t spline_jet(const samples_t* s, __global const float* blocks, const 
   #pragma unroll
   for (int i = 0; i < 10; ++i) j.t[i] = 0.0f;
   if (order < 3) return j;
-  const int pairs[6][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
-  const int triples[10][3] = {{0, 0, 0}, {0, 0, 1}, {0, 0, 2}, {0, 1, 1}, {0, 1, 2},
-                              {0, 2, 2}, {1, 1, 1}, {1, 1, 2}, {1, 2, 2}, {2, 2, 2}};
   #pragma unroll
-  for (int e = 0; e < 6; ++e) {
-    const int k = pairs[e][0], l = pairs[e][1];
-    float sum = 0.0f;
+  for (int e = 0; e < 6; ++e)
     #pragma unroll
-    for (int a = 0; a < 3; ++a)
-      #pragma unroll
-      for (int b = 0; b < 3; ++b) {
-        int n[3] = {0, 0, 0};
-        ++n[a], ++n[b];
-        sum += f->b[3 * a + k] * f->b[3 * b + l] * d[n[0]][n[1]][n[2]];
-      }
-    j.h[e] = sum;
-  }
+    for (int g = 0; g < 6; ++g)
+      j.h[e] += f->m2[e][g] * d[PAIR_ORDERS[g][0]][PAIR_ORDERS[g][1]][PAIR_ORDERS[g][2]];
   #pragma unroll
-  for (int e = 0; e < 10; ++e) {
-    const int k = triples[e][0], l = triples[e][1], m = triples[e][2];
-    float sum = 0.0f;
+  for (int e = 0; e < 10; ++e)
     #pragma unroll
-    for (int a = 0; a < 3; ++a)
-      #pragma unroll
-      for (int b = 0; b < 3; ++b)
-        #pragma unroll
-        for (int c = 0; c < 3; ++c) {
-          int n[3] = {0, 0, 0};
-          ++n[a], ++n[b], ++n[c];
-          sum += f->b[3 * a + k] * f->b[3 * b + l] * f->b[3 * c + m] * d[n[0]][n[1]][n[2]];
-        }
-    j.t[e] = sum;
-  }
+    for (int g = 0; g < 10; ++g)
+      j.t[e] += f->m3[e][g] * d[TRIPLE_ORDERS[g][0]][TRIPLE_ORDERS[g][1]][TRIPLE_ORDERS[g][2]];
   return j;
 }
 
@@ -341,27 +339,32 @@ INLINE vec3 hess_mul(const float* h, vec3 x) {
             h[2] * x.x + h[4] * x.y + h[5] * x.z);
 }
 
-// T(a, b, c) for the symmetric 3-tensor (xxx xxy xxz xyy xyz xzz yyy yyz yzz zzz).
-INLINE float cubic3(const float* t, vec3 a, vec3 b, vec3 c) {
-  const int index[27] = {0, 1, 2, 1, 3, 4, 2, 4, 5, 1, 3, 4, 3, 6, 7, 4, 7, 8, 2, 4, 5, 4, 7, 8, 5, 8, 9};
-  const float av[3] = {a.x, a.y, a.z}, bv[3] = {b.x, b.y, b.z}, cv[3] = {c.x, c.y, c.z};
-  float sum = 0.0f;
-  #pragma unroll
-  for (int i = 0; i < 3; ++i)
-    #pragma unroll
-    for (int j = 0; j < 3; ++j)
-      #pragma unroll
-      for (int k = 0; k < 3; ++k) sum += t[index[9 * i + 3 * j + k]] * av[i] * bv[j] * cv[k];
-  return sum;
+// T(., ., c) for the symmetric 3-tensor t (xxx xxy xxz xyy xyz xzz yyy yyz yzz zzz): a
+// symmetric 3x3 in the Hessian's storage (xx xy xz yy yz zz).
+INLINE void contract3(const float* t, vec3 c, float* m) {
+  m[0] = t[0] * c.x + t[1] * c.y + t[2] * c.z;
+  m[1] = t[1] * c.x + t[3] * c.y + t[4] * c.z;
+  m[2] = t[2] * c.x + t[4] * c.y + t[5] * c.z;
+  m[3] = t[3] * c.x + t[6] * c.y + t[7] * c.z;
+  m[4] = t[4] * c.x + t[7] * c.y + t[8] * c.z;
+  m[5] = t[5] * c.x + t[8] * c.y + t[9] * c.z;
 }
 
-// C(a, b, c) of implicit_curvature: s/|g| [T(a,b,c) - ((a.Hs c)(m.Hs b) + (b.Hs c)(m.Hs a) +
-// (a.Hs b)(m.Hs c)) / |g|], Hm = Hs m.
-INLINE float dcurv_form(const jet_t* j, vec3 hm, float s, float len, vec3 a, vec3 b, vec3 c) {
-  const float quad = (dot3(a, hess_mul(j->h, c)) * dot3(hm, b) +
-                      dot3(b, hess_mul(j->h, c)) * dot3(hm, a) +
-                      dot3(a, hess_mul(j->h, b)) * dot3(hm, c)) / len;
-  return s / len * (cubic3(j->t, a, b, c) - quad);
+// dcurv in the principal frame: C(a, b, c) of implicit_curvature,
+// s/|g| [T(a,b,c) - ((a.Hs c)(m.Hs b) + (b.Hs c)(m.Hs a) + (a.Hs b)(m.Hs c)) / |g|], for
+// (e1,e1,e1), (e1,e1,e2), (e1,e2,e2), (e2,e2,e2).
+INLINE float4 dcurv_forms(const jet_t* j, vec3 m, float s, float len, vec3 e1, vec3 e2) {
+  float t1[6], t2[6];  // T(., ., e1), T(., ., e2)
+  contract3(j->t, e1, t1);
+  contract3(j->t, e2, t2);
+  const vec3 he1 = hess_mul(j->h, e1), he2 = hess_mul(j->h, e2), hm = hess_mul(j->h, m);
+  const float h11 = dot3(e1, he1), h12 = dot3(e1, he2), h22 = dot3(e2, he2);
+  const float m1 = dot3(hm, e1), m2 = dot3(hm, e2);
+  const float4 t = (float4)(dot3(e1, hess_mul(t1, e1)), dot3(e1, hess_mul(t2, e1)),
+                            dot3(e1, hess_mul(t2, e2)), dot3(e2, hess_mul(t2, e2)));
+  const float4 quad = (float4)(3.0f * h11 * m1, 2.0f * h12 * m1 + h11 * m2,
+                               2.0f * h12 * m2 + h22 * m1, 3.0f * h22 * m2);
+  return s / len * (t - quad / len);
 }
 
 __kernel void volume_curvature(__global const float* positions, uint count,
@@ -381,6 +384,8 @@ __kernel void volume_curvature(__global const float* positions, uint count,
   frame_t f;
   #pragma unroll
   for (int k = 0; k < 9; ++k) f.b[k] = frame_params[k];
+  for (int k = 0; k < 36; ++k) ((float*)f.m2)[k] = frame_params[12 + k];
+  for (int k = 0; k < 100; ++k) ((float*)f.m3)[k] = frame_params[48 + k];
   #pragma unroll
   for (int k = 0; k < 3; ++k) f.origin[k] = frame_params[9 + k];
 
@@ -421,11 +426,7 @@ __kernel void volume_curvature(__global const float* positions, uint count,
       k2 = mean - r;
       e1 = add3(mul3(u, cos(theta)), mul3(v, sin(theta)));
       e2 = cross3(n, e1);
-      const vec3 hm = hess_mul(jet.h, m);
-      dc = (float4)(dcurv_form(&jet, hm, sign, len, e1, e1, e1),
-                    dcurv_form(&jet, hm, sign, len, e1, e1, e2),
-                    dcurv_form(&jet, hm, sign, len, e1, e2, e2),
-                    dcurv_form(&jet, hm, sign, len, e2, e2, e2));
+      dc = dcurv_forms(&jet, m, sign, len, e1, e2);
       missed = !(fabs(found.value - isovalue) <= (float)ON_SURFACE_VOXELS * voxel * len);
     } else {
       len = 0.0f;

@@ -67,8 +67,10 @@ openvdb::Vec3d spline_reach(const VolumeSetup& setup) {
 std::size_t finish_volume_field(const Mesh& mesh, const RawVertex& raw, float ao_scale,
                                 CurvatureField& field) {
   const std::size_t nv = mesh.positions.size();
-  field.area = mixed_vertex_areas(mesh);
-  field.boundary = boundary_vertices(mesh);
+  VertexCorners corners;
+  build_vertex_corners(mesh, corners);
+  field.area = mixed_vertex_areas(mesh, corners);
+  field.boundary = boundary_vertices(mesh, corners);
   field.unreliable.assign(nv, 0);
   std::vector<float> lengths;
   lengths.reserve(nv);
@@ -116,6 +118,8 @@ VolumeEvaluation evaluate_with_finer_scales(const Mesh& mesh, VolumeSetup setup,
     for (std::size_t j = 0; j < which.size(); ++j) positions[j] = mesh.positions[which[j]];
     const VolumeEvaluation finer = evaluate(positions, setup);
     all.bricks += finer.bricks;
+    all.steps.plan += finer.steps.plan, all.steps.gather += finer.steps.gather;
+    all.steps.smooth += finer.steps.smooth, all.steps.vertices += finer.steps.vertices;
     const CurvatureField& g = finer.field;
     for (std::size_t j = 0; j < which.size(); ++j) {
       if (finer.raw.missed[j]) continue;
@@ -225,7 +229,7 @@ CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume&
       },
       refined);
   const std::size_t unreliable = detail::finish_volume_field(mesh, e.raw, ao_scale, e.field);
-  if (stats) *stats = VolumeEstimateStats{unreliable, 0, refined};
+  if (stats) *stats = VolumeEstimateStats{unreliable, 0, refined, {}};
   return std::move(e.field);
 }
 

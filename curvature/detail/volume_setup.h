@@ -7,6 +7,7 @@
 
 #include "core/mesh.h"
 #include "curvature/curvature_field.h"
+#include "curvature/volume_estimate.h"
 #include "volume/gaussian_jet.h"
 #include "volume/volume.h"
 
@@ -41,7 +42,8 @@ struct RawVertex {
 struct VolumeEvaluation {
   CurvatureField field;
   RawVertex raw;
-  std::size_t bricks = 0;  ///< 8^3 brick gathers summed over the evaluations (device path)
+  std::size_t bricks = 0;  ///< bricks of every stage summed over the evaluations (device path)
+  VolumeStepTimes steps;   ///< summed over the evaluations (device path)
 };
 using VolumeEvaluate =
     std::function<VolumeEvaluation(const Positions& positions, const VolumeSetup& setup)>;
