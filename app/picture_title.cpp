@@ -27,7 +27,7 @@ std::string estimator_title(const curvature::EstimatorReport& report) {
   for (const auto& [name, value] : report.parameters)
     if (name == "scale") {
       char buf[64];
-      std::snprintf(buf, sizeof buf, ", scale %g", value);
+      std::snprintf(buf, sizeof buf, ", scale %.3g", value);
       t += buf;
     }
   return t;
