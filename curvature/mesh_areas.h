@@ -16,9 +16,9 @@ namespace isocurv::curvature {
 /// a zero-area triangle.
 std::array<double, 3> mixed_corner_areas(const std::array<std::array<double, 3>, 3>& p);
 
-/// Per vertex, the sum of its corners' mixed areas (double precision, stored as float), summed in
-/// triangle order. Triangles with a repeated index contribute nothing. Indices must be in range
-/// (curvature::check_input). Parallel (TBB), deterministic.
+/// Per vertex, the sum of its corners' mixed areas (each computed in double and kept as float,
+/// summed in double in triangle order, stored as float). Triangles with a repeated index contribute
+/// nothing. Indices must be in range (curvature::check_input). Parallel (TBB), deterministic.
 std::vector<float> mixed_vertex_areas(const Mesh& mesh);
 /// The same with the mesh's vertex -> corner adjacency already built.
 std::vector<float> mixed_vertex_areas(const Mesh& mesh, const VertexCorners& corners);

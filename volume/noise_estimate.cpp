@@ -40,7 +40,9 @@ NoiseEstimate estimate_noise(const openvdb::FloatGrid& grid, const GridFrame& fr
           const double v = acc.getValue(c);
           const bool above = v > isovalue;
           bool near_edge = false, finite = std::isfinite(v);
-          double sum = 0;
+          // The fourth differences along the three axes, summed: blind to any cubic, so the
+          // field's own smooth structure (a distance field's curvature) does not count as noise.
+          double residual = 18 * v;
           for (int a = 0; a < 3 && !near_edge; ++a)
             for (int d = 1; d <= m && !near_edge; ++d)
               for (int sgn = -1; sgn <= 1; sgn += 2) {
@@ -49,10 +51,11 @@ NoiseEstimate estimate_noise(const openvdb::FloatGrid& grid, const GridFrame& fr
                 const double w = acc.getValue(n);
                 finite = finite && std::isfinite(w);
                 if ((w > isovalue) != above) near_edge = true;
-                if (d == 1) sum += w;
+                if (d == 1) residual -= 4 * w;
+                if (d == 2) residual += w;
               }
           if (near_edge || !finite) continue;
-          residuals.push_back(v - sum / 6);
+          residuals.push_back(residual);
         }
   out.voxels = residuals.size();
   if (residuals.empty()) return out;
@@ -63,7 +66,7 @@ NoiseEstimate estimate_noise(const openvdb::FloatGrid& grid, const GridFrame& fr
   };
   const double med = median(residuals);
   for (double& r : residuals) r = std::abs(r - med);
-  out.sigma = 1.4826 * median(residuals) / std::sqrt(7.0 / 6.0);
+  out.sigma = 1.4826 * median(residuals) / std::sqrt(kFourthDifferenceVariance);
   return out;
 }
 
