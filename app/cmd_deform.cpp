@@ -12,6 +12,7 @@
 #include "app/commands.h"
 #include "app/pipeline.h"
 #include "core/error.h"
+#include "core/lap.h"
 #include "core/mesh_measures.h"
 #include "core/progress.h"
 #include "curvature/ao_scale.h"
@@ -27,14 +28,7 @@ namespace isocurv::app {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point& t) {
-  const Clock::time_point now = Clock::now();
-  const double ms = std::chrono::duration<double, std::milli>(now - t).count();
-  t = now;
-  return ms;
-}
+using Clock = StepClock;
 
 struct DeformCli {
   std::string input, output, deformer, skin, estimator = "rusinkiewicz";
@@ -140,17 +134,17 @@ void run_deform(const DeformCli& c, const CommonOptions& o) {
       device_skin->apply(rest_buf, deform::bone_matrices(*skin, t), topo.positions());
     }
     dev.queue().finish();
-    const double deform_ms = ms_since(clock);
+    const double deform_ms = lap(clock);
     curvature::Timings ct;
     curvature::estimate_resident(co.estimator, topo, dev, co, field, &ct);
-    const double curv_ms = ms_since(clock);
+    const double curv_ms = lap(clock);
     dev.queue().enqueueReadBuffer(topo.positions(), CL_TRUE, 0, nv * sizeof(Vec3f),
                                   frame.positions.data());
     const std::string name = frame_name(stem, f);
     const std::string path = (fs::path(c.output) / name).string();
     io::write_mesh(path, frame, &field, o.compress);
     pvd.add(t, path);
-    const double write_ms = ms_since(clock);
+    const double write_ms = lap(clock);
     sum_deform += deform_ms, sum_curv += curv_ms, sum_write += write_ms;
     per_frame.push_back(
         {{"frame", f},

@@ -11,6 +11,7 @@
 #include "core/cl_launch.h"
 #include "core/cl_scratch.h"
 #include "core/error.h"
+#include "core/lap.h"
 #include "curvature/derived.h"
 #include "curvature/input.h"
 #include "curvature/tolerances.h"
@@ -25,15 +26,7 @@ extern const char* const curvature_kernels_cl;
 namespace isocurv::curvature {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-// Milliseconds since `since`, which then moves to now.
-double lap(Clock::time_point& since) {
-  const Clock::time_point now = Clock::now();
-  const double ms = std::chrono::duration<double, std::milli>(now - since).count();
-  since = now;
-  return ms;
-}
+using Clock = StepClock;
 
 // The device buffers of one estimate, kept between calls in the session's ScratchBuffers.
 enum Slot : std::size_t {

@@ -11,6 +11,7 @@
 #include "core/cl_launch.h"
 #include "core/cl_scratch.h"
 #include "core/error.h"
+#include "core/lap.h"
 #include "curvature/derived.h"
 #include "curvature/detail/volume_setup.h"
 #include "curvature/tolerances.h"
@@ -137,14 +138,7 @@ void append_world_maps(const openvdb::Mat3d& B, std::vector<float>& out) {
     for (double v : row) out.push_back(float(v));
 }
 
-using Clock = std::chrono::steady_clock;
-// Milliseconds since t, which moves to now.
-double lap(Clock::time_point& t) {
-  const Clock::time_point now = Clock::now();
-  const double ms = std::chrono::duration<double, std::milli>(now - t).count();
-  t = now;
-  return ms;
-}
+using Clock = StepClock;
 
 template <class T, class A>
 cl::Buffer& upload(cl::CommandQueue& q, VolumeSession& s, Slot slot, const std::vector<T, A>& v) {

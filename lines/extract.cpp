@@ -8,6 +8,7 @@
 
 #include "core/cl_launch.h"
 #include "core/error.h"
+#include "core/lap.h"
 #include "curvature/vertex_corners.h"
 
 namespace isocurv::kernels {
@@ -17,18 +18,10 @@ extern const char *const lines_kernels_cl;
 namespace isocurv::lines {
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using Clock = StepClock;
 constexpr std::size_t kGroup =
     64; // work-group size of every launch (core/cl_launch.h)
 constexpr int kMaxSegmentsPerFace = 4; // one per line type
-
-double lap(Clock::time_point &since) {
-  const Clock::time_point now = Clock::now();
-  const double ms =
-      std::chrono::duration<double, std::milli>(now - since).count();
-  since = now;
-  return ms;
-}
 
 // A device buffer kept between calls, reallocated (with 50% headroom) only when
 // too small.

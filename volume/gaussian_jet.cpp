@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "volume/detail/separable_sum.h"
 
 namespace isocurv::volume {
 
@@ -111,29 +112,18 @@ Jet gaussian_jet(const openvdb::FloatGrid& grid, const GridFrame& frame, const o
 
   // d[nx][ny][nz]: the index-space derivative of orders (nx, ny, nz), nx + ny + nz <= order.
   double d[4][4][4] = {};
-  for (int tz = 0; tz < w[2].count; ++tz) {
-    double dxy[4][4] = {};
-    for (int ty = 0; ty < w[1].count; ++ty) {
-      double dx[4] = {};
-      for (int tx = 0; tx < w[0].count; ++tx) {
-        const openvdb::Coord c(clamp(w[0].first + tx, 0), clamp(w[1].first + ty, 1),
-                               clamp(w[2].first + tz, 2));
-        const double f = acc.getValue(c);
-        for (int nx = 0; nx <= order; ++nx) dx[nx] += f * w[0].w[nx][tx];
-      }
-      for (int nx = 0; nx <= order; ++nx)
-        for (int ny = 0; nx + ny <= order; ++ny) dxy[nx][ny] += dx[nx] * w[1].w[ny][ty];
-    }
-    for (int nx = 0; nx <= order; ++nx)
-      for (int ny = 0; nx + ny <= order; ++ny)
-        for (int nz = 0; nx + ny + nz <= order; ++nz) d[nx][ny][nz] += dxy[nx][ny] * w[2].w[nz][tz];
-  }
-
+  detail::separable_sum(
+      w, order,
+      [&](int x, int y, int z) -> double {
+        return acc.getValue(openvdb::Coord(clamp(x, 0), clamp(y, 1), clamp(z, 2)));
+      },
+      d);
   return world_jet(d, frame.B, order);
 }
 
 Jet shifted_jet(const Jet& jet, const openvdb::Vec3d& step) {
-  // Symmetric storage: Hessian (xx xy xz yy yz zz), third (xxx xxy xxz xyy xyz xzz yyy yyz yzz zzz).
+  // Symmetric storage: Hessian (xx xy xz yy yz zz), third (xxx xxy xxz xyy xyz xzz yyy yyz yzz
+  // zzz).
   static const int kPair[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
   static const int kTriple[3][3][3] = {{{0, 1, 2}, {1, 3, 4}, {2, 4, 5}},
                                        {{1, 3, 4}, {3, 6, 7}, {4, 7, 8}},

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "volume/detail/separable_sum.h"
+
 namespace isocurv::volume {
 namespace {
 
@@ -59,21 +61,7 @@ Jet spline_jet(const SmoothedSamples& s, const openvdb::Vec3d& p, int order) {
   };
   // d[nx][ny][nz]: the index-space derivative of orders (nx, ny, nz), nx + ny + nz <= order.
   double d[4][4][4] = {};
-  for (int tz = 0; tz < kTaps; ++tz) {
-    double dxy[4][4] = {};
-    for (int ty = 0; ty < kTaps; ++ty) {
-      double dx[4] = {};
-      for (int tx = 0; tx < kTaps; ++tx) {
-        const double f = sample(w[0].first + tx, w[1].first + ty, w[2].first + tz);
-        for (int nx = 0; nx <= order; ++nx) dx[nx] += f * w[0].w[nx][tx];
-      }
-      for (int nx = 0; nx <= order; ++nx)
-        for (int ny = 0; nx + ny <= order; ++ny) dxy[nx][ny] += dx[nx] * w[1].w[ny][ty];
-    }
-    for (int nx = 0; nx <= order; ++nx)
-      for (int ny = 0; nx + ny <= order; ++ny)
-        for (int nz = 0; nx + ny + nz <= order; ++nz) d[nx][ny][nz] += dxy[nx][ny] * w[2].w[nz][tz];
-  }
+  detail::separable_sum(w, order, sample, d);
   return world_jet(d, plan.frame.B, order);
 }
 

@@ -15,6 +15,7 @@ namespace isocurv::volume {
 /// polynomials up to degree 4 in the sense of Strang and Fix (their discrete moments do not
 /// depend on q).
 struct SplineWeights {
+  static constexpr int count = 5;
   int first = 0;
   double w[4][5] = {};
 };
