@@ -1,10 +1,9 @@
 #include "app/batch.h"
 
-#include "app/picture_title.h"
-
 #include <glob.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +13,7 @@
 #include <map>
 #include <memory>
 
+#include "app/picture_title.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "io/mesh_file.h"
@@ -271,8 +271,12 @@ void run_batch(const BatchRequest& rq, const CommonOptions& o) {
   if (rq.kind != BatchKind::extract) require_curvature_format("x." + rq.format);
   if (rq.kind == BatchKind::run && !rq.render)
     throw Error("internal: run batch without render options");
-  require_writable_folder(rq.dir);  // before any work
   const std::vector<Input> inputs = expand_inputs(rq.inputs);
+  // Patterns that match nothing at all: one error, and no output folder made.
+  if (!inputs.empty() &&
+      std::all_of(inputs.begin(), inputs.end(), [](const Input& in) { return !in.error.empty(); }))
+    throw Error(inputs.front().error);
+  require_writable_folder(rq.dir);  // before any work
   const bool sweep = rq.isovalues.size() > 1;
   if (!reference_device(o)) device_for(o);  // no OpenCL: one error before any input
 

@@ -32,6 +32,18 @@ void expect_same(const std::string& a, const std::string& b) {
   EXPECT_EQ(x.k1, y.k1) << a << " vs " << b;
 }
 
+// A pattern that matches nothing is one error line and no output: not a folder named like the
+// mesh file holding a summary of one failure.
+TEST(Batch, APatternMatchingNothingIsOneErrorAndNoOutput) {
+  TempDir dir("batch-none");
+  const auto r = run_isocurv({"curvature", dir / "in/*.nhdr", "-o", dir / "out.vtp"});
+  EXPECT_NE(r.exit_code, 0) << r.describe();
+  const auto lines = r.err_lines();
+  ASSERT_EQ(lines.size(), 1u) << r.describe();
+  EXPECT_NE(lines[0].find("no file matches this pattern"), std::string::npos) << r.describe();
+  EXPECT_FALSE(fs::exists(dir / "out.vtp"));
+}
+
 TEST(Batch, EachInputInItsFolderOneBadInputReportedOthersRun) {
   TempDir dir("batch");
   fs::create_directories(dir / "in/other");
