@@ -108,11 +108,13 @@ void add_curvature_options(CLI::App& cmd, CommonOptions& o, bool mesh_input) {
                  "batagelo, prantl3, prantl2, quadric, cubic, sampling, meyer (isocurv compare "
                  "runs them all)")
       ->check(CLI::IsMember(curvature::estimator_names()));
-  cmd.add_option("--scale", o.scale,
-                 "Volume estimator: the Gaussian's standard deviation in world units, or auto (the "
-                 "default: from the voxel size, the voxel type and the noise measured near the "
-                 "surface); several, e.g. 1,2,4, add the scalar arrays at each scale suffixed _s<S> "
-                 "(H_s2), the first scale's also unsuffixed")
+  cmd.add_option(
+         "--scale", o.scale,
+         "Volume estimator: the smoothing's standard deviation in world units (at least "
+         "0.65 voxel), or auto (the "
+         "default: from the voxel size, the voxel type and the noise measured near the "
+         "surface); several, e.g. 1,2,4, add the scalar arrays at each scale suffixed _s<S> "
+         "(H_s2), the first scale's also unsuffixed")
       ->check([](const std::string& s) -> std::string {
         try {
           parse_scales(s);

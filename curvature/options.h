@@ -28,7 +28,8 @@ enum class Estimator {
   /// variation of the vertex normals over each triangle. Needs only the mesh.
   rusinkiewicz,
   /// Curvature of the volume itself, reconstructed at a scale: gradient, Hessian and third
-  /// derivatives by Gaussian derivative filters (curvature/volume_estimate.h). Needs the volume.
+  /// derivatives of the samples prefiltered by a Gaussian and read through a quartic B-spline
+  /// (curvature/volume_estimate.h). Needs the volume.
   volume,
   /// The seeds' other mesh estimators and the classic ones they compare against
   /// (curvature/mesh_estimators.h): Batagelo & Wu's one-pass tensor, Prantl et al.'s per-triangle
