@@ -513,6 +513,11 @@ nlohmann::json surface_report(const Surface& s) {
       e["unreliable_vertices"] = s.estimator.unreliable;
       e["finer_scale_vertices"] = s.estimator.finer_scale;
     }
+    if (!s.estimator.steps_ms.empty()) {
+      nlohmann::json steps = nlohmann::json::object();
+      for (const auto& [step, ms] : s.estimator.steps_ms) steps[step] = ms;
+      e["steps_ms"] = steps;
+    }
     r["estimator"] = e;
   }
   if (s.field && !s.field->ao.empty()) {  // which AO the field carries (ao/ao.h's metadata)

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "core/lap.h"
 #include "curvature/auto_scale.h"
 #include "curvature/estimate.h"
 #include "curvature/mesh_estimators.h"
@@ -105,9 +106,11 @@ CurvatureField estimate_field(const Mesh& mesh, const VolumeSource& source, Devi
         throw Error(
             "the volume estimator needs a volume (the one the mesh was extracted from), "
             "not a mesh file; use --estimator rusinkiewicz for meshes");
-      double scale = options.scale;
+      double scale = options.scale, auto_ms = -1;
       if (scale == 0) {
+        StepClock::time_point t = StepClock::now();
         const ScaleChoice c = auto_scale(*source.volume, mesh, source.isovalue);
+        auto_ms = lap(t);
         scale = c.scale;
         r.notes.emplace_back("scale", "auto");
         r.parameters.emplace_back("scale", scale);
@@ -129,6 +132,14 @@ CurvatureField estimate_field(const Mesh& mesh, const VolumeSource& source, Devi
                                                  options.ao_scale, &st, options.finer_scales);
       r.unreliable = st.unreliable;
       r.finer_scale = st.finer_scale;
+      if (device) {
+        if (auto_ms >= 0) r.steps_ms.emplace_back("auto_scale", auto_ms);
+        r.steps_ms.insert(r.steps_ms.end(), {{"plan", st.steps.plan},
+                                             {"gather", st.steps.gather},
+                                             {"passes", st.steps.smooth},
+                                             {"vertices", st.steps.vertices},
+                                             {"host", st.steps.finish}});
+      }
       break;
     }
   }

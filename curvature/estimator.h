@@ -44,6 +44,10 @@ struct EstimatorReport {
   std::size_t unreliable = 0;  ///< vertices flagged "Unreliable" (volume: vanishing gradient)
   /// volume: vertices measured at a finer scale than asked (Options::finer_scales)
   std::size_t finer_scale = 0;
+  /// volume on a device: wall time of its steps in ms, in order: auto_scale (when the scale was
+  /// chosen from the data), then VolumeStepTimes's plan, gather, passes, vertices, host. Not in
+  /// the field's metadata (outputs stay deterministic).
+  std::vector<std::pair<std::string, double>> steps_ms;
 };
 
 /// Per-vertex curvature of `mesh` by options.estimator, on `device` or, when device is nullptr,

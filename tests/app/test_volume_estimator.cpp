@@ -56,6 +56,15 @@ TEST(VolumeEstimatorCli, JsonFieldDataAndTighterStatistics) {
   EXPECT_NEAR(e["measured_noise"].get<double>(), 10 / std::sqrt(12.0), 1.0) << e.dump(2);
   EXPECT_EQ(e["unreliable_vertices"].get<int>(), 0) << e.dump(2);
   EXPECT_EQ(s.value("normals", ""), "volume estimator");
+  // Where the estimator's time went, step by step, within the curvature stage's time.
+  ASSERT_TRUE(e.contains("steps_ms")) << e.dump(2);
+  double steps = 0;
+  for (const char* step : {"auto_scale", "plan", "gather", "passes", "vertices", "host"}) {
+    ASSERT_TRUE(e["steps_ms"].contains(step)) << step << e.dump(2);
+    EXPECT_GE(e["steps_ms"][step].get<double>(), 0.0) << step;
+    steps += e["steps_ms"][step].get<double>();
+  }
+  EXPECT_LE(steps, s["timings_ms"]["curvature"].get<double>() * 1.01 + 0.1) << s.dump(2);
 
   const auto m =
       run_isocurv({"curvature", ball, "--iso", "120.5", "-o", dir / "mesh.vtp", "--json"}, 120);
