@@ -107,31 +107,31 @@ VolumeSession& session_for(Device& device) {
 // m2[e][f] = sum over the ordered index pairs (a, b) of f's orders of B(a, k) B(b, l) for the
 // world pair e = (k, l); m3 likewise over ordered triples.
 void append_world_maps(const openvdb::Mat3d& B, std::vector<float>& out) {
-  static const int kPairs[6][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
-  static const int kTriples[10][3] = {{0, 0, 0}, {0, 0, 1}, {0, 0, 2}, {0, 1, 1}, {0, 1, 2},
-                                      {0, 2, 2}, {1, 1, 1}, {1, 1, 2}, {1, 2, 2}, {2, 2, 2}};
-  auto pair_of = [](int a, int b) {  // the distinct pair (index of kPairs) of ordered (a, b)
+  using volume::kHessianAxes, volume::kThirdAxes;
+  auto pair_of = [](int a, int b) {  // the distinct pair (index of kHessianAxes) of ordered (a, b)
     for (int f = 0; f < 6; ++f)
-      if (std::min(a, b) == kPairs[f][0] && std::max(a, b) == kPairs[f][1]) return f;
+      if (std::min(a, b) == kHessianAxes[f][0] && std::max(a, b) == kHessianAxes[f][1]) return f;
     return -1;
   };
   auto triple_of = [](int a, int b, int c) {
     int v[3] = {a, b, c};
     std::sort(v, v + 3);
     for (int f = 0; f < 10; ++f)
-      if (v[0] == kTriples[f][0] && v[1] == kTriples[f][1] && v[2] == kTriples[f][2]) return f;
+      if (v[0] == kThirdAxes[f][0] && v[1] == kThirdAxes[f][1] && v[2] == kThirdAxes[f][2])
+        return f;
     return -1;
   };
   double m2[6][6] = {}, m3[10][10] = {};
   for (int e = 0; e < 6; ++e)
     for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) m2[e][pair_of(a, b)] += B(a, kPairs[e][0]) * B(b, kPairs[e][1]);
+      for (int b = 0; b < 3; ++b)
+        m2[e][pair_of(a, b)] += B(a, kHessianAxes[e][0]) * B(b, kHessianAxes[e][1]);
   for (int e = 0; e < 10; ++e)
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b)
         for (int c = 0; c < 3; ++c)
           m3[e][triple_of(a, b, c)] +=
-              B(a, kTriples[e][0]) * B(b, kTriples[e][1]) * B(c, kTriples[e][2]);
+              B(a, kThirdAxes[e][0]) * B(b, kThirdAxes[e][1]) * B(c, kThirdAxes[e][2]);
   for (auto& row : m2)
     for (double v : row) out.push_back(float(v));
   for (auto& row : m3)

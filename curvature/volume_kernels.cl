@@ -40,6 +40,15 @@ INLINE int brick_number(const samples_t* s, int bx, int by, int bz) {
   return s->table[(bz * s->dims.y + by) * s->dims.x + bx];
 }
 
+// Input sample p of a row (value v) added to the row's 8 outputs through its 8 weights in
+// `spread` (see smooth_axis), into one of two accumulators by the parity of p.
+INLINE void spread_sample(float v, int p, __constant const float* spread, int last_weight,
+                          float8* even, float8* odd) {
+  const float8 w = vload8(0, spread + last_weight - p);
+  if (p & 1) *odd += v * w;
+  else *even += v * w;
+}
+
 // One pass of the separable prefilter along `axis` (volume::smooth_reference): voxel v of an
 // output brick (region brick coordinates out_bricks[b]) gets sum_k taps[k + radius] in(v + k e)
 // (taps as `spread` holds them, below),
@@ -89,8 +98,7 @@ __kernel void smooth_axis(__global const float* in_pool, __global const int* in_
       }
       const float v = number < 0 ? background
                                  : in_pool[(size_t)number * BRICK_VOXELS + row_offset + (c & 7) * stride];
-      if (p & 1) odd += v * vload8(0, spread + last_weight - p);
-      else even += v * vload8(0, spread + last_weight - p);
+      spread_sample(v, p, spread, last_weight, &even, &odd);
     }
   } else {
     // Brick by brick: one lookup, then the row's part in that brick.
@@ -100,8 +108,7 @@ __kernel void smooth_axis(__global const float* in_pool, __global const int* in_
       __global const float* src = in_pool + (size_t)max(number, 0) * BRICK_VOXELS + row_offset;
       for (int l = first; l <= last; ++l, ++p) {
         const float v = number < 0 ? background : src[l * stride];
-        if (p & 1) odd += v * vload8(0, spread + last_weight - p);
-        else even += v * vload8(0, spread + last_weight - p);
+        spread_sample(v, p, spread, last_weight, &even, &odd);
       }
     }
   }

@@ -1,8 +1,5 @@
 #include "mc/bricks.h"
 
-#include "core/error.h"
-#include "core/huge_pages.h"
-
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
@@ -12,6 +9,10 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+
+#include "core/error.h"
+#include "core/floor_div8.h"
+#include "core/huge_pages.h"
 
 // GCC's function multiversioning (x86-64 glibc, which resolves it with an ifunc): an AVX2 build
 // of a hot loop beside the baseline one.
@@ -23,8 +24,6 @@
 
 namespace isocurv::mc {
 namespace {
-
-int floor_div8(int v) { return v >= 0 ? v / 8 : -((-v + 7) / 8); }
 
 // 8-lane vectors (GCC/Clang vector extensions): AVX2 registers in the AVX2 builds.
 typedef float Float8 __attribute__((vector_size(32)));

@@ -77,12 +77,9 @@ Jet world_jet(const double (&d)[4][4][4], const openvdb::Mat3d& B, int order) {
   if (order >= 1)
     for (int k = 0; k < 3; ++k)
       for (int a = 0; a < 3; ++a) jet.gradient[k] += B(a, k) * idx({a});
-  static const int kPairs[6][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
-  static const int kTriples[10][3] = {{0, 0, 0}, {0, 0, 1}, {0, 0, 2}, {0, 1, 1}, {0, 1, 2},
-                                      {0, 2, 2}, {1, 1, 1}, {1, 1, 2}, {1, 2, 2}, {2, 2, 2}};
   if (order >= 2)
     for (int e = 0; e < 6; ++e) {
-      const int k = kPairs[e][0], l = kPairs[e][1];
+      const int k = kHessianAxes[e][0], l = kHessianAxes[e][1];
       double sum = 0;
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) sum += B(a, k) * B(b, l) * idx({a, b});
@@ -90,7 +87,7 @@ Jet world_jet(const double (&d)[4][4][4], const openvdb::Mat3d& B, int order) {
     }
   if (order >= 3)
     for (int e = 0; e < 10; ++e) {
-      const int k = kTriples[e][0], l = kTriples[e][1], m = kTriples[e][2];
+      const int k = kThirdAxes[e][0], l = kThirdAxes[e][1], m = kThirdAxes[e][2];
       double sum = 0;
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b)
@@ -141,8 +138,7 @@ Jet shifted_jet(const Jet& jet, const openvdb::Vec3d& step) {
     out.gradient[k] += hs[k] + tss / 2;
     out.value += step[k] * (jet.gradient[k] + hs[k] / 2 + tss / 6);
   }
-  static const int kPairs[6][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
-  for (int e = 0; e < 6; ++e) out.hessian[e] += ts[kPairs[e][0]][kPairs[e][1]];
+  for (int e = 0; e < 6; ++e) out.hessian[e] += ts[kHessianAxes[e][0]][kHessianAxes[e][1]];
   return out;
 }
 

@@ -27,6 +27,12 @@ struct Jet {
   std::array<double, 10> third{};
 };
 
+/// The axes of each stored Hessian component (xx, xy, xz, yy, yz, zz) and third-derivative
+/// component (xxx, xxy, ..., zzz), in Jet's order.
+inline constexpr int kHessianAxes[6][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
+inline constexpr int kThirdAxes[10][3] = {{0, 0, 0}, {0, 0, 1}, {0, 0, 2}, {0, 1, 1}, {0, 1, 2},
+                                          {0, 2, 2}, {1, 1, 1}, {1, 1, 2}, {1, 2, 2}, {2, 2, 2}};
+
 /// How index space maps to world space for the reconstruction: world = origin + A * index, where
 /// the columns of A (the index axes in world space) must be orthogonal (spacing times a rotation,
 /// as NIfTI, NRRD and MetaImage direction matrices are), so that a Gaussian isotropic in world

@@ -9,14 +9,11 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/floor_div8.h"
 
 namespace isocurv::volume {
 namespace {
 
-int floor_div8(int v) { return v >= 0 ? v / 8 : -((-v + 7) / 8); }
-openvdb::Coord brick_of(const openvdb::Coord& c) {
-  return {floor_div8(c[0]), floor_div8(c[1]), floor_div8(c[2])};
-}
 openvdb::Coord first_voxel(const openvdb::Coord& b) { return {b[0] * 8, b[1] * 8, b[2] * 8}; }
 
 // The sampled Gaussian of deviation s, truncated at kPrefilterRadius deviations (at least one tap
@@ -107,6 +104,15 @@ std::vector<openvdb::Coord> point_bricks(const GridFrame& frame, const Positions
 }
 
 }  // namespace
+
+std::ptrdiff_t SmoothingPlan::sample_index(const BrickSet& set, const openvdb::Coord& voxel) const {
+  const openvdb::Coord b(floor_div8(voxel[0]), floor_div8(voxel[1]), floor_div8(voxel[2]));
+  if (!in_region(b)) return -1;
+  const std::int32_t n = set.table[cell(b)];
+  if (n < 0) return -1;
+  const openvdb::Coord l = voxel - first_voxel(b);
+  return std::ptrdiff_t(n) * 512 + (l[2] * 8 + l[1]) * 8 + l[0];
+}
 
 PrefilterTaps prefilter_taps(double variance) {
   if (!(variance >= 0) || !std::isfinite(variance))
@@ -210,12 +216,8 @@ SmoothedSamples smooth_reference(const openvdb::FloatGrid& grid, const Smoothing
     std::vector<double> out(to.bricks.size() * 512);
     auto read = [&](openvdb::Coord c) {
       if (f.clamp) c[a] = std::clamp(c[a], f.lo[a], f.hi[a]);
-      const openvdb::Coord b = brick_of(c);
-      if (!plan.in_region(b)) return s.background;
-      const std::int32_t n = from.table[plan.cell(b)];
-      if (n < 0) return s.background;
-      const openvdb::Coord l = c - first_voxel(b);
-      return in[std::size_t(n) * 512 + (l[2] * 8 + l[1]) * 8 + l[0]];
+      const std::ptrdiff_t i = plan.sample_index(from, c);
+      return i < 0 ? s.background : in[std::size_t(i)];
     };
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, to.bricks.size(), 16), [&](const auto& r) {
       for (std::size_t b = r.begin(); b != r.end(); ++b)

@@ -18,6 +18,7 @@
 #include <openvdb/openvdb.h>
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -81,6 +82,10 @@ struct SmoothingPlan {
     const openvdb::Coord r = b - origin;
     return (std::size_t(r[2]) * dims[1] + r[1]) * dims[0] + r[0];
   }
+  /// The index of voxel `voxel` (index coordinates) in the samples of `set` (one of stages, 512
+  /// per brick in the set's order, x fastest within a brick), or -1 when no brick of the set
+  /// holds it.
+  std::ptrdiff_t sample_index(const BrickSet& set, const openvdb::Coord& voxel) const;
   bool in_region(const openvdb::Coord& b) const {
     const openvdb::Coord r = b - origin;
     return r[0] >= 0 && r[1] >= 0 && r[2] >= 0 && r[0] < dims[0] && r[1] < dims[1] &&

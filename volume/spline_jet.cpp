@@ -10,8 +10,6 @@ namespace {
 constexpr int kDegree = 4;
 constexpr int kTaps = kDegree + 1;
 
-int floor_div8(int v) { return v >= 0 ? v / 8 : -((-v + 7) / 8); }
-
 }  // namespace
 
 SplineWeights spline_weights(double q) {
@@ -50,14 +48,9 @@ Jet spline_jet(const SmoothedSamples& s, const openvdb::Vec3d& p, int order) {
   const openvdb::Vec3d q = plan.frame.to_index(p);
   SplineWeights w[3];
   for (int a = 0; a < 3; ++a) w[a] = spline_weights(q[a]);
-  const BrickSet& bricks = plan.stages[3];
   auto sample = [&](int x, int y, int z) {
-    const openvdb::Coord b(floor_div8(x), floor_div8(y), floor_div8(z));
-    if (!plan.in_region(b)) return s.background;
-    const std::int32_t n = bricks.table[plan.cell(b)];
-    if (n < 0) return s.background;
-    return s
-        .samples[std::size_t(n) * 512 + ((z - b[2] * 8) * 8 + (y - b[1] * 8)) * 8 + (x - b[0] * 8)];
+    const std::ptrdiff_t i = plan.sample_index(plan.stages[3], openvdb::Coord(x, y, z));
+    return i < 0 ? s.background : s.samples[std::size_t(i)];
   };
   // d[nx][ny][nz]: the index-space derivative of orders (nx, ny, nz), nx + ny + nz <= order.
   double d[4][4][4] = {};

@@ -1,0 +1,9 @@
+#pragma once
+// Brick coordinates of 8^3 bricks: the voxel-to-brick division that rounds towards minus
+// infinity (integer division rounds towards zero, wrong for negative coordinates).
+namespace isocurv {
+
+/// floor(v / 8) for any int v.
+constexpr int floor_div8(int v) { return v >= 0 ? v / 8 : -((-v + 7) / 8); }
+
+}  // namespace isocurv
