@@ -14,13 +14,13 @@
 #include "core/error.h"
 #include "core/framing_points.h"
 #include "core/mesh_measures.h"
-#include "screen/cast_volume.h"
 #include "screen/estimate.h"
 #include "screen/image_files.h"
 #include "screen/rasterise.h"
 #include "screen/ray_cast.h"
 #include "viz/color_map.h"
 #include "viz/quantity.h"
+#include "volume/dense_field.h"
 #include "volume/load.h"
 
 namespace isocurv::app {
@@ -157,7 +157,7 @@ void register_screen(CLI::App& app) {
         rule == "paper" ? screen::DiscontinuityRule::paper : screen::DiscontinuityRule::report;
     const bool reference = reference_device(o);
     StageTimer timer;
-    std::optional<screen::CastVolume> cast;
+    std::optional<volume::DenseField> cast;
     std::optional<Surface> surf;
     std::vector<Vec3f> normals;
     std::array<double, 6> bounds{};  // a volume's: the box around its surface's bricks

@@ -20,9 +20,9 @@
 #include "datasets/field.h"
 #include "datasets/sample.h"
 #include "mc/extract.h"
-#include "screen/cast_volume.h"
 #include "screen/estimate.h"
 #include "screen/ray_cast.h"
+#include "volume/dense_field.h"
 
 using namespace isocurv;
 
@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
   for (const char* name : {"torus", "gyroid", "buckyball"}) {
     const auto field = datasets::make_field(name);
     const volume::Volume v = datasets::sample(*field, 128);
-    const screen::CastVolume cv(v);
+    const volume::DenseField cv(v);
     const float iso = float(field->isovalue());
     std::printf("\n== %s 128^3, isovalue %g\n", name, iso);
     std::printf("%-10s %5s %8s %8s %8s %8s %8s %8s %8s %8s\n", "size", "zoom", "cover%", "cast",

@@ -23,13 +23,13 @@ void check(const CastOptions& o) {
     throw Error("screen: the ray step must be in (0, 0.5] voxel and bisections in [0, 60]");
 }
 
-void frame_depths(GBuffer& g, const CastVolume& v) {
+void frame_depths(GBuffer& g, const volume::DenseField& v) {
   depth_range(g.frame, v.bounds, g.near, g.far);
 }
 
 // The reference's march for one ray (index space); false when nothing is hit.
-bool cast_one(const CastVolume& vol, float iso, const V& oi, const V& di, const CastOptions& opt,
-              V& hit) {
+bool cast_one(const volume::DenseField& vol, float iso, const V& oi, const V& di,
+              const CastOptions& opt, V& hit) {
   const double hi[3] = {double(vol.nx - 1), double(vol.ny - 1), double(vol.nz - 1)};
   double t0 = 0, t1 = std::numeric_limits<double>::infinity();
   for (int a = 0; a < 3; ++a) {
@@ -57,13 +57,13 @@ bool cast_one(const CastVolume& vol, float iso, const V& oi, const V& di, const 
     const V p = at(t);
     int bc[3];
     for (int k = 0; k < 3; ++k)
-      bc[k] = std::min(std::max(int(std::floor(p[k] / kCastBrick)), 0), nb[k] - 1);
+      bc[k] = std::min(std::max(int(std::floor(p[k] / volume::kFieldBrick)), 0), nb[k] - 1);
     const std::size_t bi =
         std::size_t(bc[0]) + std::size_t(vol.bx) * (bc[1] + std::size_t(vol.by) * bc[2]);
     double te = std::numeric_limits<double>::infinity();  // where the ray leaves the brick
     for (int k = 0; k < 3; ++k) {
       if (di[k] == 0) continue;
-      const double ex = (di[k] > 0 ? bc[k] + 1 : bc[k]) * double(kCastBrick);
+      const double ex = (di[k] > 0 ? bc[k] + 1 : bc[k]) * double(volume::kFieldBrick);
       te = std::min(te, (ex - base[k]) / di[k]);
     }
     double tn = t + dt;
@@ -101,7 +101,7 @@ bool cast_one(const CastVolume& vol, float iso, const V& oi, const V& di, const 
 struct CastState {
   explicit CastState(Device&) {}
   std::mutex mutex;
-  std::uint64_t uploaded = 0;  // CastVolume::id of the volume on the device
+  std::uint64_t uploaded = 0;  // volume::DenseField::id of the volume on the device
   cl::Buffer values, bricks, slopes, xform, cam, position, normal, depth;
   std::size_t pixels = 0;
   std::vector<cl_float4> host_pos, host_nrm;
@@ -109,7 +109,7 @@ struct CastState {
 
 }  // namespace
 
-GBuffer ray_cast_reference(const CastVolume& vol, float iso, const ViewFrame& frame,
+GBuffer ray_cast_reference(const volume::DenseField& vol, float iso, const ViewFrame& frame,
                            const CastOptions& opt) {
   check(opt);
   GBuffer g;
@@ -141,7 +141,7 @@ GBuffer ray_cast_reference(const CastVolume& vol, float iso, const ViewFrame& fr
   return g;
 }
 
-GBuffer ray_cast(const CastVolume& vol, float iso, const ViewFrame& frame, Device& device,
+GBuffer ray_cast(const volume::DenseField& vol, float iso, const ViewFrame& frame, Device& device,
                  const CastOptions& opt, int work_group) {
   check(opt);
   if (work_group < 1) throw Error("screen: the work-group size must be positive");

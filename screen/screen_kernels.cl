@@ -3,73 +3,10 @@
 // Prantl et al.'s per-triangle shape operator on pixel triangles with LOD and the
 // depth-discontinuity rule, and Mellado et al.'s screen-space sphere fit
 // (screen/estimate.cpp is their reference). One work item per pixel; no atomics: deterministic.
-// Build options: -DPIVOT_TOLERANCE=... -DBRICK=8.
+// Build options: -DPIVOT_TOLERANCE=... -DBRICK=8. Prepended: volume/dense_field.cl (Grid, the
+// trilinear field and gradient normals, affine maps).
 
 // ---------------------------------------------------------------- ray caster
-
-typedef struct {
-  int nx, ny, nz, bx, by, bz;
-  float iso, sign;
-} Grid;
-
-float signed_at(__global const float* v, const Grid* g, int i, int j, int k) {
-  const float x = v[i + g->nx * (j + g->ny * k)];
-  return isfinite(x) ? g->sign * (x - g->iso) : -1.0f;
-}
-
-// The trilinear signed field at index point p, clamped into the domain (CastVolume::field).
-float field_at(__global const float* v, const Grid* g, float3 p) {
-  const float3 hi = (float3)(g->nx - 1, g->ny - 1, g->nz - 1);
-  const float3 q = clamp(p, (float3)(0.0f), hi);
-  const int3 c = min(convert_int3(floor(q)), (int3)(g->nx - 2, g->ny - 2, g->nz - 2));
-  const float3 f = q - convert_float3(c);
-  const float s000 = signed_at(v, g, c.x, c.y, c.z), s100 = signed_at(v, g, c.x + 1, c.y, c.z);
-  const float s010 = signed_at(v, g, c.x, c.y + 1, c.z);
-  const float s110 = signed_at(v, g, c.x + 1, c.y + 1, c.z);
-  const float s001 = signed_at(v, g, c.x, c.y, c.z + 1);
-  const float s101 = signed_at(v, g, c.x + 1, c.y, c.z + 1);
-  const float s011 = signed_at(v, g, c.x, c.y + 1, c.z + 1);
-  const float s111 = signed_at(v, g, c.x + 1, c.y + 1, c.z + 1);
-  const float x00 = s000 + (s100 - s000) * f.x, x10 = s010 + (s110 - s010) * f.x;
-  const float x01 = s001 + (s101 - s001) * f.x, x11 = s011 + (s111 - s011) * f.x;
-  const float y0 = x00 + (x10 - x00) * f.y, y1 = x01 + (x11 - x01) * f.y;
-  return y0 + (y1 - y0) * f.z;
-}
-
-float raw_at(__global const float* v, const Grid* g, int i, int j, int k) {
-  return v[i + g->nx * (j + g->ny * k)];
-}
-
-// Central (one-sided at the border) difference at sample c.
-float3 sample_gradient(__global const float* v, const Grid* g, int3 c) {
-  const int3 n = (int3)(g->nx, g->ny, g->nz);
-  float3 r;
-  const int xh = min(c.x + 1, n.x - 1), xl = max(c.x - 1, 0);
-  const int yh = min(c.y + 1, n.y - 1), yl = max(c.y - 1, 0);
-  const int zh = min(c.z + 1, n.z - 1), zl = max(c.z - 1, 0);
-  r.x = xh == xl ? 0.0f : (raw_at(v, g, xh, c.y, c.z) - raw_at(v, g, xl, c.y, c.z)) / (xh - xl);
-  r.y = yh == yl ? 0.0f : (raw_at(v, g, c.x, yh, c.z) - raw_at(v, g, c.x, yl, c.z)) / (yh - yl);
-  r.z = zh == zl ? 0.0f : (raw_at(v, g, c.x, c.y, zh) - raw_at(v, g, c.x, c.y, zl)) / (zh - zl);
-  return r;
-}
-
-// Gradients at the samples, interpolated trilinearly (CastVolume::normal, before the transform).
-float3 gradient_at(__global const float* v, const Grid* g, float3 p) {
-  const float3 hi = (float3)(g->nx - 1, g->ny - 1, g->nz - 1);
-  const float3 q = clamp(p, (float3)(0.0f), hi);
-  const int3 c0 = convert_int3(floor(q));
-  const float3 f = q - convert_float3(c0);
-  float3 r = (float3)(0.0f);
-  for (int k = 0; k < 2; ++k)
-    for (int j = 0; j < 2; ++j)
-      for (int i = 0; i < 2; ++i) {
-        const float w = (i ? f.x : 1 - f.x) * (j ? f.y : 1 - f.y) * (k ? f.z : 1 - f.z);
-        if (w == 0.0f) continue;
-        const int3 c = min(c0 + (int3)(i, j, k), (int3)(g->nx - 1, g->ny - 1, g->nz - 1));
-        r += w * sample_gradient(v, g, c);
-      }
-  return r;
-}
 
 bool brick_straddles(__global const float2* range, const Grid* g, int b) {
   const float2 r = range[b];
@@ -77,20 +14,9 @@ bool brick_straddles(__global const float2* range, const Grid* g, int b) {
   return g->sign > 0.0f ? (r.y > g->iso && r.x <= g->iso) : (r.x < g->iso && r.y >= g->iso);
 }
 
-float3 affine(__constant const float* m, float3 p) {
-  return (float3)(m[0] * p.x + m[1] * p.y + m[2] * p.z + m[3],
-                  m[4] * p.x + m[5] * p.y + m[6] * p.z + m[7],
-                  m[8] * p.x + m[9] * p.y + m[10] * p.z + m[11]);
-}
-float3 linear3(__constant const float* m, int stride, float3 p) {
-  return (float3)(m[0] * p.x + m[1] * p.y + m[2] * p.z,
-                  m[stride] * p.x + m[stride + 1] * p.y + m[stride + 2] * p.z,
-                  m[2 * stride] * p.x + m[2 * stride + 1] * p.y + m[2 * stride + 2] * p.z);
-}
-
 // One ray per pixel: march from where it enters the domain at `step` voxels (along the ray's
 // longest index axis), jumping over bricks without surface and, with safe_stride, by 0.9 |s| /
-// (slope |d|_1) where that is longer (slopes: CastVolume::brick_slope), to the first sample
+// (slope |d|_1) where that is longer (slopes: DenseField::brick_slope), to the first sample
 // inside (signed value > 0) after one outside; bisect that step `bisections` times; the hit is
 // the secant point of the last interval (secant) or its midpoint. xform: to_index (12), to_world (12), normal_matrix (9).
 // cam: eye, forward, right, up (xyz each), half_height, ortho, then 2 unused.

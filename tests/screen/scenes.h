@@ -13,9 +13,9 @@
 #include "datasets/exact_curvature.h"
 #include "datasets/field.h"
 #include "datasets/sample.h"
-#include "screen/cast_volume.h"
 #include "screen/estimate.h"
 #include "screen/gbuffer.h"
+#include "volume/dense_field.h"
 
 namespace isocurv::test {
 
@@ -23,7 +23,7 @@ namespace isocurv::test {
 struct Scene {
   std::unique_ptr<datasets::Field> field;
   volume::Volume volume;
-  std::unique_ptr<screen::CastVolume> cast;
+  std::unique_ptr<volume::DenseField> cast;
 };
 inline const Scene& scene(const std::string& name, int resolution) {
   static std::map<std::pair<std::string, int>, std::unique_ptr<Scene>> cache;
@@ -32,7 +32,7 @@ inline const Scene& scene(const std::string& name, int resolution) {
     s = std::make_unique<Scene>();
     s->field = datasets::make_field(name);
     s->volume = datasets::sample(*s->field, resolution);
-    s->cast = std::make_unique<screen::CastVolume>(s->volume);
+    s->cast = std::make_unique<volume::DenseField>(s->volume);
   }
   return *s;
 }

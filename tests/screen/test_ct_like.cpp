@@ -42,7 +42,7 @@ TEST(ScreenCtLike, NoisyBallStaysCentredAndWiderSupportHelps) {
             std::clamp(std::round(255 / (1 + std::exp(-d / 0.8)) + noise(rng)), 0.0, 255.0));
       },
       {64, 64, 64});
-  const screen::CastVolume cv(v);
+  const volume::DenseField cv(v);
   Device& dev = Device::default_device();
   // About 2.5 pixels a voxel: the normals' noise is divided by sub-voxel edges.
   const screen::GBuffer g = screen::ray_cast(

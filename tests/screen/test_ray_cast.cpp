@@ -17,7 +17,7 @@ namespace isocurv::test {
 namespace {
 
 // Distance (voxels) of each valid hit from the trilinear isosurface: |s| / |grad s| (index space).
-double worst_offset(const screen::CastVolume& v, float iso, const screen::GBuffer& g) {
+double worst_offset(const volume::DenseField& v, float iso, const screen::GBuffer& g) {
   double worst = 0;
   for (std::size_t i = 0; i < g.pixels(); ++i) {
     if (!g.valid[i]) continue;
@@ -31,7 +31,7 @@ double worst_offset(const screen::CastVolume& v, float iso, const screen::GBuffe
   return worst;
 }
 
-Camera iso_camera(const screen::CastVolume& v, int w, int h) {
+Camera iso_camera(const volume::DenseField& v, int w, int h) {
   return fit_camera(v.bounds, ViewSpec{}, double(w) / h);
 }
 
@@ -171,7 +171,7 @@ TEST(ScreenRayCast, AnisotropicVoxelsFollowTheTransform) {
   datasets::SampleOptions so;
   so.anisotropy = Eigen::Vector3d(1, 1, 1.7);
   const volume::Volume v = datasets::sample(*field, 96, so);
-  const screen::CastVolume cv(v);
+  const volume::DenseField cv(v);
   const auto frame = screen::view_frame(fit_camera(cv.bounds, ViewSpec{}, 1), 100, 100);
   const screen::GBuffer g = screen::ray_cast(cv, 0.0f, frame, Device::default_device());
   ASSERT_GT(g.valid_count(), 1000u);
@@ -208,7 +208,7 @@ TEST(ScreenRayCast, SurfaceBoundsLeaveOutSpecksButNotComparablePieces) {
           return float(std::max(ball(x, y, z, 48, 40), ball(x, y, z, far, far_radius)));
         },
         {128, 128, 128});
-    const screen::CastVolume c(v);
+    const volume::DenseField c(v);
     std::array<double, 6> box;
     ASSERT_TRUE(c.surface_bounds(0.0f, box));
     for (int k = 0; k < 3; ++k) {

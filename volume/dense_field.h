@@ -1,28 +1,30 @@
 #pragma once
-// A volume as the isosurface ray caster reads it: its samples over the data domain, dense, and
-// the value range of every 8^3-cell brick for empty-space skipping. Independent of the isovalue:
-// built once, cast at any number of isovalues (the explorer's slider).
+// A volume's samples over its data domain as one dense float array, with the trilinear field and
+// gradient normals read from it, and the value range and slope of every 8^3-cell brick (the ray
+// caster's empty-space skipping). What the device stages that sample the volume at arbitrary
+// points upload (screen/ray_cast, features' sampled path); dense_field.cl is the same field on the
+// device. Independent of the isovalue: built once, read at any number of isovalues.
 #include <array>
 #include <cstdint>
 #include <vector>
 
 #include "volume/volume.h"
 
-namespace isocurv::screen {
+namespace isocurv::volume {
 
-/// Most samples a CastVolume holds (1 GiB of floats); a larger data domain is an Error.
-inline constexpr std::uint64_t kMaxCastSamples = std::uint64_t(1) << 28;
+/// Most samples a DenseField holds (1 GiB of floats); a larger data domain is an Error.
+inline constexpr std::uint64_t kMaxFieldSamples = std::uint64_t(1) << 28;
 /// Cells per brick edge of the skipping grid (the mesher's brick size, mc::kBrick).
-inline constexpr int kCastBrick = 8;
-/// CastVolume::surface_bounds ignores groups of bricks under this fraction of the largest group.
+inline constexpr int kFieldBrick = 8;
+/// DenseField::surface_bounds ignores groups of bricks under this fraction of the largest group.
 inline constexpr double kSpeckBrickFraction = 0.01;
 
 /// Index space here counts from the domain's first voxel: sample (i, j, k) is voxel
 /// domain.min() + (i, j, k), at values[i + nx (j + ny k)].
-struct CastVolume {
+struct DenseField {
   int nx = 0, ny = 0, nz = 0;  ///< samples per axis (each >= 2)
   std::vector<float> values;   ///< raw voxel values (non-finite ones read as outside)
-  int bx = 0, by = 0, bz = 0;  ///< bricks per axis: ceil((n - 1) / kCastBrick)
+  int bx = 0, by = 0, bz = 0;  ///< bricks per axis: ceil((n - 1) / kFieldBrick)
   /// Per brick (index bx_i + bx (by_i + by bz_i)): min and max of the finite samples it reads
   /// (its 9^3 corners, clipped to the domain); min > max when there are none.
   std::vector<std::array<float, 2>> brick_range;
@@ -31,7 +33,7 @@ struct CastVolume {
   /// box, so |d field / dt| <= brick_slope * |d|_1 along a ray p + t d there (the safe stride of
   /// the ray march). Infinity where the brick reads a non-finite sample; 0 for a constant one.
   std::vector<float> brick_slope;
-  float sign = 1;  ///< +1: inside is above the isovalue; -1: below (volume::Inside::Below)
+  float sign = 1;  ///< +1: inside is above the isovalue; -1: below (Inside::Below)
   /// world = A index + b, row-major 3x4 (the grid's affine transform, from the domain's origin).
   std::array<double, 12> to_world{};
   std::array<double, 12> to_index{};  ///< its inverse
@@ -43,9 +45,9 @@ struct CastVolume {
   /// Copies the samples of `v`'s data domain (dense: its domain; sparse: the active box) and
   /// ranks the bricks. Parallel (TBB), deterministic.
   /// @throw Error for an empty volume, a non-affine transform, a domain thinner than 2 samples
-  /// on an axis, or more than kMaxCastSamples samples
-  explicit CastVolume(const volume::Volume& v);
-  CastVolume() = default;
+  /// on an axis, or more than kMaxFieldSamples samples
+  explicit DenseField(const Volume& v);
+  DenseField() = default;
 
   /// Signed insideness sign * (value - iso) at sample (i, j, k): > 0 inside, <= 0 outside.
   /// Non-finite samples read -1 (outside).
@@ -63,7 +65,7 @@ struct CastVolume {
   /// gradient (of the trilinear interpolant, the hit test's field).
   double field(const std::array<double, 3>& p, float iso,
                std::array<double, 3>* gradient = nullptr) const;
-  /// The unit outward normal at index point p as volume::gradient_normals computes it: central
+  /// The unit outward normal at index point p as gradient_normals computes it: central
   /// differences at the samples (one-sided at the border), trilinearly interpolated, carried to
   /// world space by normal_matrix, pointing to decreasing insideness. Zero for a zero gradient.
   std::array<double, 3> normal(const std::array<double, 3>& p) const;
@@ -77,4 +79,4 @@ struct CastVolume {
   std::array<double, 3> index(const std::array<double, 3>& world) const;
 };
 
-}  // namespace isocurv::screen
+}  // namespace isocurv::volume

@@ -1,4 +1,4 @@
-#include "screen/cast_volume.h"
+#include "volume/dense_field.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -12,30 +12,29 @@
 
 #include "core/error.h"
 
-namespace isocurv::screen {
+namespace isocurv::volume {
 namespace {
 
 std::atomic<std::uint64_t> next_id{1};
 
 }  // namespace
 
-CastVolume::CastVolume(const volume::Volume& v) : id(next_id++) {
+DenseField::DenseField(const Volume& v) : id(next_id++) {
   if (!v.grid) throw Error(v.path, "no volume");
   openvdb::CoordBBox box = v.domain;
   if (!v.dense || box.empty()) box = v.grid->evalActiveVoxelBoundingBox();
   if (box.empty()) throw Error(v.path, "the volume holds no voxels");
-  if (!v.grid->transform().isLinear())
-    throw Error(v.path, "screen: the volume's transform is not affine");
+  if (!v.grid->transform().isLinear()) throw Error(v.path, "the volume's transform is not affine");
   const openvdb::Coord d = box.dim();
   if (d.x() < 2 || d.y() < 2 || d.z() < 2)
-    throw Error(v.path, "screen: the volume is thinner than 2 voxels along an axis");
+    throw Error(v.path, "the volume is thinner than 2 voxels along an axis");
   const std::uint64_t samples = std::uint64_t(d.x()) * d.y() * d.z();
-  if (samples > kMaxCastSamples)
-    throw Error(v.path, "screen: the volume's box holds " + std::to_string(samples) +
-                            " voxels, more than the ray caster's limit of " +
-                            std::to_string(kMaxCastSamples) + " (2^28)");
+  if (samples > kMaxFieldSamples)
+    throw Error(v.path, "the volume's box holds " + std::to_string(samples) +
+                            " voxels, more than the dense field's limit of " +
+                            std::to_string(kMaxFieldSamples) + " (2^28)");
   nx = d.x(), ny = d.y(), nz = d.z();
-  sign = v.inside == volume::Inside::Above ? 1.0f : -1.0f;
+  sign = v.inside == Inside::Above ? 1.0f : -1.0f;
   values.resize(samples);
   const openvdb::Coord lo = box.min();
   const openvdb::FloatGrid& grid = *v.grid;
@@ -48,9 +47,9 @@ CastVolume::CastVolume(const volume::Volume& v) : id(next_id++) {
               acc.getValue(lo + openvdb::Coord(i, j, k));
   });
 
-  bx = (nx - 1 + kCastBrick - 1) / kCastBrick;
-  by = (ny - 1 + kCastBrick - 1) / kCastBrick;
-  bz = (nz - 1 + kCastBrick - 1) / kCastBrick;
+  bx = (nx - 1 + kFieldBrick - 1) / kFieldBrick;
+  by = (ny - 1 + kFieldBrick - 1) / kFieldBrick;
+  bz = (nz - 1 + kFieldBrick - 1) / kFieldBrick;
   brick_range.assign(std::size_t(bx) * by * bz,
                      {std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest()});
   brick_slope.assign(brick_range.size(), 0.0f);
@@ -61,15 +60,15 @@ CastVolume::CastVolume(const volume::Volume& v) : id(next_id++) {
           const std::size_t bi = std::size_t(a) + std::size_t(bx) * (b + std::size_t(by) * c);
           auto& range = brick_range[bi];
           float& slope = brick_slope[bi];
-          const int i1 = std::min(nx - 1, (a + 1) * kCastBrick);
-          const int j1 = std::min(ny - 1, (b + 1) * kCastBrick);
-          const int k1 = std::min(nz - 1, (c + 1) * kCastBrick);
+          const int i1 = std::min(nx - 1, (a + 1) * kFieldBrick);
+          const int j1 = std::min(ny - 1, (b + 1) * kFieldBrick);
+          const int k1 = std::min(nz - 1, (c + 1) * kFieldBrick);
           auto at = [&](int i, int j, int k) {
             return values[std::size_t(i) + std::size_t(nx) * (j + std::size_t(ny) * k)];
           };
-          for (int k = c * kCastBrick; k <= k1; ++k)
-            for (int j = b * kCastBrick; j <= j1; ++j)
-              for (int i = a * kCastBrick; i <= i1; ++i) {
+          for (int k = c * kFieldBrick; k <= k1; ++k)
+            for (int j = b * kFieldBrick; j <= j1; ++j)
+              for (int i = a * kFieldBrick; i <= i1; ++i) {
                 const float s = at(i, j, k);
                 if (!std::isfinite(s)) {
                   slope = std::numeric_limits<float>::infinity();
@@ -115,7 +114,7 @@ CastVolume::CastVolume(const volume::Volume& v) : id(next_id++) {
   }
 }
 
-std::array<double, 3> CastVolume::world(const std::array<double, 3>& q) const {
+std::array<double, 3> DenseField::world(const std::array<double, 3>& q) const {
   std::array<double, 3> w;
   for (int r = 0; r < 3; ++r)
     w[r] = to_world[4 * r] * q[0] + to_world[4 * r + 1] * q[1] + to_world[4 * r + 2] * q[2] +
@@ -123,7 +122,7 @@ std::array<double, 3> CastVolume::world(const std::array<double, 3>& q) const {
   return w;
 }
 
-bool CastVolume::surface_bounds(float iso, std::array<double, 6>& box) const {
+bool DenseField::surface_bounds(float iso, std::array<double, 6>& box) const {
   // The straddling bricks, grouped 26-connected (union-find over brick numbers).
   const std::size_t nb = std::size_t(bx) * by * bz;
   std::vector<std::int64_t> parent(nb, -1);  // -1: not straddling
@@ -166,8 +165,8 @@ bool CastVolume::surface_bounds(float iso, std::array<double, 6>& box) const {
   for (int i = 0; i < 8; ++i) {
     std::array<double, 3> q;
     for (int k = 0; k < 3; ++k)
-      q[k] = ((i >> k) & 1) ? std::min(double(hi[k] + 1) * kCastBrick, double(n[k] - 1))
-                            : double(lo[k]) * kCastBrick;
+      q[k] = ((i >> k) & 1) ? std::min(double(hi[k] + 1) * kFieldBrick, double(n[k] - 1))
+                            : double(lo[k]) * kFieldBrick;
     const auto w = world(q);
     for (int c = 0; c < 3; ++c)
       box[2 * c] = std::min(box[2 * c], w[c]), box[2 * c + 1] = std::max(box[2 * c + 1], w[c]);
@@ -175,7 +174,7 @@ bool CastVolume::surface_bounds(float iso, std::array<double, 6>& box) const {
   return true;
 }
 
-std::array<double, 3> CastVolume::index(const std::array<double, 3>& p) const {
+std::array<double, 3> DenseField::index(const std::array<double, 3>& p) const {
   std::array<double, 3> q;
   for (int r = 0; r < 3; ++r)
     q[r] = to_index[4 * r] * p[0] + to_index[4 * r + 1] * p[1] + to_index[4 * r + 2] * p[2] +
@@ -183,7 +182,7 @@ std::array<double, 3> CastVolume::index(const std::array<double, 3>& p) const {
   return q;
 }
 
-double CastVolume::field(const std::array<double, 3>& p, float iso,
+double DenseField::field(const std::array<double, 3>& p, float iso,
                          std::array<double, 3>* gradient) const {
   const int n[3] = {nx, ny, nz};
   int c0[3];
@@ -212,7 +211,7 @@ double CastVolume::field(const std::array<double, 3>& p, float iso,
   return lerp(y0, y1, fz);
 }
 
-std::array<double, 3> CastVolume::normal(const std::array<double, 3>& p) const {
+std::array<double, 3> DenseField::normal(const std::array<double, 3>& p) const {
   const int n[3] = {nx, ny, nz};
   auto value = [&](int i, int j, int k) {
     return double(values[std::size_t(i) + std::size_t(nx) * (j + std::size_t(ny) * k)]);
@@ -253,4 +252,4 @@ std::array<double, 3> CastVolume::normal(const std::array<double, 3>& p) const {
   return {w[0] / len, w[1] / len, w[2] / len};
 }
 
-}  // namespace isocurv::screen
+}  // namespace isocurv::volume
