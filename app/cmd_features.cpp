@@ -59,6 +59,8 @@ void register_features(CLI::App &app) {
       "array is suffixed _r<radius as written> (H_ii_r2%). Vr needs a volume.");
   static CommonOptions o;
   static std::string out, radius, list = "all";
+  static int samples = -1;
+  static bool adaptive = false;
   static std::vector<std::string> ins;
   static SeriesCli series;
   cmd->add_option("VOLUME_OR_MESH", ins,
@@ -76,6 +78,14 @@ void register_features(CLI::App &app) {
                   "Comma-separated: LBE, NSV, Vr, H_ii, K_ii, SI_ii, or all "
                   "(those the input allows)")
       ->capture_default_str();
+  cmd->add_option("--samples", samples,
+                  "Samples per vertex for LBE, NSV and K_ii: N >= 32 traces N/16 curves "
+                  "on the volume's isosurface (cost independent of the radius); 0 = the "
+                  "exact neighbourhoods (the mesh's vertices within R, cost grows with R^2). "
+                  "Default: 256 for a volume, 0 for a mesh file");
+  cmd->add_flag("--adaptive", adaptive,
+                "Sampled path: trace the second half of the curves only where the first "
+                "half's mean curvatures disagree (two-stage adaptive sampling)");
   add_common_options(*cmd, o);
   add_curvature_options(*cmd, o, true);
   add_series_options(*cmd, series);
@@ -101,9 +111,15 @@ void register_features(CLI::App &app) {
     }
     parse_radii(radius, bounding_box_diagonal(s.mesh), fo);
     fo.isovalue = s.isovalue;
+    fo.samples = samples >= 0 ? samples : (s.volume ? 256 : 0);
+    fo.adaptive = adaptive;
+    if (adaptive && fo.samples == 0)
+      throw Error("--adaptive applies to sampled neighbourhoods (--samples N with a volume)");
+    const volume::Volume* vol = s.volume ? &*s.volume : nullptr;
     timer.start("features");
-    features::FeatureField f = features::compute(
-        s.mesh, *s.field, s.volume ? &*s.volume : nullptr, fo);
+    features::FeatureField f = reference_device(o)
+                                   ? features::compute(s.mesh, *s.field, vol, fo)
+                                   : features::compute(s.mesh, *s.field, vol, fo, device_for(o));
     timer.stop();
     std::size_t boundary = 0;
     for (std::uint8_t b : f.boundary)
@@ -135,12 +151,17 @@ void register_features(CLI::App &app) {
     for (std::size_t i = 0; i < fo.radii.size(); ++i)
       radii.push_back(
           {{"as_given", fo.radius_names[i]}, {"world", fo.radii[i]}});
-    r["features"] = {{"radii", radii},
-                     {"arrays", arrays},
-                     {"mean_curvature_from", s.volume
-                                                 ? "volume integral invariant"
-                                                 : "surface samples"},
-                     {"boundary_vertices", boundary}};
+    r["features"] = {
+        {"radii", radii},
+        {"arrays", arrays},
+        {"mean_curvature_from", s.volume ? "volume integral invariant" : "surface samples"},
+        {"boundary_vertices", boundary},
+        {"neighbourhoods", fo.samples > 0 ? "sampled" : "exact"},
+        {"samples", fo.samples},
+        {"adaptive", fo.adaptive},
+        {"samples_taken", f.samples_taken},
+        {"traced_fraction", f.traced_fraction},
+        {"device", device_name(o)}};
     r["input"] = in;
     r["output"] = out;
     r["timings_ms"] = timer.json();

@@ -15,7 +15,9 @@
 #include "core/progress.h"
 #include "features/detail/ball_samples.h"
 #include "features/detail/geodesic_disc.h"
+#include "features/detail/geodesic_web.h"
 #include "features/detail/mesh_graph.h"
+#include "features/detail/sampled_device.h"
 #include "features/detail/volume_ball.h"
 #include "features/features.h"
 
@@ -110,10 +112,12 @@ struct VertexResult {
   bool boundary = false;
 };
 
-} // namespace
+/// The sampled path's curves per vertex: samples / kWebSteps, even, at least 2.
+int web_azimuths(int samples) { return std::max(2, (samples / detail::kWebSteps) & ~1); }
 
-FeatureField compute(const Mesh &mesh, const curvature::CurvatureField &field,
-                     const volume::Volume *volume, const Options &options) {
+/// compute() on the host (device == nullptr) or with its kernels on `device`.
+FeatureField compute_on(const Mesh& mesh, const curvature::CurvatureField& field,
+                        const volume::Volume* volume, const Options& options, Device* device) {
   const std::size_t n = mesh.vertex_count();
   if (field.normals.size() != n || field.area.size() != n)
     throw Error("features need the curvature field's Normals and Area for "
@@ -131,6 +135,16 @@ FeatureField compute(const Mesh &mesh, const curvature::CurvatureField &field,
     throw Error("Vr (the volume integral invariant) needs a volume; mesh input "
                 "gives LBE, NSV, "
                 "H_ii (surface form), K_ii and SI_ii");
+  const bool sampled = o.samples != 0;
+  if (sampled && !volume)
+    throw Error(
+        "sampled neighbourhoods (--samples) need a volume; for a mesh "
+        "file use --samples 0 (the exact neighbourhoods)");
+  if (sampled && o.samples < 2 * detail::kWebSteps)
+    throw Error("--samples must be 0 (exact) or at least " + std::to_string(2 * detail::kWebSteps) +
+                ", got " + std::to_string(o.samples));
+  if (!(o.adaptive_threshold >= 0) || !std::isfinite(o.adaptive_threshold))
+    throw Error("the adaptive sampling threshold must be >= 0");
   const double diagonal = bounding_box_diagonal(mesh);
   for (std::size_t i = 0; i < o.radii.size(); ++i) {
     const double r = o.radii[i];
@@ -149,6 +163,13 @@ FeatureField compute(const Mesh &mesh, const curvature::CurvatureField &field,
       volume && (wants(o, Feature::Vr) || wants(o, Feature::H_ii) ||
                  wants(o, Feature::SI_ii));
   const bool need_disc = wants(o, Feature::K_ii) || wants(o, Feature::SI_ii);
+  const bool need_web = sampled && (need_ball || need_disc);
+  // The volume's dense samples, for the web and the device's quadrature.
+  std::optional<volume::DenseField> dense;
+  if (n > 0 && (need_web || (device && need_volume))) dense.emplace(*volume);
+  const int azimuths = web_azimuths(o.samples);
+  const float iso = static_cast<float>(o.isovalue);
+  std::uint64_t curves = 0, curves_full = 0;
 
   const detail::MeshGraph graph = detail::build_mesh_graph(mesh);
   const double max_edge = max_edge_length(mesh);
@@ -160,6 +181,33 @@ FeatureField compute(const Mesh &mesh, const curvature::CurvatureField &field,
   Progress progress("features", n * o.radii.size());
   for (std::size_t ri = 0; ri < o.radii.size(); ++ri) {
     const double r = o.radii[ri];
+    // The batched parts: the web (device or reference) and the device's
+    // quadrature.
+    std::vector<detail::WebSums> web;
+    if (need_web && n > 0) {
+      if (device) {
+        web = detail::web_on_device(*device, *dense, iso, mesh, field.normals, r, azimuths,
+                                    o.adaptive, o.adaptive_threshold, o.seed);
+      } else {
+        web.resize(n);
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 64), [&](const auto& range) {
+          for (std::size_t v = range.begin(); v != range.end(); ++v) {
+            const Vec3f &p = mesh.positions[v], &nv = field.normals[v];
+            web[v] = detail::trace_web(*dense, iso, {p[0], p[1], p[2]}, {nv[0], nv[1], nv[2]}, r,
+                                       azimuths, o.adaptive, o.adaptive_threshold,
+                                       static_cast<std::uint32_t>(v), o.seed);
+          }
+        });
+      }
+      for (const detail::WebSums& w : web)
+        curves += std::uint64_t(w.azimuths), curves_full += azimuths;
+    }
+    detail::BallOnDevice device_ball;
+    if (device && need_volume && n > 0) {
+      const detail::VolumeBall quadrature(*volume, o.isovalue, o.azimuths, o.radial);
+      device_ball = detail::ball_on_device(*device, *dense, iso, mesh, field.normals, r, o.azimuths,
+                                           quadrature.nodes(), quadrature.weights());
+    }
     for (std::size_t block = 0; block < n; block += kProgressBlock) {
       const std::size_t block_end = std::min(n, block + kProgressBlock);
       tbb::parallel_for(
@@ -168,7 +216,7 @@ FeatureField compute(const Mesh &mesh, const curvature::CurvatureField &field,
             Scratch &s = scratch.local();
             if (s.stamp.size() != n)
               s.stamp.assign(n, 0), s.mark = 0;
-            if (need_volume && !s.ball)
+            if (need_volume && !device && !s.ball)
               s.ball.emplace(*volume, o.isovalue, o.azimuths, o.radial);
             for (std::size_t v = range.begin(); v != range.end(); ++v) {
               VertexResult &res = results[v];
@@ -179,7 +227,13 @@ FeatureField compute(const Mesh &mesh, const curvature::CurvatureField &field,
                 res.boundary = true;
                 continue;
               }
-              if (need_ball) {
+              if (!web.empty()) {
+                const detail::WebSums& w = web[v];
+                res.boundary = res.boundary || w.boundary;
+                res.lbe = static_cast<float>(w.lbe);
+                res.nsv = static_cast<float>(w.nsv);
+                if (need_disc) res.k = static_cast<float>(gaussian_from_disc_area(w.disc_area, r));
+              } else if (need_ball) {
                 if (++s.mark == 0)
                   std::fill(s.stamp.begin(), s.stamp.end(), 0), s.mark = 1;
                 const detail::BallSums b = detail::ball_sums(
@@ -193,7 +247,11 @@ FeatureField compute(const Mesh &mesh, const curvature::CurvatureField &field,
                 if (!volume && b.area > 0)
                   res.h = static_cast<float>(-4 / (r * r) * b.height / b.area);
               }
-              if (need_volume) {
+              if (need_volume && device) {
+                res.boundary = res.boundary || device_ball.leaves[v];
+                res.vr = device_ball.vr[v];
+                res.h = device_ball.h[v];
+              } else if (need_volume) {
                 const Vec3f &p = mesh.positions[v];
                 const detail::VolumeBall::Result b = s.ball->inside_volume(
                     openvdb::Vec3d(p[0], p[1], p[2]),
@@ -202,7 +260,7 @@ FeatureField compute(const Mesh &mesh, const curvature::CurvatureField &field,
                 res.vr = static_cast<float>(b.vr);
                 res.h = static_cast<float>(b.h_fit);
               }
-              if (need_disc) {
+              if (need_disc && web.empty()) {
                 const detail::GeodesicDisc d = detail::geodesic_disc(
                     mesh, graph, static_cast<std::uint32_t>(v), r, max_edge,
                     s.geodesic);
@@ -251,7 +309,21 @@ FeatureField compute(const Mesh &mesh, const curvature::CurvatureField &field,
       if (results[v].boundary)
         out.boundary[v] = 1;
   }
+  out.samples_taken = curves * detail::kWebSteps;
+  out.traced_fraction = curves_full > 0 ? double(curves) / curves_full : 1;
   return out;
+}
+
+}  // namespace
+
+FeatureField compute(const Mesh& mesh, const curvature::CurvatureField& field,
+                     const volume::Volume* volume, const Options& options) {
+  return compute_on(mesh, field, volume, options, nullptr);
+}
+
+FeatureField compute(const Mesh& mesh, const curvature::CurvatureField& field,
+                     const volume::Volume* volume, const Options& options, Device& device) {
+  return compute_on(mesh, field, volume, options, &device);
 }
 
 } // namespace isocurv::features

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/cl_device.h"
 #include "core/mesh.h"
 #include "curvature/curvature_field.h"
 #include "volume/volume.h"
@@ -78,6 +79,22 @@ struct Options {
   /// The isovalue the mesh was extracted at (volume features read the field's
   /// inside side).
   double isovalue = 0;
+  /// How LBE, NSV and K_ii see the neighbourhood (SEEDS-SPEC.md A-MC, A-ADA).
+  ///  0: exactly: the mesh's vertices within r, reached along its edges and
+  ///     weighted by their Area, and the geodesic disc by fast marching over
+  ///     the triangles. The reference; cost grows with r^2.
+  ///  N > 0 (volume input only): N samples per vertex on the volume's trilinear
+  ///     isosurface: N / 16 curves (rounded down to an even count, at least 2)
+  ///     of 16 steps per radius, the normal-plane cuts of a web rotated per
+  ///     vertex (features/detail/geodesic_web.h). Cost independent of r.
+  int samples = 0;
+  /// Sampled path: trace the second half of the curves only where the first
+  /// half's per-azimuth mean curvatures vary by more than adaptive_threshold
+  /// (variance over mean square): two-stage adaptive sampling.
+  bool adaptive = false;
+  double adaptive_threshold = 0.01;
+  /// Sampled path: the seed of the per-vertex rotations (deterministic).
+  std::uint32_t seed = 0;
 };
 
 /// One named per-vertex array.
@@ -94,6 +111,10 @@ struct FeatureField {
   std::vector<Array> arrays;
   std::vector<std::uint8_t>
       boundary; ///< 1 where a ball of some radius was incomplete
+  /// Sampled path: the samples taken, over all vertices and radii (curves
+  /// traced x 16), and the curves' share that adaptive sampling traced.
+  std::uint64_t samples_taken = 0;
+  double traced_fraction = 1;
 };
 
 /// Computes the features at every vertex of `mesh`.
@@ -106,11 +127,22 @@ struct FeatureField {
 /// @param options radii, features, quadrature
 /// @throw Error for a radius that is not positive and finite, a field without
 /// normals or areas
-///        of the mesh's size, or Vr without a volume.
-/// Threading: parallel over vertices (TBB); deterministic (no random sampling,
-/// sums in a fixed order). Cost: vertices x (neighbours within r, plus azimuths
-/// x radial x ~16 field samples for Vr/H_ii on a volume).
+///        of the mesh's size, Vr or samples > 0 without a volume, or samples
+///        under 32.
+/// Threading: parallel over vertices (TBB); deterministic (the sampled path's
+/// rotations are hashes of the vertex and the seed; sums in a fixed order).
+/// Cost: vertices x (neighbours within r, or samples x ~5 field reads, plus
+/// azimuths x radial x ~16 field samples for Vr/H_ii on a volume).
 FeatureField compute(const Mesh &mesh, const curvature::CurvatureField &field,
                      const volume::Volume *volume, const Options &options);
+
+/// The same on an OpenCL device: the sampled path's web and the volume
+/// quadrature of Vr and H_ii run as kernels (features_kernels.cl), one work
+/// item per vertex; compute() is their double-precision reference. The exact
+/// path (samples = 0) runs on the host as in compute().
+/// @throw Error as compute(), and for a device failure.
+/// Threading: one call per device at a time.
+FeatureField compute(const Mesh& mesh, const curvature::CurvatureField& field,
+                     const volume::Volume* volume, const Options& options, Device& device);
 
 } // namespace isocurv::features

@@ -122,6 +122,14 @@ std::array<double, 3> DenseField::world(const std::array<double, 3>& q) const {
   return w;
 }
 
+double DenseField::shortest_voxel_edge() const {
+  double best = std::numeric_limits<double>::infinity();
+  for (int c = 0; c < 3; ++c)
+    best = std::min(best, std::sqrt(to_world[c] * to_world[c] + to_world[4 + c] * to_world[4 + c] +
+                                    to_world[8 + c] * to_world[8 + c]));
+  return best;
+}
+
 bool DenseField::surface_bounds(float iso, std::array<double, 6>& box) const {
   // The straddling bricks, grouped 26-connected (union-find over brick numbers).
   const std::size_t nb = std::size_t(bx) * by * bz;

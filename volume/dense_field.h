@@ -70,6 +70,8 @@ struct DenseField {
   /// world space by normal_matrix, pointing to decreasing insideness. Zero for a zero gradient.
   std::array<double, 3> normal(const std::array<double, 3>& p) const;
   std::array<double, 3> world(const std::array<double, 3>& index) const;
+  /// The shortest voxel edge in world units (the smallest column norm of the index -> world map).
+  double shortest_voxel_edge() const;
   /// The world box (xmin, xmax, ymin, ymax, zmin, zmax) of the bricks that straddle `iso` (a
   /// box around the isosurface, within a brick of it), or false when none does (no surface).
   /// Specks are left out, as core/framing_points leaves them out of a mesh's box: groups of

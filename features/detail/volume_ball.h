@@ -51,7 +51,11 @@ public:
   Result inside_volume(const openvdb::Vec3d &p, const openvdb::Vec3d &n,
                        double r);
 
-private:
+  /// The Gauss-Legendre nodes and weights on [-1, 1] of the radial quadrature.
+  const std::vector<double>& nodes() const { return nodes_; }
+  const std::vector<double>& weights() const { return weights_; }
+
+ private:
   double inside(const openvdb::Vec3d &world); ///< > 0 inside, <= 0 outside
   double inside_at_index(
       const openvdb::Vec3d &index); ///< the same at an index-space point
