@@ -1,8 +1,6 @@
 // Neighbourhood features (features/features.h) against closed forms: spheres, a
 // plane, a torus, and a CT-like ball (blurred edge, uint8, noise), on analytic
 // meshes and marching-cubes meshes.
-#include "features/features.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,51 +12,24 @@
 #include "datasets/exact_curvature.h"
 #include "datasets/field.h"
 #include "datasets/sample.h"
+#include "features/features.h"
 #include "mc/extract_reference.h"
 #include "tests/curvature/test_meshes.h"
+#include "tests/features/feature_helpers.h"
 #include "volume/from_dense.h"
 #include "volume/gradient_normals.h"
 
 namespace isocurv {
 namespace {
 
+using test::array;
+using test::compare;
+using test::ct_ball;
+using test::Error2;
+using test::surface_of;
+using test::VolumeSurface;
+
 constexpr double kPi = 3.14159265358979323846;
-
-const std::vector<float> &array(const features::FeatureField &f,
-                                const std::string &name) {
-  for (const auto &a : f.arrays)
-    if (a.name == name)
-      return a.values;
-  ADD_FAILURE() << "no array " << name;
-  static const std::vector<float> none;
-  return none;
-}
-
-/// Mean and relative RMS of `values` against `exact` over the vertices not
-/// flagged Boundary.
-struct Error2 {
-  double mean = 0, rel_rms = 0;
-  std::size_t count = 0;
-};
-Error2 compare(const std::vector<float> &values,
-               const std::vector<double> &exact,
-               const std::vector<std::uint8_t> &boundary) {
-  Error2 e;
-  double se = 0, sr = 0;
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    if (boundary[i])
-      continue;
-    e.mean += values[i];
-    se += (values[i] - exact[i]) * (values[i] - exact[i]);
-    sr += exact[i] * exact[i];
-    ++e.count;
-  }
-  if (e.count)
-    e.mean /= double(e.count);
-  e.rel_rms = sr > 0 ? std::sqrt(se / sr)
-                     : std::sqrt(se / std::max<std::size_t>(1, e.count));
-  return e;
-}
 
 /// An icosphere of radius R with exact normals and the reference's Voronoi
 /// areas.
@@ -170,24 +141,6 @@ TEST(Features, GeodesicDiscGivesGaussianCurvatureOnASphere) {
   EXPECT_GT(si.mean, 0.85);
 }
 
-/// The mesh, volume normals and areas of a volume's isosurface.
-struct VolumeSurface {
-  volume::Volume volume;
-  Mesh mesh;
-  curvature::CurvatureField field;
-  double iso = 0;
-};
-VolumeSurface surface_of(volume::Volume v, double iso) {
-  VolumeSurface s{std::move(v), {}, {}, iso};
-  s.mesh = mc::extract_reference(s.volume, float(iso));
-  const volume::MeshNormals n =
-      volume::gradient_normals_for_mesh(s.volume, s.mesh);
-  curvature::Options o;
-  o.vertex_normals = &n.normals;
-  s.field = curvature::estimate_reference(s.mesh, o);
-  return s;
-}
-
 TEST(Features, VolumeIntegralInvariantGivesMeanCurvatureOnTheSphereField) {
   const auto field = datasets::make_field("sphere"); // |p| - 0.8, a level set
   VolumeSurface s = surface_of(datasets::sample(*field, 64), field->isovalue());
@@ -242,32 +195,6 @@ TEST(Features, TorusFieldMeanCurvatureAtSmallRadius) {
         h.rel_rms);
     EXPECT_LT(h.rel_rms, 0.05);
   }
-}
-
-/// A CT-like ball: radius R voxels in an n^3 volume, edge blurred (Gaussian,
-/// sigma 1 voxel), 20 outside and 220 inside, uniform noise of +-4 grey levels,
-/// quantised to uint8.
-volume::Volume ct_ball(int n, double R) {
-  std::vector<float> data(std::size_t(n) * n * n);
-  std::uint32_t seed = 12345;
-  std::size_t i = 0;
-  const double c = 0.5 * (n - 1);
-  for (int z = 0; z < n; ++z)
-    for (int y = 0; y < n; ++y)
-      for (int x = 0; x < n; ++x) {
-        const double r = std::sqrt((x - c) * (x - c) + (y - c) * (y - c) +
-                                   (z - c) * (z - c));
-        seed = seed * 1664525u + 1013904223u;
-        const double noise = (double(seed >> 8) / double(1u << 24) - 0.5) * 8;
-        const double v =
-            20 + 200 * 0.5 * (1 + std::erf((R - r) / std::sqrt(2.0))) + noise;
-        data[i++] = float(std::lround(std::clamp(v, 0.0, 255.0)));
-      }
-  volume::DenseSource src{"generated:ct_ball", "generated", "uint8", "density",
-                          volume::Inside::Above};
-  return volume::from_dense(
-      data.data(), {n, n, n},
-      openvdb::math::Transform::createLinearTransform(1.0), src);
 }
 
 TEST(Features, CtLikeBallMeanCurvatureBeatsPerVertexCurvature) {
