@@ -178,7 +178,13 @@ FeatureField compute_on(const Mesh& mesh, const curvature::CurvatureField& field
   tbb::enumerable_thread_specific<Scratch> scratch;
   std::vector<VertexResult> results(n);
 
-  Progress progress("features", n * o.radii.size());
+  for (std::uint32_t v : o.vertices)
+    if (v >= n) throw Error("features: vertex " + std::to_string(v) + " is not in the mesh");
+  const std::size_t todo = o.vertices.empty() ? n : o.vertices.size();
+  // Progress in vertex passes: the host loop, plus the web and the device's quadrature.
+  const std::size_t passes = 1 + (need_web ? 1 : 0) + (device && need_volume ? 1 : 0);
+  Progress progress("features", todo * o.radii.size() * passes);
+  const detail::ProgressFn advance = [&](std::size_t done) { progress.advance(done); };
   for (std::size_t ri = 0; ri < o.radii.size(); ++ri) {
     const double r = o.radii[ri];
     // The batched parts: the web (device or reference) and the device's
@@ -187,29 +193,36 @@ FeatureField compute_on(const Mesh& mesh, const curvature::CurvatureField& field
     if (need_web && n > 0) {
       if (device) {
         web = detail::web_on_device(*device, *dense, iso, mesh, field.normals, r, azimuths,
-                                    o.adaptive, o.adaptive_threshold, o.seed);
+                                    o.adaptive, o.adaptive_threshold, o.seed, 64, advance);
       } else {
         web.resize(n);
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 64), [&](const auto& range) {
-          for (std::size_t v = range.begin(); v != range.end(); ++v) {
-            const Vec3f &p = mesh.positions[v], &nv = field.normals[v];
-            web[v] = detail::trace_web(*dense, iso, {p[0], p[1], p[2]}, {nv[0], nv[1], nv[2]}, r,
-                                       azimuths, o.adaptive, o.adaptive_threshold,
-                                       static_cast<std::uint32_t>(v), o.seed);
-          }
-        });
+        for (std::size_t block = 0; block < todo; block += kProgressBlock) {
+          const std::size_t block_end = std::min(todo, block + kProgressBlock);
+          tbb::parallel_for(
+              tbb::blocked_range<std::size_t>(block, block_end, 64), [&](const auto& range) {
+                for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                  const std::size_t v = o.vertices.empty() ? i : o.vertices[i];
+                  const Vec3f &p = mesh.positions[v], &nv = field.normals[v];
+                  web[v] = detail::trace_web(*dense, iso, {p[0], p[1], p[2]}, {nv[0], nv[1], nv[2]},
+                                             r, azimuths, o.adaptive, o.adaptive_threshold,
+                                             static_cast<std::uint32_t>(v), o.seed);
+                }
+              });
+          progress.advance(block_end - block);
+        }
       }
-      for (const detail::WebSums& w : web)
-        curves += std::uint64_t(w.azimuths), curves_full += azimuths;
+      for (std::size_t i = 0; i < todo; ++i)
+        curves += std::uint64_t(web[o.vertices.empty() ? i : o.vertices[i]].azimuths),
+            curves_full += azimuths;
     }
     detail::BallOnDevice device_ball;
     if (device && need_volume && n > 0) {
       const detail::VolumeBall quadrature(*volume, o.isovalue, o.azimuths, o.radial);
       device_ball = detail::ball_on_device(*device, *dense, iso, mesh, field.normals, r, o.azimuths,
-                                           quadrature.nodes(), quadrature.weights());
+                                           quadrature.nodes(), quadrature.weights(), 64, advance);
     }
-    for (std::size_t block = 0; block < n; block += kProgressBlock) {
-      const std::size_t block_end = std::min(n, block + kProgressBlock);
+    for (std::size_t block = 0; block < todo; block += kProgressBlock) {
+      const std::size_t block_end = std::min(todo, block + kProgressBlock);
       tbb::parallel_for(
           tbb::blocked_range<std::size_t>(block, block_end, 64),
           [&](const auto &range) {
@@ -218,7 +231,8 @@ FeatureField compute_on(const Mesh& mesh, const curvature::CurvatureField& field
               s.stamp.assign(n, 0), s.mark = 0;
             if (need_volume && !device && !s.ball)
               s.ball.emplace(*volume, o.isovalue, o.azimuths, o.radial);
-            for (std::size_t v = range.begin(); v != range.end(); ++v) {
+            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+              const std::size_t v = o.vertices.empty() ? i : o.vertices[i];
               VertexResult &res = results[v];
               res = VertexResult{};
               const Vec3f &nv = field.normals[v];

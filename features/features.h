@@ -95,6 +95,10 @@ struct Options {
   double adaptive_threshold = 0.01;
   /// Sampled path: the seed of the per-vertex rotations (deterministic).
   std::uint32_t seed = 0;
+  /// Compute only at these vertices (each < the vertex count); the others get
+  /// zeros. Empty (the default): every vertex. For probes and benchmarks of the
+  /// exact path, whose cost grows with r^2. The device path computes all.
+  std::vector<std::uint32_t> vertices;
 };
 
 /// One named per-vertex array.

@@ -126,8 +126,8 @@ __kernel void features_web(__global const float* values, int4 dims, float iso, f
                            __constant const float* xform, float voxel,
                            __global const float4* positions, __global const float4* normals,
                            uint count, float r, int azimuths, int adaptive, float threshold,
-                           uint seed, __global float4* out, __global uchar* flags) {
-  const uint v = get_global_id(0);
+                           uint seed, __global float4* out, __global uchar* flags, uint first) {
+  const uint v = first + get_global_id(0);
   if (v >= count) return;
   Field f;
   f.v = values;
@@ -225,8 +225,8 @@ __kernel void features_ball(__global const float* values, int4 dims, float iso, 
                             __constant const float* xform, __constant const float* gl,
                             int azimuths, int radial, __global const float4* positions,
                             __global const float4* normals, uint count, float r,
-                            __global float2* out, __global uchar* flags) {
-  const uint v = get_global_id(0);
+                            __global float2* out, __global uchar* flags, uint first) {
+  const uint v = first + get_global_id(0);
   if (v >= count) return;
   Field f;
   f.v = values;

@@ -81,12 +81,27 @@ void upload_vertices(Device& device, const Mesh& mesh, const std::vector<Vec3f>&
                    m.data());
 }
 
+/// Launches k over n vertices in parts of kLaunchVertices, its argument `first_arg` the first
+/// vertex of each part, reporting progress after each part finishes.
+void launch_in_parts(Device& device, cl::Kernel& k, cl_uint first_arg, std::size_t n,
+                     int work_group, const ProgressFn& progress) {
+  for (std::size_t first = 0; first < n; first += kLaunchVertices) {
+    const std::size_t count = std::min(kLaunchVertices, n - first);
+    k.setArg(first_arg, cl_uint(first));
+    launch(device.queue(), k, count, std::size_t(work_group));
+    if (progress) {
+      device.queue().finish();
+      progress(count);
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<WebSums> web_on_device(Device& device, const volume::DenseField& field, float iso,
                                    const Mesh& mesh, const std::vector<Vec3f>& normals, double r,
                                    int azimuths, bool adaptive, double threshold,
-                                   std::uint32_t seed, int work_group) {
+                                   std::uint32_t seed, int work_group, const ProgressFn& progress) {
   const std::size_t n = mesh.vertex_count();
   std::vector<WebSums> out(n);
   if (n == 0) return out;
@@ -102,7 +117,7 @@ std::vector<WebSums> web_on_device(Device& device, const volume::DenseField& fie
              cl_float(field.sign), s.xform, cl_float(field.shortest_voxel_edge()), pos, nrm,
              cl_uint(n), cl_float(r), cl_int(azimuths), cl_int(adaptive ? 1 : 0),
              cl_float(threshold), cl_uint(seed), res, flags);
-    launch(device.queue(), s.web, n, std::size_t(work_group));
+    launch_in_parts(device, s.web, 16, n, work_group, progress);
     std::vector<cl_float4> host(n);
     std::vector<std::uint8_t> host_flags(n);
     device.queue().enqueueReadBuffer(res, CL_FALSE, 0, n * 16, host.data());
@@ -121,7 +136,8 @@ std::vector<WebSums> web_on_device(Device& device, const volume::DenseField& fie
 BallOnDevice ball_on_device(Device& device, const volume::DenseField& field, float iso,
                             const Mesh& mesh, const std::vector<Vec3f>& normals, double r,
                             int azimuths, const std::vector<double>& nodes,
-                            const std::vector<double>& weights, int work_group) {
+                            const std::vector<double>& weights, int work_group,
+                            const ProgressFn& progress) {
   const std::size_t n = mesh.vertex_count();
   BallOnDevice out;
   out.vr.resize(n), out.h.resize(n), out.leaves.assign(n, 0);
@@ -144,7 +160,7 @@ BallOnDevice ball_on_device(Device& device, const volume::DenseField& field, flo
     set_args(s.ball, s.values, cl_int4{{field.nx, field.ny, field.nz, 0}}, cl_float(iso),
              cl_float(field.sign), s.xform, glb, cl_int(azimuths), cl_int(nodes.size()), pos, nrm,
              cl_uint(n), cl_float(r), res, flags);
-    launch(device.queue(), s.ball, n, std::size_t(work_group));
+    launch_in_parts(device, s.ball, 14, n, work_group, progress);
     std::vector<cl_float2> host(n);
     device.queue().enqueueReadBuffer(res, CL_FALSE, 0, n * 8, host.data());
     device.queue().enqueueReadBuffer(flags, CL_TRUE, 0, n, out.leaves.data());
