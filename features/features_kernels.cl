@@ -151,13 +151,19 @@ __kernel void features_web(__global const float* values, int4 dims, float iso, f
   const float rotation = web_rotation(v, seed);
   bool boundary = false;
   float4 ball = (float4)(0.0f);
-  float disc = 0.0f, g_sum = 0.0f, g_sq = 0.0f;
+  float disc = 0.0f, g_sum = 0.0f, g_sq = 0.0f, g_cos = 0.0f, g_sin = 0.0f;
   int g_count = 0, traced = 0;
   // Even azimuths, then (unless adaptive stops) the odd ones.
   for (int pass = 0; pass < 2; ++pass) {
     if (pass == 1 && adaptive && g_count > 0) {
+      // adaptive_needs_more: the variance the quadric form a + b cos 2phi + c sin 2phi leaves.
       const float mean = g_sum / g_count, mean_sq = g_sq / g_count;
-      if (!(mean_sq - mean * mean > threshold * mean_sq)) break;
+      float residual = mean_sq - mean * mean;
+      if (g_count >= 5) {
+        const float ca = 2.0f * g_cos / g_count, sa = 2.0f * g_sin / g_count;
+        residual -= 0.5f * (ca * ca + sa * sa);
+      }
+      if (!(residual > threshold * mean_sq)) break;
     }
     for (int k = pass; k < azimuths; k += 2) {
       const float phi = rotation + 2.0f * PI_F * k / azimuths;
@@ -168,6 +174,7 @@ __kernel void features_web(__global const float* values, int4 dims, float iso, f
       if (cs.ball.x > 0.0f) {
         const float g = -4.0f / (r * r) * cs.ball.w / cs.ball.x;
         g_sum += g, g_sq += g * g, ++g_count;
+        g_cos += g * cos(2.0f * phi), g_sin += g * sin(2.0f * phi);
       }
       ++traced;
     }

@@ -109,6 +109,17 @@ CurveSums trace_curve(const WorldField& field, const V& p0, const V& n0, const V
 
 }  // namespace
 
+bool adaptive_needs_more(double sum, double sum_sq, double sum_cos2, double sum_sin2, int count,
+                         double threshold) {
+  const double mean = sum / count, mean_sq = sum_sq / count;
+  double residual = mean_sq - mean * mean;
+  if (count >= 5) {  // evenly spaced azimuths: cos 2 phi and sin 2 phi are orthogonal there
+    const double a = 2 * sum_cos2 / count, b = 2 * sum_sin2 / count;
+    residual -= 0.5 * (a * a + b * b);
+  }
+  return residual > threshold * mean_sq;
+}
+
 double web_rotation(std::uint32_t vertex, std::uint32_t seed) {
   // lowbias32 (Chris Wellons) of the vertex mixed with the seed; 24 bits of angle.
   std::uint32_t x = vertex ^ (seed * 0x9E3779B9u);
@@ -139,7 +150,7 @@ WebSums trace_web(const volume::DenseField& vol, float iso, const std::array<dou
   const double rotation = web_rotation(vertex, seed);
 
   CurveSums total;
-  double g_sum = 0, g_sq = 0;
+  double g_sum = 0, g_sq = 0, g_cos = 0, g_sin = 0;
   int g_count = 0;
   auto trace = [&](int k) {
     const double phi = rotation + 2 * kPi * k / azimuths;
@@ -151,14 +162,14 @@ WebSums trace_web(const volume::DenseField& vol, float iso, const std::array<dou
     if (c.w > 0) {
       const double g = -4 / (r * r) * c.height / c.w;  // this azimuth's mean curvature
       g_sum += g, g_sq += g * g, ++g_count;
+      g_cos += g * std::cos(2 * phi), g_sin += g * std::sin(2 * phi);
     }
     ++out.azimuths;
   };
   for (int k = 0; k < azimuths; k += 2) trace(k);
   bool second = !adaptive;
   if (adaptive && g_count > 0) {
-    const double mean = g_sum / g_count, mean_sq = g_sq / g_count;
-    second = mean_sq - mean * mean > threshold * mean_sq;
+    second = adaptive_needs_more(g_sum, g_sq, g_cos, g_sin, g_count, threshold);
   }
   if (second)
     for (int k = 1; k < azimuths; k += 2) trace(k);

@@ -19,7 +19,8 @@
 // pattern": evenly spaced azimuths integrate the curvature's harmonics exactly, where jittered
 // ones would add noise of the size of K_ii's signal); arc length by the trapezoid rule on the
 // traced nodes. Adaptive (A-ADA): the even azimuths first; the odd ones only where the
-// per-azimuth mean curvatures vary (variance > threshold x their mean square).
+// per-azimuth mean curvatures vary by more than the surface's second-order shape explains
+// (adaptive_needs_more).
 #include <array>
 #include <cstdint>
 
@@ -50,6 +51,14 @@ struct WebSums {
   int azimuths = 0;       ///< azimuths traced (M, or M / 2 where adaptive stopped early)
   bool boundary = false;  ///< a curve left the data domain or lost the surface before leaving r
 };
+
+/// The adaptive test on the first half's per-azimuth mean curvatures g(phi) (their sum, sum of
+/// squares, sums of g cos 2 phi and g sin 2 phi, count): whether their variance, less the part a
+/// quadric explains (a + b cos 2 phi + c sin 2 phi: the normal curvature's form, which the first
+/// half's evenly spaced azimuths already integrate exactly), exceeds threshold x their mean
+/// square. The plain variance below 5 azimuths.
+bool adaptive_needs_more(double sum, double sum_sq, double sum_cos2, double sum_sin2, int count,
+                         double threshold);
 
 /// A hash of the vertex index and the seed, as a rotation in [0, 2 pi) (the kernel's too).
 double web_rotation(std::uint32_t vertex, std::uint32_t seed);
