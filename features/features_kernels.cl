@@ -17,6 +17,16 @@ typedef struct {
   float iso, voxel;
 } Field;
 
+Field volume_field(__global const float* values, int4 dims, float iso, float sign,
+                   __constant const float* xform, float voxel) {
+  Field f;
+  f.v = values;
+  f.g.nx = dims.x, f.g.ny = dims.y, f.g.nz = dims.z, f.g.bx = f.g.by = f.g.bz = 0;
+  f.g.iso = iso, f.g.sign = sign;
+  f.xf = xform, f.iso = iso, f.voxel = voxel;
+  return f;
+}
+
 // The signed field at world point w and its world gradient.
 float world_field(const Field* f, float3 w, float3* grad) {
   float3 gi;
@@ -129,11 +139,7 @@ __kernel void features_web(__global const float* values, int4 dims, float iso, f
                            uint seed, __global float4* out, __global uchar* flags, uint first) {
   const uint v = first + get_global_id(0);
   if (v >= count) return;
-  Field f;
-  f.v = values;
-  f.g.nx = dims.x, f.g.ny = dims.y, f.g.nz = dims.z, f.g.bx = f.g.by = f.g.bz = 0;
-  f.g.iso = iso, f.g.sign = sign;
-  f.xf = xform, f.iso = iso, f.voxel = voxel;
+  const Field f = volume_field(values, dims, iso, sign, xform, voxel);
   const float3 p = positions[v].xyz, n = normals[v].xyz;
   float3 p0 = p, grad;
   for (int it = 0; it < PROJECT_STEPS; ++it) {
@@ -235,11 +241,7 @@ __kernel void features_ball(__global const float* values, int4 dims, float iso, 
                             __global float2* out, __global uchar* flags, uint first) {
   const uint v = first + get_global_id(0);
   if (v >= count) return;
-  Field f;
-  f.v = values;
-  f.g.nx = dims.x, f.g.ny = dims.y, f.g.nz = dims.z, f.g.bx = f.g.by = f.g.bz = 0;
-  f.g.iso = iso, f.g.sign = sign;
-  f.xf = xform, f.iso = iso, f.voxel = 0.0f;
+  const Field f = volume_field(values, dims, iso, sign, xform, 0.0f);
   const float3 p = positions[v].xyz, n = normals[v].xyz;
   bool leaves = false;
   for (int corner = 0; corner < 8; ++corner) {
