@@ -4,7 +4,7 @@
 //  features_ball: the volume quadrature of Vr and the radius-resolved H_ii
 //                 (features/detail/volume_ball.cpp is its double reference).
 // Prepended: volume/dense_field.cl (Grid, field_grad_at, gradient_at, affine, linear3).
-// Build options: -DWEB_STEPS -DWEB_MAX_STEPS -DPROJECT_STEPS -DCORRECTOR_STEPS -DOFF_SURFACE
+// Build options: -DWEB_STEPS -DWEB_STEP_DIVISIONS -DWEB_MAX_ATTEMPTS -DWEB_MAX_LENGTH -DPROJECT_STEPS -DCORRECTOR_STEPS -DOFF_SURFACE
 // -DMIN_COS -DARC_SAMPLES -DREFINE_STEPS (the constants of geodesic_web.h and volume_ball.h).
 
 #define PI_F 3.14159265358979f
@@ -69,12 +69,15 @@ typedef struct {
 CurveSums trace_curve(const Field* f, float3 p0, float3 n0, float3 u, float r, bool* boundary) {
   CurveSums out = {(float4)(0.0f), 0.0f};
   const float3 m = cross(n0, u);
-  const float h = r / WEB_STEPS;
+  const float h_max = r / WEB_STEPS, h_min = h_max / WEB_STEP_DIVISIONS;
+  float h = h_max;
   float3 c = p0, dir = u, grad;
   float4 prev = (float4)(0.0f);
   float s = 0.0f, dist_prev = 0.0f;
   bool ball_done = false, disc_done = false;
-  for (int step = 0; step < WEB_MAX_STEPS && !(ball_done && disc_done); ++step) {
+  for (int attempt = 0;
+       attempt < WEB_MAX_ATTEMPTS && s < WEB_MAX_LENGTH * r && !(ball_done && disc_done);
+       ++attempt) {
     float3 c1 = c + h * dir;
     bool lost = false;
     for (int it = 0; it < CORRECTOR_STEPS && !lost; ++it) {
@@ -82,13 +85,17 @@ CurveSums trace_curve(const Field* f, float3 p0, float3 n0, float3 u, float r, b
       const float3 gp = grad - dot(grad, m) * m;
       const float gg = dot(gp, gp);
       // The last step starts within OFF_SURFACE of the surface, or the curve is lost.
-      lost = !(gg > 0.0f) || (it == CORRECTOR_STEPS - 1 &&
-                              (fabs(fv) > OFF_SURFACE * f->voxel * length(grad) ||
-                               !inside_domain(f, c1)));
+      lost = !(gg > 0.0f) ||
+             (it == CORRECTOR_STEPS - 1 && fabs(fv) > OFF_SURFACE * f->voxel * length(grad));
       if (lost) break;
       c1 -= (fv / gg) * gp;
       c1 -= dot(c1 - p0, m) * m;
     }
+    if (lost && h > h_min) {  // the cut turns within the step: try a shorter one
+      h *= 0.5f;
+      continue;
+    }
+    lost = lost || !inside_domain(f, c1);
     const float3 step_vec = c1 - c;
     const float ds = length(step_vec);
     const float3 nc = lost ? (float3)(0.0f) : world_normal(f, c1);
@@ -127,6 +134,7 @@ CurveSums trace_curve(const Field* f, float3 p0, float3 n0, float3 u, float r, b
     prev = node;
     c = c1;
     dir = d1;
+    h = min(h_max, 2.0f * h);
   }
   return out;
 }

@@ -52,12 +52,14 @@ CurveSums trace_curve(const WorldField& field, const V& p0, const V& n0, const V
                       bool& boundary) {
   CurveSums out;
   const V m = cross(n0, u);  // the cutting plane's normal
-  const double h = r / kWebSteps;
+  const double h_max = r / kWebSteps, h_min = h_max / kWebStepDivisions;
+  double h = h_max;
   V c = p0, dir = u, grad;
   Node prev = {0, 0, 0, 0};
   double s = 0, dist_prev = 0;
   bool ball_done = false, disc_done = false;
-  for (int step = 0; step < kWebMaxSteps && !(ball_done && disc_done); ++step) {
+  for (int attempt = 0;
+       attempt < kWebMaxAttempts && s < kWebMaxLength * r && !(ball_done && disc_done); ++attempt) {
     // Predict along the curve's direction, correct onto the surface within the plane.
     V c1 = add(c, dir, h);
     bool lost = false;
@@ -67,12 +69,16 @@ CurveSums trace_curve(const WorldField& field, const V& p0, const V& n0, const V
       const double gg = dot(gp, gp);
       // The last step starts within kOffSurface of the surface, or the curve is lost.
       lost = !(gg > 0) ||
-             (it == kCorrectorSteps - 1 &&
-              (std::abs(f) > kOffSurface * field.voxel * norm(grad) || !field.inside_domain(c1)));
+             (it == kCorrectorSteps - 1 && std::abs(f) > kOffSurface * field.voxel * norm(grad));
       if (lost) break;
       c1 = add(c1, gp, -f / gg);
       c1 = add(c1, m, -dot(add(c1, p0, -1), m));
     }
+    if (lost && h > h_min) {  // the cut turns within the step: try a shorter one
+      h *= 0.5;
+      continue;
+    }
+    lost = lost || !field.inside_domain(c1);
     const V step_vec = add(c1, c, -1);
     const double ds = norm(step_vec);
     const V nc = lost ? V{0, 0, 0} : field.f.normal(field.f.index(c1));
@@ -103,6 +109,7 @@ CurveSums trace_curve(const WorldField& field, const V& p0, const V& n0, const V
       out.disc += 0.5 * t * ds * (2 * prev[0] + t * (node[0] - prev[0]));
     }
     s += ds, dist_prev = dist, prev = node, c = c1, dir = d1;
+    h = std::min(h_max, 2 * h);
   }
   return out;
 }

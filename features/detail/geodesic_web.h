@@ -28,10 +28,15 @@
 
 namespace isocurv::features::detail {
 
-/// Steps of r / kWebSteps per geodesic radius (a curve may take up to kWebMaxSteps to leave the
-/// Euclidean ball). Samples per vertex = azimuths x kWebSteps.
+/// Steps of r / kWebSteps per geodesic radius; a step whose corrector fails is retried at half
+/// the length, down to 1 / kWebStepDivisions of it, and the length doubles back after each
+/// success. A curve stops after kWebMaxAttempts steps and retries, or kWebMaxLength r of arc
+/// (it may need more than r to leave the Euclidean ball). Samples per vertex = azimuths x
+/// kWebSteps.
 inline constexpr int kWebSteps = 16;
-inline constexpr int kWebMaxSteps = 3 * kWebSteps;
+inline constexpr int kWebStepDivisions = 8;
+inline constexpr int kWebMaxAttempts = 6 * kWebSteps;
+inline constexpr double kWebMaxLength = 3;
 /// Newton steps that move the vertex onto the trilinear surface along its normal (each at most
 /// half a voxel), and corrector steps that bring each predicted node back onto the surface.
 inline constexpr int kProjectSteps = 4;

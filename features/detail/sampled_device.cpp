@@ -22,12 +22,13 @@ struct FeaturesState {
   explicit FeaturesState(Device& device) {
     static const std::string source =
         std::string(kernels::dense_field_cl) + "\n" + kernels::features_kernels_cl;
-    char options[320];
+    char options[400];
     std::snprintf(options, sizeof options,
-                  "-DWEB_STEPS=%d -DWEB_MAX_STEPS=%d -DPROJECT_STEPS=%d -DCORRECTOR_STEPS=%d "
+                  "-DWEB_STEPS=%d -DWEB_STEP_DIVISIONS=%d -DWEB_MAX_ATTEMPTS=%d "
+                  "-DWEB_MAX_LENGTH=%.9ef -DPROJECT_STEPS=%d -DCORRECTOR_STEPS=%d "
                   "-DOFF_SURFACE=%.9ef -DMIN_COS=%.9ef -DARC_SAMPLES=%d -DREFINE_STEPS=%d",
-                  kWebSteps, kWebMaxSteps, kProjectSteps, kCorrectorSteps, kOffSurface, kMinCos,
-                  kArcSamples, kRefineSteps);
+                  kWebSteps, kWebStepDivisions, kWebMaxAttempts, kWebMaxLength, kProjectSteps,
+                  kCorrectorSteps, kOffSurface, kMinCos, kArcSamples, kRefineSteps);
     cl::Program& program = device.program("features", source.c_str(), options);
     web = cl::Kernel(program, "features_web");
     ball = cl::Kernel(program, "features_ball");
