@@ -212,8 +212,8 @@ FeatureField compute_on(const Mesh& mesh, const curvature::CurvatureField& field
         }
       }
       for (std::size_t i = 0; i < todo; ++i)
-        curves += std::uint64_t(web[o.vertices.empty() ? i : o.vertices[i]].azimuths),
-            curves_full += azimuths;
+        curves += std::uint64_t(web[o.vertices.empty() ? i : o.vertices[i]].azimuths);
+      curves_full += std::uint64_t(todo) * azimuths;
     }
     detail::BallOnDevice device_ball;
     if (device && need_volume && n > 0) {

@@ -161,10 +161,7 @@ GBuffer ray_cast(const volume::DenseField& vol, float iso, const ViewFrame& fram
     s.slopes =
         cl::Buffer(ctx, CL_MEM_READ_ONLY, std::max<std::size_t>(4, vol.brick_slope.size() * 4));
     q.enqueueWriteBuffer(s.slopes, CL_FALSE, 0, vol.brick_slope.size() * 4, vol.brick_slope.data());
-    std::vector<float> xf(36, 0.0f);
-    for (int i = 0; i < 12; ++i)
-      xf[i] = float(vol.to_index[i]), xf[12 + i] = float(vol.to_world[i]);
-    for (int i = 0; i < 9; ++i) xf[24 + i] = float(vol.normal_matrix[i]);
+    const std::array<float, 36> xf = vol.device_transform();
     s.xform = cl::Buffer(ctx, CL_MEM_READ_ONLY, xf.size() * 4);
     q.enqueueWriteBuffer(s.xform, CL_TRUE, 0, xf.size() * 4, xf.data());
     s.uploaded = vol.id;

@@ -122,6 +122,13 @@ std::array<double, 3> DenseField::world(const std::array<double, 3>& q) const {
   return w;
 }
 
+std::array<float, 36> DenseField::device_transform() const {
+  std::array<float, 36> xf{};
+  for (int i = 0; i < 12; ++i) xf[i] = float(to_index[i]), xf[12 + i] = float(to_world[i]);
+  for (int i = 0; i < 9; ++i) xf[24 + i] = float(normal_matrix[i]);
+  return xf;
+}
+
 double DenseField::shortest_voxel_edge() const {
   double best = std::numeric_limits<double>::infinity();
   for (int c = 0; c < 3; ++c)

@@ -70,6 +70,9 @@ struct DenseField {
   /// world space by normal_matrix, pointing to decreasing insideness. Zero for a zero gradient.
   std::array<double, 3> normal(const std::array<double, 3>& p) const;
   std::array<double, 3> world(const std::array<double, 3>& index) const;
+  /// to_index (12), to_world (12) and normal_matrix (9) in float, then 3 zeros: the transform
+  /// buffer dense_field.cl's affine() and linear3() read (to_index at 0, normal_matrix at 24).
+  std::array<float, 36> device_transform() const;
   /// The shortest voxel edge in world units (the smallest column norm of the index -> world map).
   double shortest_voxel_edge() const;
   /// The world box (xmin, xmax, ymin, ymax, zmin, zmax) of the bricks that straddle `iso` (a

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "curvature/detail/local_geometry.h"
+
 namespace isocurv::features::detail {
 namespace {
 
@@ -149,11 +151,9 @@ WebSums trace_web(const volume::DenseField& vol, float iso, const std::array<dou
   if (norm(add(p0, p, -1)) > field.voxel) p0 = p;
   V n0 = vol.normal(vol.index(p0));
   if (n0[0] == 0 && n0[1] == 0 && n0[2] == 0) n0 = n;
-  // Tangent frame (Duff et al. 2017).
-  const double sgn = std::copysign(1.0, n0[2]);
-  const double a = -1 / (sgn + n0[2]), b = n0[0] * n0[1] * a;
-  const V e1 = {1 + sgn * n0[0] * n0[0] * a, sgn * b, -sgn * n0[0]};
-  const V e2 = {b, sgn + n0[1] * n0[1] * a, -n0[1]};
+  Eigen::Vector3d u, v;
+  curvature::detail::tangent_basis(Eigen::Vector3d(n0[0], n0[1], n0[2]), u, v);
+  const V e1 = {u.x(), u.y(), u.z()}, e2 = {v.x(), v.y(), v.z()};
   const double rotation = web_rotation(vertex, seed);
 
   CurveSums total;

@@ -58,10 +58,7 @@ void upload_volume(Device& device, FeaturesState& s, const volume::DenseField& f
   cl::CommandQueue& q = device.queue();
   s.values = cl::Buffer(ctx, CL_MEM_READ_ONLY, std::max<std::size_t>(4, field.values.size() * 4));
   q.enqueueWriteBuffer(s.values, CL_FALSE, 0, field.values.size() * 4, field.values.data());
-  std::vector<float> xf(36, 0.0f);
-  for (int i = 0; i < 12; ++i)
-    xf[i] = float(field.to_index[i]), xf[12 + i] = float(field.to_world[i]);
-  for (int i = 0; i < 9; ++i) xf[24 + i] = float(field.normal_matrix[i]);
+  const std::array<float, 36> xf = field.device_transform();
   s.xform = cl::Buffer(ctx, CL_MEM_READ_ONLY, xf.size() * 4);
   q.enqueueWriteBuffer(s.xform, CL_TRUE, 0, xf.size() * 4, xf.data());
   s.uploaded = field.id;

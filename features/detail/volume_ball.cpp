@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "curvature/detail/local_geometry.h"
 
 namespace isocurv::features::detail {
 namespace {
@@ -74,11 +75,9 @@ VolumeBall::Result VolumeBall::inside_volume(const openvdb::Vec3d &p,
       if (i[a] < dom.min()[a] || i[a] > dom.max()[a])
         leaves_domain = true;
   }
-  // Tangent frame (Duff et al. 2017).
-  const double sgn = std::copysign(1.0, n.z());
-  const double a = -1 / (sgn + n.z()), b = n.x() * n.y() * a;
-  const openvdb::Vec3d e1(1 + sgn * n.x() * n.x() * a, sgn * b, -sgn * n.x());
-  const openvdb::Vec3d e2(b, sgn + n.y() * n.y() * a, -n.y());
+  Eigen::Vector3d u, v;
+  curvature::detail::tangent_basis(Eigen::Vector3d(n.x(), n.y(), n.z()), u, v);
+  const openvdb::Vec3d e1(u.x(), u.y(), u.z()), e2(v.x(), v.y(), v.z());
 
   const openvdb::math::MapBase &map = *volume_.grid->transform().baseMap();
   const bool linear = volume_.grid->transform().isLinear();
