@@ -32,12 +32,6 @@ bool has_ext(const std::string& path, const char* ext) {
   return e == ext;
 }
 
-std::string estimator_name(const screen::ScreenOptions& so) {
-  if (so.estimator == screen::ScreenEstimator::mellado)
-    return "screen-space Mellado, radius " + std::to_string(so.mellado_radius) + " px";
-  return "screen-space Prantl, " + std::to_string(so.edges) + " edges" + (so.lod ? ", LOD" : "");
-}
-
 }  // namespace
 
 void register_screen(CLI::App& app) {
@@ -194,7 +188,7 @@ void register_screen(CLI::App& app) {
     }
     if (po.title.empty())
       po.title = picture_title(in, po.quantity, cast ? std::optional<float>(iso) : std::nullopt,
-                               estimator_name(so));
+                               screen::estimator_label(so));
     Device* device = reference ? nullptr : &device_for(o);
     screen::GBuffer g;
     screen::ScreenCurvature c;
@@ -255,7 +249,7 @@ void register_screen(CLI::App& app) {
       if (cast) r["isovalue"] = iso;
       if (surf) r["triangles"] = triangles;
       r["producer"] = cast ? "ray cast" : "rasterised mesh";
-      r["estimator"] = estimator_name(so);
+      r["estimator"] = screen::estimator_label(so);
       r["image"] = {{"width", c.width}, {"height", c.height}};
       r["surface_pixels"] = g.valid_count();
       r["estimated_pixels"] = hv.size();

@@ -3,20 +3,25 @@
 #include <iostream>
 #include <memory>
 
+#include "ao/method.h"
 #include "app/commands.h"
 #include "app/line_options_cli.h"
-#include "app/pipeline.h"
-#include "app/series.h"
 #include "app/picture_title.h"
+#include "app/pipeline.h"
 #include "app/render_options_cli.h"
-#include "ao/method.h"
+#include "app/series.h"
 #include "core/error.h"
-#include "io/mesh_file.h"
+#include "core/mesh_measures.h"
 #include "curvature/estimate.h"
+#include "io/mesh_file.h"
 #include "lines/extract.h"
 #include "lines/reference.h"
 #include "mc/extract.h"
+#include "screen/estimate.h"
+#include "screen/rasterise.h"
+#include "screen/ray_cast.h"
 #include "viz/explorer.h"
+#include "volume/dense_field.h"
 
 namespace isocurv::app {
 
@@ -28,7 +33,9 @@ void register_view(CLI::App& app) {
       "extras such as H_s2 or an opened mesh's LBE, H_ii), a toggles AO, d toggles direction\n"
       "glyphs, l toggles the feature lines (--lines; they follow the camera and the isovalue),\n"
       "v cycles the views, r resets the camera, i types an isovalue, o opens a mesh file, w saves\n"
-      "the surface shown, k saves the camera (for render --camera), s saves a screenshot, q quits;\n"
+      "the surface shown, k saves the camera (for render --camera), s saves a screenshot, x\n"
+      "switches to screen-space curvature (ray cast per pixel, no mesh; the slider re-casts) and\n"
+      "back, q quits;\n"
       "with --time-series FILES... a time slider, and space plays / pauses the frames. Needs an X\n"
       "display.");
   static CommonOptions o;
@@ -54,7 +61,24 @@ void register_view(CLI::App& app) {
   static bool show_lines = false;
   cmd->add_flag("--show-lines", show_lines, "Start with the lines on (else press l)")->group("Lines");
   add_series_options(*cmd, series);
+  static bool screen_start = false;
+  static std::string screen_lod = "off";
+  static screen::ScreenOptions so;
+  cmd->add_flag("--screen", screen_start,
+                "Start in screen-space mode (x): curvature per pixel of the ray-cast isosurface, "
+                "nothing extracted until x leaves it")
+      ->group("Screen space");
+  cmd->add_option("--screen-edges", so.edges, "Screen-space mode: edges per pixel triangle, 2 or 3")
+      ->check(CLI::IsMember({2, 3}))
+      ->capture_default_str()
+      ->group("Screen space");
+  cmd->add_option("--screen-lod", screen_lod,
+                  "Screen-space mode: level of detail (wider pixel triangles near the camera)")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str()
+      ->group("Screen space");
   cmd->callback([] {
+    so.lod = screen_lod == "on";
     lines::Options lo;
     try {
       lo = line_options(lc);
@@ -72,6 +96,11 @@ void register_view(CLI::App& app) {
     struct Current {
       std::shared_ptr<volume::Volume> vol;
       std::shared_ptr<mc::Mesher> mesher;
+      std::shared_ptr<volume::DenseField> dense;  // the ray caster's samples, made on first use
+      const volume::DenseField& field() {
+        if (!dense) dense = std::make_shared<volume::DenseField>(*vol);
+        return *dense;
+      }
     };
     auto cur = std::make_shared<Current>();
     auto load_frame = [frames, cur](int k, float* iso) {
@@ -87,6 +116,7 @@ void register_view(CLI::App& app) {
       if (!reference_device(o)) mesher = std::make_shared<mc::Mesher>(*vol, device_for(o));
       cur->vol = vol;
       cur->mesher = mesher;
+      cur->dense.reset();
       in = frames[k].path;
     };
     float iso = 0;
@@ -153,6 +183,50 @@ void register_view(CLI::App& app) {
                    " bricks), curvature " + std::to_string(int(ms(t1, t2))) + " ms";
       return out;
     };
+    // Screen-space mode: the volume's isosurface ray cast per pixel (or the mesh file shown
+    // rasterised), then Prantl's per-pixel estimator, as isocurv screen does.
+    setup.screen.start_on = screen_start;
+    setup.screen.image = [cur](float value, const viz::Surface* shown, const Camera& camera, int w,
+                               int h) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const screen::ViewFrame frame = screen::view_frame(camera, w, h);
+      const bool reference = reference_device(o);
+      screen::GBuffer g;
+      if (shown) {
+        const bool has_normals = shown->field.normals.size() == shown->mesh.positions.size();
+        g = screen::rasterise(
+            shown->mesh, has_normals ? shown->field.normals : area_weighted_normals(shown->mesh),
+            frame);
+      } else {
+        const volume::DenseField& field = cur->field();
+        g = reference ? screen::ray_cast_reference(field, value, frame)
+                      : screen::ray_cast(field, value, frame, device_for(o));
+      }
+      const auto t1 = std::chrono::steady_clock::now();
+      screen::ScreenCurvature c =
+          reference ? screen::estimate_reference(g, so) : screen::estimate(g, device_for(o), so);
+      const auto t2 = std::chrono::steady_clock::now();
+      auto ms = [](auto a, auto b) {
+        return std::chrono::duration<double, std::milli>(b - a).count();
+      };
+      viz::ScreenImage img;
+      img.width = w, img.height = h;
+      img.H = std::move(c.H);
+      if (so.estimator == screen::ScreenEstimator::prantl) img.K = std::move(c.K);
+      img.valid = std::move(c.valid);
+      img.shade = screen::view_shading(g);
+      img.update_ms = ms(t0, t2);
+      img.detail = std::string(shown ? "rasterise " : "cast ") + std::to_string(int(ms(t0, t1))) +
+                   " ms, estimate " + std::to_string(int(ms(t1, t2))) + " ms";
+      return img;
+    };
+    setup.screen.bounds = [cur](float value, std::array<double, 6>& b) {
+      return cur->field().surface_bounds(value, b);
+    };
+    if (ro.title.empty())
+      setup.screen.title_for = [](float value, const std::string& quantity) {
+        return picture_title(in, quantity, value, screen::estimator_label(so));
+      };
     if (lo.lines.any()) {
       setup.show_lines = show_lines;
       setup.lines = [lo](const viz::Surface& s, const Camera& cam, bool surface_changed) {

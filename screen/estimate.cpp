@@ -206,6 +206,12 @@ std::size_t ScreenCurvature::valid_count() const {
   return std::size_t(std::count(valid.begin(), valid.end(), std::uint8_t(1)));
 }
 
+std::string estimator_label(const ScreenOptions& so) {
+  if (so.estimator == ScreenEstimator::mellado)
+    return "screen-space Mellado, radius " + std::to_string(so.mellado_radius) + " px";
+  return "screen-space Prantl, " + std::to_string(so.edges) + " edges" + (so.lod ? ", LOD" : "");
+}
+
 double lod_far(const GBuffer& g) { return std::max(g.far, 100.0); }
 
 ScreenCurvature estimate_reference(const GBuffer& g, const ScreenOptions& o) {

@@ -45,6 +45,10 @@ struct ScreenCurvature {
   std::size_t valid_count() const;
 };
 
+/// How titles and --json name the estimator of `options`: "screen-space Prantl, 2 edges[, LOD]"
+/// or "screen-space Mellado, radius 4 px".
+std::string estimator_label(const ScreenOptions& options);
+
 /// The LOD far distance f = max(far plane, 100) and the discontinuity threshold tau = 1 / f.
 double lod_far(const GBuffer& g);
 

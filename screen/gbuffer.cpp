@@ -107,3 +107,21 @@ void depth_range(const ViewFrame& frame, const std::array<double, 6>& b, double&
 }
 
 }  // namespace isocurv::screen
+
+namespace isocurv::screen {
+
+std::vector<float> view_shading(const GBuffer& g) {
+  std::vector<float> shade(g.pixels(), 1.0f);
+  for (int y = 0; y < g.height(); ++y)
+    for (int x = 0; x < g.width(); ++x) {
+      const std::size_t i = std::size_t(x) + std::size_t(g.width()) * y;
+      if (!g.valid[i]) continue;
+      std::array<double, 3> origin, dir;
+      g.frame.ray(x + 0.5, y + 0.5, origin, dir);
+      const Vec3f& n = g.normal[i];
+      shade[i] = float(0.35 + 0.65 * std::abs(n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2]));
+    }
+  return shade;
+}
+
+}  // namespace isocurv::screen

@@ -57,6 +57,10 @@ struct GBuffer {
   std::size_t valid_count() const;
 };
 
+/// Per pixel, the factor 0.35 + 0.65 |n . ray| by which pictures multiply a pixel's colour for
+/// a sense of shape (n the pixel's normal, ray its unit view direction); 1 where invalid.
+std::vector<float> view_shading(const GBuffer& g);
+
 /// The eye-depth range [near, far] of box `bounds` (xmin, xmax, ymin, ymax, zmin, zmax) seen by
 /// `frame`, padded by 1%; near is kept >= far / 1000 (perspective) so window depth stays finite.
 void depth_range(const ViewFrame& frame, const std::array<double, 6>& bounds, double& near,

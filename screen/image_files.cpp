@@ -93,24 +93,16 @@ void write_picture(const std::string& path, const GBuffer& g, const ScreenCurvat
   vtkImageData* img = grab->GetOutput();
   auto* rgb = static_cast<unsigned char*>(img->GetScalarPointer());
   const int w = layout.width;
-  auto map = viz::make_color_map(range, cmap);
+  const std::vector<float> shade = o.shade ? view_shading(g) : std::vector<float>{};
+  auto colors = viz::vertex_colors(values, range, viz::make_color_map(range, cmap),
+                                   o.shade ? &shade : nullptr);
+  const unsigned char* col = colors->GetPointer(0);
   for (int y = 0; y < c.height; ++y)
     for (int x = 0; x < c.width; ++x) {
       const std::size_t i = std::size_t(x) + std::size_t(c.width) * y;
       if (!c.valid[i] || !std::isfinite(values[i])) continue;
-      const double v = std::min(std::max(double(values[i]), range.lo), range.hi);
-      double col[3];
-      map->GetColor(v, col);
-      double shade = 1;
-      if (o.shade) {
-        std::array<double, 3> org, dir;
-        g.frame.ray(x + 0.5, y + 0.5, org, dir);
-        const auto& n = g.normal[i];
-        shade = 0.35 + 0.65 * std::abs(n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2]);
-      }
       unsigned char* px = rgb + 3 * (std::size_t(box.x0 + x) + std::size_t(w) * (box.y0 + y));
-      for (int k = 0; k < 3; ++k)
-        px[k] = static_cast<unsigned char>(std::lround(std::min(1.0, col[k] * shade) * 255));
+      for (int k = 0; k < 3; ++k) px[k] = col[3 * i + k];
     }
   img->Modified();
   write_atomically(path, [&](const std::string& tmp) {

@@ -24,7 +24,8 @@ constexpr int kBand = 16;  // image rows per parallel task
 
 }  // namespace
 
-GBuffer rasterise(const Mesh& mesh, const std::vector<Vec3f>& normals, const ViewFrame& frame) {
+GBuffer rasterise(const Mesh& mesh, const std::vector<Vec3f>& normals, const ViewFrame& frame,
+                  RasterHits* hits) {
   const std::size_t nv = mesh.positions.size();
   if (normals.size() != nv) throw Error("screen: the mesh needs one normal per vertex");
   for (const Tri& t : mesh.triangles)
@@ -32,6 +33,10 @@ GBuffer rasterise(const Mesh& mesh, const std::vector<Vec3f>& normals, const Vie
       throw Error("screen: a triangle index is out of range");
   GBuffer g;
   g.reset(frame);
+  if (hits) {
+    hits->triangle.assign(g.pixels(), RasterHits::kNone);
+    hits->uv.assign(g.pixels(), {0.f, 0.f});
+  }
   std::array<double, 6> b = {1e300, -1e300, 1e300, -1e300, 1e300, -1e300};
   for (const Vec3f& p : mesh.positions)
     for (int c = 0; c < 3; ++c)
@@ -104,6 +109,10 @@ GBuffer rasterise(const Mesh& mesh, const std::vector<Vec3f>& normals, const Vie
           const double len = std::sqrt(dot(n, n));
           g.position[i] = {float(p[0]), float(p[1]), float(p[2])};
           g.depth[i] = float(z);
+          if (hits) {
+            hits->triangle[i] = static_cast<std::uint32_t>(f);
+            hits->uv[i] = {float(u), float(v)};
+          }
           if (len > 0) {
             g.normal[i] = {float(n[0] / len), float(n[1] / len), float(n[2] / len)};
             g.valid[i] = 1;
@@ -115,6 +124,22 @@ GBuffer rasterise(const Mesh& mesh, const std::vector<Vec3f>& normals, const Vie
     }
   });
   return g;
+}
+
+std::vector<float> interpolate(const Mesh& mesh, const RasterHits& hits,
+                               const std::vector<float>& values) {
+  if (values.size() != mesh.positions.size())
+    throw Error("screen: interpolate needs one value per vertex");
+  std::vector<float> out(hits.triangle.size(), std::numeric_limits<float>::quiet_NaN());
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const std::uint32_t f = hits.triangle[i];
+    if (f == RasterHits::kNone) continue;
+    if (f >= mesh.triangles.size()) throw Error("screen: a hit names a triangle the mesh lacks");
+    const Tri& t = mesh.triangles[f];
+    const double u = hits.uv[i][0], v = hits.uv[i][1];
+    out[i] = float((1 - u - v) * values[t[0]] + u * values[t[1]] + v * values[t[2]]);
+  }
+  return out;
 }
 
 }  // namespace isocurv::screen

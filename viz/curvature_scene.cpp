@@ -1,12 +1,13 @@
 #include "viz/curvature_scene.h"
 
-#include "core/framing_points.h"
-
 #include <vtkActor.h>
+#include <vtkActor2D.h>
 #include <vtkCamera.h>
 #include <vtkColorTransferFunction.h>
 #include <vtkDataObject.h>
 #include <vtkFloatArray.h>
+#include <vtkImageData.h>
+#include <vtkImageMapper.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
@@ -21,6 +22,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/framing_points.h"
 #include "io/field_arrays.h"
 #include "io/polydata.h"
 #include "viz/color_map.h"
@@ -37,6 +39,9 @@ constexpr double kAmbient = 0.15, kDiffuse = 0.85;
 constexpr double kAmbientWithAo = 0.45, kDiffuseWithAo = 0.55;
 constexpr double kSpecular = 0.15, kSpecularPower = 20;
 constexpr const char* kAoAttribute = "isocurvAO";  // the vertex shader's input for "AO"
+// Screen-space mode lays the picture out for legend labels at least this wide (%.3g of it is
+// the widest label tick_label writes), so the surface box does not follow the image's values.
+constexpr double kWidestLabelValue = 8.88e88;
 
 /// Shader replacements that multiply the ambient term of VTK's lighting by the per-vertex AO
 /// (a vertex attribute, interpolated across triangles): ambientColor is VTK's ambient term,
@@ -82,6 +87,13 @@ struct CurvatureScene::Impl {
   PictureLayout layout;
   int bottom_reserved = 0;
   bool glyphs_stale = true;  // the glyphs are built when first needed after a change
+  // Screen-space mode: the image, drawn as RGBA pixels by a 2D actor in the overlay.
+  bool image_on = false;
+  ScreenImage image;
+  int image_scale = 1;
+  vtkSmartPointer<vtkImageData> image_data = vtkSmartPointer<vtkImageData>::New();
+  vtkSmartPointer<vtkImageMapper> image_mapper = vtkSmartPointer<vtkImageMapper>::New();
+  vtkSmartPointer<vtkActor2D> image_actor = vtkSmartPointer<vtkActor2D>::New();
 
   Impl() {
     overlay->SetLayer(0);
@@ -114,29 +126,56 @@ struct CurvatureScene::Impl {
       renderer->AddActor(actor);
     }
     glyph_mapper->SetRelativeCoincidentTopologyLineOffsetParameters(0, -2);  // over the halo
+
+    image_mapper->SetInputData(image_data);
+    image_mapper->SetColorWindow(255);  // RGBA bytes drawn as they are
+    image_mapper->SetColorLevel(127.5);
+    image_actor->SetMapper(image_mapper);
+    image_actor->VisibilityOff();
+    overlay->AddActor2D(image_actor);
+  }
+
+  const std::vector<float>& image_values(const std::string& q) const {
+    return q == "K" ? image.K : image.H;
   }
 
   /// Checks that `o` can be shown with the current field; throws Error otherwise.
   void check(const RenderOptions& o) const {
     resolve_color_map(o.cmap, o.color);
     if (o.range) color_range({}, o.color, 0, o.range);
+    if (image_on) {  // the mesh's arrays do not matter
+      check_image_quantity(o.color, image);
+      return;
+    }
     if (mesh.positions.empty()) return;
     resolve_quantity(field, o.color);
     if (uses_ao(o.shading) && field.ao.empty())
       throw Error("AO shading requested but the curvature field has no AO values");
   }
 
+  static void check_image_quantity(const std::string& color, const ScreenImage& img) {
+    const std::string q = canonical_quantity(color);
+    if (q != "H" && q != "K") throw Error("screen-space mode shows H or K, not " + q);
+    if (q == "K" && img.pixels() > 0 && img.K.empty())
+      throw Error("this screen-space estimator gives no K (mean curvature only)");
+  }
+
   void relayout() {
     const std::string q = canonical_quantity(options.color);
     const std::string unit = quantity_unit(q, options.length_unit);
     const std::string label = quantity_label(q);
-    layout = layout_picture(options.width, options.height, options.title,
-                            unit.empty() ? label : label + "\n" + unit, range.lo, range.hi,
-                            bottom_reserved);
+    const std::string legend_title = unit.empty() ? label : label + "\n" + unit;
+    layout = layout_picture(options.width, options.height, options.title, legend_title, range.lo,
+                            range.hi, bottom_reserved);
+    if (image_on)  // narrower (the legend column is wider) and independent of the values
+      layout.surface = layout_picture(options.width, options.height, options.title, legend_title,
+                                      -kWidestLabelValue, kWidestLabelValue, bottom_reserved)
+                           .surface;
     const PixelBox& s = layout.surface;
     const double w = std::max(1, options.width), h = std::max(1, options.height);
     renderer->SetViewport(s.x0 / w, s.y0 / h, s.x1 / w, s.y1 / h);
-    legend.update(layout, cmap, range, !mesh.positions.empty());
+    legend.update(layout, cmap, range, image_on ? image.pixels() > 0 : !mesh.positions.empty());
+    if (image_on) fill_image();
     // Lines a little wider in big pictures; the halo two pixels wider than the line.
     const double line = std::max(1.0, std::round(std::min(w, h) / 400.0));
     glyph_actor->GetProperty()->SetLineWidth(static_cast<float>(line));
@@ -151,9 +190,65 @@ struct CurvatureScene::Impl {
     glyphs_stale = false;
   }
 
+  /// The image's pixels coloured into image_data, which covers layout.surface; invalid pixels
+  /// (and the box beyond the image) are transparent, so the background shows.
+  void fill_image() {
+    const PixelBox& box = layout.surface;
+    const int bw = std::max(1, box.x1 - box.x0), bh = std::max(1, box.y1 - box.y0);
+    image_data->SetDimensions(bw, bh, 1);
+    image_data->AllocateScalars(VTK_UNSIGNED_CHAR, 4);
+    auto* rgba = static_cast<unsigned char*>(image_data->GetScalarPointer());
+    std::fill(rgba, rgba + 4 * std::size_t(bw) * bh, static_cast<unsigned char>(0));
+    const std::string q = canonical_quantity(options.color);
+    const std::vector<float>& values = image_values(q);
+    if (image.pixels() > 0 && values.size() == image.pixels()) {
+      auto colors = vertex_colors(values, range, make_color_map(range, cmap),
+                                  image.shade.empty() ? nullptr : &image.shade);
+      const unsigned char* c = colors->GetPointer(0);
+      for (int y = 0; y < bh; ++y) {
+        const int iy = y / image_scale;
+        if (iy >= image.height) break;
+        for (int x = 0; x < bw; ++x) {
+          const int ix = x / image_scale;
+          if (ix >= image.width) break;
+          const std::size_t i = std::size_t(ix) + std::size_t(image.width) * iy;
+          if (!image.valid[i]) continue;
+          unsigned char* px = rgba + 4 * (std::size_t(x) + std::size_t(bw) * y);
+          px[0] = c[3 * i], px[1] = c[3 * i + 1], px[2] = c[3 * i + 2], px[3] = 255;
+        }
+      }
+    }
+    image_data->Modified();
+    image_actor->SetPosition(box.x0, box.y0);
+    image_actor->SetVisibility(image.pixels() > 0);
+  }
+
+  void recolor_image() {
+    const std::string q = canonical_quantity(options.color);
+    cmap = resolve_color_map(options.cmap, q);
+    const std::vector<float>& values = image_values(q);
+    std::vector<float> shown;
+    if (values.size() == image.pixels()) {
+      shown.reserve(values.size());
+      for (std::size_t i = 0; i < values.size(); ++i)
+        if (image.valid[i]) shown.push_back(values[i]);
+    }
+    range = shown.empty() ? (options.range ? *options.range : ColorRange{})
+                          : color_range(shown, q, options.clamp_percentile, options.range);
+    relayout();  // fills the image
+  }
+
   void recolor() {
     const std::string q = canonical_quantity(options.color);
     cmap = resolve_color_map(options.cmap, q);
+    surface_actor->SetVisibility(!image_on);
+    if (image_on) {
+      glyph_actor->VisibilityOff();
+      halo_actor->VisibilityOff();
+      recolor_image();
+      return;
+    }
+    image_actor->VisibilityOff();
     const bool shown = !mesh.positions.empty();
     glyph_actor->SetVisibility(options.dirs && shown);
     halo_actor->SetVisibility(options.dirs && shown);
@@ -257,6 +352,31 @@ void CurvatureScene::set_bottom_reserved(int pixels) {
   impl_->relayout();
 }
 
+void CurvatureScene::set_image_mode(bool on) {
+  Impl& s = *impl_;
+  if (on == s.image_on) return;
+  if (on) Impl::check_image_quantity(s.options.color, s.image);
+  s.image_on = on;
+  s.recolor();
+}
+
+bool CurvatureScene::image_mode() const { return impl_->image_on; }
+
+void CurvatureScene::set_image(const ScreenImage& image, int scale) {
+  const std::size_t n = image.pixels();
+  if (image.width < 0 || image.height < 0 || image.H.size() != n || image.valid.size() != n ||
+      (!image.K.empty() && image.K.size() != n) ||
+      (!image.shade.empty() && image.shade.size() != n))
+    throw Error("screen-space image: arrays do not match its " + std::to_string(image.width) + "x" +
+                std::to_string(image.height) + " pixels");
+  if (scale < 1) throw Error("screen-space image: scale must be at least 1");
+  Impl& s = *impl_;
+  if (s.image_on) Impl::check_image_quantity(s.options.color, image);
+  s.image = image;
+  s.image_scale = scale;
+  if (s.image_on) s.recolor();
+}
+
 const PictureLayout& CurvatureScene::layout() const { return impl_->layout; }
 double CurvatureScene::range_lo() const { return impl_->range.lo; }
 double CurvatureScene::range_hi() const { return impl_->range.hi; }
@@ -267,7 +387,7 @@ vtkPolyData* CurvatureScene::glyphs() {
   return impl_->glyphs;
 }
 
-Camera CurvatureScene::frame_camera() {
+Camera CurvatureScene::frame_camera(const std::array<double, 6>* bounds) {
   const RenderOptions& o = impl_->options;
   if (o.camera) {
     apply_camera(impl_->renderer, *o.camera);
@@ -276,7 +396,8 @@ Camera CurvatureScene::frame_camera() {
   const PixelBox& s = impl_->layout.surface;
   const double aspect =
       s.empty() ? double(o.width) / double(o.height) : double(s.x1 - s.x0) / double(s.y1 - s.y0);
-  const Camera cam = fit_camera_to_points(framing_points(impl_->mesh), o.view, aspect);
+  const Camera cam = bounds ? fit_camera(*bounds, o.view, aspect)
+                            : fit_camera_to_points(framing_points(impl_->mesh), o.view, aspect);
   apply_camera(impl_->renderer, cam);
   return cam;
 }

@@ -9,6 +9,7 @@
 #include "curvature/curvature_field.h"
 #include "viz/picture_layout.h"
 #include "viz/render_options.h"
+#include "viz/screen_image.h"
 
 class vtkPolyData;
 class vtkRenderWindow;
@@ -41,6 +42,19 @@ class CurvatureScene {
   /// non-empty mesh) when it lacks the current colour quantity or, with AO shading, the AO array.
   void set_surface(const Mesh& mesh, const curvature::CurvatureField& field);
 
+  /// Screen-space mode (the explorer's 'x'). While on, the mesh and its glyphs are hidden and the
+  /// image of set_image fills layout().surface instead, coloured by options().color (then "H" or
+  /// "K"), with the legend over the image's valid values. The surface box is then laid out for
+  /// the widest legend labels, so it depends on the window size alone and an image cast at its
+  /// size keeps fitting whatever its values. Turning it on with another colour throws Error.
+  void set_image_mode(bool on);
+  bool image_mode() const;
+  /// The image shown in screen-space mode (copied): each pixel a `scale` x `scale` block from
+  /// layout().surface's bottom-left corner, cut at the box (a coarser image while the camera is
+  /// dragged). @throw Error for arrays that do not match its size, scale < 1, or colour K with an
+  /// image that has no K; the previous image then stays.
+  void set_image(const ScreenImage& image, int scale = 1);
+
   /// Applies every option but the camera's (frame_camera does that). Throws Error as
   /// set_surface does, and for an unknown map or an empty --range; the previous options stay.
   void set_options(const RenderOptions& options);
@@ -61,9 +75,11 @@ class CurvatureScene {
   /// The glyphs drawn (or that would be drawn) for the current surface and options.
   vtkPolyData* glyphs();
 
-  /// Points the camera: options().camera when set, else fit_camera(bounds, options().view) with
-  /// the aspect of layout().surface; returns the camera it set.
-  Camera frame_camera();
+  /// Points the camera: options().camera when set, else fit_camera_to_points on the mesh's
+  /// framing points (or, when `bounds` is given, fit_camera on that box: screen-space mode
+  /// before any mesh) with options().view and the aspect of layout().surface; returns the camera
+  /// it set.
+  Camera frame_camera(const std::array<double, 6>* bounds = nullptr);
   /// The 3D renderer's current camera (after the user moved it, say) as plain data.
   Camera current_camera() const;
 

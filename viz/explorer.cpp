@@ -59,11 +59,22 @@ class Explorer {
   explicit Explorer(const ExplorerSetup& setup) : setup_(setup) {}
 
   void run() {
-    Surface first = call(setup_.isovalue);  // throws: no window without a first surface
+    const bool start_screen = setup_.screen.start_on && setup_.screen.image;
     iso_ = attempted_ = setup_.isovalue;
-    scene_.set_options(setup_.view);
-    scene_.set_surface(first.mesh, first.field);
-    note_update(first);
+    RenderOptions first_options = setup_.view;
+    if (start_screen) {
+      mesh_stale_ = true;  // nothing extracted yet
+      first_options.color = screen_quantity(first_options.color);
+      first_options.title = title(iso_, first_options.color, true);
+      scene_.set_options(first_options);
+      scene_.set_image_mode(true);
+      screen_on_ = true;
+    } else {
+      Surface first = call(setup_.isovalue);  // throws: no window without a first surface
+      scene_.set_options(first_options);
+      scene_.set_surface(first.mesh, first.field);
+      note_update(first);
+    }
     view_ = setup_.view.view.view;
 
     window_->SetSize(setup_.view.width, setup_.view.height);
@@ -83,15 +94,25 @@ class Explorer {
     make_slider();
     if (has_time()) make_time_slider();
     relayout(setup_.view.width, setup_.view.height);
+    if (setup_.screen.image) {
+      // The overlay renders first (layer 0): a new image is in place before anything is drawn.
+      cast_start_->SetCallback(&Explorer::on_overlay_start);
+      cast_start_->SetClientData(this);
+      scene_.overlay()->AddObserver(vtkCommand::StartEvent, cast_start_);
+      interaction_->SetCallback(&Explorer::on_interaction);
+      interaction_->SetClientData(this);
+      style_->AddObserver(vtkCommand::StartInteractionEvent, interaction_);
+      style_->AddObserver(vtkCommand::EndInteractionEvent, interaction_);
+    }
     if (setup_.lines) {
       lines_on_ = setup_.show_lines;
       overlay_.add_to(scene_.renderer());
-      overlay_.set_visible(lines_on_);
+      overlay_.set_visible(lines_on_ && !screen_on_);
       render_start_->SetCallback(&Explorer::on_render_start);
       render_start_->SetClientData(this);
       scene_.renderer()->AddObserver(vtkCommand::StartEvent, render_start_);
     }
-    scene_.frame_camera();
+    frame_camera();
     refresh_status();
     resize_callback_->SetCallback(&Explorer::on_resize);
     resize_callback_->SetClientData(this);
@@ -125,9 +146,16 @@ class Explorer {
       return true;
     }
     RenderOptions o = scene_.options();
+    if (screen_on_ && (key == 'a' || key == 'd' || (key == 'l' && setup_.lines))) {
+      message_ = std::string("'") + key + "' applies to the mesh: x leaves screen-space mode";
+      refresh_status();
+      window_->Render();
+      return true;
+    }
     switch (key) {
       case 'c': {  // every point array of the surface shown: the curvature ones, then its extras
-        const std::vector<std::string> q = field_quantities(current_.field);
+        const std::vector<std::string> q =
+            screen_on_ ? std::vector<std::string>{"H", "K"} : field_quantities(current_.field);
         auto it = std::find(q.begin(), q.end(), canonical_quantity(o.color));
         for (std::size_t step = 0; step < q.size(); ++step) {
           it = (it == q.end() || it + 1 == q.end()) ? q.begin() : it + 1;
@@ -153,10 +181,21 @@ class Explorer {
         else message_ = "opening meshes is not available here";
         break;
       case 'w':
-        if (setup_.save_surface) start_entry(Entry::save, setup_.surface_path);
+        if (setup_.save_surface && screen_on_ && mesh_stale_)
+          message_ = "no mesh of this isovalue yet: x leaves screen-space mode and extracts it";
+        else if (setup_.save_surface)
+          start_entry(Entry::save, setup_.surface_path);
         else message_ = "saving the surface is not available here";
         break;
       case 'k': save_camera_file(); break;
+      case 'x':
+        if (!setup_.screen.image)
+          message_ = "screen space is not available here";
+        else if (screen_on_)
+          leave_screen();
+        else
+          enter_screen();
+        break;
       case ' ':
         if (!has_time()) return false;
         playing_ = !playing_;
@@ -220,6 +259,8 @@ class Explorer {
         note_update(s);
         message_ = note;
         shown_ = typed_;
+        mesh_stale_ = false;
+        image_stale_ = true;  // screen-space mode: the image is now the mesh's
         reset_camera();
       } catch (const Error& err) {
         message_ = err.what();
@@ -240,7 +281,153 @@ class Explorer {
     o.view.view = view_;
     o.camera.reset();
     try_options(o);
-    scene_.frame_camera();
+    frame_camera();
+  }
+
+  /// Frames the mesh shown, or while there is none (screen-space mode from the start) the box of
+  /// the volume's surface.
+  void frame_camera() {
+    std::array<double, 6> b{};
+    if (current_.mesh.positions.empty() && screen_on_ && setup_.screen.bounds &&
+        setup_.screen.bounds(iso_, b))
+      scene_.frame_camera(&b);
+    else
+      scene_.frame_camera();
+  }
+
+  /// The title for `iso` and `quantity`, in screen-space mode or not.
+  std::string title(float iso, const std::string& quantity, bool screen) const {
+    if (screen && setup_.screen.title_for) return setup_.screen.title_for(iso, quantity);
+    if (setup_.title_for) return setup_.title_for(iso, quantity);
+    return setup_.view.title;
+  }
+
+  /// The colour screen-space mode starts with: `color` when it is H or K, else H.
+  static std::string screen_quantity(const std::string& color) {
+    const std::string q = canonical_quantity(color);
+    return q == "H" || q == "K" ? q : "H";
+  }
+
+  void enter_screen() {
+    RenderOptions o = scene_.options();
+    o.color = screen_quantity(o.color);
+    o.title = title(iso_, o.color, true);
+    try {
+      scene_.set_options(o);
+      scene_.set_image_mode(true);
+    } catch (const Error& e) {
+      message_ = e.what();
+      return;
+    }
+    screen_on_ = true;
+    image_stale_ = true;  // cast before the next frame is drawn
+    overlay_.set_visible(false);
+    message_.clear();
+  }
+
+  /// Back to the mesh: extracted first when the isovalue moved in screen-space mode (on failure
+  /// the mode stays on, with the error on the status line).
+  void leave_screen() {
+    if (mesh_stale_) {
+      Surface s;
+      try {
+        s = call(iso_);
+      } catch (const Error& e) {
+        message_ = "isovalue " + format(iso_) + ": " + e.what();
+        return;
+      }
+      scene_.set_image_mode(false);
+      screen_on_ = false;
+      const std::string note = show_surface(s);
+      note_update(s);
+      message_ = note;
+      shown_.clear();
+      mesh_stale_ = false;
+      attempted_ = iso_;
+    } else {
+      scene_.set_image_mode(false);
+      screen_on_ = false;
+      vertices_ = current_.mesh.vertex_count();
+      triangles_ = current_.mesh.triangle_count();
+    }
+    overlay_.set_visible(lines_on_);
+    lines_surface_stale_ = true;
+    retitle();
+  }
+
+  /// The same view to within rounding (VTK re-derives parts of its camera while rendering).
+  static bool same_camera(const Camera& a, const Camera& b) {
+    double scale = 1e-300, diff = 0;
+    for (int k = 0; k < 3; ++k) {
+      scale = std::max(scale, std::abs(a.position[k] - a.focal_point[k]));
+      diff = std::max({diff, std::abs(a.position[k] - b.position[k]),
+                       std::abs(a.focal_point[k] - b.focal_point[k])});
+    }
+    double up = 0;
+    for (int k = 0; k < 3; ++k) up = std::max(up, std::abs(a.view_up[k] - b.view_up[k]));
+    constexpr double kTolerance = 1e-6;  // VTK's view angle drifts by ~3e-8
+    return a.ortho == b.ortho && diff <= kTolerance * scale && up <= kTolerance &&
+           std::abs(a.view_angle_deg - b.view_angle_deg) <= kTolerance * a.view_angle_deg &&
+           std::abs(a.parallel_scale - b.parallel_scale) <= kTolerance * a.parallel_scale;
+  }
+
+  /// Casts the screen-space image at `iso` (of the mesh file shown when `of_mesh`, else of the
+  /// volume) for the camera now, at the surface box's size divided by `scale`, and shows it;
+  /// false, with the error on the status line, when the callback fails (the old image stays).
+  bool cast(float iso, bool of_mesh, int scale = 1) {
+    const PixelBox& box = scene_.layout().surface;
+    const int w = box.x1 - box.x0, h = box.y1 - box.y0;
+    cast_camera_ = scene_.current_camera();
+    cast_w_ = w, cast_h_ = h, cast_scale_ = scale;
+    image_stale_ = false;
+    if (w < 1 || h < 1) return false;
+    const int cw = (w + scale - 1) / scale, ch = (h + scale - 1) / scale;
+    try {
+      const auto start = std::chrono::steady_clock::now();
+      ScreenImage img =
+          setup_.screen.image(iso, of_mesh ? &current_ : nullptr, cast_camera_, cw, ch);
+      if (img.update_ms <= 0)
+        img.update_ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
+      if (img.width != cw || img.height != ch)
+        throw Error("the image is " + std::to_string(img.width) + "x" + std::to_string(img.height) +
+                    " pixels, not the " + std::to_string(cw) + "x" + std::to_string(ch) +
+                    " asked for");
+      scene_.set_image(img, scale);
+      last_ms_ = img.update_ms;
+      if (scale == 1) full_ms_ = img.update_ms;
+      detail_ = img.detail;
+      pixels_ = img.valid_count();
+      image_pixels_ = img.pixels();
+      return true;
+    } catch (const Error& e) {
+      message_ = std::string("screen space: ") + e.what();
+      return false;
+    }
+  }
+
+  /// Before each frame in screen-space mode: a new image when the camera, the box or the
+  /// resolution wanted changed (coarser while the mouse drags and a full image is slow).
+  static void on_overlay_start(vtkObject*, unsigned long, void* self, void*) {
+    auto* e = static_cast<Explorer*>(self);
+    if (!e->screen_on_) return;
+    const PixelBox& box = e->scene_.layout().surface;
+    const int scale = !e->interacting_ || e->full_ms_ <= kLiveUpdateMs ? 1
+                      : e->full_ms_ <= 4 * kLiveUpdateMs               ? 2
+                                                                       : 4;
+    if (!e->image_stale_ && same_camera(e->scene_.current_camera(), e->cast_camera_) &&
+        box.x1 - box.x0 == e->cast_w_ && box.y1 - box.y0 == e->cast_h_ && scale == e->cast_scale_)
+      return;
+    e->cast(e->iso_, !e->shown_.empty(), scale);
+    e->refresh_status();
+  }
+
+  static void on_interaction(vtkObject*, unsigned long event, void* self, void*) {
+    auto* e = static_cast<Explorer*>(self);
+    e->interacting_ = event == vtkCommand::StartInteractionEvent;
+    if (!e->interacting_ && e->screen_on_ && e->cast_scale_ > 1)
+      e->window_->Render();  // full image
   }
 
   void save_camera_file() {
@@ -303,14 +490,12 @@ class Explorer {
   }
 
   void retitle() {
-    if (!setup_.title_for) return;
-    RenderOptions o = scene_.options();
-    o.title = setup_.title_for(iso_, o.color);
-    try_options(o);
+    if (!setup_.title_for && !setup_.screen.title_for) return;
+    try_options(scene_.options());
   }
 
   bool try_options(RenderOptions o) {
-    if (setup_.title_for) o.title = setup_.title_for(iso_, o.color);
+    o.title = title(iso_, o.color, screen_on_);
     try {
       scene_.set_options(o);
       return true;
@@ -328,7 +513,7 @@ class Explorer {
     if (!q.empty() && std::find(q.begin(), q.end(), canonical_quantity(o.color)) == q.end()) {
       const std::string was = o.color;
       o.color = std::find(q.begin(), q.end(), "H") != q.end() ? "H" : q.front();
-      if (setup_.title_for) o.title = setup_.title_for(iso_, o.color);
+      o.title = title(iso_, o.color, screen_on_);
       scene_.set_options(o);  // the old surface has H too (every estimate gives it)
       scene_.set_surface(s.mesh, s.field);
       return "colour " + was + " is not on this surface: showing " + o.color;
@@ -341,6 +526,20 @@ class Explorer {
   void update(float iso) {
     if (iso == attempted_) return;  // the slider's release after a live update, or no move
     attempted_ = iso;
+    if (screen_on_) {  // re-cast, extract nothing
+      if (cast(iso, false)) {
+        iso_ = iso;
+        shown_.clear();
+        mesh_stale_ = true;
+        message_.clear();
+        retitle();
+      } else {
+        message_ = "isovalue " + format(iso) + ": " + message_;
+      }
+      refresh_status();
+      window_->Render();
+      return;
+    }
     try {
       Surface s = call(iso);
       const std::string note = show_surface(s);
@@ -365,12 +564,20 @@ class Explorer {
     if (k == frame_) return;
     try {
       setup_.set_frame(k);
-      Surface s = call(iso_);
-      const std::string note = show_surface(s);
-      frame_ = k;
-      shown_.clear();
-      note_update(s);
-      message_ = note;
+      if (screen_on_) {
+        if (!cast(iso_, false)) throw Error(message_);
+        frame_ = k;
+        shown_.clear();
+        mesh_stale_ = true;
+        message_.clear();
+      } else {
+        Surface s = call(iso_);
+        const std::string note = show_surface(s);
+        frame_ = k;
+        shown_.clear();
+        note_update(s);
+        message_ = note;
+      }
       retitle();
     } catch (const Error& e) {
       message_ = "frame " + std::to_string(k) + ": " + e.what();
@@ -434,21 +641,38 @@ class Explorer {
 
   void refresh_status() {
     const RenderOptions& o = scene_.options();
-    std::string line = (shown_.empty() ? "isovalue " + format(iso_) : "mesh " + shown_) + "   " +
-                       std::to_string(vertices_) + " vertices, " + std::to_string(triangles_) +
-                       " triangles   update " + format_ms(last_ms_);
+    std::string line = shown_.empty() ? "isovalue " + format(iso_) : "mesh " + shown_;
+    if (screen_on_)
+      line +=
+          "   screen space: " + std::to_string(pixels_) + " of " + std::to_string(image_pixels_) +
+          " pixels" +
+          (cast_scale_ > 1 ? " (1/" + std::to_string(cast_scale_) + " resolution while dragging)"
+                           : "");
+    else
+      line += "   " + std::to_string(vertices_) + " vertices, " + std::to_string(triangles_) +
+              " triangles";
+    line += "   update " + format_ms(last_ms_);
     if (!detail_.empty()) line += "   (" + detail_ + ")";
-    const std::vector<std::string> arrays = field_quantities(current_.field);
-    const auto at = std::find(arrays.begin(), arrays.end(), canonical_quantity(o.color));
-    const std::string of = at == arrays.end()
-                               ? ""
-                               : " (" + std::to_string(at - arrays.begin() + 1) + " of " +
-                                     std::to_string(arrays.size()) + " arrays)";
-    line += "\n[c] colour: " + canonical_quantity(o.color) + of +
-            "  [a] AO: " + (uses_ao(o.shading) ? "on" : "off") +
-            "  [d] directions: " + (o.dirs ? "on" : "off") + "  [v] view: " + to_string(view_) +
-            "\n[r] reset view  [i] isovalue  [o] open  [w] save  [k] camera  [s] screenshot";
-    if (setup_.lines) line += std::string("  [l] lines: ") + (lines_on_ ? "on" : "off");
+    std::string of;
+    if (screen_on_) {
+      of = " (H or K)";
+    } else {
+      const std::vector<std::string> arrays = field_quantities(current_.field);
+      const auto at = std::find(arrays.begin(), arrays.end(), canonical_quantity(o.color));
+      if (at != arrays.end())
+        of = " (" + std::to_string(at - arrays.begin() + 1) + " of " +
+             std::to_string(arrays.size()) + " arrays)";
+    }
+    line += "\n[c] colour: " + canonical_quantity(o.color) + of;
+    if (!screen_on_)
+      line += std::string("  [a] AO: ") + (uses_ao(o.shading) ? "on" : "off") +
+              "  [d] directions: " + (o.dirs ? "on" : "off");
+    line += "  [v] view: " + to_string(view_);
+    if (setup_.screen.image)
+      line += std::string("  [x] screen space: ") + (screen_on_ ? "on" : "off");
+    line += "\n[r] reset view  [i] isovalue  [o] open  [w] save  [k] camera  [s] screenshot";
+    if (setup_.lines && !screen_on_)
+      line += std::string("  [l] lines: ") + (lines_on_ ? "on" : "off");
     if (has_time())
       line += "\nframe " + std::to_string(frame_) + " of " + std::to_string(setup_.frames) +
               (setup_.frame_label ? " (" + setup_.frame_label(frame_) + ")" : "") +
@@ -513,7 +737,9 @@ class Explorer {
   static void on_render_start(vtkObject*, unsigned long, void* self, void*) {
     auto* e = static_cast<Explorer*>(self);
     vtkCamera* cam = e->scene_.renderer()->GetActiveCamera();
-    if (!e->lines_on_ || (!e->lines_surface_stale_ && cam->GetMTime() == e->lines_camera_time_)) return;
+    if (!e->lines_on_ || e->screen_on_ ||
+        (!e->lines_surface_stale_ && cam->GetMTime() == e->lines_camera_time_))
+      return;
     try {
       e->overlay_.set_lines(e->setup_.lines(e->current_, camera_of(cam), e->lines_surface_stale_));
     } catch (const Error& err) {
@@ -607,6 +833,17 @@ class Explorer {
   Entry entry_ = Entry::none;  // what is being typed
   std::string typed_;
   vtkNew<vtkCallbackCommand> render_start_;
+  // Screen-space mode ('x')
+  vtkNew<vtkCallbackCommand> cast_start_;   // the overlay's StartEvent: re-cast when needed
+  vtkNew<vtkCallbackCommand> interaction_;  // the style's Start/EndInteractionEvent
+  bool screen_on_ = false;
+  bool mesh_stale_ = false;   // the mesh shown is not of iso_ (moved in screen-space mode)
+  bool image_stale_ = true;   // cast before the next frame
+  bool interacting_ = false;  // the mouse drags the camera
+  Camera cast_camera_;        // what the image shown was cast for
+  int cast_w_ = 0, cast_h_ = 0, cast_scale_ = 1;
+  double full_ms_ = 0;  // the last full-resolution cast
+  std::size_t pixels_ = 0, image_pixels_ = 0;
   LineOverlay overlay_;
   bool lines_on_ = false;
   bool lines_surface_stale_ = true;      // the surface changed since the lines were made

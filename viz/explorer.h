@@ -2,15 +2,17 @@
 // The interactive isosurface explorer: a VTK window with the surface coloured by curvature and an
 // isovalue slider. It never extracts anything itself: the caller supplies a callback that turns
 // an isovalue into a surface (the app composes mc::extract and curvature::estimate).
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
 
-#include "core/mesh.h"
 #include "core/camera.h"
+#include "core/mesh.h"
 #include "curvature/curvature_field.h"
 #include "lines/polylines.h"
 #include "viz/render_options.h"
+#include "viz/screen_image.h"
 
 namespace isocurv::viz {
 
@@ -38,6 +40,27 @@ struct ExplorerAction {
   static ExplorerAction screenshot(std::string path) { return {Kind::Screenshot, 0, 0, std::move(path), 0, 0}; }
   static ExplorerAction resize(int w, int h) { return {Kind::Resize, 0, 0, {}, w, h}; }
   static ExplorerAction set_frame(int f) { return {Kind::SetFrame, 0, 0, {}, 0, 0, f}; }
+};
+
+/// The explorer's screen-space mode ('x'; SEEDS-SPEC 4.4): curvature per pixel of the surface as
+/// the camera sees it, cast from the volume (or rasterised from a mesh file shown) instead of
+/// extracted, and shown in place of the mesh. The isovalue slider then re-casts; so does every
+/// camera move (at 1/2 or 1/4 resolution while the mouse drags, when a full image takes longer
+/// than the live-update limit, then at full resolution on release).
+struct ScreenMode {
+  /// The image for `camera` at width x height pixels (the surface part of the window, or a
+  /// fraction of it): of the volume's isosurface at `iso` when `mesh` is null, else of that mesh
+  /// (a mesh file opened with 'o'). May throw Error: the previous image then stays.
+  /// Unset: 'x' says that screen space is not available.
+  std::function<ScreenImage(float iso, const Surface* mesh, const Camera& camera, int width,
+                            int height)>
+      image;
+  /// The box (xmin, xmax, ymin, ymax, zmin, zmax) of the volume's surface at `iso`: it frames the
+  /// camera while no mesh has been extracted (start_on). Unset or false: the unit box.
+  std::function<bool(float iso, std::array<double, 6>& bounds)> bounds;
+  bool start_on = false;  ///< open in screen-space mode: nothing is extracted until 'x' leaves it
+  /// When set: the title in screen-space mode (as ExplorerSetup::title_for).
+  std::function<std::string(float iso, const std::string& quantity)> title_for;
 };
 
 /// Everything the explorer needs.
@@ -72,6 +95,7 @@ struct ExplorerSetup {
   double play_fps = 10;
   /// When set: the text the status line shows for frame k (e.g. its file and time).
   std::function<std::string(int frame)> frame_label;
+  ScreenMode screen;  ///< screen-space mode ('x'), when screen.image is set
   /// When non-empty: run these actions (one per timer tick, ~100 ms apart) and close the window.
   std::vector<ExplorerAction> script;
 };
@@ -82,7 +106,8 @@ struct ExplorerSetup {
 /// the surface shown (H, K, k1, k2, ShapeIndex, Curvedness, AO, Unreliable, Boundary, then its
 /// extra arrays: H_s2, LBE, H_ii, ...; a new surface without the array coloured goes back to
 /// H), a toggles AO shading (lambert / ambient-ao), d toggles direction
-/// glyphs, l toggles the feature lines (when setup.lines is given), v cycles the named views (iso,
+/// glyphs, l toggles the feature lines (when setup.lines is given), x switches screen-space mode
+/// on and off (setup.screen; there c alternates H and K), v cycles the named views (iso,
 /// +x, -x, +y, -y, +z, -z) and r resets the camera to the current one, i types an isovalue, o types
 /// a mesh file to open, w types a path to save the surface shown (proposing surface_path), k saves
 /// the camera to camera_path, s saves a screenshot (name printed on stdout), space plays / pauses a
