@@ -18,6 +18,7 @@
 #include "lines/reference.h"
 #include "mc/extract.h"
 #include "screen/estimate.h"
+#include "screen/image_files.h"
 #include "screen/rasterise.h"
 #include "screen/ray_cast.h"
 #include "viz/explorer.h"
@@ -209,12 +210,8 @@ void register_view(CLI::App& app) {
       auto ms = [](auto a, auto b) {
         return std::chrono::duration<double, std::milli>(b - a).count();
       };
-      viz::ScreenImage img;
-      img.width = w, img.height = h;
-      img.H = std::move(c.H);
-      if (so.estimator == screen::ScreenEstimator::prantl) img.K = std::move(c.K);
-      img.valid = std::move(c.valid);
-      img.shade = screen::view_shading(g);
+      viz::ScreenImage img =
+          screen::explorer_image(g, std::move(c), so.estimator == screen::ScreenEstimator::prantl);
       img.update_ms = ms(t0, t2);
       img.detail = std::string(shown ? "rasterise " : "cast ") + std::to_string(int(ms(t0, t1))) +
                    " ms, estimate " + std::to_string(int(ms(t1, t2))) + " ms";

@@ -6,7 +6,11 @@
 // of the result. Target: at least 10 updates per second. With the feature lines on (the explorer's
 // 'l': contours and suggestive contours, lines::extract + join_segments), the update with lines
 // after an isovalue change, and the lines alone after a camera move (20 azimuth steps around the
-// middle isovalue's surface, the mesh already on the device). Not a test: prints a table.
+// middle isovalue's surface, the mesh already on the device). Then the explorer's screen-space
+// mode ('x'), where the slider re-casts instead: screen::ray_cast + the 2-edge screen::estimate at
+// the scene's surface box (800x600 window), then set_image + an offscreen re-render, and the
+// same at half resolution (what a camera drag shows when a full image is slow). Not a test:
+// prints tables.
 //
 //   bench_explorer [--passes N] [--isovalues N] [--no-render] [--size WxH] [--datasets DIR]
 #include <tbb/global_control.h>
@@ -40,8 +44,12 @@
 #include "lines/extract.h"
 #include "lines/polylines.h"
 #include "mc/extract.h"
+#include "screen/estimate.h"
+#include "screen/image_files.h"
+#include "screen/ray_cast.h"
 #include "viz/curvature_scene.h"
 #include "viz/headless_display.h"
+#include "volume/dense_field.h"
 #include "volume/load.h"
 
 using namespace isocurv;
@@ -106,6 +114,8 @@ struct Row {
   std::string name;
   Summary ours, ours_render, vtk, vtk_render;
   Summary ours_lines, camera_lines;  // update + lines; lines alone after a camera move
+  Summary screen, screen_render, screen_half;  // screen-space mode: cast + estimate (+ show)
+  double coverage = 0;                         // of the screen image, middle isovalue
   double setup_ms = 0;
   std::size_t tri_median = 0, tri_max = 0;
 };
@@ -239,6 +249,42 @@ Row run_volume(const std::string& name, const volume::Volume& v, const Config& c
       lines::join_segments(lines::extract(mesh, field, cam, line_opts, dev, nullptr, false));
     });
   }
+  // Screen-space mode: the camera the explorer starts with (the middle isovalue's surface box).
+  {
+    const volume::DenseField field(v);
+    std::array<double, 6> box = field.bounds;
+    field.surface_bounds(isos[isos.size() / 2], box);
+    int w = c.width, h = c.height;
+    if (win) {
+      win->scene.set_image_mode(false);
+      viz::RenderOptions o = win->scene.options();
+      o.color = "H";
+      win->scene.set_options(o);
+      win->scene.set_image_mode(true);
+      const viz::PixelBox& b = win->scene.layout().surface;
+      w = b.x1 - b.x0, h = b.y1 - b.y0;
+    }
+    const Camera cam = fit_camera(box, ViewSpec{}, double(w) / h);
+    auto screen_update = [&](std::size_t i, int scale, bool render) {
+      const int sw = (w + scale - 1) / scale, sh = (h + scale - 1) / scale;
+      const screen::GBuffer g =
+          screen::ray_cast(field, isos[i], screen::view_frame(cam, sw, sh), dev);
+      viz::ScreenImage img = screen::explorer_image(g, screen::estimate(g, dev), true);
+      if (i == isos.size() / 2 && scale == 1)
+        row.coverage = double(img.valid_count()) / img.pixels();
+      if (render && win) {
+        win->scene.set_image(img, scale);
+        win->ours->Render();
+      }
+    };
+    row.screen = sweep([&](std::size_t i) { screen_update(i, 1, false); });
+    if (c.render && win) {
+      viz::apply_camera(win->scene.renderer(), cam);
+      row.screen_render = sweep([&](std::size_t i) { screen_update(i, 1, true); });
+      row.screen_half = sweep([&](std::size_t i) { screen_update(i, 2, true); });
+      win->scene.set_image_mode(false);
+    }
+  }
   row.vtk = sweep([&](std::size_t i) { vtk_update(i, false); });
   if (c.render && win) row.vtk_render = sweep([&](std::size_t i) { vtk_update(i, true); });
   std::vector<std::size_t> sorted = tris;
@@ -318,6 +364,27 @@ int main(int argc, char** argv) {
               "VTK/ours = VTK's median update over ours (no render; above 1 means ours is faster).\n"
               "+lin = ours + contours and suggestive contours (lines::extract + join_segments, no render);\n"
               "cam = those lines alone after a camera move (20 azimuths round the middle isovalue's surface).\n");
+  std::printf(
+      "\nScreen-space mode (the explorer's 'x'): the slider re-casts the volume (screen::ray_cast) "
+      "and runs the\n"
+      "2-edge estimate at the scene's surface box, then set_image + re-render; 1/2 = the same at "
+      "half resolution\n"
+      "(a camera drag when a full image is slow). Beside it, from the table above: extract + "
+      "curvature + re-render.\n");
+  std::printf("%-24s %7s %8s %7s %8s %7s %8s %7s | %8s %7s %7s\n", "volume", "cover%", "scr med",
+              "scr/s", "+rnd med", "+rnd/s", "1/2 med", "1/2/s", "mesh+rnd", "mesh/s", "10/s");
+  for (const Row& r : rows) {
+    auto ups = [](double ms) { return ms > 0 ? 1000.0 / ms : 0.0; };
+    const Summary& shown = c.render ? r.screen_render : r.screen;
+    std::printf("%-24s %7.1f %8.1f %7.1f %8.1f %7.1f %8.1f %7.1f | %8.1f %7.1f %7s\n",
+                r.name.c_str(), 100 * r.coverage, r.screen.median, ups(r.screen.median),
+                r.screen_render.median, ups(r.screen_render.median), r.screen_half.median,
+                ups(r.screen_half.median), c.render ? r.ours_render.median : r.ours.median,
+                ups(c.render ? r.ours_render.median : r.ours.median),
+                shown.max <= 100.0      ? "met"
+                : shown.median <= 100.0 ? "median"
+                                        : "MISSED");
+  }
   std::printf("Mesher setup (once per volume, before the first update), ms:");
   for (const Row& r : rows) std::printf("  %s %.0f", r.name.c_str(), r.setup_ms);
   std::printf("\n");

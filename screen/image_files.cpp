@@ -118,6 +118,16 @@ void write_picture(const std::string& path, const GBuffer& g, const ScreenCurvat
   window->Finalize();
 }
 
+viz::ScreenImage explorer_image(const GBuffer& g, ScreenCurvature&& c, bool with_k) {
+  viz::ScreenImage img;
+  img.width = c.width, img.height = c.height;
+  img.H = std::move(c.H);
+  if (with_k) img.K = std::move(c.K);
+  img.valid = std::move(c.valid);
+  img.shade = view_shading(g);
+  return img;
+}
+
 void write_raw(const std::string& path, const ScreenCurvature& c) {
   vtkNew<vtkImageData> img;
   img->SetDimensions(c.width, c.height, 1);

@@ -7,6 +7,7 @@
 #include "screen/gbuffer.h"
 #include "viz/color_map.h"
 #include "viz/picture_layout.h"
+#include "viz/screen_image.h"
 
 namespace isocurv::screen {
 
@@ -38,6 +39,10 @@ viz::ColorRange screen_range(const ScreenCurvature& c, const PictureOptions& opt
 void write_picture(const std::string& path, const GBuffer& g, const ScreenCurvature& c,
                    const viz::PictureLayout& layout, const PictureOptions& options,
                    const viz::ColorRange& range);
+
+/// `c` (moved from) as the explorer's screen-space image: H, valid, the view shading of `g`
+/// (view_shading), and K unless the estimator gives none (Mellado: `with_k` false).
+viz::ScreenImage explorer_image(const GBuffer& g, ScreenCurvature&& c, bool with_k);
 
 /// Writes `c` as VTK image data (.vti, vtkXMLImageDataWriter, atomically): c.width x c.height x 1
 /// points, spacing 1, origin 0 (pixel (x, y) is point x + width y, y up), float point arrays

@@ -27,16 +27,17 @@ void frame_depths(GBuffer& g, const volume::DenseField& v) {
   depth_range(g.frame, v.bounds, g.near, g.far);
 }
 
-// The reference's march for one ray (index space); false when nothing is hit.
-bool cast_one(const volume::DenseField& vol, float iso, const V& oi, const V& di,
-              const CastOptions& opt, V& hit) {
-  const double hi[3] = {double(vol.nx - 1), double(vol.ny - 1), double(vol.nz - 1)};
+// The reference's march for one ray (index space) through `clip` (the straddling bricks' box,
+// DenseField::straddling_box); false when nothing is hit.
+bool cast_one(const volume::DenseField& vol, float iso, const std::array<int, 6>& clip, const V& oi,
+              const V& di, const CastOptions& opt, V& hit) {
   double t0 = 0, t1 = std::numeric_limits<double>::infinity();
   for (int a = 0; a < 3; ++a) {
+    const double lo = clip[2 * a], hi = clip[2 * a + 1];
     if (di[a] == 0) {
-      if (oi[a] < 0 || oi[a] > hi[a]) return false;
+      if (oi[a] < lo || oi[a] > hi) return false;
     } else {
-      double ta = -oi[a] / di[a], tb = (hi[a] - oi[a]) / di[a];
+      double ta = (lo - oi[a]) / di[a], tb = (hi - oi[a]) / di[a];
       if (ta > tb) std::swap(ta, tb);
       t0 = std::max(t0, ta), t1 = std::min(t1, tb);
     }
@@ -52,6 +53,7 @@ bool cast_one(const volume::DenseField& vol, float iso, const V& oi, const V& di
   const double l1 = std::abs(di[0]) + std::abs(di[1]) + std::abs(di[2]);
   const int nb[3] = {vol.bx, vol.by, vol.bz};
   double t = 0, s_prev = vol.field(base, iso), a = 0, b = 0, fa = 0, fb = 0;
+  bool known = true;  // s_prev is the field at t (false after a jump over a brick)
   bool found = false;
   while (t < tl) {
     const V p = at(t);
@@ -67,9 +69,13 @@ bool cast_one(const volume::DenseField& vol, float iso, const V& oi, const V& di
       te = std::min(te, (ex - base[k]) / di[k]);
     }
     double tn = t + dt;
-    if (!vol.brick_straddles(bi, iso)) {
-      tn = std::max(tn, te);
-    } else if (opt.safe_stride && s_prev < 0) {
+    if (!vol.brick_straddles(bi, iso)) {  // no crossing inside: on to its exit, unsampled
+      t = std::min(std::max(tn, te), tl);
+      known = false;
+      continue;
+    }
+    if (!known) s_prev = vol.field(p, iso), known = true;
+    if (opt.safe_stride && s_prev < 0) {
       const double slope = vol.brick_slope[bi];
       const double ts =
           slope > 0 ? 0.9 * -s_prev / (slope * l1) : std::numeric_limits<double>::infinity();
@@ -115,6 +121,8 @@ GBuffer ray_cast_reference(const volume::DenseField& vol, float iso, const ViewF
   GBuffer g;
   g.reset(frame);
   frame_depths(g, vol);
+  std::array<int, 6> clip{};
+  if (!vol.straddling_box(iso, clip)) return g;  // no surface at this isovalue
   tbb::parallel_for(tbb::blocked_range<int>(0, frame.height),
                     [&](const tbb::blocked_range<int>& r) {
                       for (int y = r.begin(); y != r.end(); ++y)
@@ -127,7 +135,7 @@ GBuffer ray_cast_reference(const volume::DenseField& vol, float iso, const ViewF
                             di[k] = vol.to_index[4 * k] * d[0] + vol.to_index[4 * k + 1] * d[1] +
                                     vol.to_index[4 * k + 2] * d[2];
                           V q;
-                          if (!cast_one(vol, iso, oi, di, opt, q)) continue;
+                          if (!cast_one(vol, iso, clip, oi, di, opt, q)) continue;
                           const V n = vol.normal(q);
                           if (n[0] == 0 && n[1] == 0 && n[2] == 0) continue;
                           const V p = vol.world(q);
@@ -148,6 +156,8 @@ GBuffer ray_cast(const volume::DenseField& vol, float iso, const ViewFrame& fram
   GBuffer g;
   g.reset(frame);
   frame_depths(g, vol);
+  std::array<int, 6> clip{};
+  if (!vol.straddling_box(iso, clip)) return g;  // no surface at this isovalue
   CastState& s = device.state<CastState>();
   std::lock_guard<std::mutex> lock(s.mutex);
   cl::Context& ctx = device.context();
@@ -183,10 +193,12 @@ GBuffer ray_cast(const volume::DenseField& vol, float iso, const ViewFrame& fram
   q.enqueueWriteBuffer(s.cam, CL_FALSE, 0, sizeof cam, cam);
   cl::Kernel& k = device.kernel(detail::screen_program(device), "ray_cast");
   set_args(k, s.values, s.bricks, s.slopes, cl_int4{{vol.nx, vol.ny, vol.nz, 0}},
-           cl_int4{{vol.bx, vol.by, vol.bz, 0}}, cl_float(iso), cl_float(vol.sign), s.xform, s.cam,
-           cl_int(frame.width), cl_int(frame.height), cl_float(opt.step), cl_int(opt.bisections),
-           cl_int(opt.safe_stride ? 1 : 0), cl_int(opt.secant ? 1 : 0), s.position, s.normal,
-           s.depth);
+           cl_int4{{vol.bx, vol.by, vol.bz, 0}},
+           cl_float4{{float(clip[0]), float(clip[2]), float(clip[4]), 0.f}},
+           cl_float4{{float(clip[1]), float(clip[3]), float(clip[5]), 0.f}}, cl_float(iso),
+           cl_float(vol.sign), s.xform, s.cam, cl_int(frame.width), cl_int(frame.height),
+           cl_float(opt.step), cl_int(opt.bisections), cl_int(opt.safe_stride ? 1 : 0),
+           cl_int(opt.secant ? 1 : 0), s.position, s.normal, s.depth);
   launch(q, k, n, std::size_t(work_group));
   s.host_pos.resize(n), s.host_nrm.resize(n);
   q.enqueueReadBuffer(s.position, CL_FALSE, 0, n * 16, s.host_pos.data());

@@ -26,7 +26,8 @@ struct CastOptions {
 
 /// Per pixel of `frame`, the first crossing into the object along the pixel's ray (a sample
 /// with signed value sign * (v - iso) > 0 after one <= 0: a sample equal to the isovalue is
-/// outside, as for the mesher) of the trilinear field, through the volume's domain box;
+/// outside, as for the mesher) of the trilinear field, through the box of the bricks that
+/// straddle `iso` (volume::DenseField::straddling_box: no crossing lies outside it);
 /// 8^3-cell bricks whose samples do not straddle `iso` are jumped over, and inside the others the
 /// march takes the safe stride (CastOptions). The crossing step is bisected and then refined by a
 /// secant step; the hit is on the trilinear isosurface to well under 1e-4 voxel. Normal: the

@@ -14,15 +14,17 @@ bool brick_straddles(__global const float2* range, const Grid* g, int b) {
   return g->sign > 0.0f ? (r.y > g->iso && r.x <= g->iso) : (r.x < g->iso && r.y >= g->iso);
 }
 
-// One ray per pixel: march from where it enters the domain at `step` voxels (along the ray's
-// longest index axis), jumping over bricks without surface and, with safe_stride, by 0.9 |s| /
+// One ray per pixel: march from where it enters the clip box (the straddling bricks' box,
+// DenseField::straddling_box: no crossing lies outside it) at `step` voxels (along the ray's
+// longest index axis), jumping over bricks without surface (not sampled: the field is sampled
+// again where the ray enters a brick that straddles) and, with safe_stride, by 0.9 |s| /
 // (slope |d|_1) where that is longer (slopes: DenseField::brick_slope), to the first sample
 // inside (signed value > 0) after one outside; bisect that step `bisections` times; the hit is
 // the secant point of the last interval (secant) or its midpoint. xform: to_index (12), to_world (12), normal_matrix (9).
 // cam: eye, forward, right, up (xyz each), half_height, ortho, then 2 unused.
 __kernel void ray_cast(__global const float* values, __global const float2* bricks,
                        __global const float* slopes, const int4 dims, const int4 bdims,
-                       const float iso, const float sign, __constant const float* xform,
+                       const float4 clip_lo, const float4 clip_hi, const float iso, const float sign, __constant const float* xform,
                        __constant const float* cam, const int width, const int height,
                        const float step, const int bisections, const int safe_stride,
                        const int secant, __global float4* out_position, __global float4* out_normal,
@@ -50,17 +52,17 @@ __kernel void ray_cast(__global const float* values, __global const float2* bric
   out_normal[id] = (float4)(0.0f);
   out_depth[id] = 0.0f;
   const float3 oi = affine(xform, o), di = linear3(xform, 4, d);
-  // Slab clip against the domain [0, n - 1].
-  const float3 hi = (float3)(dims.x - 1, dims.y - 1, dims.z - 1);
+  // Slab clip against the clip box (index space).
   float t0 = 0.0f, t1 = INFINITY;
   for (int a = 0; a < 3; ++a) {
     const float oa = a == 0 ? oi.x : a == 1 ? oi.y : oi.z;
     const float da = a == 0 ? di.x : a == 1 ? di.y : di.z;
-    const float ha = a == 0 ? hi.x : a == 1 ? hi.y : hi.z;
+    const float la = a == 0 ? clip_lo.x : a == 1 ? clip_lo.y : clip_lo.z;
+    const float ha = a == 0 ? clip_hi.x : a == 1 ? clip_hi.y : clip_hi.z;
     if (da == 0.0f) {
-      if (oa < 0.0f || oa > ha) t1 = -1.0f;
+      if (oa < la || oa > ha) t1 = -1.0f;
     } else {
-      float ta = (0.0f - oa) / da, tb = (ha - oa) / da;
+      float ta = (la - oa) / da, tb = (ha - oa) / da;
       if (ta > tb) { const float s = ta; ta = tb; tb = s; }
       t0 = fmax(t0, ta), t1 = fmin(t1, tb);
     }
@@ -75,6 +77,7 @@ __kernel void ray_cast(__global const float* values, __global const float2* bric
                               di.z != 0.0f ? 1.0f / di.z : INFINITY);
   const float l1 = fabs(di.x) + fabs(di.y) + fabs(di.z);
   float t = 0.0f, s_prev = field_at(values, &g, base);
+  bool known = true;  // s_prev is the field at t (false after a jump over a brick)
   bool hit = false;
   float a = 0.0f, b = 0.0f, fa = 0.0f, fb = 0.0f;
   while (t < tl) {
@@ -89,9 +92,13 @@ __kernel void ray_cast(__global const float* values, __global const float2* bric
     const float te = fmin(di.x != 0.0f ? te3.x : INFINITY,
                           fmin(di.y != 0.0f ? te3.y : INFINITY, di.z != 0.0f ? te3.z : INFINITY));
     float tn = t + dt;
-    if (!brick_straddles(bricks, &g, bi)) {
-      tn = fmax(tn, te);
-    } else if (safe_stride && s_prev < 0.0f) {  // CastOptions::safe_stride
+    if (!brick_straddles(bricks, &g, bi)) {  // no crossing inside: on to its exit, unsampled
+      t = fmin(fmax(tn, te), tl);
+      known = false;
+      continue;
+    }
+    if (!known) s_prev = field_at(values, &g, p), known = true;
+    if (safe_stride && s_prev < 0.0f) {  // CastOptions::safe_stride
       const float slope = slopes[bi];
       const float ts = slope > 0.0f ? 0.9f * -s_prev / (slope * l1) : INFINITY;
       if (ts > dt) tn = fmax(tn, fmin(t + ts, te));

@@ -137,6 +137,23 @@ double DenseField::shortest_voxel_edge() const {
   return best;
 }
 
+bool DenseField::straddling_box(float iso, std::array<int, 6>& box) const {
+  int lo[3] = {bx, by, bz}, hi[3] = {-1, -1, -1};
+  for (int c = 0; c < bz; ++c)
+    for (int b = 0; b < by; ++b)
+      for (int a = 0; a < bx; ++a) {
+        if (!brick_straddles(a + std::size_t(bx) * (b + std::size_t(by) * c), iso)) continue;
+        const int q[3] = {a, b, c};
+        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
+      }
+  if (hi[0] < 0) return false;
+  const int n[3] = {nx, ny, nz};
+  for (int k = 0; k < 3; ++k)
+    box[2 * k] = lo[k] * kFieldBrick,
+            box[2 * k + 1] = std::min(n[k] - 1, (hi[k] + 1) * kFieldBrick);
+  return true;
+}
+
 bool DenseField::surface_bounds(float iso, std::array<double, 6>& box) const {
   // The straddling bricks, grouped 26-connected (union-find over brick numbers).
   const std::size_t nb = std::size_t(bx) * by * bz;

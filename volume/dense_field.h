@@ -82,6 +82,11 @@ struct DenseField {
   /// bricks (noise blobs far from a CT's object would otherwise shrink it in the picture).
   bool surface_bounds(float iso, std::array<double, 6>& box) const;
   std::array<double, 3> index(const std::array<double, 3>& world) const;
+  /// The index-space box [box[0], box[1]] x [box[2], box[3]] x [box[4], box[5]] (samples) of
+  /// every brick that straddles `iso`, specks included: each crossing of the trilinear field lies
+  /// in it, and outside it the field keeps one sign along any path (neighbouring bricks share
+  /// their face samples). False when no brick straddles (no surface).
+  bool straddling_box(float iso, std::array<int, 6>& box) const;
 };
 
 }  // namespace isocurv::volume

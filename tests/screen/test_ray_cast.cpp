@@ -221,6 +221,35 @@ TEST(ScreenRayCast, SurfaceBoundsLeaveOutSpecksButNotComparablePieces) {
   }
 }
 
+TEST(ScreenRayCast, TheClipBoxHoldsEveryStraddlingBrickSpecksIncluded) {
+  // A ball of radius 40 and a speck (radius 0.8) at (116, 116, 116): the rays are clipped to the
+  // straddling bricks' box, which must keep the speck (surface_bounds, for framing, leaves it out)
+  // so that a camera on the speck still sees it, kernel and reference alike.
+  const volume::Volume v = test::sampled(
+      [](double x, double y, double z) {
+        auto ball = [&](double c, double r) {
+          return r - std::sqrt((x - c) * (x - c) + (y - c) * (y - c) + (z - c) * (z - c));
+        };
+        return float(std::max(ball(48, 40), ball(116, 0.8)));
+      },
+      {128, 128, 128});
+  const volume::DenseField c(v);
+  std::array<int, 6> box{};
+  ASSERT_TRUE(c.straddling_box(0.0f, box));
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_LE(box[2 * k], 8) << k;
+    EXPECT_GE(box[2 * k + 1], 117) << k;
+    EXPECT_LE(box[2 * k + 1], 127) << k;
+  }
+  EXPECT_FALSE(c.straddling_box(50.0f, box)) << "no sample above 40: no surface";
+  const Camera cam = fit_camera({115.2, 116.8, 115.2, 116.8, 115.2, 116.8}, ViewSpec{}, 1.0);
+  const auto frame = screen::view_frame(cam, 32, 32);
+  const screen::GBuffer k = screen::ray_cast(c, 0.0f, frame, Device::default_device());
+  const screen::GBuffer r = screen::ray_cast_reference(c, 0.0f, frame);
+  EXPECT_GT(r.valid_count(), 100u) << "the speck is hit";
+  EXPECT_EQ(k.valid, r.valid);
+}
+
 TEST(ScreenRayCast, BadSizesAndStepsAreRefused) {
   EXPECT_THROW(screen::view_frame(Camera{}, 0, 10), Error);
   EXPECT_THROW(screen::view_frame(Camera{}, 10, screen::kMaxImageSide + 1), Error);
