@@ -102,6 +102,7 @@ struct Windows {
     }
     viz::check_opengl(ours);
     scene.attach(ours);
+    scene.set_size(c.width, c.height);  // the layout of the window's size, as the explorer's
     vtk_mapper->SetScalarModeToUsePointData();
     vtk_mapper->ScalarVisibilityOn();
     vtk_actor->SetMapper(vtk_mapper);
@@ -120,9 +121,10 @@ struct Row {
   std::size_t tri_median = 0, tri_max = 0;
 };
 
-void print_header(bool render) {
-  std::printf("%-24s %8s %9s %8s %8s %7s", "volume (20 isovalues)", "tri med", "tri max", "ours med", "ours max",
-              "ours/s");
+void print_header(bool render, int isovalues) {
+  const std::string first = "volume (" + std::to_string(isovalues) + " isovalues)";
+  std::printf("%-24s %8s %9s %8s %8s %7s", first.c_str(), "tri med", "tri max", "ours med",
+              "ours max", "ours/s");
   if (render) std::printf(" %8s %8s %7s", "+rnd med", "+rnd max", "+rnd/s");
   std::printf(" %8s %8s %7s", "VTK med", "VTK max", "VTK/s");
   if (render) std::printf(" %8s %7s", "+rnd med", "+rnd/s");
@@ -335,7 +337,7 @@ int main(int argc, char** argv) {
               c.render ? (" +rnd = also the offscreen re-render (" + std::to_string(c.width) + "x" +
                           std::to_string(c.height) + ", set_surface + Render).").c_str()
                        : "");
-  print_header(c.render);
+  print_header(c.render, c.isovalues);
   std::vector<Row> rows;
   for (const char* name : {"torus", "gyroid", "buckyball"}) {
     auto field = datasets::make_field(name);
