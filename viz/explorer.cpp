@@ -254,12 +254,7 @@ class Explorer {
       }
     } else if (e == Entry::open) {
       try {
-        Surface s = setup_.open_mesh(typed_);
-        const std::string note = show_surface(s);
-        note_update(s);
-        message_ = note;
-        shown_ = typed_;
-        mesh_stale_ = false;
+        present(setup_.open_mesh(typed_), typed_);
         image_stale_ = true;  // screen-space mode: the image is now the mesh's
         reset_camera();
       } catch (const Error& err) {
@@ -338,11 +333,7 @@ class Explorer {
       }
       scene_.set_image_mode(false);
       screen_on_ = false;
-      const std::string note = show_surface(s);
-      note_update(s);
-      message_ = note;
-      shown_.clear();
-      mesh_stale_ = false;
+      present(s, "");
       attempted_ = iso_;
     } else {
       scene_.set_image_mode(false);
@@ -522,6 +513,23 @@ class Explorer {
     return "";
   }
 
+  /// Shows `s`, the volume's surface (`file` empty) or that mesh file's, and notes its update.
+  void present(const Surface& s, const std::string& file) {
+    const std::string note = show_surface(s);
+    note_update(s);
+    message_ = note;
+    shown_ = file;
+    mesh_stale_ = false;
+  }
+
+  /// A new screen-space image of the volume is shown: the mesh, if any, is of another isovalue
+  /// or frame now.
+  void note_cast() {
+    shown_.clear();
+    mesh_stale_ = true;
+    message_.clear();
+  }
+
   /// Re-extracts at `iso`; on failure keeps the previous surface and reports on the status line.
   void update(float iso) {
     if (iso == attempted_) return;  // the slider's release after a live update, or no move
@@ -529,9 +537,7 @@ class Explorer {
     if (screen_on_) {  // re-cast, extract nothing
       if (cast(iso, false)) {
         iso_ = iso;
-        shown_.clear();
-        mesh_stale_ = true;
-        message_.clear();
+        note_cast();
         retitle();
       } else {
         message_ = "isovalue " + format(iso) + ": " + message_;
@@ -541,12 +547,8 @@ class Explorer {
       return;
     }
     try {
-      Surface s = call(iso);
-      const std::string note = show_surface(s);
+      present(call(iso), "");
       iso_ = iso;
-      shown_.clear();
-      note_update(s);
-      message_ = note;
       retitle();
     } catch (const Error& e) {
       message_ = "isovalue " + format(iso) + ": " + e.what();
@@ -566,18 +568,11 @@ class Explorer {
       setup_.set_frame(k);
       if (screen_on_) {
         if (!cast(iso_, false)) throw Error(message_);
-        frame_ = k;
-        shown_.clear();
-        mesh_stale_ = true;
-        message_.clear();
+        note_cast();
       } else {
-        Surface s = call(iso_);
-        const std::string note = show_surface(s);
-        frame_ = k;
-        shown_.clear();
-        note_update(s);
-        message_ = note;
+        present(call(iso_), "");
       }
+      frame_ = k;
       retitle();
     } catch (const Error& e) {
       message_ = "frame " + std::to_string(k) + ": " + e.what();

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "fresh_dir.h"
 #include "lines/polylines.h"
 #include "lines/reference.h"
 #include "png_stats.h"
@@ -20,11 +21,7 @@ using namespace isocurv;
 namespace {
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() /
-                       ("isocurv_explorer_test_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return test::fresh_dir("isocurv_explorer_test", name);
 }
 
 }  // namespace

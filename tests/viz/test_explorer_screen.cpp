@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "fresh_dir.h"
 #include "png_stats.h"
 #include "test_surfaces.h"
 #include "viz/curvature_scene.h"
@@ -18,11 +19,7 @@ using namespace isocurv;
 namespace {
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() /
-                       ("isocurv_explorer_screen_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return test::fresh_dir("isocurv_explorer_screen", name);
 }
 
 struct Cast {

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "fresh_dir.h"
 #include "png_stats.h"
 #include "test_surfaces.h"
 #include "viz/explorer.h"
@@ -15,11 +16,7 @@ using namespace isocurv;
 namespace {
 
 fs::path fresh_time_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() /
-                       ("isocurv_explorer_time_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return test::fresh_dir("isocurv_explorer_time", name);
 }
 
 /// A series of tori whose tube radius grows with the frame; `frame` is the one set_frame made
