@@ -131,6 +131,13 @@ void register_screen(CLI::App& app) {
       ->check(CLI::IsMember({"report", "paper"}))
       ->capture_default_str()
       ->group("Screen space");
+  static double smooth = 0;
+  cmd->add_option("--smooth", smooth,
+                  "Smooth the volume by a Gaussian of this deviation (voxels, up to 6) before the "
+                  "cast: quantised CT steps otherwise show as terraces per pixel")
+      ->check(CLI::Range(0.0, volume::kMaxSmoothingVoxels))
+      ->capture_default_str()
+      ->group("Screen space");
   cmd->add_option("--mellado-radius", so.mellado_radius, "Mellado's fit radius (pixels)")
       ->check(CLI::Range(1, 32))
       ->capture_default_str()
@@ -176,6 +183,10 @@ void register_screen(CLI::App& app) {
       if (!std::isfinite(iso)) throw Error(in, "isovalue must be a finite number");
       timer.start("index");
       cast.emplace(v);
+      if (smooth > 0) {
+        timer.start("smooth");
+        cast->smooth(smooth);
+      }
       if (!cast->surface_bounds(iso, bounds)) {
         empty = true;
         bounds = cast->bounds;
@@ -186,9 +197,12 @@ void register_screen(CLI::App& app) {
       }
       timer.stop();
     }
+    const std::string label =
+        screen::estimator_label(so) +
+        (cast && smooth > 0 ? ", smoothed " + format_number(smooth) + " voxels" : "");
     if (po.title.empty())
-      po.title = picture_title(in, po.quantity, cast ? std::optional<float>(iso) : std::nullopt,
-                               screen::estimator_label(so));
+      po.title =
+          picture_title(in, po.quantity, cast ? std::optional<float>(iso) : std::nullopt, label);
     Device* device = reference ? nullptr : &device_for(o);
     screen::GBuffer g;
     screen::ScreenCurvature c;
@@ -250,6 +264,7 @@ void register_screen(CLI::App& app) {
       if (surf) r["triangles"] = triangles;
       r["producer"] = cast ? "ray cast" : "rasterised mesh";
       r["estimator"] = screen::estimator_label(so);
+      if (cast) r["smoothing_voxels"] = smooth;
       r["image"] = {{"width", c.width}, {"height", c.height}};
       r["surface_pixels"] = g.valid_count();
       r["estimated_pixels"] = hv.size();

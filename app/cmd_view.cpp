@@ -65,6 +65,13 @@ void register_view(CLI::App& app) {
   static bool screen_start = false;
   static std::string screen_lod = "off";
   static screen::ScreenOptions so;
+  static double screen_smooth = 0;
+  cmd->add_option("--screen-smooth", screen_smooth,
+                  "Screen-space mode: smooth the volume by a Gaussian of this deviation (voxels, "
+                  "up to 6) before casting (quantised CT steps otherwise show as terraces)")
+      ->check(CLI::Range(0.0, volume::kMaxSmoothingVoxels))
+      ->capture_default_str()
+      ->group("Screen space");
   cmd->add_flag("--screen", screen_start,
                 "Start in screen-space mode (x): curvature per pixel of the ray-cast isosurface, "
                 "nothing extracted until x leaves it")
@@ -99,7 +106,10 @@ void register_view(CLI::App& app) {
       std::shared_ptr<mc::Mesher> mesher;
       std::shared_ptr<volume::DenseField> dense;  // the ray caster's samples, made on first use
       const volume::DenseField& field() {
-        if (!dense) dense = std::make_shared<volume::DenseField>(*vol);
+        if (!dense) {
+          dense = std::make_shared<volume::DenseField>(*vol);
+          dense->smooth(screen_smooth);
+        }
         return *dense;
       }
     };
@@ -222,7 +232,11 @@ void register_view(CLI::App& app) {
     };
     if (ro.title.empty())
       setup.screen.title_for = [](float value, const std::string& quantity) {
-        return picture_title(in, quantity, value, screen::estimator_label(so));
+        return picture_title(
+            in, quantity, value,
+            screen::estimator_label(so) +
+                (screen_smooth > 0 ? ", smoothed " + format_number(screen_smooth) + " voxels"
+                                   : ""));
       };
     if (lo.lines.any()) {
       setup.show_lines = show_lines;

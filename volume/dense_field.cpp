@@ -11,6 +11,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "volume/prefilter.h"
 
 namespace isocurv::volume {
 namespace {
@@ -50,39 +51,7 @@ DenseField::DenseField(const Volume& v) : id(next_id++) {
   bx = (nx - 1 + kFieldBrick - 1) / kFieldBrick;
   by = (ny - 1 + kFieldBrick - 1) / kFieldBrick;
   bz = (nz - 1 + kFieldBrick - 1) / kFieldBrick;
-  brick_range.assign(std::size_t(bx) * by * bz,
-                     {std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest()});
-  brick_slope.assign(brick_range.size(), 0.0f);
-  tbb::parallel_for(tbb::blocked_range<int>(0, bz), [&](const tbb::blocked_range<int>& r) {
-    for (int c = r.begin(); c != r.end(); ++c)
-      for (int b = 0; b < by; ++b)
-        for (int a = 0; a < bx; ++a) {
-          const std::size_t bi = std::size_t(a) + std::size_t(bx) * (b + std::size_t(by) * c);
-          auto& range = brick_range[bi];
-          float& slope = brick_slope[bi];
-          const int i1 = std::min(nx - 1, (a + 1) * kFieldBrick);
-          const int j1 = std::min(ny - 1, (b + 1) * kFieldBrick);
-          const int k1 = std::min(nz - 1, (c + 1) * kFieldBrick);
-          auto at = [&](int i, int j, int k) {
-            return values[std::size_t(i) + std::size_t(nx) * (j + std::size_t(ny) * k)];
-          };
-          for (int k = c * kFieldBrick; k <= k1; ++k)
-            for (int j = b * kFieldBrick; j <= j1; ++j)
-              for (int i = a * kFieldBrick; i <= i1; ++i) {
-                const float s = at(i, j, k);
-                if (!std::isfinite(s)) {
-                  slope = std::numeric_limits<float>::infinity();
-                  continue;
-                }
-                range[0] = std::min(range[0], s), range[1] = std::max(range[1], s);
-                if (i < i1) slope = std::max(slope, std::abs(at(i + 1, j, k) - s));
-                if (j < j1) slope = std::max(slope, std::abs(at(i, j + 1, k) - s));
-                if (k < k1) slope = std::max(slope, std::abs(at(i, j, k + 1) - s));
-              }
-          // A non-finite neighbour makes the difference NaN, which max() skips: the NaN test
-          // above sets infinity when that sample itself is visited.
-        }
-  });
+  rank_bricks();
 
   const openvdb::math::Transform& xf = grid.transform();
   const openvdb::Vec3d o = xf.indexToWorld(lo);
@@ -135,6 +104,83 @@ double DenseField::shortest_voxel_edge() const {
     best = std::min(best, std::sqrt(to_world[c] * to_world[c] + to_world[4 + c] * to_world[4 + c] +
                                     to_world[8 + c] * to_world[8 + c]));
   return best;
+}
+
+void DenseField::rank_bricks() {
+  brick_range.assign(std::size_t(bx) * by * bz,
+                     {std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest()});
+  brick_slope.assign(brick_range.size(), 0.0f);
+  tbb::parallel_for(tbb::blocked_range<int>(0, bz), [&](const tbb::blocked_range<int>& r) {
+    for (int c = r.begin(); c != r.end(); ++c)
+      for (int b = 0; b < by; ++b)
+        for (int a = 0; a < bx; ++a) {
+          const std::size_t bi = std::size_t(a) + std::size_t(bx) * (b + std::size_t(by) * c);
+          auto& range = brick_range[bi];
+          float& slope = brick_slope[bi];
+          const int i1 = std::min(nx - 1, (a + 1) * kFieldBrick);
+          const int j1 = std::min(ny - 1, (b + 1) * kFieldBrick);
+          const int k1 = std::min(nz - 1, (c + 1) * kFieldBrick);
+          auto at = [&](int i, int j, int k) {
+            return values[std::size_t(i) + std::size_t(nx) * (j + std::size_t(ny) * k)];
+          };
+          for (int k = c * kFieldBrick; k <= k1; ++k)
+            for (int j = b * kFieldBrick; j <= j1; ++j)
+              for (int i = a * kFieldBrick; i <= i1; ++i) {
+                const float s = at(i, j, k);
+                if (!std::isfinite(s)) {
+                  slope = std::numeric_limits<float>::infinity();
+                  continue;
+                }
+                range[0] = std::min(range[0], s), range[1] = std::max(range[1], s);
+                if (i < i1) slope = std::max(slope, std::abs(at(i + 1, j, k) - s));
+                if (j < j1) slope = std::max(slope, std::abs(at(i, j + 1, k) - s));
+                if (k < k1) slope = std::max(slope, std::abs(at(i, j, k + 1) - s));
+              }
+          // A non-finite neighbour makes the difference NaN, which max() skips: the NaN test
+          // above sets infinity when that sample itself is visited.
+        }
+  });
+}
+
+void DenseField::smooth(double sigma) {
+  if (!(sigma >= 0) || !(sigma <= kMaxSmoothingVoxels))
+    throw Error("smoothing must be 0 to " + std::to_string(int(kMaxSmoothingVoxels)) +
+                " voxels, not " + std::to_string(sigma));
+  if (sigma == 0) return;
+  const PrefilterTaps taps = prefilter_taps(sigma * sigma);
+  const int n[3] = {nx, ny, nz};
+  const std::size_t stride[3] = {1, std::size_t(nx), std::size_t(nx) * ny};
+  std::vector<float> out(values.size());
+  for (int axis = 0; axis < 3; ++axis) {
+    // One pass along `axis`: every line of samples along it, in parallel over the other two.
+    const int other = (axis == 0 ? ny : nx) * (axis == 2 ? ny : nz);
+    tbb::parallel_for(tbb::blocked_range<int>(0, other), [&](const tbb::blocked_range<int>& r) {
+      for (int line = r.begin(); line != r.end(); ++line) {
+        const int u = line % (axis == 0 ? ny : nx), w = line / (axis == 0 ? ny : nx);
+        const std::size_t start = axis == 0   ? stride[1] * u + stride[2] * w
+                                  : axis == 1 ? std::size_t(u) + stride[2] * w
+                                              : std::size_t(u) + stride[1] * w;
+        for (int i = 0; i < n[axis]; ++i) {
+          const std::size_t at = start + stride[axis] * i;
+          if (!std::isfinite(values[at])) {
+            out[at] = values[at];
+            continue;
+          }
+          double sum = 0, weight = 0;
+          for (int t = -taps.radius; t <= taps.radius; ++t) {
+            const int q = std::min(std::max(i + t, 0), n[axis] - 1);
+            const float v = values[start + stride[axis] * q];
+            if (!std::isfinite(v)) continue;
+            sum += taps.w[t + taps.radius] * v, weight += taps.w[t + taps.radius];
+          }
+          out[at] = float(sum / weight);
+        }
+      }
+    });
+    values.swap(out);
+  }
+  rank_bricks();
+  id = next_id++;
 }
 
 bool DenseField::straddling_box(float iso, std::array<int, 6>& box) const {

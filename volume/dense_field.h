@@ -16,6 +16,9 @@ namespace isocurv::volume {
 inline constexpr std::uint64_t kMaxFieldSamples = std::uint64_t(1) << 28;
 /// Cells per brick edge of the skipping grid (the mesher's brick size, mc::kBrick).
 inline constexpr int kFieldBrick = 8;
+/// The widest smoothing DenseField::smooth takes (voxels): the prefilter's widest taps.
+inline constexpr double kMaxSmoothingVoxels = 6.0;
+
 /// DenseField::surface_bounds ignores groups of bricks under this fraction of the largest group.
 inline constexpr double kSpeckBrickFraction = 0.01;
 
@@ -48,6 +51,16 @@ struct DenseField {
   /// on an axis, or more than kMaxFieldSamples samples
   explicit DenseField(const Volume& v);
   DenseField() = default;
+
+  /// Smooths the samples in place by a separable sampled Gaussian of deviation `sigma` voxels
+  /// along each index axis (volume::prefilter_taps: its discrete variance is exactly sigma^2;
+  /// samples beyond the domain repeat its faces; non-finite samples stay as they are and are
+  /// left out of their neighbours' sums), then ranks the bricks again and takes a new id (device
+  /// caches upload it again). For quantised, noisy volumes: per-pixel normals of 8-bit steps are
+  /// terraces at the pixel scale. The surface moves by about sigma^2 times its mean curvature
+  /// (in voxels). sigma 0 leaves everything as it is. Parallel (TBB), deterministic.
+  /// @throw Error for a sigma that is negative, not finite or above kMaxSmoothingVoxels
+  void smooth(double sigma);
 
   /// Signed insideness sign * (value - iso) at sample (i, j, k): > 0 inside, <= 0 outside.
   /// Non-finite samples read -1 (outside).
@@ -82,6 +95,12 @@ struct DenseField {
   /// bricks (noise blobs far from a CT's object would otherwise shrink it in the picture).
   bool surface_bounds(float iso, std::array<double, 6>& box) const;
   std::array<double, 3> index(const std::array<double, 3>& world) const;
+
+ private:
+  /// brick_range and brick_slope from the samples.
+  void rank_bricks();
+
+ public:
   /// The index-space box [box[0], box[1]] x [box[2], box[3]] x [box[4], box[5]] (samples) of
   /// every brick that straddles `iso`, specks included: each crossing of the trilinear field lies
   /// in it, and outside it the field keeps one sign along any path (neighbouring bricks share
