@@ -148,32 +148,49 @@ void DenseField::smooth(double sigma) {
                 " voxels, not " + std::to_string(sigma));
   if (sigma == 0) return;
   const PrefilterTaps taps = prefilter_taps(sigma * sigma);
-  const int n[3] = {nx, ny, nz};
-  const std::size_t stride[3] = {1, std::size_t(nx), std::size_t(nx) * ny};
   std::vector<float> out(values.size());
-  for (int axis = 0; axis < 3; ++axis) {
-    // One pass along `axis`: every line of samples along it, in parallel over the other two.
-    const int other = (axis == 0 ? ny : nx) * (axis == 2 ? ny : nz);
-    tbb::parallel_for(tbb::blocked_range<int>(0, other), [&](const tbb::blocked_range<int>& r) {
-      for (int line = r.begin(); line != r.end(); ++line) {
-        const int u = line % (axis == 0 ? ny : nx), w = line / (axis == 0 ? ny : nx);
-        const std::size_t start = axis == 0   ? stride[1] * u + stride[2] * w
-                                  : axis == 1 ? std::size_t(u) + stride[2] * w
-                                              : std::size_t(u) + stride[1] * w;
-        for (int i = 0; i < n[axis]; ++i) {
-          const std::size_t at = start + stride[axis] * i;
-          if (!std::isfinite(values[at])) {
-            out[at] = values[at];
-            continue;
-          }
-          double sum = 0, weight = 0;
-          for (int t = -taps.radius; t <= taps.radius; ++t) {
-            const int q = std::min(std::max(i + t, 0), n[axis] - 1);
-            const float v = values[start + stride[axis] * q];
-            if (!std::isfinite(v)) continue;
-            sum += taps.w[t + taps.radius] * v, weight += taps.w[t + taps.radius];
-          }
-          out[at] = float(sum / weight);
+  const int reach = taps.radius;
+  // Along x: each line of samples is contiguous.
+  tbb::parallel_for(tbb::blocked_range<int>(0, ny * nz), [&](const tbb::blocked_range<int>& r) {
+    for (int row = r.begin(); row != r.end(); ++row) {
+      const std::size_t start = std::size_t(nx) * row;
+      for (int i = 0; i < nx; ++i) {
+        const float here = values[start + i];
+        if (!std::isfinite(here)) {
+          out[start + i] = here;
+          continue;
+        }
+        double sum = 0, weight = 0;
+        for (int t = -reach; t <= reach; ++t) {
+          const float v = values[start + std::min(std::max(i + t, 0), nx - 1)];
+          if (std::isfinite(v)) sum += taps.w[t + reach] * v, weight += taps.w[t + reach];
+        }
+        out[start + i] = float(sum / weight);
+      }
+    }
+  });
+  values.swap(out);
+  // Along y and z: whole rows along x at a time, one tap after the other, so every read streams.
+  for (int axis = 1; axis < 3; ++axis) {
+    const int n = axis == 1 ? ny : nz;
+    const std::ptrdiff_t stride = axis == 1 ? nx : std::ptrdiff_t(nx) * ny;
+    tbb::parallel_for(tbb::blocked_range<int>(0, ny * nz), [&](const tbb::blocked_range<int>& r) {
+      std::vector<double> sum(nx), weight(nx);
+      for (int row = r.begin(); row != r.end(); ++row) {
+        const int i = axis == 1 ? row % ny : row / ny;  // the row's coordinate along `axis`
+        const std::size_t start = std::size_t(nx) * row;
+        std::fill(sum.begin(), sum.end(), 0.0);
+        std::fill(weight.begin(), weight.end(), 0.0);
+        for (int t = -reach; t <= reach; ++t) {
+          const int q = std::min(std::max(i + t, 0), n - 1);
+          const float* src = values.data() + std::ptrdiff_t(start) + (q - i) * stride;
+          const double w = taps.w[t + reach];
+          for (int x = 0; x < nx; ++x)
+            if (std::isfinite(src[x])) sum[x] += w * src[x], weight[x] += w;
+        }
+        for (int x = 0; x < nx; ++x) {
+          const float here = values[start + x];
+          out[start + x] = std::isfinite(here) ? float(sum[x] / weight[x]) : here;
         }
       }
     });

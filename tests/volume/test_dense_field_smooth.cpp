@@ -58,8 +58,10 @@ TEST(DenseFieldSmooth, NonFiniteSamplesStayAndDoNotSpread) {
   f.values[8 + 20 * (8 + 20 * 8)] = nan;  // a sample the loaders would read as NaN
   f.smooth(1.0);
   EXPECT_TRUE(std::isnan(at(f, 8, 8, 8)));
-  for (int i = 5; i < 12; ++i)
-    if (i != 8) EXPECT_TRUE(std::isfinite(at(f, i, 8, 8))) << i;
+  for (int i = 5; i < 12; ++i) {
+    if (i == 8) continue;
+    EXPECT_TRUE(std::isfinite(at(f, i, 8, 8))) << i;
+  }
   EXPECT_NEAR(at(f, 2, 8, 8), 0.0, 1e-6) << "far from the step and the NaN";
   // The bricks are ranked from the smoothed samples: the step's bricks hold values in (0, 1).
   std::array<int, 6> box{};
