@@ -404,14 +404,36 @@ class Explorer {
     auto* e = static_cast<Explorer*>(self);
     if (!e->screen_on_) return;
     const PixelBox& box = e->scene_.layout().surface;
-    const int scale = !e->interacting_ || e->full_ms_ <= kLiveUpdateMs ? 1
-                      : e->full_ms_ <= 4 * kLiveUpdateMs               ? 2
-                                                                       : 4;
+    const int scale = e->interacting_ || e->sliding_ ? e->coarse_scale() : 1;
     if (!e->image_stale_ && same_camera(e->scene_.current_camera(), e->cast_camera_) &&
         box.x1 - box.x0 == e->cast_w_ && box.y1 - box.y0 == e->cast_h_ && scale == e->cast_scale_)
       return;
     e->cast(e->iso_, !e->shown_.empty(), scale);
     e->refresh_status();
+  }
+
+  /// The resolution divisor while the mouse drags (the camera or the slider): 1 while a full
+  /// image takes at most the live-update limit, else 2, or 4 beyond four times it.
+  int coarse_scale() const {
+    return full_ms_ <= kLiveUpdateMs ? 1 : full_ms_ <= 4 * kLiveUpdateMs ? 2 : 4;
+  }
+
+  /// The slider moved in screen-space mode: re-cast, coarsely while it is dragged (`live`) and a
+  /// full image is slow, in full on release.
+  void slide_screen(float iso, bool live) {
+    sliding_ = live;
+    const int scale = live ? coarse_scale() : 1;
+    if (iso == attempted_ && scale == cast_scale_) return;
+    attempted_ = iso;
+    if (cast(iso, false, scale)) {
+      iso_ = iso;
+      note_cast();
+      retitle();
+    } else {
+      message_ = "isovalue " + format(iso) + ": " + message_;
+    }
+    refresh_status();
+    window_->Render();
   }
 
   static void on_interaction(vtkObject*, unsigned long event, void* self, void*) {
@@ -714,6 +736,8 @@ class Explorer {
 
   static void on_slider(vtkObject*, unsigned long event, void* self, void*) {
     auto* e = static_cast<Explorer*>(self);
+    if (e->screen_on_)
+      return e->slide_screen(e->slider_value(), event == vtkCommand::InteractionEvent);
     if (event == vtkCommand::InteractionEvent && e->last_ms_ > kLiveUpdateMs) return;  // wait for release
     e->update(e->slider_value());
   }
@@ -835,6 +859,7 @@ class Explorer {
   bool mesh_stale_ = false;   // the mesh shown is not of iso_ (moved in screen-space mode)
   bool image_stale_ = true;   // cast before the next frame
   bool interacting_ = false;  // the mouse drags the camera
+  bool sliding_ = false;      // the mouse drags the isovalue slider (screen-space mode)
   Camera cast_camera_;        // what the image shown was cast for
   int cast_w_ = 0, cast_h_ = 0, cast_scale_ = 1;
   double full_ms_ = 0;  // the last full-resolution cast

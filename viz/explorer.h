@@ -45,8 +45,9 @@ struct ExplorerAction {
 /// The explorer's screen-space mode ('x'; SEEDS-SPEC 4.4): curvature per pixel of the surface as
 /// the camera sees it, cast from the volume (or rasterised from a mesh file shown) instead of
 /// extracted, and shown in place of the mesh. The isovalue slider then re-casts; so does every
-/// camera move (at 1/2 or 1/4 resolution while the mouse drags, when a full image takes longer
-/// than the live-update limit, then at full resolution on release).
+/// camera move. Both run at 1/2 or 1/4 resolution while the mouse drags (the slider or the
+/// camera) when a full image takes longer than the live-update limit, then at full resolution
+/// on release.
 struct ScreenMode {
   /// The image for `camera` at width x height pixels (the surface part of the window, or a
   /// fraction of it): of the volume's isosurface at `iso` when `mesh` is null, else of that mesh

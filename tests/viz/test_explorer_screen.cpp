@@ -168,6 +168,39 @@ TEST(VizExplorerScreen, StartsWithoutExtractingAndRasterisesAnOpenedMesh) {
   if (!HasFailure()) fs::remove_all(dir);
 }
 
+TEST(VizExplorerScreen, ASlowCastIsCoarseWhileTheSliderIsDraggedAndFullOnRelease) {
+  std::vector<Cast> casts;
+  viz::ExplorerSetup setup;
+  setup.isovalue = 0.3f;
+  setup.min_value = 0.1f;
+  setup.max_value = 0.6f;
+  setup.view.width = 480;
+  setup.view.height = 360;
+  setup.surface = [](float iso) {
+    auto t = test::torus(1.f, iso, 32, 16);
+    return viz::Surface{std::move(t.mesh), std::move(t.field), 0, "torus"};
+  };
+  setup.screen.start_on = true;
+  setup.screen.image = [&](float iso, const viz::Surface* mesh, const Camera& cam, int w, int h) {
+    casts.push_back({iso, mesh != nullptr, cam, w, h});
+    viz::ScreenImage img = disc_image(iso, w, h);
+    img.update_ms = 400;  // as if slow: between 1 and 4 live-update limits, so 1/2 while dragging
+    return img;
+  };
+  using A = viz::ExplorerAction;
+  setup.script = {A::set_isovalue(0.45f)};  // moves the slider (live), then releases it
+  viz::run_explorer(setup);
+  ASSERT_GE(casts.size(), 3u);
+  const Cast& first = casts.front();
+  const Cast& dragged = casts[casts.size() - 2];
+  const Cast& released = casts.back();
+  EXPECT_FLOAT_EQ(dragged.iso, 0.45f);
+  EXPECT_EQ(dragged.width, (first.width + 1) / 2) << "half resolution while dragging";
+  EXPECT_FLOAT_EQ(released.iso, 0.45f);
+  EXPECT_EQ(released.width, first.width) << "full resolution on release";
+  EXPECT_EQ(released.height, first.height);
+}
+
 TEST(VizScene, ImageModeChecksItsInput) {
   viz::CurvatureScene scene;
   viz::RenderOptions o;
