@@ -49,6 +49,27 @@ TEST(CliScreen, VolumeToPictureAndRawImage) {
   EXPECT_EQ(dir.entries(), (std::vector<std::string>{"s.png", "s.vti"}));
 }
 
+TEST(CliScreen, SmoothingKeepsTheSphereAndIsReportedAndBounded) {
+  // A smooth sphere smoothed by 2 voxels: H stays 1/R within the shrinkage (sigma^2 H, about 1%
+  // of R here); --json and the title say so; widths outside [0, 6] voxels are usage errors.
+  TempDir dir("screen_smooth");
+  const auto r = run_isocurv({"screen", dataset("sphere"), "--size", "320x240", "--smooth", "2",
+                              "-o", dir / "s.png", "--json", "--quiet"},
+                             120);
+  ASSERT_TRUE(r.ok()) << r.describe();
+  const json j = parse_json(r.out, "screen --json");
+  EXPECT_EQ(j["smoothing_voxels"].get<double>(), 2.0);
+  EXPECT_TRUE(j["timings_ms"].contains("smooth")) << j.dump(2);
+  EXPECT_NEAR(j["median_H"].get<double>(), 1 / 0.8, 0.05);
+  for (const char* bad : {"-1", "7"}) {
+    const auto e = run_isocurv({"screen", dataset("sphere"), "--smooth", bad, "-o", dir / "x.png"});
+    EXPECT_EQ(e.exit_code, 2) << bad << ": " << e.describe();
+    const auto v = run_isocurv({"view", dataset("sphere"), "--screen-smooth", bad});
+    EXPECT_EQ(v.exit_code, 2) << bad << ": " << v.describe();
+  }
+  EXPECT_EQ(dir.entries(), (std::vector<std::string>{"s.png"}));
+}
+
 TEST(CliScreen, MeshFileAndMellado) {
   TempDir dir("screen_mesh");
   ASSERT_TRUE(run_isocurv({"extract", dataset("torus"), "-o", dir / "t.ply", "--quiet"}).ok());
