@@ -198,8 +198,9 @@ void register_screen(CLI::App& app) {
       timer.stop();
     }
     const std::string label =
-        screen::estimator_label(so) +
-        (cast && smooth > 0 ? ", smoothed " + format_number(smooth) + " voxels" : "");
+        screen::estimator_label(so) + (cast && smooth > 0 ? ", smoothed " + format_number(smooth) +
+                                                                (smooth == 1 ? " voxel" : " voxels")
+                                                          : "");
     if (po.title.empty())
       po.title =
           picture_title(in, po.quantity, cast ? std::optional<float>(iso) : std::nullopt, label);

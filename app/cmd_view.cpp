@@ -234,9 +234,10 @@ void register_view(CLI::App& app) {
       setup.screen.title_for = [](float value, const std::string& quantity) {
         return picture_title(
             in, quantity, value,
-            screen::estimator_label(so) +
-                (screen_smooth > 0 ? ", smoothed " + format_number(screen_smooth) + " voxels"
-                                   : ""));
+            screen::estimator_label(so) + (screen_smooth > 0
+                                               ? ", smoothed " + format_number(screen_smooth) +
+                                                     (screen_smooth == 1 ? " voxel" : " voxels")
+                                               : ""));
       };
     if (lo.lines.any()) {
       setup.show_lines = show_lines;
