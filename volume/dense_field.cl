@@ -13,34 +13,53 @@ float signed_at(__global const float* v, const Grid* g, int i, int j, int k) {
   return isfinite(x) ? g->sign * (x - g->iso) : -1.0f;
 }
 
-// The trilinear signed field at index point p and its index-space gradient (of the trilinear
-// interpolant): DenseField::field with a gradient.
-float field_grad_at(__global const float* v, const Grid* g, float3 p, float3* grad) {
+// The cell of index point p, clamped into the domain: its corners' signed values and p's
+// position in it (0..1 per axis).
+typedef struct {
+  float s000, s100, s010, s110, s001, s101, s011, s111;
+  float3 f;
+} Cell;
+
+__attribute__((always_inline)) Cell cell_at(__global const float* v, const Grid* g, float3 p) {
   const float3 hi = (float3)(g->nx - 1, g->ny - 1, g->nz - 1);
   const float3 q = clamp(p, (float3)(0.0f), hi);
   const int3 c = min(convert_int3(floor(q)), (int3)(g->nx - 2, g->ny - 2, g->nz - 2));
-  const float3 f = q - convert_float3(c);
-  const float s000 = signed_at(v, g, c.x, c.y, c.z), s100 = signed_at(v, g, c.x + 1, c.y, c.z);
-  const float s010 = signed_at(v, g, c.x, c.y + 1, c.z);
-  const float s110 = signed_at(v, g, c.x + 1, c.y + 1, c.z);
-  const float s001 = signed_at(v, g, c.x, c.y, c.z + 1);
-  const float s101 = signed_at(v, g, c.x + 1, c.y, c.z + 1);
-  const float s011 = signed_at(v, g, c.x, c.y + 1, c.z + 1);
-  const float s111 = signed_at(v, g, c.x + 1, c.y + 1, c.z + 1);
-  const float x00 = s000 + (s100 - s000) * f.x, x10 = s010 + (s110 - s010) * f.x;
-  const float x01 = s001 + (s101 - s001) * f.x, x11 = s011 + (s111 - s011) * f.x;
+  Cell k;
+  k.f = q - convert_float3(c);
+  k.s000 = signed_at(v, g, c.x, c.y, c.z), k.s100 = signed_at(v, g, c.x + 1, c.y, c.z);
+  k.s010 = signed_at(v, g, c.x, c.y + 1, c.z), k.s110 = signed_at(v, g, c.x + 1, c.y + 1, c.z);
+  k.s001 = signed_at(v, g, c.x, c.y, c.z + 1), k.s101 = signed_at(v, g, c.x + 1, c.y, c.z + 1);
+  k.s011 = signed_at(v, g, c.x, c.y + 1, c.z + 1);
+  k.s111 = signed_at(v, g, c.x + 1, c.y + 1, c.z + 1);
+  return k;
+}
+
+// The trilinear signed field at index point p and its index-space gradient (of the trilinear
+// interpolant): DenseField::field with a gradient.
+float field_grad_at(__global const float* v, const Grid* g, float3 p, float3* grad) {
+  const Cell k = cell_at(v, g, p);
+  const float3 f = k.f;
+  const float x00 = k.s000 + (k.s100 - k.s000) * f.x, x10 = k.s010 + (k.s110 - k.s010) * f.x;
+  const float x01 = k.s001 + (k.s101 - k.s001) * f.x, x11 = k.s011 + (k.s111 - k.s011) * f.x;
   const float y0 = x00 + (x10 - x00) * f.y, y1 = x01 + (x11 - x01) * f.y;
-  const float dx00 = s100 - s000, dx10 = s110 - s010, dx01 = s101 - s001, dx11 = s111 - s011;
+  const float dx00 = k.s100 - k.s000, dx10 = k.s110 - k.s010;
+  const float dx01 = k.s101 - k.s001, dx11 = k.s111 - k.s011;
   const float dx0 = dx00 + (dx10 - dx00) * f.y, dx1 = dx01 + (dx11 - dx01) * f.y;
   const float dy0 = x10 - x00, dy1 = x11 - x01;
   *grad = (float3)(dx0 + (dx1 - dx0) * f.z, dy0 + (dy1 - dy0) * f.z, y1 - y0);
   return y0 + (y1 - y0) * f.z;
 }
 
-// The trilinear signed field at index point p, clamped into the domain (DenseField::field).
-float field_at(__global const float* v, const Grid* g, float3 p) {
-  float3 unused;  // inlined, the gradient's arithmetic is dropped
-  return field_grad_at(v, g, p, &unused);
+// The trilinear signed field at index point p, clamped into the domain (DenseField::field):
+// field_grad_at's value without its gradient (the march's hot path: PoCL does not inline
+// field_grad_at, so a wrapper would pay for the gradient too).
+__attribute__((always_inline)) float field_at(__global const float* v, const Grid* g, float3 p) {
+  const Cell k = cell_at(v, g, p);
+  const float3 f = k.f;
+  const float x00 = k.s000 + (k.s100 - k.s000) * f.x, x10 = k.s010 + (k.s110 - k.s010) * f.x;
+  const float x01 = k.s001 + (k.s101 - k.s001) * f.x, x11 = k.s011 + (k.s111 - k.s011) * f.x;
+  const float y0 = x00 + (x10 - x00) * f.y, y1 = x01 + (x11 - x01) * f.y;
+  return y0 + (y1 - y0) * f.z;
 }
 
 float raw_at(__global const float* v, const Grid* g, int i, int j, int k) {
