@@ -554,20 +554,9 @@ class Explorer {
 
   /// Re-extracts at `iso`; on failure keeps the previous surface and reports on the status line.
   void update(float iso) {
+    if (screen_on_) return slide_screen(iso, false);  // re-cast, extract nothing
     if (iso == attempted_) return;  // the slider's release after a live update, or no move
     attempted_ = iso;
-    if (screen_on_) {  // re-cast, extract nothing
-      if (cast(iso, false)) {
-        iso_ = iso;
-        note_cast();
-        retitle();
-      } else {
-        message_ = "isovalue " + format(iso) + ": " + message_;
-      }
-      refresh_status();
-      window_->Render();
-      return;
-    }
     try {
       present(call(iso), "");
       iso_ = iso;

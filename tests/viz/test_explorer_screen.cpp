@@ -50,6 +50,23 @@ viz::ScreenImage disc_image(float iso, int w, int h) {
   return img;
 }
 
+/// An explorer on isovalues 0.1 .. 0.6 (starting at `iso`), width x height, whose surface is a
+/// torus with that tube radius; `extracted` (when given) counts the extractions.
+viz::ExplorerSetup torus_setup(float iso, int width, int height, int* extracted = nullptr) {
+  viz::ExplorerSetup setup;
+  setup.isovalue = iso;
+  setup.min_value = 0.1f;
+  setup.max_value = 0.6f;
+  setup.view.width = width;
+  setup.view.height = height;
+  setup.surface = [extracted](float value) {
+    if (extracted) ++*extracted;
+    auto t = test::torus(1.f, value, 64, 32);
+    return viz::Surface{std::move(t.mesh), std::move(t.field), 0, "torus"};
+  };
+  return setup;
+}
+
 bool same(const Camera& a, const Camera& b) {
   return a.position == b.position && a.focal_point == b.focal_point && a.view_up == b.view_up;
 }
@@ -124,17 +141,7 @@ TEST(VizExplorerScreen, StartsWithoutExtractingAndRasterisesAnOpenedMesh) {
   const fs::path dir = fresh_dir("start");
   int extracted = 0, framed = 0;
   std::vector<Cast> casts;
-  viz::ExplorerSetup setup;
-  setup.isovalue = 0.3f;
-  setup.min_value = 0.1f;
-  setup.max_value = 0.6f;
-  setup.view.width = 480;
-  setup.view.height = 360;
-  setup.surface = [&](float iso) {
-    ++extracted;
-    auto t = test::torus(1.f, iso, 64, 32);
-    return viz::Surface{std::move(t.mesh), std::move(t.field), 0, "torus"};
-  };
+  viz::ExplorerSetup setup = torus_setup(0.3f, 480, 360, &extracted);
   setup.open_mesh = [&](const std::string&) {
     auto t = test::torus(1.f, 0.2f, 64, 32);
     return viz::Surface{std::move(t.mesh), std::move(t.field), 0, "opened"};
@@ -170,16 +177,7 @@ TEST(VizExplorerScreen, StartsWithoutExtractingAndRasterisesAnOpenedMesh) {
 
 TEST(VizExplorerScreen, ASlowCastIsCoarseWhileTheSliderIsDraggedAndFullOnRelease) {
   std::vector<Cast> casts;
-  viz::ExplorerSetup setup;
-  setup.isovalue = 0.3f;
-  setup.min_value = 0.1f;
-  setup.max_value = 0.6f;
-  setup.view.width = 480;
-  setup.view.height = 360;
-  setup.surface = [](float iso) {
-    auto t = test::torus(1.f, iso, 32, 16);
-    return viz::Surface{std::move(t.mesh), std::move(t.field), 0, "torus"};
-  };
+  viz::ExplorerSetup setup = torus_setup(0.3f, 480, 360);
   setup.screen.start_on = true;
   setup.screen.image = [&](float iso, const viz::Surface* mesh, const Camera& cam, int w, int h) {
     casts.push_back({iso, mesh != nullptr, cam, w, h});
