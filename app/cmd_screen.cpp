@@ -197,13 +197,9 @@ void register_screen(CLI::App& app) {
       }
       timer.stop();
     }
-    const std::string label =
-        screen::estimator_label(so) + (cast && smooth > 0 ? ", smoothed " + format_number(smooth) +
-                                                                (smooth == 1 ? " voxel" : " voxels")
-                                                          : "");
     if (po.title.empty())
-      po.title =
-          picture_title(in, po.quantity, cast ? std::optional<float>(iso) : std::nullopt, label);
+      po.title = picture_title(in, po.quantity, cast ? std::optional<float>(iso) : std::nullopt,
+                               screen::estimator_label(so, cast ? smooth : 0));
     Device* device = reference ? nullptr : &device_for(o);
     screen::GBuffer g;
     screen::ScreenCurvature c;

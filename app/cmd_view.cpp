@@ -232,12 +232,7 @@ void register_view(CLI::App& app) {
     };
     if (ro.title.empty())
       setup.screen.title_for = [](float value, const std::string& quantity) {
-        return picture_title(
-            in, quantity, value,
-            screen::estimator_label(so) + (screen_smooth > 0
-                                               ? ", smoothed " + format_number(screen_smooth) +
-                                                     (screen_smooth == 1 ? " voxel" : " voxels")
-                                               : ""));
+        return picture_title(in, quantity, value, screen::estimator_label(so, screen_smooth));
       };
     if (lo.lines.any()) {
       setup.show_lines = show_lines;

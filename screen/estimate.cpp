@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <mutex>
 #include <string>
 
@@ -206,10 +207,18 @@ std::size_t ScreenCurvature::valid_count() const {
   return std::size_t(std::count(valid.begin(), valid.end(), std::uint8_t(1)));
 }
 
-std::string estimator_label(const ScreenOptions& so) {
-  if (so.estimator == ScreenEstimator::mellado)
-    return "screen-space Mellado, radius " + std::to_string(so.mellado_radius) + " px";
-  return "screen-space Prantl, " + std::to_string(so.edges) + " edges" + (so.lod ? ", LOD" : "");
+std::string estimator_label(const ScreenOptions& so, double smoothing_voxels) {
+  std::string label =
+      so.estimator == ScreenEstimator::mellado
+          ? "screen-space Mellado, radius " + std::to_string(so.mellado_radius) + " px"
+          : "screen-space Prantl, " + std::to_string(so.edges) + " edges" + (so.lod ? ", LOD" : "");
+  if (smoothing_voxels > 0) {
+    char text[48];
+    std::snprintf(text, sizeof text, ", smoothed %g voxel%s", smoothing_voxels,
+                  smoothing_voxels == 1 ? "" : "s");
+    label += text;
+  }
+  return label;
 }
 
 double lod_far(const GBuffer& g) { return std::max(g.far, 100.0); }

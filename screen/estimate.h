@@ -46,8 +46,9 @@ struct ScreenCurvature {
 };
 
 /// How titles and --json name the estimator of `options`: "screen-space Prantl, 2 edges[, LOD]"
-/// or "screen-space Mellado, radius 4 px".
-std::string estimator_label(const ScreenOptions& options);
+/// or "screen-space Mellado, radius 4 px", followed by ", smoothed S voxels" when the volume was
+/// smoothed first (`smoothing_voxels` > 0, volume::DenseField::smooth).
+std::string estimator_label(const ScreenOptions& options, double smoothing_voxels = 0);
 
 /// The LOD far distance f = max(far plane, 100) and the discontinuity threshold tau = 1 / f.
 double lod_far(const GBuffer& g);

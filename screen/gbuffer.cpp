@@ -106,10 +106,6 @@ void depth_range(const ViewFrame& frame, const std::array<double, 6>& b, double&
   }
 }
 
-}  // namespace isocurv::screen
-
-namespace isocurv::screen {
-
 std::vector<float> view_shading(const GBuffer& g) {
   std::vector<float> shade(g.pixels(), 1.0f);
   for (int y = 0; y < g.height(); ++y)

@@ -18,6 +18,26 @@ namespace {
 
 std::atomic<std::uint64_t> next_id{1};
 
+/// The sample-index box [box[0], box[1]] x [box[2], box[3]] x [box[4], box[5]] of the bricks for
+/// whose number keep() accepts; false when none does.
+template <class Keep>
+bool brick_index_box(const DenseField& f, const Keep& keep, std::array<int, 6>& box) {
+  int lo[3] = {f.bx, f.by, f.bz}, hi[3] = {-1, -1, -1};
+  for (int c = 0; c < f.bz; ++c)
+    for (int b = 0; b < f.by; ++b)
+      for (int a = 0; a < f.bx; ++a) {
+        if (!keep(a + std::int64_t(f.bx) * (b + std::int64_t(f.by) * c))) continue;
+        const int q[3] = {a, b, c};
+        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
+      }
+  if (hi[0] < 0) return false;
+  const int n[3] = {f.nx, f.ny, f.nz};
+  for (int k = 0; k < 3; ++k)
+    box[2 * k] = lo[k] * kFieldBrick,
+            box[2 * k + 1] = std::min(n[k] - 1, (hi[k] + 1) * kFieldBrick);
+  return true;
+}
+
 }  // namespace
 
 DenseField::DenseField(const Volume& v) : id(next_id++) {
@@ -201,20 +221,8 @@ void DenseField::smooth(double sigma) {
 }
 
 bool DenseField::straddling_box(float iso, std::array<int, 6>& box) const {
-  int lo[3] = {bx, by, bz}, hi[3] = {-1, -1, -1};
-  for (int c = 0; c < bz; ++c)
-    for (int b = 0; b < by; ++b)
-      for (int a = 0; a < bx; ++a) {
-        if (!brick_straddles(a + std::size_t(bx) * (b + std::size_t(by) * c), iso)) continue;
-        const int q[3] = {a, b, c};
-        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
-      }
-  if (hi[0] < 0) return false;
-  const int n[3] = {nx, ny, nz};
-  for (int k = 0; k < 3; ++k)
-    box[2 * k] = lo[k] * kFieldBrick,
-            box[2 * k + 1] = std::min(n[k] - 1, (hi[k] + 1) * kFieldBrick);
-  return true;
+  return brick_index_box(
+      *this, [&](std::int64_t b) { return brick_straddles(std::size_t(b), iso); }, box);
 }
 
 bool DenseField::surface_bounds(float iso, std::array<double, 6>& box) const {
@@ -245,23 +253,15 @@ bool DenseField::surface_bounds(float iso, std::array<double, 6>& box) const {
   std::uint32_t largest = 0;
   for (std::size_t b = 0; b < nb; ++b)
     if (parent[b] >= 0) largest = std::max(largest, ++count[root(std::int64_t(b))]);
-  int lo[3] = {bx, by, bz}, hi[3] = {-1, -1, -1};
-  for (int c = 0; c < bz; ++c)
-    for (int b = 0; b < by; ++b)
-      for (int a = 0; a < bx; ++a) {
-        const std::int64_t i = a + std::int64_t(bx) * (b + std::int64_t(by) * c);
-        if (parent[i] < 0 || count[root(i)] < kSpeckBrickFraction * largest) continue;
-        const int q[3] = {a, b, c};
-        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
-      }
-  if (hi[0] < 0) return false;
-  const int n[3] = {nx, ny, nz};
+  std::array<int, 6> index_box{};
+  const auto kept = [&](std::int64_t b) {
+    return parent[b] >= 0 && count[root(b)] >= kSpeckBrickFraction * largest;
+  };
+  if (!brick_index_box(*this, kept, index_box)) return false;
   box = {1e300, -1e300, 1e300, -1e300, 1e300, -1e300};
   for (int i = 0; i < 8; ++i) {
     std::array<double, 3> q;
-    for (int k = 0; k < 3; ++k)
-      q[k] = ((i >> k) & 1) ? std::min(double(hi[k] + 1) * kFieldBrick, double(n[k] - 1))
-                            : double(lo[k]) * kFieldBrick;
+    for (int k = 0; k < 3; ++k) q[k] = index_box[2 * k + ((i >> k) & 1)];
     const auto w = world(q);
     for (int c = 0; c < 3; ++c)
       box[2 * c] = std::min(box[2 * c], w[c]), box[2 * c + 1] = std::max(box[2 * c + 1], w[c]);
