@@ -8,27 +8,30 @@ namespace isocurv::lines {
 /// Wall-clock time of one extract() call, in milliseconds (the queue is drained
 /// between the steps only when timings are asked for).
 struct Timings {
-  double upload =
-      0; ///< host -> device copies of the mesh and field (and the adjacency)
-  double view = 0;  ///< per-vertex view quantities and their smoothing
-  double count = 0; ///< the per-face count and its download
-  double emit =
-      0; ///< host scan of the counts, the emitting pass and the download
+  double checks = 0;  ///< the input checks and the thresholds (a median over the vertices)
+  double upload = 0;  ///< binding the mesh and field (copies on devices with memory of their own)
+  double ring = 0;    ///< the smoothing's 1-ring, once per mesh: host adjacency and a kernel
+  double view = 0;    ///< per-vertex view quantities and their smoothing
+  double count = 0;   ///< the per-face count and its download
+  double emit = 0;    ///< host scan of the counts, the emitting pass and the download
   double total = 0;
 };
 
-/// The same segments as extract_reference (lines/reference.h states the rules),
-/// computed in float on `device`: three kernels (per-vertex view quantities;
-/// per face, the number of segments; the faces that have some write theirs at
-/// offsets from a host scan, in face order). Deterministic. Device buffers are
-/// kept between calls (one call at a time per device). An empty mesh gives no
-/// segments. `upload_mesh` false reuses the mesh and field uploaded by the
-/// previous call on this device (the explorer moving only its camera); the
-/// caller guarantees they are unchanged.
+/// The same segments as extract_reference (lines/reference.h states the rules), computed in float
+/// on `device` (lines/lines_kernels.cl):
+/// - per vertex, the view quantities (n.v, kr, num), `smoothing_steps` passes over kr and num on
+///   the distinct 1-ring (built once per mesh), and a byte of flags for the per-face tests;
+/// - per face, from the flags alone, how many line types may cross it (nearly always none);
+/// - the faces with some, in face order, write their segments at offsets from a host scan.
+/// Deterministic. On devices that work in host memory (PoCL) the kernels read the mesh and the
+/// field in place; elsewhere they are copied. Device buffers are kept between calls (one call at
+/// a time per device). An empty mesh gives no segments. `upload_mesh` false reuses what the
+/// previous call on this device prepared for the same mesh (the copies, the 1-ring: the explorer
+/// moving only its camera); the caller guarantees that the mesh and field are unchanged.
 /// @throw Error for invalid input (check_input), bad thresholds or an OpenCL
 /// failure.
-Segments extract(const Mesh &mesh, const curvature::CurvatureField &field,
-                 const Camera &camera, const Options &options, Device &device,
-                 Timings *timings = nullptr, bool upload_mesh = true);
+Segments extract(const Mesh& mesh, const curvature::CurvatureField& field, const Camera& camera,
+                 const Options& options, Device& device, Timings* timings = nullptr,
+                 bool upload_mesh = true);
 
-} // namespace isocurv::lines
+}  // namespace isocurv::lines

@@ -2,6 +2,8 @@
 // that file; lines/reference.h states the rules). Built with -D options from lines/extract.cpp:
 //   TYPE_CONTOUR, TYPE_SUGGESTIVE, TYPE_RIDGE, TYPE_VALLEY  the LineType values
 //   MAX_SEGMENTS  segments a face can give (one per type)
+//   RING_TWICE    the flag of a ring entry of weight 2 (line_vertex_ring)
+//   NO_SEGMENT    the type of an emitting slot left empty
 //   NO_EDGE       the key of an endpoint inside its face (kInsideFace)
 //   VERTEX_SNAP   crossings this close to an edge's end move onto the vertex (kVertexSnap)
 
@@ -33,13 +35,14 @@ typedef struct {
   uint type;
 } Seg;
 
-// Per vertex: (ndotv, kr, num, 0) for the camera. eye.w != 0: orthographic, `toward` is the
+// Per vertex: view = (ndotv, kr, num, 0) for the camera, and kn = (kr, num) for the smoothing. eye.w != 0: orthographic, `toward` is the
 // direction towards the camera; else v = normalize(eye - p).
 __kernel void line_vertex_view(__global const float* positions, __global const float* normals,
                                __global const float* dir1, __global const float* dir2,
                                __global const float* k1s, __global const float* k2s,
                                __global const float4* dcurv, int with_dcurv, uint vertex_count,
-                               float4 eye, float4 toward, __global float4* view) {
+                               float4 eye, float4 toward, __global float4* view,
+                               __global float2* kn) {
   const uint i = get_global_id(0);
   if (i >= vertex_count) return;
   const float3 p = vload3(i, positions);
@@ -57,26 +60,59 @@ __kernel void line_vertex_view(__global const float* positions, __global const f
           2 * ndotv * tau * tau;
   }
   view[i] = (float4)(ndotv, kr, num, 0);
+  kn[i] = (float2)(kr, num);
 }
 
-// One smoothing pass over kr and num (view .y, .z): the mean over the vertex and the two other
-// corners of each of its triangles (offsets/corners: curvature::VertexCorners). n.v is kept.
-__kernel void line_vertex_smooth(__global const uint* offsets, __global const uint* corners,
-                                 __global const uint* triangles, __global const float4* view_in,
-                                 uint vertex_count, __global float4* view_out) {
+// The distinct 1-ring of every vertex, for the smoothing passes. Each neighbour's weight is how
+// often it is one of the two other corners of the vertex's triangles (curvature::VertexCorners
+// offsets/corners): 2 across an edge inside a closed surface, 1 across a boundary edge. Row i
+// starts at ring[2 * offsets[i]] (room for two entries per corner) and holds ring_count[i]
+// entries in the order of first appearance along the corners: a vertex index, with RING_TWICE
+// set when its weight is 2 (a weight above 2, only at non-manifold edges, takes further entries).
+#define RING_VERTEX (RING_TWICE - 1)
+__kernel void line_vertex_ring(__global const uint* offsets, __global const uint* corners,
+                               __global const uint* triangles, uint vertex_count,
+                               __global uint* ring, __global uint* ring_count) {
   const uint i = get_global_id(0);
   if (i >= vertex_count) return;
-  const float4 self = view_in[i];
-  float kr = self.y, num = self.z, w = 1;
+  __global uint* row = ring + 2 * offsets[i];
+  uint n = 0;
   for (uint k = offsets[i]; k < offsets[i + 1]; ++k) {
     const uint c = corners[k], t = c / 3, j = c % 3;
-    const uint a = triangles[3 * t + (j + 1) % 3], b = triangles[3 * t + (j + 2) % 3];
-    const float4 va = view_in[a], vb = view_in[b];
-    kr += va.y + vb.y;
-    num += va.z + vb.z;
-    w += 2;
+    const uint others[2] = {triangles[3 * t + (j + 1) % 3], triangles[3 * t + (j + 2) % 3]};
+    for (int e = 0; e < 2; ++e) {
+      uint m = 0;
+      while (m < n && row[m] != others[e]) ++m;  // an entry of weight 1 for this vertex
+      if (m < n) row[m] |= RING_TWICE;
+      else row[n++] = others[e];
+    }
   }
-  view_out[i] = (float4)(self.x, kr / w, num / w, 0);
+  ring_count[i] = n;
+}
+
+// One smoothing pass over kr and num (kn: the view's .y and .z, written by line_vertex_view): the
+// weighted mean over the vertex (weight 1) and its ring (line_vertex_ring), i.e. the vertex and
+// the two other corners of each of its triangles. The last pass (`last` != 0) also stores them in
+// the view's .y and .z; n.v is kept.
+__kernel void line_vertex_smooth(__global const uint* offsets, __global const uint* ring,
+                                 __global const uint* ring_count, __global const float2* kn_in,
+                                 uint vertex_count, int last, __global float2* kn_out,
+                                 __global float4* view) {
+  const uint i = get_global_id(0);
+  if (i >= vertex_count) return;
+  __global const uint* row = ring + 2 * offsets[i];
+  const uint n = ring_count[i];
+  float2 sum = kn_in[i];
+  float w = 1;
+  for (uint m = 0; m < n; ++m) {
+    const uint e = row[m];
+    const float f = (e & RING_TWICE) ? 2.0f : 1.0f;
+    sum += f * kn_in[e & RING_VERTEX];
+    w += f;
+  }
+  const float2 mean = sum / w;
+  kn_out[i] = mean;
+  if (last) view[i] = (float4)(view[i].x, mean, 0);
 }
 
 typedef struct {
@@ -251,53 +287,88 @@ int face_segments(uint f, __global const uint* triangles, __global const float* 
   return kept;
 }
 
-// Whether face f can have a segment at all: a sign change of n.v (contours) or kr (suggestive)
-// over its corners, or, for ridges and valleys, of the aligned derivative. face_segments gives
-// nothing where this is false, so the count can skip the rest (nearly every face).
-bool face_may_have_lines(uint f, __global const uint* triangles, __global const float* dir1s,
-                         __global const float* dir2s, __global const float4* dcurv,
-                         __global const float4* view, const Params P) {
-  const uint v0 = triangles[3 * f], v1 = triangles[3 * f + 1], v2 = triangles[3 * f + 2];
+// Rounding allowance of the early tests below, relative to the values compared.
+#define EARLY_SLACK 1e-5f
+
+// Per-vertex bits for the count's early test (line_vertex_flags), so that it reads one byte per
+// corner instead of the vertex's view quantities and curvature.
+#define FLAG_FRONT 1u       // n.v > 0
+#define FLAG_KR 2u          // kr > 0
+#define FLAG_DERIVATIVE 4u  // num > t_d n.v (up to rounding)
+#define FLAG_OBLIQUE 8u     // n.v < cos_angle (up to rounding)
+#define FLAG_RIDGE 16u      // k1 > |k2|: a ridge may pass here
+#define FLAG_VALLEY 32u     // k2 < -|k1|: a valley may pass here
+
+// The flags of every vertex from its view quantities (when contours or suggestive contours are
+// asked for) and its principal curvatures.
+__kernel void line_vertex_flags(__global const float4* view, __global const float* k1s,
+                                __global const float* k2s, int4 selection, float4 thresholds,
+                                uint vertex_count, __global uchar* flags) {
+  const uint i = get_global_id(0);
+  if (i >= vertex_count) return;
+  const Params P = make_params(selection, thresholds);
+  uint f = 0;
   if (P.contours || P.suggestive) {
-    const float4 a = view[v0], b = view[v1], c = view[v2];
-    if (P.contours && !((a.x > 0) == (b.x > 0) && (b.x > 0) == (c.x > 0))) return true;
-    if (P.suggestive && !((a.y > 0) == (b.y > 0) && (b.y > 0) == (c.y > 0))) return true;
+    const float4 q = view[i];
+    const float ndotv = q.x, kr = q.y, num = q.z;
+    const float slack = EARLY_SLACK * (fabs(num) + P.t_d * fabs(ndotv));
+    if (ndotv > 0) f |= FLAG_FRONT;
+    if (kr > 0) f |= FLAG_KR;
+    if (num - P.t_d * ndotv > -slack) f |= FLAG_DERIVATIVE;
+    if (ndotv < P.cos_angle + EARLY_SLACK) f |= FLAG_OBLIQUE;
   }
+  const float k1 = k1s[i], k2 = k2s[i];
+  if (k1 > fabs(k2)) f |= FLAG_RIDGE;
+  if (k2 < -fabs(k1)) f |= FLAG_VALLEY;
+  flags[i] = (uchar)f;
+}
+
+// How many of the asked line types may give face f a segment, from its corners' flags: an upper
+// bound of face_segments' count, exact on nearly every face (most have none and skip the rest).
+// - a contour: n.v changes sign over the corners;
+// - a suggestive contour: kr changes sign, and face_segments' clipping can leave something. It
+//   keeps the part of the kr = 0 segment where num > t_d n.v, n.v > 0 and n.v < cos_angle; the
+//   values there are interpolated from the corners', so each test must hold at some corner;
+// - a ridge or valley: k1 > |k2| (k2 < -|k1|) at every corner, and the derivative along the
+//   aligned principal direction changes sign.
+int face_line_candidates(uint f, __global const uint* triangles, __global const uchar* flags,
+                         __global const float* dir1s, __global const float* dir2s,
+                         __global const float4* dcurv, const Params P) {
+  const uint v0 = triangles[3 * f], v1 = triangles[3 * f + 1], v2 = triangles[3 * f + 2];
+  const uint f0 = flags[v0], f1 = flags[v1], f2 = flags[v2];
+  const uint differ = (f0 ^ f1) | (f1 ^ f2), some = f0 | f1 | f2, every = f0 & f1 & f2;
+  int n = 0;
+  if (P.contours && (differ & FLAG_FRONT)) ++n;
+  const uint suggestive_needs = FLAG_FRONT | FLAG_DERIVATIVE | FLAG_OBLIQUE;
+  if (P.suggestive && (differ & FLAG_KR) && (some & suggestive_needs) == suggestive_needs) ++n;
   for (int kind = 0; kind < 2; ++kind) {
     const bool ridge = kind == 0;
-    if (!(ridge ? P.ridges : P.valleys)) continue;
+    if (!(ridge ? P.ridges : P.valleys) || !(every & (ridge ? FLAG_RIDGE : FLAG_VALLEY))) continue;
     const float3 d0 = ridge ? vload3(v0, dir1s) : vload3(v0, dir2s);
     const float3 d1 = ridge ? vload3(v1, dir1s) : vload3(v1, dir2s);
     const float3 d2 = ridge ? vload3(v2, dir1s) : vload3(v2, dir2s);
     const float e0 = ridge ? dcurv[v0].x : dcurv[v0].w;
     const float e1 = (dot(d1, d0) < 0 ? -1.0f : 1.0f) * (ridge ? dcurv[v1].x : dcurv[v1].w);
     const float e2 = (dot(d2, d0) < 0 ? -1.0f : 1.0f) * (ridge ? dcurv[v2].x : dcurv[v2].w);
-    if (!((e0 > 0) == (e1 > 0) && (e1 > 0) == (e2 > 0))) return true;
+    if (!((e0 > 0) == (e1 > 0) && (e1 > 0) == (e2 > 0))) ++n;
   }
-  return false;
+  return n;
 }
 
-// Pass 1: the number of segments of every face.
-__kernel void line_face_count(__global const uint* triangles, __global const float* positions,
-                              __global const float* normals, __global const float* dir1s,
-                              __global const float* dir2s, __global const float* k1s,
-                              __global const float* k2s, __global const float4* dcurv,
-                              __global const float4* view, int4 selection, float4 thresholds,
+// Pass 1: every face's number of segment slots (face_line_candidates).
+__kernel void line_face_count(__global const uint* triangles, __global const uchar* flags,
+                              __global const float* dir1s, __global const float* dir2s,
+                              __global const float4* dcurv, int4 selection, float4 thresholds,
                               uint face_count, __global uchar* counts) {
   const uint f = get_global_id(0);
   if (f >= face_count) return;
   const Params P = make_params(selection, thresholds);
-  if (!face_may_have_lines(f, triangles, dir1s, dir2s, dcurv, view, P)) {
-    counts[f] = 0;
-    return;
-  }
-  Seg s[MAX_SEGMENTS];
-  counts[f] = (uchar)face_segments(f, triangles, positions, normals, dir1s, dir2s, k1s, k2s, dcurv,
-                                   view, P, s);
+  counts[f] = (uchar)face_line_candidates(f, triangles, flags, dir1s, dir2s, dcurv, P);
 }
 
-// Pass 2: the segments of the faces listed in `faces` (those with a count, in face order),
-// written from offsets[i]: (a, strength), (b, 0), (edge_a, edge_b), (face, type).
+// Pass 2: the segments of the faces listed in `faces` (those with slots, in face order), written
+// into their slots offsets[i] .. offsets[i + 1]: (a, strength), (b, 0), (edge_a, edge_b),
+// (face, type); slots left over get the type NO_SEGMENT.
 __kernel void line_face_emit(__global const uint* triangles, __global const float* positions,
                              __global const float* normals, __global const float* dir1s,
                              __global const float* dir2s, __global const float* k1s,
@@ -309,15 +380,16 @@ __kernel void line_face_emit(__global const uint* triangles, __global const floa
   const uint i = get_global_id(0);
   if (i >= listed) return;
   const Params P = make_params(selection, thresholds);
-  const uint f = faces[i];
+  const uint f = faces[i], first = offsets[i], slots = offsets[i + 1] - first;
   Seg s[MAX_SEGMENTS];
   const int n = face_segments(f, triangles, positions, normals, dir1s, dir2s, k1s, k2s, dcurv, view,
                               P, s);
-  for (int j = 0; j < n; ++j) {
-    const uint o = offsets[i] + j;
+  for (int j = 0; j < n && j < slots; ++j) {
+    const uint o = first + j;
     out_a[o] = (float4)(s[j].a, s[j].strength);
     out_b[o] = (float4)(s[j].b, 0);
     out_edges[o] = (ulong2)(s[j].edge_a, s[j].edge_b);
     out_face_type[o] = (uint2)(f, s[j].type);
   }
+  for (uint j = n; j < slots; ++j) out_face_type[first + j] = (uint2)(f, NO_SEGMENT);
 }
