@@ -11,7 +11,7 @@
 #include "core/cl_launch.h"
 #include "core/error.h"
 #include "core/lap.h"
-#include "curvature/vertex_corners.h"
+#include "lines/detail/vertex_pairs.h"
 
 namespace isocurv::kernels {
 extern const char* const lines_kernels_cl;
@@ -21,10 +21,8 @@ namespace isocurv::lines {
 namespace {
 
 using Clock = StepClock;
-constexpr std::size_t kGroup = 256;     // work-group size of every launch (core/cl_launch.h)
-constexpr int kMaxSegmentsPerFace = 4;  // one per line type
-constexpr std::uint32_t kRingTwice = 0x80000000u;  // RING_TWICE of lines_kernels.cl
-constexpr std::uint32_t kRingVertexMask = kRingTwice - 1;
+constexpr std::size_t kGroup = 256;         // work-group size of every launch (core/cl_launch.h)
+constexpr int kMaxSegmentsPerFace = 4;      // one per line type
 constexpr std::uint32_t kNoSegment = 0xff;  // NO_SEGMENT: the type of an emitting slot left empty
 
 // A device buffer kept between calls, reallocated (with 50% headroom) only when
@@ -45,15 +43,14 @@ struct Buffer {
 struct Session {
   cl::Context context;
   std::mutex mutex;
-  cl::Kernel vertex_view, vertex_ring, vertex_smooth, vertex_flags, face_count, face_emit;
+  cl::Kernel vertex_view, vertex_smooth, vertex_flags, face_count, face_emit;
   // The call's inputs: read in place on CPU devices, copies elsewhere.
   InputBuffer triangles, positions, normals, dir1, dir2, k1, k2, dcurv;
   Buffer view, kn, kn2, flags, counts, faces, offsets;
-  // The smoothing's 1-ring (line_vertex_ring), from the vertex -> corner adjacency.
-  curvature::VertexCorners adjacency;
-  InputBuffer ring_offsets, ring_corners;
-  Buffer ring, ring_count;
-  bool have_ring = false;
+  // What the smoothing averages over (lines/detail/vertex_pairs.h), once per mesh.
+  detail::VertexPairs pairs;
+  InputBuffer pair_offsets, pair_indices;
+  bool have_pairs = false;
   Buffer out_a, out_b, out_edges, out_face_type;
   std::size_t uploaded_vertices = 0, uploaded_faces = 0;
   bool uploaded_dcurv = false;
@@ -68,11 +65,11 @@ std::string build_options() {
   char buf[256];
   std::snprintf(buf, sizeof buf,
                 "-DTYPE_CONTOUR=%d -DTYPE_SUGGESTIVE=%d -DTYPE_RIDGE=%d -DTYPE_VALLEY=%d "
-                "-DMAX_SEGMENTS=%d -DRING_TWICE=0x%xu -DNO_SEGMENT=%uu -DNO_EDGE=0x%llxUL "
+                "-DMAX_SEGMENTS=%d -DNO_SEGMENT=%uu -DNO_EDGE=0x%llxUL "
                 "-DVERTEX_SNAP=%.9gf",
                 int(LineType::contour), int(LineType::suggestive), int(LineType::ridge),
-                int(LineType::valley), kMaxSegmentsPerFace, unsigned(kRingTwice),
-                unsigned(kNoSegment), (unsigned long long)kInsideFace, kVertexSnap);
+                int(LineType::valley), kMaxSegmentsPerFace, unsigned(kNoSegment),
+                (unsigned long long)kInsideFace, kVertexSnap);
   return buf;
 }
 
@@ -86,7 +83,6 @@ Session& session_for(Device& device) {
   s->context = device.context();
   cl::Program& program = device.program("lines", kernels::lines_kernels_cl, build_options());
   s->vertex_view = cl::Kernel(program, "line_vertex_view");
-  s->vertex_ring = cl::Kernel(program, "line_vertex_ring");
   s->vertex_smooth = cl::Kernel(program, "line_vertex_smooth");
   s->vertex_flags = cl::Kernel(program, "line_vertex_flags");
   s->face_count = cl::Kernel(program, "line_face_count");
@@ -123,7 +119,7 @@ Segments run(const Mesh& mesh, const curvature::CurvatureField& field, const Cam
   if (!upload_mesh &&
       (s.uploaded_vertices != nv || s.uploaded_faces != nf || (with_dcurv && !s.uploaded_dcurv)))
     upload_mesh = true;  // nothing (or something else) is on the device
-  if (upload_mesh) s.have_ring = false;
+  if (upload_mesh) s.have_pairs = false;
   // Rebound on every call where the buffers wrap the caller's arrays (nothing is copied), so a
   // call never reads arrays that an earlier caller has since freed.
   if (upload_mesh || works_in_host_memory(device)) {
@@ -139,19 +135,13 @@ Segments run(const Mesh& mesh, const curvature::CurvatureField& field, const Cam
     s.uploaded_vertices = nv, s.uploaded_faces = nf, s.uploaded_dcurv = with_dcurv;
   }
   const bool smooth = options.lines.suggestive && options.smoothing_steps > 0;
-  if (smooth && !s.have_ring) {
-    if (nv > kRingVertexMask) throw Error("lines: too many vertices to smooth");
+  if (smooth && !s.have_pairs) {
     if (timings) q.finish();
     t.upload = lap(clock);
-    curvature::build_vertex_corners(mesh, s.adjacency);
-    cl::Buffer& offsets = s.ring_offsets.bind(device, s.adjacency.offsets);
-    cl::Buffer& corners = s.ring_corners.bind(device, s.adjacency.corners);
-    s.ring.reserve(ctx, 2 * s.adjacency.corners.size() * sizeof(cl_uint));
-    s.ring_count.reserve(ctx, nv * sizeof(cl_uint));
-    set_args(s.vertex_ring, offsets, corners, *s.triangles.bound(), cl_uint(nv), s.ring.buffer,
-             s.ring_count.buffer);
-    launch(q, s.vertex_ring, nv, kGroup);
-    s.have_ring = true;
+    detail::build_vertex_pairs(mesh, s.pairs);
+    s.pair_offsets.bind(device, s.pairs.offsets);
+    s.pair_indices.bind(device, s.pairs.pairs);
+    s.have_pairs = true;
     if (timings) q.finish();
     t.ring = lap(clock);
   }
@@ -179,8 +169,8 @@ Segments run(const Mesh& mesh, const curvature::CurvatureField& field, const Cam
     Buffer *in = &s.kn, *out = &s.kn2;
     for (int step = 0; step < options.smoothing_steps; ++step) {
       const cl_int last = step + 1 == options.smoothing_steps;
-      set_args(s.vertex_smooth, *s.ring_offsets.bound(), s.ring.buffer, s.ring_count.buffer,
-               in->buffer, cl_uint(nv), last, out->buffer, s.view.buffer);
+      set_args(s.vertex_smooth, *s.pair_offsets.bound(), *s.pair_indices.bound(), in->buffer,
+               cl_uint(nv), last, out->buffer, s.view.buffer);
       launch(q, s.vertex_smooth, nv, kGroup);
       std::swap(in, out);
     }

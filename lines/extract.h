@@ -10,7 +10,7 @@ namespace isocurv::lines {
 struct Timings {
   double checks = 0;  ///< the input checks and the thresholds (a median over the vertices)
   double upload = 0;  ///< binding the mesh and field (copies on devices with memory of their own)
-  double ring = 0;    ///< the smoothing's 1-ring, once per mesh: host adjacency and a kernel
+  double ring = 0;    ///< the smoothing's 1-ring rows (lines/detail), once per mesh, on the host
   double view = 0;    ///< per-vertex view quantities and their smoothing
   double count = 0;   ///< the per-face count and its download
   double emit = 0;    ///< host scan of the counts, the emitting pass and the download
@@ -20,7 +20,7 @@ struct Timings {
 /// The same segments as extract_reference (lines/reference.h states the rules), computed in float
 /// on `device` (lines/lines_kernels.cl):
 /// - per vertex, the view quantities (n.v, kr, num), `smoothing_steps` passes over kr and num on
-///   the distinct 1-ring (built once per mesh), and a byte of flags for the per-face tests;
+///   the 1-ring (its rows built once per mesh), and a byte of flags for the per-face tests;
 /// - per face, from the flags alone, how many line types may cross it (nearly always none);
 /// - the faces with some, in face order, write their segments at offsets from a host scan.
 /// Deterministic. On devices that work in host memory (PoCL) the kernels read the mesh and the

@@ -2,7 +2,6 @@
 // that file; lines/reference.h states the rules). Built with -D options from lines/extract.cpp:
 //   TYPE_CONTOUR, TYPE_SUGGESTIVE, TYPE_RIDGE, TYPE_VALLEY  the LineType values
 //   MAX_SEGMENTS  segments a face can give (one per type)
-//   RING_TWICE    the flag of a ring entry of weight 2 (line_vertex_ring)
 //   NO_SEGMENT    the type of an emitting slot left empty
 //   NO_EDGE       the key of an endpoint inside its face (kInsideFace)
 //   VERTEX_SNAP   crossings this close to an edge's end move onto the vertex (kVertexSnap)
@@ -63,54 +62,22 @@ __kernel void line_vertex_view(__global const float* positions, __global const f
   kn[i] = (float2)(kr, num);
 }
 
-// The distinct 1-ring of every vertex, for the smoothing passes. Each neighbour's weight is how
-// often it is one of the two other corners of the vertex's triangles (curvature::VertexCorners
-// offsets/corners): 2 across an edge inside a closed surface, 1 across a boundary edge. Row i
-// starts at ring[2 * offsets[i]] (room for two entries per corner) and holds ring_count[i]
-// entries in the order of first appearance along the corners: a vertex index, with RING_TWICE
-// set when its weight is 2 (a weight above 2, only at non-manifold edges, takes further entries).
-#define RING_VERTEX (RING_TWICE - 1)
-__kernel void line_vertex_ring(__global const uint* offsets, __global const uint* corners,
-                               __global const uint* triangles, uint vertex_count,
-                               __global uint* ring, __global uint* ring_count) {
-  const uint i = get_global_id(0);
-  if (i >= vertex_count) return;
-  __global uint* row = ring + 2 * offsets[i];
-  uint n = 0;
-  for (uint k = offsets[i]; k < offsets[i + 1]; ++k) {
-    const uint c = corners[k], t = c / 3, j = c % 3;
-    const uint others[2] = {triangles[3 * t + (j + 1) % 3], triangles[3 * t + (j + 2) % 3]};
-    for (int e = 0; e < 2; ++e) {
-      uint m = 0;
-      while (m < n && row[m] != others[e]) ++m;  // an entry of weight 1 for this vertex
-      if (m < n) row[m] |= RING_TWICE;
-      else row[n++] = others[e];
-    }
-  }
-  ring_count[i] = n;
-}
-
 // One smoothing pass over kr and num (kn: the view's .y and .z, written by line_vertex_view): the
-// weighted mean over the vertex (weight 1) and its ring (line_vertex_ring), i.e. the vertex and
-// the two other corners of each of its triangles. The last pass (`last` != 0) also stores them in
-// the view's .y and .z; n.v is kept.
-__kernel void line_vertex_smooth(__global const uint* offsets, __global const uint* ring,
-                                 __global const uint* ring_count, __global const float2* kn_in,
-                                 uint vertex_count, int last, __global float2* kn_out,
-                                 __global float4* view) {
+// mean over the vertex and the two other corners of each of its triangles, whose indices are
+// pairs[offsets[i] ..] (lines/detail/vertex_pairs.h). The last pass (`last` != 0) also stores the
+// result in the view's .y and .z; n.v is kept.
+__kernel void line_vertex_smooth(__global const uint* offsets, __global const uint2* pairs,
+                                 __global const float2* kn_in, uint vertex_count, int last,
+                                 __global float2* kn_out, __global float4* view) {
   const uint i = get_global_id(0);
   if (i >= vertex_count) return;
-  __global const uint* row = ring + 2 * offsets[i];
-  const uint n = ring_count[i];
+  const uint begin = offsets[i], end = offsets[i + 1];
   float2 sum = kn_in[i];
-  float w = 1;
-  for (uint m = 0; m < n; ++m) {
-    const uint e = row[m];
-    const float f = (e & RING_TWICE) ? 2.0f : 1.0f;
-    sum += f * kn_in[e & RING_VERTEX];
-    w += f;
+  for (uint k = begin; k < end; ++k) {
+    const uint2 other = pairs[k];
+    sum += kn_in[other.x] + kn_in[other.y];
   }
-  const float2 mean = sum / w;
+  const float2 mean = sum / (float)(1 + 2 * (end - begin));
   kn_out[i] = mean;
   if (last) view[i] = (float4)(view[i].x, mean, 0);
 }
