@@ -21,7 +21,7 @@ namespace isocurv::lines {
 namespace {
 
 using Clock = StepClock;
-constexpr std::size_t kGroup = 256;         // work-group size of every launch (core/cl_launch.h)
+constexpr std::size_t kGroup = 64;         // work-group size of every launch (core/cl_launch.h)
 constexpr int kMaxSegmentsPerFace = 4;      // one per line type
 constexpr std::uint32_t kNoSegment = 0xff;  // NO_SEGMENT: the type of an emitting slot left empty
 
