@@ -21,7 +21,7 @@ namespace isocurv::lines {
 namespace {
 
 using Clock = StepClock;
-constexpr std::size_t kGroup = 64;         // work-group size of every launch (core/cl_launch.h)
+constexpr std::size_t kGroup = 64;          // work-group size of every launch (core/cl_launch.h)
 constexpr int kMaxSegmentsPerFace = 4;      // one per line type
 constexpr std::uint32_t kNoSegment = 0xff;  // NO_SEGMENT: the type of an emitting slot left empty
 
@@ -162,7 +162,8 @@ Segments run(const Mesh& mesh, const curvature::CurvatureField& field, const Cam
   if (sel.view_dependent()) {
     set_args(s.vertex_view, *s.positions.bound(), *s.normals.bound(), *s.dir1.bound(),
              *s.dir2.bound(), *s.k1.bound(), *s.k2.bound(), *s.dcurv.bound(),
-             cl_int(sel.suggestive), cl_uint(nv), eye, towards, s.view.buffer, s.kn.buffer);
+             cl_int(sel.suggestive), cl_int(with_dcurv), cl_uint(nv), eye, towards, s.view.buffer,
+             s.kn.buffer);
     launch(q, s.vertex_view, nv, kGroup);
   }
   if (smooth) {

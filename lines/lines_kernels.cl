@@ -34,20 +34,25 @@ typedef struct {
   uint type;
 } Seg;
 
-// Per vertex: view = (ndotv, kr, num, 0) for the camera, and kn = (kr, num) for the smoothing. eye.w != 0: orthographic, `toward` is the
+bool finite3(float3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
+
+// Per vertex: view = (ndotv, kr, num, finite) for the camera, and kn = (kr, num) for the
+// smoothing. `finite` is 1 where the vertex's curvature inputs (k1, k2, normal, directions and,
+// with check_dcurv, dcurv) are all finite, else 0: face_segments then need not read them. eye.w != 0: orthographic, `toward` is the
 // direction towards the camera; else v = normalize(eye - p).
 __kernel void line_vertex_view(__global const float* positions, __global const float* normals,
                                __global const float* dir1, __global const float* dir2,
                                __global const float* k1s, __global const float* k2s,
-                               __global const float4* dcurv, int with_dcurv, uint vertex_count,
-                               float4 eye, float4 toward, __global float4* view,
-                               __global float2* kn) {
+                               __global const float4* dcurv, int with_dcurv, int check_dcurv,
+                               uint vertex_count, float4 eye, float4 toward,
+                               __global float4* view, __global float2* kn) {
   const uint i = get_global_id(0);
   if (i >= vertex_count) return;
   const float3 p = vload3(i, positions);
   const float3 v = eye.w != 0 ? toward.xyz : normalize(eye.xyz - p);
-  const float ndotv = dot(vload3(i, normals), v);
-  const float u = dot(v, vload3(i, dir1)), w = dot(v, vload3(i, dir2));
+  const float3 normal = vload3(i, normals), d1 = vload3(i, dir1), d2 = vload3(i, dir2);
+  const float ndotv = dot(normal, v);
+  const float u = dot(v, d1), w = dot(v, d2);
   const float u2 = u * u, w2 = w * w, sin2 = u2 + w2;
   const float k1 = k1s[i], k2 = k2s[i];
   const float kr = k1 * u2 + k2 * w2;
@@ -58,14 +63,16 @@ __kernel void line_vertex_view(__global const float* positions, __global const f
     num = (u2 * (u * C.x + 3 * w * C.y) + w2 * (3 * u * C.z + w * C.w)) / sin2 -
           2 * ndotv * tau * tau;
   }
-  view[i] = (float4)(ndotv, kr, num, 0);
+  bool finite = isfinite(k1) && isfinite(k2) && finite3(normal) && finite3(d1) && finite3(d2);
+  if (check_dcurv) finite = finite && all(isfinite(dcurv[i]));
+  view[i] = (float4)(ndotv, kr, num, finite ? 1.0f : 0.0f);
   kn[i] = (float2)(kr, num);
 }
 
 // One smoothing pass over kr and num (kn: the view's .y and .z, written by line_vertex_view): the
 // mean over the vertex and the two other corners of each of its triangles, whose indices are
 // pairs[offsets[i] ..] (lines/detail/vertex_pairs.h). The last pass (`last` != 0) also stores the
-// result in the view's .y and .z; n.v is kept.
+// result in the view's .y and .z; n.v and the finite flag are kept.
 __kernel void line_vertex_smooth(__global const uint* offsets, __global const uint2* pairs,
                                  __global const float2* kn_in, uint vertex_count, int last,
                                  __global float2* kn_out, __global float4* view) {
@@ -79,7 +86,7 @@ __kernel void line_vertex_smooth(__global const uint* offsets, __global const ui
   }
   const float2 mean = sum / (float)(1 + 2 * (end - begin));
   kn_out[i] = mean;
-  if (last) view[i] = (float4)(view[i].x, mean, 0);
+  if (last) view[i] = (float4)(view[i].x, mean, view[i].w);
 }
 
 typedef struct {
@@ -133,8 +140,6 @@ bool clip_positive(float g0, float g1, float* s0, float* s1) {
   return *s0 < *s1;
 }
 
-bool finite3(float3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
-
 // The segments of face f (in type order) into out; returns how many.
 int face_segments(uint f, __global const uint* triangles, __global const float* positions,
                   __global const float* normals, __global const float* dir1s,
@@ -152,11 +157,16 @@ int face_segments(uint f, __global const uint* triangles, __global const float* 
   float4 q[3];
   for (int j = 0; j < 3; ++j) {
     const uint i = v[j];
-    bool ok = isfinite(k1s[i]) && isfinite(k2s[i]) && finite3(vload3(i, normals)) &&
-              finite3(vload3(i, dir1s)) && finite3(vload3(i, dir2s));
-    if (with_dcurv) ok = ok && all(isfinite(dcurv[i]));
-    q[j] = view_dependent ? view[i] : (float4)(0);
-    if (view_dependent) ok = ok && isfinite(q[j].x) && isfinite(q[j].y) && isfinite(q[j].z);
+    bool ok;
+    if (view_dependent) {  // .w: line_vertex_view checked the vertex's curvature inputs
+      q[j] = view[i];
+      ok = q[j].w != 0 && isfinite(q[j].x) && isfinite(q[j].y) && isfinite(q[j].z);
+    } else {
+      q[j] = (float4)(0);
+      ok = isfinite(k1s[i]) && isfinite(k2s[i]) && finite3(vload3(i, normals)) &&
+           finite3(vload3(i, dir1s)) && finite3(vload3(i, dir2s));
+      if (with_dcurv) ok = ok && all(isfinite(dcurv[i]));
+    }
     if (!ok) return 0;
   }
   int n = 0;

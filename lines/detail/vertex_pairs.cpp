@@ -28,7 +28,7 @@ void build_vertex_pairs(const Mesh& mesh, VertexPairs& out) {
     cursor[b].assign(nv, 0);
     const auto [begin, end] = block_faces(b);
     for (std::size_t f = begin; f < end; ++f) {
-      const Tri& t = mesh.triangles[f];
+      const Tri t = mesh.triangles[f];  // a copy: the stores below cannot alias it
       if (!repeated(t)) ++cursor[b][t[0]], ++cursor[b][t[1]], ++cursor[b][t[2]];
     }
   });
@@ -51,7 +51,7 @@ void build_vertex_pairs(const Mesh& mesh, VertexPairs& out) {
     std::uint32_t* row = cursor[b].data();
     const auto [begin, end] = block_faces(b);
     for (std::size_t f = begin; f < end; ++f) {
-      const Tri& t = mesh.triangles[f];
+      const Tri t = mesh.triangles[f];  // a copy: the stores below cannot alias it
       if (repeated(t)) continue;
       for (int j = 0; j < 3; ++j) {
         std::uint32_t* p = pairs + 2 * std::size_t(row[t[j]]++);
