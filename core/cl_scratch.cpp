@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 
+#include "core/cl_input.h"
 #include "core/error.h"
 #include "core/huge_pages.h"
 
@@ -24,7 +25,7 @@ cl::Buffer& ScratchBuffers::get(std::size_t slot, std::size_t bytes) {
   std::free(s.host);
   s.host = nullptr;
   s.bytes = 0;
-  if (device_.info().type == "CPU") {
+  if (works_in_host_memory(device_)) {
     // Host memory the CPU device works in directly; huge pages make first touches cheap.
     want = (want + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;
     s.host = std::aligned_alloc(kHugePageBytes, want);

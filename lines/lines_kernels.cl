@@ -361,7 +361,7 @@ __kernel void line_face_emit(__global const uint* triangles, __global const floa
   Seg s[MAX_SEGMENTS];
   const int n = face_segments(f, triangles, positions, normals, dir1s, dir2s, k1s, k2s, dcurv, view,
                               P, s);
-  for (int j = 0; j < n && j < slots; ++j) {
+  for (int j = 0; j < n && (uint)j < slots; ++j) {
     const uint o = first + j;
     out_a[o] = (float4)(s[j].a, s[j].strength);
     out_b[o] = (float4)(s[j].b, 0);

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <string>
 
+#include "core/cl_input.h"
 #include "core/cl_launch.h"
 #include "core/cl_radix_sort.h"
 #include "core/cl_scan.h"
@@ -54,7 +55,7 @@ class OutputArray {
   template <class A>
   OutputArray(Device& device, std::vector<T, A>& v, std::size_t scratch_slot)
       : data_(v.data()), bytes_(v.size() * sizeof(T)) {
-    if (bytes_ > 0 && device.info().type == "CPU") {
+    if (bytes_ > 0 && works_in_host_memory(device)) {
       own_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, bytes_, data_);
       buffer_ = &own_;
     } else {
