@@ -135,22 +135,12 @@ Segments run(const Mesh& mesh, const curvature::CurvatureField& field, const Cam
     s.uploaded_vertices = nv, s.uploaded_faces = nf, s.uploaded_dcurv = with_dcurv;
   }
   const bool smooth = options.lines.suggestive && options.smoothing_steps > 0;
-  if (smooth && !s.have_pairs) {
-    if (timings) q.finish();
-    t.upload = lap(clock);
-    detail::build_vertex_pairs(mesh, s.pairs);
-    s.pair_offsets.bind(device, s.pairs.offsets);
-    s.pair_indices.bind(device, s.pairs.pairs);
-    s.have_pairs = true;
-    if (timings) q.finish();
-    t.ring = lap(clock);
-  }
   s.view.reserve(ctx, nv * sizeof(cl_float4));
   s.kn.reserve(ctx, nv * sizeof(cl_float2));
   if (smooth) s.kn2.reserve(ctx, nv * sizeof(cl_float2));
   s.counts.reserve(ctx, nf);
   if (timings) q.finish();
-  t.upload += lap(clock);
+  t.upload = lap(clock);
 
   const cl_float4 eye = {{float(camera.position[0]), float(camera.position[1]),
                           float(camera.position[2]), camera.ortho ? 1.0f : 0.0f}};
@@ -166,6 +156,18 @@ Segments run(const Mesh& mesh, const curvature::CurvatureField& field, const Cam
              s.kn.buffer);
     launch(q, s.vertex_view, nv, kGroup);
   }
+  if (smooth && !s.have_pairs) {
+    // Built on the host while the device computes the view quantities (unless timed).
+    if (timings)
+      q.finish(), t.view = lap(clock);
+    else
+      q.flush();
+    detail::build_vertex_pairs(mesh, s.pairs);
+    s.pair_offsets.bind(device, s.pairs.offsets);
+    s.pair_indices.bind(device, s.pairs.pairs);
+    s.have_pairs = true;
+    if (timings) t.ring = lap(clock);
+  }
   if (smooth) {
     Buffer *in = &s.kn, *out = &s.kn2;
     for (int step = 0; step < options.smoothing_steps; ++step) {
@@ -177,7 +179,7 @@ Segments run(const Mesh& mesh, const curvature::CurvatureField& field, const Cam
     }
   }
   if (timings) q.finish();
-  t.view = lap(clock);
+  t.view += lap(clock);
   s.flags.reserve(ctx, nv);
   set_args(s.vertex_flags, s.view.buffer, *s.k1.bound(), *s.k2.bound(), selection, thresholds,
            cl_uint(nv), s.flags.buffer);
