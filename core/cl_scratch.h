@@ -1,7 +1,8 @@
 #pragma once
 // Device buffers kept between calls, so repeated extractions (the explorer's slider) and repeated
-// estimates do not pay for fresh memory each time. On CPU devices they are backed by host memory
-// in huge pages (first-touching small pages is slow on virtual machines).
+// estimates do not pay for fresh memory each time. On CPU devices they are backed by host memory,
+// in huge pages from 128 KiB up (first-touching small pages is slow on virtual machines; below
+// that, one huge page's zeroing costs more than the small pages).
 #include <memory>
 #include <vector>
 
