@@ -1,6 +1,23 @@
 #include "app/commands.h"
 
+#include <string>
+#include <utility>
+
 namespace isocurv::app {
+
+namespace {
+
+/// Each command's page under docs/, the last line of its --help ("Docs: docs/PAGE.md").
+/// tests/docs/run_examples.py checks that every command has one and that the page exists.
+const std::pair<const char*, const char*> kDocPages[] = {
+    {"info", "volumes.md"},       {"extract", "extraction.md"}, {"check", "extraction.md"},
+    {"curvature", "curvature.md"}, {"run", "curvature.md"},      {"compare", "curvature.md"},
+    {"features", "features.md"},  {"render", "pictures.md"},    {"view", "pictures.md"},
+    {"lines", "lines.md"},        {"deform", "time-series.md"}, {"screen", "screen.md"},
+    {"devices", "install.md"},
+};
+
+}  // namespace
 
 void register_commands(CLI::App& app) {
   register_info(app);
@@ -16,6 +33,10 @@ void register_commands(CLI::App& app) {
   register_check(app);
   register_compare(app);
   register_devices(app);
+  for (const auto& [name, page] : kDocPages) {
+    CLI::App* cmd = app.get_subcommand(name);  // throws for a name no command has
+    cmd->footer(cmd->get_footer() + "\nDocs: docs/" + page);
+  }
 }
 
 }  // namespace isocurv::app

@@ -38,7 +38,8 @@ int main(int argc, char** argv) {
   app.footer(
       "Run isocurv COMMAND --help for a command's options and an example.\n"
       "Exit status: 0 success, 1 bad input or a failure (one line on stderr), 2 a usage error.\n"
-      "isocurv without arguments prints this list and exits with status 2.");
+      "isocurv without arguments prints this list and exits with status 2.\n"
+      "Docs: README.md, and docs/ for one page per task.");
   isocurv::app::register_commands(app);
   if (argc <= 1) {
     std::cout << app.help();

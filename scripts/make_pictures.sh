@@ -26,13 +26,13 @@ ln -s "$build" "$scratch/checkout/build"
 ln -s "$(cd ../shared && pwd)" "$scratch/shared"
 export PATH="$build/app:$PATH"
 
-pictures=(lobster_H_volume.png dragon_lines.svg bunny_si_features.png screen_gyroid_K.png)
+pictures=(lobster_H_volume.png dragon_lines.svg octaflower_si.png screen_gyroid_K.png)
 commands=(
-  'isocurv render ../shared/datasets/lobster/lobster.vol --spacing 1 1 1.4 --iso 40 --estimator volume --color H --view +z -o lobster_H_volume.png'
-  'isocurv lines ../shared/datasets/aa_dragon/dragon-256-aa-l0_1.vol --view +y -o dragon_lines.svg'
-  'isocurv features ../shared/datasets/vg_bunny/bunny-128.vol --radius 3% -o bunny_features.vtp'
-  'isocurv render bunny_features.vtp --color SI_ii --view +z -o bunny_si_features.png'
-  'isocurv screen build/datasets/gyroid.vdb --color K --size 800x600 -o screen_gyroid_K.png'
+  'isocurv render ../shared/datasets/lobster/lobster.vol --spacing 1 1 1.4 --iso 40 --estimator volume --color H --range -0.25 0.25 --view +z --azimuth 15 --elevation -25 -o lobster_H_volume.png'
+  'isocurv lines ../shared/datasets/aa_dragon/dragon-256-aa-l0_1.vol --view +z -o dragon_lines.svg'
+  'isocurv features ../shared/datasets/aa_octaflower/octa-flower17k-128-aa-l0_1.vol --radius 3% -o octaflower_features.vtp'
+  'isocurv render octaflower_features.vtp --color SI_ii --title "Octa-flower | shape index from integral invariants, r = 3%" -o octaflower_si.png'
+  'isocurv screen build/datasets/gyroid.vdb --color K --zoom 1.5 -o screen_gyroid_K.png'
 )
 cd "$scratch/checkout"
 for c in "${commands[@]}"; do
