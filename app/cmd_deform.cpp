@@ -78,6 +78,26 @@ void run_deform(const DeformCli& c, const CommonOptions& o) {
   if (rest.triangle_count() == 0) throw Error(c.input + ": the mesh has no triangles");
   std::optional<deform::Skin> skin;
   if (c.deformer == "skin") skin = deform::load_skin(c.skin, rest.vertex_count());
+  // Every frame's time, checked before anything is written: the .pvd needs them finite and
+  // increasing (a one-keyframe rig once wrote its frames, then failed naming the .pvd).
+  // Time: one period over the frames for the analytic deformers, the keyframe span for a skin.
+  std::vector<double> times(std::size_t(c.frames));
+  for (int f = 0; f < c.frames; ++f) {
+    double t = double(f) / c.frames;
+    if (skin)
+      t = c.frames == 1
+              ? skin->start_time()
+              : skin->start_time() + (skin->end_time() - skin->start_time()) * f / (c.frames - 1);
+    times[std::size_t(f)] = t;
+  }
+  if (skin && c.frames > 1 && skin->keyframes.size() < 2)
+    throw Error("deform: " + c.skin + ": the rig has one keyframe, so all " + std::to_string(c.frames) +
+                " frames would have the same time; give two keyframes or more, or --frames 1");
+  for (std::size_t f = 0; skin && f < times.size(); ++f)
+    if (!std::isfinite(times[f]) || (f > 0 && !(times[f] > times[f - 1])))
+      throw Error("deform: " + c.skin + ": the keyframe times " + std::to_string(skin->start_time()) + " to " +
+                  std::to_string(skin->end_time()) + " cannot give " + std::to_string(c.frames) +
+                  " distinct, finite frame times");
 
   // Everything is checked: now the output folder.
   std::error_code ec;
@@ -116,12 +136,7 @@ void run_deform(const DeformCli& c, const CommonOptions& o) {
   curvature::CurvatureField field;
   Progress bar("deform", std::uint64_t(c.frames));
   for (int f = 0; f < c.frames; ++f) {
-    // Time: one period over the frames for the analytic deformers, the keyframe span for a skin.
-    double t = double(f) / c.frames;
-    if (skin)
-      t = c.frames == 1
-              ? skin->start_time()
-              : skin->start_time() + (skin->end_time() - skin->start_time()) * f / (c.frames - 1);
+    const double t = times[std::size_t(f)];
     Clock::time_point clock = Clock::now();
     if (c.deformer == "affine") {
       const std::array<double, 3> a = deform::ellipsoid_axes(t);

@@ -100,3 +100,20 @@ TEST(CliDeform, BadInputIsOneLineAndWritesNothing) {
 }
 
 }  // namespace
+
+// A rig with one keyframe gives every frame the same time: it once wrote its frames and a .pvd,
+// then failed naming the .pvd. Rigs are checked before anything is written, the error names the
+// rig (issue 41).
+TEST(CliDeform, OneKeyframeRigRefusedBeforeAnythingIsWritten) {
+  TempDir dir("deform_one_key");
+  ASSERT_TRUE(run_isocurv({"extract", dataset("sphere"), "-o", dir / "s.vtp", "--quiet"}).ok());
+  const std::size_t nv = io::read_mesh(dir / "s.vtp").mesh.vertex_count();
+  std::string w = "[";
+  for (std::size_t i = 0; i < nv; ++i) w += std::string(i ? "," : "") + "[[0, 1.0]]";
+  write_file(dir / "one_key.json", R"({"bones": [{"name": "root"}], "weights": )" + w +
+                                       R"(], "keyframes": [{"time": 0.5, "pose": [{}]}]})");
+  const auto r = run_isocurv({"deform", dir / "s.vtp", "--deformer", "skin", "--skin",
+                              dir / "one_key.json", "--frames", "3", "-o", dir / "out"});
+  expect_clean_failure(r, "one_key.json: the rig has one keyframe");
+  EXPECT_FALSE(fs::exists(dir / "out")) << "nothing may be written for a bad rig";
+}
