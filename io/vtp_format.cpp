@@ -1,4 +1,5 @@
 // .vtp: VTK XML PolyData through vtkXMLPolyDataWriter/Reader (binary appended; LZ4, zlib or none).
+#include <vtkCellArray.h>
 #include <vtkErrorCode.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
@@ -12,6 +13,7 @@
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/error.h"
@@ -82,7 +84,8 @@ void check_claims(const std::string& path) {
 
 MeshFile read_vtp(const std::string& path) {
   check_claims(path);
-  isocurv::detail::check_vtk_xml_compressed_blocks(path);
+  // Every type, header, count and block length against the bytes (core/vtk_xml_blocks.h).
+  const isocurv::detail::VtkXmlLayout layout = isocurv::detail::check_vtk_xml(path);
   vtkNew<vtkXMLPolyDataReader> reader;
   VtkErrorCapture errors(reader);
   reader->SetFileName(path.c_str());
@@ -91,6 +94,19 @@ MeshFile read_vtp(const std::string& path) {
   if (errors.failed() || reader->GetErrorCode() != vtkErrorCode::NoError || !poly)
     throw Error(path, "not a readable VTK XML PolyData file" +
                           (errors.failed() ? " (" + errors.message() + ")" : std::string()));
+  // VTK reads a cell array's connectivity up to its last offset and ignores the rest: the file
+  // must hold exactly that many ids, else cells were lost (or the offsets are wrong).
+  const std::pair<const char*, vtkCellArray*> cells[] = {
+      {"Verts", poly->GetVerts()}, {"Lines", poly->GetLines()}, {"Strips", poly->GetStrips()}, {"Polys", poly->GetPolys()}};
+  for (const auto& [section, array] : cells) {
+    unsigned long long stored = 0;
+    for (const auto& a : layout.arrays)
+      if (a.section == section && a.name == "connectivity") stored += a.values;
+    const auto read = static_cast<unsigned long long>(array ? array->GetNumberOfConnectivityIds() : 0);
+    if (stored != read)
+      throw Error(path, std::string(section) + " connectivity holds " + std::to_string(stored) +
+                            " point ids but the offsets use " + std::to_string(read));
+  }
   return from_polydata(poly, path);
 }
 

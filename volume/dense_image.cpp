@@ -104,12 +104,23 @@ Volume finish_dense(DenseImage&& image, const std::string& path, const std::stri
   const auto file_spacing = image.spacing, file_origin = image.origin;
   if (options.spacing) image.spacing = *options.spacing;
   if (options.origin) image.origin = *options.origin;
-  for (int i = 0; i < 3; ++i) {
-    const double s = image.spacing[std::size_t(i)];
-    if (!std::isfinite(s) || s <= 0) throw Error(path, "invalid voxel spacing " + std::to_string(s));
-    if (!std::isfinite(image.origin[std::size_t(i)])) throw Error(path, "invalid origin");
-  }
   auto& a = image.axes;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const double s = image.spacing[i];
+    if (!std::isfinite(s) || s == 0) {
+      char text[64];
+      std::snprintf(text, sizeof text, "invalid voxel spacing %g (axis %c): it must be finite and non-zero", s,
+                    char('x' + i));
+      throw Error(path, text);
+    }
+    // A negative spacing is a flip: world = origin + index * spacing * axis in every format, so
+    // the axis turns around and the spacing is its length (the flip itself is resolved below).
+    if (s < 0) {
+      image.spacing[i] = -s;
+      for (double& c : a[i]) c = -c;
+    }
+    if (!std::isfinite(image.origin[i])) throw Error(path, "invalid origin: it must be three finite numbers");
+  }
   const double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
                      a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
                      a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);

@@ -88,6 +88,10 @@ Bytes inflate_exact(const std::string& path, const std::uint8_t* data, std::size
   if (produced < expected)
     throw Error(path, what + " is truncated: inflates to " + std::to_string(produced) + " bytes, expected " +
                           std::to_string(expected));
+  // All the data came out but the stream did not end: its trailer (the zlib Adler-32 or gzip
+  // CRC-32 and length, which inflate checks) is missing, so nothing vouches for the bytes.
+  if (rc != Z_STREAM_END)
+    throw Error(path, what + " is truncated: the compressed stream ends before its checksum trailer");
   return out;
 }
 

@@ -25,7 +25,9 @@ std::uint64_t file_size(const std::string& path);
 Bytes read_bytes(const std::string& path, std::uint64_t offset, std::uint64_t length);
 
 /// Inflates the zlib (RFC 1950) or gzip (RFC 1952) stream in `data` (format auto-detected), which
-/// must hold exactly `expected` bytes: fewer is "truncated", more is a size mismatch.
+/// must hold exactly `expected` bytes: fewer is "truncated", more is a size mismatch. The stream
+/// must end with its checksum trailer (Adler-32, or CRC-32 and length), which zlib verifies;
+/// bytes after the end of the stream are ignored.
 /// `what` names the payload in messages (e.g. "voxel data").
 Bytes inflate_exact(const std::string& path, const std::uint8_t* data, std::size_t size,
                                         std::uint64_t expected, const std::string& what);

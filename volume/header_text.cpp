@@ -82,6 +82,15 @@ LargeBuffer<float> parse_ascii_voxels(const std::string& path, const char* begin
   if (n < count)
     throw Error(path, "ASCII voxel data is truncated: " + std::to_string(n) + " of " +
                           std::to_string(count) + " values");
+  // A file cut inside its last number reads as a shorter number ("123" cut to "12"): the last
+  // value must be followed by a space or line break, as every writer ends its lines.
+  if (count > 0 && p >= end)
+    throw Error(path, "ASCII voxel data ends inside its last value (no line break after it): the file may be "
+                      "cut short");
+  while (p < end && std::isspace(static_cast<unsigned char>(*p))) ++p;
+  if (p < end)
+    throw Error(path, "ASCII voxel data holds more than the header's " + std::to_string(count) +
+                          " values (sizes do not match the data)");
   return out;
 }
 

@@ -23,7 +23,8 @@ std::vector<double> parse_numbers_exact(const std::string& path, const std::stri
 std::vector<long long> parse_integers_exact(const std::string& path, const std::string& s, std::size_t n,
                                             const std::string& what);
 /// Parses `count` whitespace-separated numbers of an ASCII payload; throws when there are fewer
-/// or a token is not a number.
+/// or more, a token is not a number, or the last one is not followed by whitespace (a file cut
+/// inside its last number would otherwise read as a shorter number).
 LargeBuffer<float> parse_ascii_voxels(const std::string& path, const char* begin, const char* end,
                                       std::uint64_t count);
 /// Directory of `path` (for data files named relative to their header).

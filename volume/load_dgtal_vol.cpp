@@ -66,7 +66,7 @@ Volume load_dgtal_vol(const std::string& path, const LoadOptions& options) {
   image.dims = {int(dims[0]), int(dims[1]), int(dims[2])};
   if (keys.count("Voxel-Size")) {
     const double s = parse_numbers_exact(path, keys["Voxel-Size"], 1, "Voxel-Size")[0];
-    if (s > 0) image.spacing = {s, s, s};
+    image.spacing = {s, s, s};  // finish_dense refuses 0 and non-finite, flips a negative one
   }
   if (version == 3)
     decode_into(image, std::move(voxels), 0, count, VoxelType::UInt8, false);

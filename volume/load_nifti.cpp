@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 #include "core/error.h"
 #include "volume/dense_image.h"
@@ -94,11 +95,11 @@ Volume load_nifti(const std::string& path, const LoadOptions& options) {
   DenseImage image;
   image.dims = {int(dims[0]), int(dims[1]), int(dims[2])};
   const float qfac = h.f32(76) < 0 ? -1.0f : 1.0f;
-  for (std::size_t i = 0; i < 3; ++i) {
-    const double p = std::fabs(h.f32(80 + 4 * i));
-    image.spacing[i] = std::isfinite(p) && p > 0 ? p : 1.0;
-  }
   const int qform_code = h.i16(252), sform_code = h.i16(254);
+  // pixdim[1..3] is the spacing unless the sform gives it: kept as written, so finish_dense
+  // refuses 0 and non-finite values (they once became 1) and takes a negative one as a flip
+  // (world = ... + index * pixdim * axis), as every format does.
+  for (std::size_t i = 0; i < 3; ++i) image.spacing[i] = h.f32(80 + 4 * i);
   if (sform_code > 0) {
     // srow_{x,y,z}: world_r = sum_i srow_r[i] * index_i + srow_r[3]; column i is index axis i.
     double m[3][4];
@@ -125,6 +126,13 @@ Volume load_nifti(const std::string& path, const LoadOptions& options) {
   in.skip(std::size_t(vox_offset - kHeaderSize), "NIfTI extension");
   Bytes bytes(bytes_needed);
   in.read_exact(bytes.data(), bytes.size(), "voxel data");
+  // Read a .nii.gz to its end, so that zlib checks the gzip trailer (CRC-32 and length): a stream
+  // cut before it, or corrupt after the voxels, is refused. Bytes after the voxels are allowed.
+  if (gz) {
+    std::vector<char> rest(1 << 16);
+    while (in.read(rest.data(), rest.size()) == rest.size()) {
+    }
+  }
   const std::uint16_t one = 1;
   std::uint8_t low_byte;
   std::memcpy(&low_byte, &one, 1);

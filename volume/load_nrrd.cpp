@@ -113,11 +113,14 @@ Volume load_nrrd(const std::string& path, const LoadOptions& options) {
     if (line.find(":=") != std::string::npos) continue;  // key/value pairs carry no geometry
     const std::size_t colon = line.find(": ");
     if (colon == std::string::npos) throw Error(path, "bad NRRD header line '" + line.substr(0, 60) + "'");
-    fields[to_lower(trim(line.substr(0, colon)))] = trim(line.substr(colon + 2));
+    std::string key = to_lower(trim(line.substr(0, colon)));
+    if (key == "datafile") key = "data file";  // one field, two spellings
+    // A field given twice is ambiguous (a second `sizes:` once silently won): refused.
+    if (!fields.emplace(key, trim(line.substr(colon + 2))).second)
+      throw Error(path, "NRRD field '" + key + "' is given twice");
   }
   auto get = [&](const std::string& k) -> std::string { return fields.count(k) ? fields[k] : std::string(); };
-  std::string data_file = get("data file");
-  if (data_file.empty()) data_file = get("datafile");
+  const std::string data_file = get("data file");
   if (!header_done && data_file.empty()) throw Error(path, "NRRD header is not terminated by a blank line");
 
   if (get("dimension") != "3") throw Error(path, "only 3-D NRRD images are supported (dimension: " + get("dimension") + ")");
@@ -148,8 +151,10 @@ Volume load_nrrd(const std::string& path, const LoadOptions& options) {
       for (std::size_t j = 0; j < 3; ++j) image.axes[i][j] = (*v)[j] / len;
     }
   } else if (fields.count("spacings")) {
+    // Kept as written: finish_dense refuses 0 and non-finite spacings (NaN once became 1) and
+    // takes a negative one as a flip, as every format does.
     const auto s = parse_numbers_exact(path, get("spacings"), 3, "spacings");
-    for (std::size_t i = 0; i < 3; ++i) image.spacing[i] = std::isfinite(s[i]) && s[i] != 0 ? std::fabs(s[i]) : 1.0;
+    for (std::size_t i = 0; i < 3; ++i) image.spacing[i] = s[i];
   }
   if (fields.count("space origin")) {
     const auto o = parse_vector(get("space origin"));
@@ -215,6 +220,13 @@ Volume load_nrrd(const std::string& path, const LoadOptions& options) {
       throw Error(data_path, "voxel data is truncated: " + std::to_string(available) + " bytes, the header's " +
                                  std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" + std::to_string(d[2]) +
                                  " " + voxel_type_name(*type) + " needs " + std::to_string(bytes_needed));
+    // More data than the sizes need means a wrong header (the grid would silently be smaller),
+    // as raw and MetaImage files say too; `byte skip: -1` alone declares leading bytes to skip.
+    if (available > std::uint64_t(byte_skip) + bytes_needed)
+      throw Error(data_path, "voxel data has " + std::to_string(available - std::uint64_t(byte_skip)) +
+                                 " bytes, the header's " + std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" +
+                                 std::to_string(d[2]) + " " + voxel_type_name(*type) + " needs " +
+                                 std::to_string(bytes_needed) + " (sizes or type do not match the data)");
     decode_into(image, read_bytes(data_path, data_offset + std::uint64_t(byte_skip), bytes_needed), 0, count, *type,
                 big_endian);
   }

@@ -314,13 +314,34 @@ void check_claim(const std::string& path, const std::string& format, std::uint64
   if (format == "vtk" && to_lower(head_text).find("field") != std::string::npos)
     throw Error(path, "legacy .vtk files with FIELD data (or the word 'field' in their header) are not "
                       "supported: VTK's reader can crash on them; save the image as .vti");
-  if (format == "vti") {
-    check_vti_pieces(path, head_text);
-    isocurv::detail::check_vtk_xml_compressed_blocks(path);  // VTK allocates from block headers
+  if (format == "vti") check_vti_pieces(path, head_text);
+  if (format == "vtk") {
+    // VTK's legacy reader takes what it can parse: spacing and origin are checked here (the three
+    // words after the keyword, as VTK reads them), so that no format turns a NaN, infinite or zero
+    // spacing into something else.
+    std::istringstream words(to_lower(head_text));
+    std::vector<std::string> w;
+    for (std::string word; w.size() < 4096 && words >> word;) w.push_back(word);
+    for (const std::string key : {"spacing", "aspect_ratio", "origin"}) {
+      const auto at = std::find(w.begin(), w.end(), key);
+      if (at == w.end()) continue;
+      bool ok = w.end() - at > 3;
+      for (int k = 1; ok && k <= 3; ++k) {
+        char* end = nullptr;
+        const double v = std::strtod(at[k].c_str(), &end);
+        ok = *end == '\0' && end != at[k].c_str() && std::isfinite(v) && (v != 0 || key == "origin");
+      }
+      if (!ok) {
+        std::string upper = key;
+        for (char& ch : upper) ch = char(std::toupper(static_cast<unsigned char>(ch)));
+        throw Error(path, upper + " is not three finite" + (key == "origin" ? "" : " non-zero") + " numbers");
+      }
+    }
   }
   const Claim c = read_claim(head_text, format);
   if (c.dims[0] == 0 && c.dims[1] == 0 && c.dims[2] == 0) {  // the reader will complain
     if (format == "vtk") check_legacy_attributes(path, to_lower(head_text), size);
+    if (format == "vti") isocurv::detail::check_vtk_xml(path);
     return;
   }
   const std::string text = std::to_string(c.dims[0]) + " x " + std::to_string(c.dims[1]) + " x " +
@@ -334,6 +355,9 @@ void check_claim(const std::string& path, const std::string& format, std::uint64
                           (c.components > 1 ? " of " + std::to_string(c.components) + " components" : "") +
                           " (" + bytes_text(values) + " at one byte each) but the file holds " + bytes_text(size));
   if (format == "vtk") check_legacy_attributes(path, to_lower(head_text), size);
+  // Every extent, type, header, count and block length against the bytes: VTK allocates from
+  // block headers, reads past short data and crashes on string arrays (core/vtk_xml_blocks.h).
+  if (format == "vti") isocurv::detail::check_vtk_xml(path);
 }
 
 }  // namespace
