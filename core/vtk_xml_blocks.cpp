@@ -131,7 +131,9 @@ std::optional<ull> count_of(const std::string& s) {
   return v;
 }
 
-/// Exactly `n` whitespace-separated finite numbers, else nullopt.
+/// Exactly `n` whitespace-separated finite decimal numbers, else nullopt. Only the characters of
+/// decimal notation: VTK reads these with a stream, which stops at "nan" or the "x" of hex floats
+/// that strtod would accept (and then takes the default 1 1 1 instead).
 std::optional<std::vector<double>> finite_numbers(const std::string& s, std::size_t n) {
   std::vector<double> out;
   const char* p = s.c_str();
@@ -141,6 +143,10 @@ std::optional<std::vector<double>> finite_numbers(const std::string& s, std::siz
     char* end = nullptr;
     const double v = std::strtod(p, &end);
     if (end == p || (*end && !is_space(*end)) || !std::isfinite(v)) return std::nullopt;
+    for (const char* c = p; c != end; ++c)
+      if (!std::isdigit(static_cast<unsigned char>(*c)) && *c != '+' && *c != '-' && *c != '.' && *c != 'e' &&
+          *c != 'E')
+        return std::nullopt;
     out.push_back(v);
     p = end;
   }
@@ -597,17 +603,18 @@ VtkXmlLayout check_vtk_xml(const std::string& path) {
       const Piece& c = piece_counts[p];
       const std::pair<const char*, ull> kinds[] = {
           {"Points", c.points}, {"Verts", c.verts}, {"Lines", c.lines}, {"Strips", c.strips}, {"Polys", c.polys}};
-      for (const auto& [section, n] : kinds) {
+      for (const auto& kind : kinds) {
+        const std::string section = kind.first;  // not a structured binding: lambdas capture it
+        const ull n = kind.second;
         if (n == 0) continue;
         for (const char* needed : {"offsets", "connectivity"}) {
-          if (std::string(section) == "Points" && std::string(needed) == "connectivity") continue;
+          if (section == "Points" && std::string(needed) == "connectivity") continue;
           const bool found = std::any_of(layout.arrays.begin(), layout.arrays.end(), [&](const VtkXmlArray& a) {
-            return a.piece == p && a.section == section && (std::string(section) == "Points" || a.name == needed);
+            return a.piece == p && a.section == section && (section == "Points" || a.name == needed);
           });
           if (!found)
             refuse("piece " + std::to_string(p) + " declares " + text_of(n) + " " + section + " but holds no " +
-                   (std::string(section) == "Points" ? std::string("Points array") : "'" + std::string(needed) +
-                                                                                         "' array for them"));
+                   (section == "Points" ? std::string("Points array") : "'" + std::string(needed) + "' array for them"));
         }
       }
     }

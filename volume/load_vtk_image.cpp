@@ -329,7 +329,8 @@ void check_claim(const std::string& path, const std::string& format, std::uint64
       for (int k = 1; ok && k <= 3; ++k) {
         char* end = nullptr;
         const double v = std::strtod(at[k].c_str(), &end);
-        ok = *end == '\0' && end != at[k].c_str() && std::isfinite(v) && (v != 0 || key == "origin");
+        ok = *end == '\0' && end != at[k].c_str() && std::isfinite(v) && (v != 0 || key == "origin") &&
+             at[k].find_first_not_of("0123456789+-.e") == std::string::npos;  // decimal, as VTK reads it
       }
       if (!ok) {
         std::string upper = key;
