@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/mesh_measures.h"
 #include "curvature/ao_scale.h"
+#include "curvature/estimator.h"
 #include "curvature/mesh_estimators.h"
 #include "datasets/exact_curvature.h"
 #include "datasets/field.h"
@@ -94,13 +95,15 @@ std::unique_ptr<datasets::Field> analytic_source(const Surface& s, const CommonO
 void register_compare(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "compare",
-      "Run every mesh curvature estimator on one surface: time, H and K percentiles, pairwise "
+      "Run every curvature estimator on one surface (the volume estimator on volume input): "
+      "time, H and K percentiles, pairwise "
       "agreement, and the error against the exact values on the bundled analytic datasets");
   cmd->footer(
       "Example: isocurv compare build/datasets/torus.vdb\n"
       "         isocurv compare mesh.ply --json\n"
       "Estimators: rusinkiewicz, batagelo, prantl3, prantl2 (OpenCL, or their references with\n"
-      "--device reference), quadric, cubic, sampling, meyer (double references, single-threaded).\n"
+      "--device reference), quadric, cubic, sampling, meyer (double references, single-threaded),\n"
+      "and for volume input volume (at its auto scale; --normals applies to the mesh estimators).\n"
       "Statistics leave out boundary vertices, vertices an estimator flags Unreliable and those\n"
       "with max(|k1|,|k2|) above 1 / (half the mean edge length). Agreement: RMS(a - b) over the\n"
       "RMS of both, for H and K, over vertices counted for both.");
@@ -139,7 +142,7 @@ void register_compare(CLI::App& app) {
     }
 
     struct Row {
-      const curvature::MeshEstimatorInfo* info;
+      std::string name, path;
       CurvatureField f;
       std::vector<bool> keep;
       double ms = 0;
@@ -147,12 +150,27 @@ void register_compare(CLI::App& app) {
     };
     std::vector<Row> rows;
     for (const curvature::MeshEstimatorInfo& e : curvature::mesh_estimators()) {
-      Row r{&e, {}, {}, 0, 0};
       Device* d = e.kernels ? device : nullptr;
+      Row r{e.name, d ? "opencl" : "reference", {}, {}, 0, 0};
       if (d) curvature::estimate_mesh(e.id, mesh, d, co);  // warm: program build, buffers
       timer.start(e.name);
       const auto t0 = std::chrono::steady_clock::now();
       r.f = curvature::estimate_mesh(e.id, mesh, d, co);
+      r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      timer.stop();
+      r.keep = counted(r.f, limit);
+      for (std::uint8_t u : r.f.unreliable) r.flagged += u;
+      rows.push_back(std::move(r));
+    }
+    if (s.volume) {  // the volume estimator at its auto scale (the default for volume input)
+      curvature::Options vo = co;
+      vo.estimator = curvature::Estimator::volume;
+      vo.vertex_normals = nullptr;
+      Row r{"volume", device ? "opencl" : "reference", {}, {}, 0, 0};
+      if (device) curvature::estimate_field(mesh, {&*s.volume, s.isovalue}, device, vo);
+      timer.start("volume");
+      const auto t0 = std::chrono::steady_clock::now();
+      r.f = curvature::estimate_field(mesh, {&*s.volume, s.isovalue}, device, vo);
       r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       timer.stop();
       r.keep = counted(r.f, limit);
@@ -171,8 +189,8 @@ void register_compare(CLI::App& app) {
     nlohmann::json list = nlohmann::json::array();
     for (const Row& r : rows) {
       nlohmann::json e;
-      e["estimator"] = r.info->name;
-      e["path"] = (r.info->kernels && device) ? "opencl" : "reference";
+      e["estimator"] = r.name;
+      e["path"] = r.path;
       e["time_ms"] = r.ms;
       e["unreliable"] = r.flagged;
       e["counted"] = std::count(r.keep.begin(), r.keep.end(), true);
@@ -189,7 +207,7 @@ void register_compare(CLI::App& app) {
     nlohmann::json agree;
     for (const Row& a : rows)
       for (const Row& b : rows)
-        agree[a.info->name][b.info->name] = {
+        agree[a.name][b.name] = {
             number(disagreement(a.f.H, b.f.H, a.keep, b.keep)),
             number(disagreement(a.f.K, b.f.K, a.keep, b.keep))};
     j["agreement_H_K"] = agree;
@@ -210,7 +228,7 @@ void register_compare(CLI::App& app) {
       const nlohmann::json& e = list[i];
       auto g = [](const nlohmann::json& x) { return x.is_null() ? std::nan("") : x.get<double>(); };
       std::printf("%-13s %-9s %9.1f %6zu %10.4g %10.4g %10.4g  %10.4g %10.4g %10.4g",
-                  rows[i].info->name, e["path"].get<std::string>().c_str(), rows[i].ms,
+                  rows[i].name.c_str(), e["path"].get<std::string>().c_str(), rows[i].ms,
                   rows[i].flagged, g(e["H"]["p1"]), g(e["H"]["p50"]), g(e["H"]["p99"]),
                   g(e["K"]["p1"]), g(e["K"]["p50"]), g(e["K"]["p99"]));
       if (field)
@@ -220,16 +238,16 @@ void register_compare(CLI::App& app) {
     }
     std::printf("\nagreement: RMS difference over RMS, H (upper right) and K (lower left)\n%-13s",
                 "");
-    for (const Row& r : rows) std::printf(" %12s", r.info->name);
+    for (const Row& r : rows) std::printf(" %12s", r.name.c_str());
     std::printf("\n");
     for (std::size_t a = 0; a < rows.size(); ++a) {
-      std::printf("%-13s", rows[a].info->name);
+      std::printf("%-13s", rows[a].name.c_str());
       for (std::size_t b = 0; b < rows.size(); ++b) {
         if (a == b) {
           std::printf(" %12s", "-");
           continue;
         }
-        const nlohmann::json& v = agree[rows[a].info->name][rows[b].info->name][a < b ? 0 : 1];
+        const nlohmann::json& v = agree[rows[a].name][rows[b].name][a < b ? 0 : 1];
         std::printf(" %12.4g", v.is_null() ? std::nan("") : v.get<double>());
       }
       std::printf("\n");

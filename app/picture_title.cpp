@@ -34,7 +34,7 @@ std::string estimator_title(const curvature::EstimatorReport& report) {
 }
 
 std::string estimator_title(const CommonOptions& o) {
-  const std::string name = o.estimator.empty() ? "rusinkiewicz" : o.estimator;
+  const std::string name = curvature::estimator_name(default_estimator(o, true));
   return name == "volume" ? name + ", scale " + o.scale : name;
 }
 

@@ -101,12 +101,21 @@ std::vector<std::string> parse_scales(const std::string& text) {
   return scales;
 }
 
+curvature::Estimator default_estimator(const CommonOptions& o, bool volume_input) {
+  if (!o.estimator.empty()) return *curvature::estimator_from_name(o.estimator);
+  // The volume estimator is the most accurate on every class of docs/curvature.md's table;
+  // --normals only means something to the mesh estimators, so it keeps Rusinkiewicz's.
+  return volume_input && o.normals.empty() ? curvature::Estimator::volume
+                                           : curvature::Estimator::rusinkiewicz;
+}
+
 void add_curvature_options(CLI::App& cmd, CommonOptions& o, bool mesh_input) {
   cmd.add_option("--estimator", o.estimator,
-                 "Curvature estimator: rusinkiewicz (from the mesh; the default), volume (from the "
-                 "volume's derivatives at --scale; volume input only), or the other mesh estimators "
-                 "batagelo, prantl3, prantl2, quadric, cubic, sampling, meyer (isocurv compare "
-                 "runs them all)")
+                 "Curvature estimator: volume (from the volume's derivatives at --scale; the default "
+                 "for volume input), rusinkiewicz (from the mesh; the default for mesh files, and "
+                 "for volumes when --normals is given), or the other mesh estimators batagelo, "
+                 "prantl3, prantl2, quadric, cubic, sampling, meyer (isocurv compare runs them all; "
+                 "docs/curvature.md has the accuracy table)")
       ->check(CLI::IsMember(curvature::estimator_names()));
   cmd.add_option(
          "--scale", o.scale,
@@ -378,8 +387,7 @@ curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Vol
                                              StageTimer& timer, NormalsUsed* used,
                                              curvature::EstimatorReport* report) {
   curvature::Options co;
-  co.estimator = o.estimator.empty() ? curvature::Estimator::rusinkiewicz
-                                     : *curvature::estimator_from_name(o.estimator);
+  co.estimator = default_estimator(o, volume != nullptr);
   const bool mesh_estimator = !curvature::needs_volume(co.estimator);
   if (!mesh_estimator && !volume)
     throw Error("--estimator " + o.estimator +
@@ -512,6 +520,21 @@ nlohmann::json surface_report(const Surface& s) {
     if (s.estimator.estimator == "volume") {
       e["unreliable_vertices"] = s.estimator.unreliable;
       e["finer_scale_vertices"] = s.estimator.finer_scale;
+      e["outside_box_vertices"] = s.estimator.outside;
+      if (s.field)
+        for (const auto& x : s.field->extra)
+          if (x.name == "Scale" && !x.values.empty()) {
+            // The per-vertex scale (world units): its distribution over the vertices.
+            std::vector<float> v = x.values;
+            std::sort(v.begin(), v.end());
+            auto at = [&](double p) { return double(v[std::size_t(p * double(v.size() - 1))]); };
+            e["scale_per_vertex"] = {{"min", at(0)},   {"p5", at(0.05)}, {"p50", at(0.5)},
+                                     {"p95", at(0.95)}, {"max", at(1)},
+                                     {"rule", "the asked or auto scale, divided by sqrt(2) while "
+                                              "it erodes the vertex's surface, merges it with "
+                                              "another or reaches outside the box "
+                                              "(docs/curvature.md)"}};
+          }
     }
     if (!s.estimator.steps_ms.empty()) {
       nlohmann::json steps = nlohmann::json::object();

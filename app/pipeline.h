@@ -165,6 +165,10 @@ void prepare_mesh_for_curvature(Surface& s, const std::string& path, const Commo
 void reestimate_keeping_extras(Surface& s, const std::string& path, const CommonOptions& o,
                                StageTimer& timer);
 
+/// The estimator a command runs: --estimator when given, else volume for volume input without
+/// --normals, else rusinkiewicz.
+curvature::Estimator default_estimator(const CommonOptions& o, bool volume_input);
+
 /// Estimates the curvature of `mesh` (stage "curvature") on the chosen device with --estimator
 /// (curvature::estimate_field), then the AO --ao-method chooses (apply_ao). Rusinkiewicz's normals: --normals, by default volume when `volume`
 /// is given, else mesh; volume normals come from volume::gradient_normals_for_mesh (face normals

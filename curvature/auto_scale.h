@@ -16,16 +16,29 @@ inline constexpr double kAutoReferenceNoise = 0.004;
 /// filters the noise in the Hessian falls as sigma^-7/2 (3-D, second derivatives), so this keeps
 /// the noise in the curvature near what it is at one voxel for kAutoReferenceNoise.
 inline constexpr double kAutoScaleExponent = 2.0 / 7.0;
-/// The chosen scale stays within [kAutoMinVoxels, kAutoMaxVoxels] voxels (the largest spacing).
+/// The chosen scale stays within [kAutoMinVoxels, kAutoMaxVoxels] voxels (the geometric mean
+/// spacing; and never under volume::kMinScaleVoxels of the largest).
 /// On smooth fields the error is the smoothing's own bias, about (sigma k)^2 (bench_accuracy,
 /// torus 128^3: H 0.27% at one voxel, 0.13% at 0.7), and the B-spline reconstruction does not
 /// alias at 0.7 voxel (sphere H 0.03%), so smooth fields get 0.8 voxel.
 inline constexpr double kAutoMinVoxels = 0.8, kAutoMaxVoxels = 4.0;
 
+/// The scale of a binary volume (two values: masks, voxelised parts), in voxels. Its noise is
+/// all quantisation, one step the whole contrast, and not white: the noise model above does not
+/// hold (it would ask for its 4-voxel cap), nor does a measured noise of zero (0.8 voxel, which
+/// keeps the voxel staircase). Chosen on bench_accuracy's binary sphere, torus and CAD part (the
+/// best fixed scales lie at 1.5-2 voxels) and the published torus of DGtal's normal currents.
+inline constexpr double kBinaryScaleVoxels = 2.0;
+
+/// True when `volume` holds exactly two values (its histogram has only its first and last bins):
+/// a mask or a voxelised part.
+bool is_binary(const volume::Volume& volume);
+
 /// How the scale was chosen (reported in the JSON).
 struct ScaleChoice {
   double scale = 0;           ///< the chosen sigma, world units
-  double voxel = 0;           ///< the largest spacing, world units
+  double voxel = 0;           ///< the geometric mean spacing (sx sy sz)^(1/3), world units
+  bool binary = false;        ///< the volume holds two values (kBinaryScaleVoxels)
   double noise = 0;           ///< voxel noise, value units: max(measured, quantisation)
   double measured_noise = 0;  ///< volume::estimate_noise's
   double quantisation = 0;    ///< step / sqrt(12) for integer voxel types (step 1), else 0
@@ -37,9 +50,14 @@ struct ScaleChoice {
 /// sigma = voxel * clamp((noise_level / kAutoReferenceNoise)^kAutoScaleExponent, kAutoMinVoxels,
 /// kAutoMaxVoxels), with noise_level the voxel noise (measured near the surface by
 /// volume::estimate_noise, at least the quantisation noise of an integer voxel type) over the
-/// step the field makes per voxel across the surface (the median index-space gradient, Gaussian
-/// at one voxel, over up to 4096 vertices taken evenly). A smooth float field thus gets 0.8 voxel,
-/// noisy 8-bit data about 2. Deterministic. Throws what volume::grid_frame throws.
+/// step the field makes per voxel across the surface (the median world gradient times the voxel,
+/// Gaussian at one voxel, over up to 1024 vertices taken evenly). On an anisotropic grid the voxel
+/// is the geometric mean spacing: a Gaussian of world deviation sigma averages sigma^3 /
+/// (sx sy sz) samples whatever their shape, so that is the length the noise scales with; no axis
+/// gets under volume::kMinScaleVoxels of its spacing. A binary volume gets kBinaryScaleVoxels.
+/// A smooth float field thus gets 0.8 voxel, noisy 8-bit data about 2. This is the largest scale
+/// of the per-vertex choice (curvature/volume_estimate.h). Deterministic. Throws what
+/// volume::grid_frame throws.
 ScaleChoice auto_scale(const volume::Volume& volume, const Mesh& mesh, float isovalue);
 
 }  // namespace isocurv::curvature

@@ -1,6 +1,7 @@
 #include "curvature/estimator.h"
 
 #include <cstdio>
+#include <string>
 
 #include "core/error.h"
 #include "core/lap.h"
@@ -112,7 +113,7 @@ CurvatureField estimate_field(const Mesh& mesh, const VolumeSource& source, Devi
         const ScaleChoice c = auto_scale(*source.volume, mesh, source.isovalue);
         auto_ms = lap(t);
         scale = c.scale;
-        r.notes.emplace_back("scale", "auto");
+        r.notes.emplace_back("scale", c.binary ? "auto (binary volume)" : "auto");
         r.parameters.emplace_back("scale", scale);
         r.parameters.emplace_back("scale_voxels", scale / c.voxel);
         r.parameters.emplace_back("noise", c.noise);
@@ -125,13 +126,20 @@ CurvatureField estimate_field(const Mesh& mesh, const VolumeSource& source, Devi
         r.parameters.emplace_back("scale", scale);
       }
       r.parameters.emplace_back("ao_scale", options.ao_scale);
+      VolumePoint point = VolumePoint::vertex;
+      if (options.volume_point == Options::Point::surface ||
+          (options.volume_point == Options::Point::automatic && is_binary(*source.volume)))
+        point = VolumePoint::surface;
+      r.notes.emplace_back("point", point == VolumePoint::surface ? "surface" : "vertex");
       VolumeEstimateStats st;
       field = device ? volume_estimate(mesh, *source.volume, source.isovalue, scale,
-                                       options.ao_scale, *device, &st, options.finer_scales)
+                                       options.ao_scale, *device, &st, options.finer_scales, point)
                      : volume_estimate_reference(mesh, *source.volume, source.isovalue, scale,
-                                                 options.ao_scale, &st, options.finer_scales);
+                                                 options.ao_scale, &st, options.finer_scales,
+                                                 point);
       r.unreliable = st.unreliable;
       r.finer_scale = st.finer_scale;
+      r.outside = st.outside;
       if (device) {
         if (auto_ms >= 0) r.steps_ms.emplace_back("auto_scale", auto_ms);
         r.steps_ms.insert(r.steps_ms.end(), {{"plan", st.steps.plan},

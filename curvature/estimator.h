@@ -42,8 +42,11 @@ struct EstimatorReport {
   /// How a parameter chosen from the data was chosen, e.g. {"scale", "auto"}; empty otherwise.
   std::vector<std::pair<std::string, std::string>> notes;
   std::size_t unreliable = 0;  ///< vertices flagged "Unreliable" (volume: vanishing gradient)
-  /// volume: vertices measured at a finer scale than asked (Options::finer_scales)
+  /// volume: vertices measured at a finer scale than asked (the per-vertex "Scale" array)
   std::size_t finer_scale = 0;
+  /// volume: vertices whose smoothing reaches outside the volume's box at their scale (flagged
+  /// Boundary)
+  std::size_t outside = 0;
   /// volume on a device: wall time of its steps in ms, in order: auto_scale (when the scale was
   /// chosen from the data), then VolumeStepTimes's plan, gather, passes, vertices, host. Not in
   /// the field's metadata (outputs stay deterministic).

@@ -54,6 +54,10 @@ struct Options {
   /// than about twice the scale) is measured at half the scale, and so on down to one voxel
   /// (curvature/volume_estimate.h). false: such vertices are Unreliable (--scale S1,S2,...).
   bool finer_scales = true;
+  /// Volume estimator: where each vertex's curvature is taken (curvature/volume_estimate.h,
+  /// VolumePoint). automatic (the default): the smoothed isosurface on binary volumes
+  /// (curvature::is_binary), the level set through the vertex otherwise.
+  enum class Point { automatic, vertex, surface } volume_point = Point::automatic;
   /// Per-vertex outward normals supplied from outside (e.g. the volume gradient), one per mesh
   /// vertex; they need not be unit length (they are normalised). A zero or non-finite entry falls
   /// back to the mesh normal of that vertex. nullptr (the default): normals from the mesh faces.

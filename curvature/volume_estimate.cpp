@@ -55,7 +55,7 @@ enum Slot : std::size_t {
   kCurved,
   kAo,
   kGradientNorm,
-  kMissed,
+  kShift,
   kSlots
 };
 
@@ -71,10 +71,9 @@ std::string build_options() {
       buf, sizeof buf,
       "-DPIVOT_TOLERANCE=%.9g -DOPPOSITE_NORMALS=%.9g -DAO_C0=%.9g -DAO_C1=%.9g "
       "-DAO_C2=%.9g -DAO_SMIN=%.9g -DBRICK_VOXELS=512 -DBRICK_ROWS=64 "
-      "-DSPLINE_TAPS=5 -DPADDED=%d -DPAD_BEFORE=%d "
-      "-DPADDED_VOXELS=%d -DNEWTON_STEPS=%d -DON_SURFACE_VOXELS=%.9g -DMAX_FINAL_STEP_VOXELS=%.9g",
+      "-DSPLINE_TAPS=5 -DPADDED=%d -DPAD_BEFORE=%d -DPADDED_VOXELS=%d -DNEWTON_STEPS=%d",
       kPivotTolerance, kOppositeNormals, kAoC0, kAoC1, kAoC2, kAoSMin, kPadded, kPadBefore,
-      kPadded * kPadded * kPadded, kNewtonSteps, kOnSurfaceVoxels, kMaxFinalStepVoxels);
+      kPadded * kPadded * kPadded, kNewtonSteps);
   return buf;
 }
 
@@ -221,12 +220,12 @@ detail::VolumeEvaluation evaluate(const Positions& positions, const volume::Volu
   cl::Buffer& dir1 = s.get(kDir1, nv * sizeof(Vec3f));
   cl::Buffer& dir2 = s.get(kDir2, nv * sizeof(Vec3f));
   cl::Buffer& dcurv = s.get(kDcurv, nv * sizeof(cl_float4));
-  cl::Buffer& missed = s.get(kMissed, nv);
+  cl::Buffer& shift = s.get(kShift, nv * sizeof(float));
   const float sign = volume.inside == volume::Inside::Above ? -1.0f : 1.0f;
   set_args(s.kernel, pos, cl_uint(nv), blocks, table, dims, params, cl_float(isovalue),
-           cl_float(sign), cl_float(setup.max_shift), cl_float(setup.voxel), cl_float(ao_scale),
-           normals, *f1[0], *f1[1], dir1, dir2, *f1[2], *f1[3], dcurv, *f1[4], *f1[5], *f1[6],
-           *f1[7], missed);
+           cl_float(sign), cl_float(ao_scale), cl_int(setup.point == VolumePoint::surface),
+           cl_float(setup.max_shift), cl_float(setup.sigma * setup.sigma), normals, *f1[0], *f1[1], dir1, dir2, *f1[2], *f1[3],
+           dcurv, *f1[4], *f1[5], *f1[6], *f1[7], shift);
   launch(q, s.kernel, nv, kGroup);
   CurvatureField& out = e.field;
   download(q, normals, out.normals, nv);
@@ -241,7 +240,7 @@ detail::VolumeEvaluation evaluate(const Positions& positions, const volume::Volu
   download(q, *f1[5], out.curvedness, nv);
   download(q, *f1[6], out.ao, nv);
   download(q, *f1[7], e.raw.gradient_norm, nv);
-  download(q, missed, e.raw.missed, nv);
+  download(q, shift, e.raw.shift, nv);
   q.finish();
   e.steps.vertices = lap(t);
   e.bricks = 0;
@@ -250,8 +249,10 @@ detail::VolumeEvaluation evaluate(const Positions& positions, const volume::Volu
 }
 
 CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalue, double sigma,
-                   float ao_scale, Device& device, VolumeEstimateStats* stats, bool finer_scales) {
-  const detail::VolumeSetup setup = detail::volume_setup(mesh, volume, sigma);
+                   float ao_scale, Device& device, VolumeEstimateStats* stats, bool finer_scales,
+                   VolumePoint point) {
+  detail::VolumeSetup setup = detail::volume_setup(mesh, volume, sigma);
+  setup.point = point;
   if (!std::isfinite(ao_scale)) throw Error("curvature: ao_scale must be finite");
   if (mesh.positions.empty()) {
     if (stats) *stats = {};
@@ -259,17 +260,20 @@ CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalu
   }
   VolumeSession& s = session_for(device);
   std::lock_guard<std::mutex> lock(s.mutex);
-  std::size_t refined = 0;
+  detail::ScaleLadder ladder;
   detail::VolumeEvaluation e = detail::evaluate_with_finer_scales(
       mesh, setup, finer_scales,
       [&](const Positions& positions, const detail::VolumeSetup& at) {
         return evaluate(positions, volume, at, isovalue, ao_scale, device, s);
       },
-      refined);
+      ladder);
   Clock::time_point t = Clock::now();
-  const std::size_t unreliable = detail::finish_volume_field(mesh, e.raw, ao_scale, e.field);
+  const std::size_t unreliable =
+      detail::finish_volume_field(mesh, e.raw, ladder, finer_scales, ao_scale, e.field);
   e.steps.finish = lap(t);
-  if (stats) *stats = VolumeEstimateStats{unreliable, e.bricks, refined, e.steps};
+  if (stats)
+    *stats = VolumeEstimateStats{unreliable, e.bricks, ladder.refined,
+                                 detail::count_of(ladder.outside), e.steps};
   return std::move(e.field);
 }
 
@@ -277,9 +281,9 @@ CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalu
 
 CurvatureField volume_estimate(const Mesh& mesh, const volume::Volume& volume, float isovalue,
                                double sigma, float ao_scale, Device& device,
-                               VolumeEstimateStats* stats, bool finer_scales) {
+                               VolumeEstimateStats* stats, bool finer_scales, VolumePoint point) {
   try {
-    return run(mesh, volume, isovalue, sigma, ao_scale, device, stats, finer_scales);
+    return run(mesh, volume, isovalue, sigma, ao_scale, device, stats, finer_scales, point);
   } catch (const cl::Error& e) {
     try {
       device.queue().finish();

@@ -4,20 +4,39 @@
 // prefilter (volume/prefilter.h), then a quartic B-spline through them (volume/spline_jet.h),
 // together a smoothing of variance sigma^2 in world space.
 //
-// At each vertex x0 (on the mesh, which is not moved): the gradient g0 there gives the line
-// x0 + t g0/|g0|; kNewtonSteps Newton steps on the value and gradient find where it meets the
-// reconstructed isosurface (|t| capped at kMaxShiftVoxels voxels), then one last step on the full
-// jet's Taylor expansion; there the gradient, Hessian and third derivatives give the curvature by
-// curvature/implicit_curvature.h (Normals, k1 >= k2, dir1, dir2, H, K, dcurv, ShapeIndex,
-// Curvedness, AO). Area and Boundary come from the mesh (curvature/mesh_areas.h).
-// A vertex is Unreliable (flag 1, its curvature zero, AO that of a plane, its normal the
-// area-weighted face normal) where the gradient is at most volume::kWeakGradientFraction of its
-// median over the vertices, or the reconstructed surface was not found within the cap at sigma
-// nor at any finer scale down to one voxel (see finer_scales below).
+// At each vertex x the estimator takes the jet (value, gradient, Hessian, third derivatives) of
+// the reconstructed field at x itself and gives the curvature of the field's level set through x
+// by curvature/implicit_curvature.h (Normals, k1 >= k2, dir1, dir2, H, K, dcurv, ShapeIndex,
+// Curvedness, AO). Not the smoothed field's isovalue surface: smoothing moves level sets inward
+// roughly like mean-curvature flow (by about sigma^2 H), so that surface shrinks thin parts and
+// loses them, while the level set through the vertex keeps the vertex's own radius (a sphere's or
+// a tube's level sets stay concentric; bench_accuracy: a tube of radius 3.5 voxels at 2 voxels,
+// H 13% on the smoothed isosurface, 2% here). Area and Boundary come from the mesh
+// (curvature/mesh_areas.h).
+//
+// The scale per vertex: each vertex is measured at sigma unless the scale does not fit it there,
+// then at sigma / kScaleStep, and so on down to the floor (kFloorVoxels); it
+// keeps the first scale that fits (the "Scale" array, world units). A scale does not fit when
+//  - the smoothed field's isosurface lies more than kMaxShiftScales * sigma from the vertex
+//    (eroded: for a sphere or tube of radius r that happens above sigma ~ r / 2 or r, so thin
+//    parts keep a scale they survive, while flat parts keep the large noise-driven one),
+//  - the smoothed gradient points against the mesh's normal (opposed: two surfaces closer than
+//    the scale merged), or
+// At the floor a vertex keeps the floor's values.
+//
+// The box: outside a dense volume the samples repeat the nearest border sample (clamping, each
+// pass along its own axis), so no false edge appears where the data stops, and a closed surface
+// near the box is measured as anywhere else. Where the surface is cut by the box, that extension
+// continues it straight across the cut, which biases what the smoothing sees: vertices within
+// kSupportDeviations deviations of the cut (the mesh's open boundary; detail::CutIndex) are
+// flagged Boundary. Their scale is not reduced: at finer scales the noise costs more than the
+// extension (bench_accuracy, sphere cut by the box). A vertex is Unreliable (flag 1, its curvature zero, AO that of a plane, its
+// normal the area-weighted face normal) where the gradient is at most
+// volume::kWeakGradientFraction of its median over the vertices, or still opposed at the floor.
 //
 // Cost follows the surface: only the 8^3 bricks the vertices' B-splines read, and what the
 // prefilter's three passes need for them, are gathered and filtered; a vertex then reads 5^3
-// smoothed samples per evaluation, whatever the scale.
+// smoothed samples, whatever the scale.
 #include <cstddef>
 
 #include "core/cl_device.h"
@@ -27,17 +46,33 @@
 
 namespace isocurv::curvature {
 
-/// Newton steps along each vertex's gradient line (a fixed count: deterministic, and from a
-/// marching-cubes vertex, within a fraction of a voxel of the surface, two leave it within
-/// 1e-3 voxel; the check kOnSurfaceVoxels flags the rest).
-inline constexpr int kNewtonSteps = 2;
-/// The largest move along the gradient line, in voxels (the largest spacing).
+/// Where the smoothed field's level set is taken at each vertex (see above).
+enum class VolumePoint {
+  /// The level set through the vertex: for grey-level volumes, whose marching-cubes vertices lie
+  /// within the noise of the surface.
+  vertex,
+  /// The smoothed isosurface where the vertex's gradient line meets it (kNewtonSteps Newton
+  /// steps, at most kMaxShiftVoxels), its curvatures those of the parallel surface sigma^2 H
+  /// further out (k / (1 + sigma^2 H k)), undoing the smoothing's shrinkage: for binary volumes,
+  /// whose vertices sit on the voxel staircase, up to half a voxel off the surface (evaluated
+  /// there, a torus of tube radius 4 voxels would be off by 12%).
+  surface,
+};
+/// VolumePoint::surface: Newton steps along the gradient line, and the largest move in voxels.
+inline constexpr int kNewtonSteps = 3;
 inline constexpr double kMaxShiftVoxels = 1.5;
-/// The reconstructed surface counts as found when the field there is within this many voxels
-/// (|F - iso| / |g|, in the largest spacing) of the isovalue.
-inline constexpr double kOnSurfaceVoxels = 0.05;
-/// The last Newton step, taken on the full jet's Taylor expansion, moves at most this many voxels.
-inline constexpr double kMaxFinalStepVoxels = 0.1;
+
+/// A scale is too large for a vertex when the smoothed field's isosurface lies more than this many
+/// deviations from it (see above).
+inline constexpr double kMaxShiftScales = 0.5;
+/// The ratio of one scale of the per-vertex choice to the next finer one.
+inline constexpr double kScaleStep = 1.41421356237309515;
+/// The finest scale of the per-vertex choice, in voxels (the geometric mean spacing; never under
+/// volume::kMinScaleVoxels of the largest), unless the asked scale is finer: at 0.8 voxel the reconstruction does not alias (bench_accuracy: float sphere
+/// H 0.03%) and 8-bit noise is still bounded.
+inline constexpr double kFloorVoxels = 0.8;
+/// The smoothing's support, in deviations, for the box test (95% of a Gaussian's weight).
+inline constexpr double kSupportDeviations = 2.0;
 
 /// Wall time of the volume estimator's steps in ms (device path, summed over the finer scales;
 /// the queue is drained between steps): planning the bricks, gathering the samples, the
@@ -51,7 +86,8 @@ struct VolumeStepTimes {
 struct VolumeEstimateStats {
   std::size_t unreliable = 0;  ///< vertices flagged Unreliable
   std::size_t bricks = 0;      ///< 8^3 bricks filtered or gathered (device path), all scales
-  std::size_t finer_scale = 0;  ///< vertices whose surface was found only at a finer scale
+  std::size_t finer_scale = 0;  ///< vertices measured at a finer scale than asked
+  std::size_t outside = 0;      ///< vertices whose support leaves the box at their scale
   VolumeStepTimes steps;        ///< device path only
 };
 
@@ -64,20 +100,21 @@ struct VolumeEstimateStats {
 /// or so large against a spacing that it would exceed volume::kMaxDeviation voxels; when the grid
 /// transform is not affine with
 /// orthogonal axes; for invalid meshes (check_input); or on an OpenCL failure.
-/// `finer_scales` (the default): a vertex whose smoothed surface is missed at sigma (a structure
-/// thinner than about twice the scale) is evaluated again at sigma / 2, sigma / 4, ... down to
-/// one voxel (the largest spacing) and keeps the first scale at which its surface is found; only
-/// the vertices missed at every scale are Unreliable. Off, they are all Unreliable (the
-/// multi-scale arrays use that, so that each scale shows only what it resolves).
+/// `finer_scales` (the default): the per-vertex scale above. Off, every vertex is measured at
+/// sigma and those the scale does not fit (eroded or opposed) are Unreliable (the multi-scale
+/// arrays use that, so that each scale shows only what it resolves); the Scale array is then
+/// absent.
 CurvatureField volume_estimate(const Mesh& mesh, const volume::Volume& volume, float isovalue,
                                double sigma, float ao_scale, Device& device,
-                               VolumeEstimateStats* stats = nullptr, bool finer_scales = true);
+                               VolumeEstimateStats* stats = nullptr, bool finer_scales = true,
+                               VolumePoint point = VolumePoint::vertex);
 
 /// The specification: the same in double precision on the host (volume::smooth_reference and
 /// volume::spline_jet), parallel over vertex batches (TBB).
 CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume& volume,
                                          float isovalue, double sigma, float ao_scale,
                                          VolumeEstimateStats* stats = nullptr,
-                                         bool finer_scales = true);
+                                         bool finer_scales = true,
+                                         VolumePoint point = VolumePoint::vertex);
 
 }  // namespace isocurv::curvature

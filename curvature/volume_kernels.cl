@@ -2,10 +2,9 @@
 // (curvature/volume_reference.cpp, volume/prefilter.cpp, volume/spline_jet.cpp and
 // curvature/implicit_curvature.cpp): smooth_axis, three times (one pass of the separable
 // prefilter per axis, one work item per voxel of the bricks the next pass reads), then
-// volume_curvature (one work item per mesh vertex, reading 5^3 smoothed samples per evaluation).
+// volume_curvature (one work item per mesh vertex, reading 5^3 smoothed samples).
 // Appended to curvature_math.cl; built with -DBRICK_VOXELS, -DBRICK_ROWS, -DSPLINE_TAPS,
-// -DPADDED, -DPAD_BEFORE, -DPADDED_VOXELS, -DNEWTON_STEPS,
-// -DON_SURFACE_VOXELS, -DMAX_FINAL_STEP_VOXELS and curvature_math.cl's constants.
+// -DPADDED, -DPAD_BEFORE, -DPADDED_VOXELS, -DNEWTON_STEPS and curvature_math.cl's constants.
 
 // Index-space frame: the world -> index matrix B (row-major), the world position of the
 // region's first voxel, and the maps of index-space derivatives to world space by order
@@ -296,50 +295,6 @@ INLINE jet_t spline_jet(const samples_t* s, __global const float* blocks, const 
   return j;
 }
 
-// The jet's Taylor expansion moved by a small world-space step (volume::shifted_jet).
-INLINE jet_t shifted_jet(const jet_t* j, vec3 step) {
-  const int pair[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
-  const int triple[3][3][3] = {{{0, 1, 2}, {1, 3, 4}, {2, 4, 5}},
-                               {{1, 3, 4}, {3, 6, 7}, {4, 7, 8}},
-                               {{2, 4, 5}, {4, 7, 8}, {5, 8, 9}}};
-  const float s[3] = {step.x, step.y, step.z};
-  float ts[3][3], hs[3];  // T(., ., s) and H s
-  #pragma unroll
-  for (int k = 0; k < 3; ++k) {
-    hs[k] = 0.0f;
-    #pragma unroll
-    for (int l = 0; l < 3; ++l) {
-      ts[k][l] = 0.0f;
-      #pragma unroll
-      for (int m = 0; m < 3; ++m) ts[k][l] += j->t[triple[k][l][m]] * s[m];
-      hs[k] += j->h[pair[k][l]] * s[l];
-    }
-  }
-  jet_t out = *j;
-  #pragma unroll
-  for (int k = 0; k < 3; ++k) {
-    float tss = 0.0f;
-    #pragma unroll
-    for (int l = 0; l < 3; ++l) tss += ts[k][l] * s[l];
-    out.g[k] += hs[k] + tss * 0.5f;
-    out.value += s[k] * (j->g[k] + hs[k] * 0.5f + tss * (1.0f / 6.0f));
-  }
-  const int pairs[6][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
-  #pragma unroll
-  for (int e = 0; e < 6; ++e) out.h[e] += ts[pairs[e][0]][pairs[e][1]];
-  return out;
-}
-
-// The last Newton step along d on the full jet's Taylor expansion (final_step in
-// curvature/volume_reference.cpp); steps over MAX_FINAL_STEP_VOXELS voxels are not taken.
-INLINE jet_t final_step(const jet_t* j, vec3 d, float isovalue, float voxel) {
-  const float slope = j->g[0] * d.x + j->g[1] * d.y + j->g[2] * d.z;
-  if (!(fabs(slope) > 0.0f)) return *j;
-  const float t = -(j->value - isovalue) / slope;
-  if (!(fabs(t) <= (float)MAX_FINAL_STEP_VOXELS * voxel)) return *j;
-  return shifted_jet(j, mul3(d, t));
-}
-
 // Hs x for the symmetric Hessian (xx xy xz yy yz zz).
 INLINE vec3 hess_mul(const float* h, vec3 x) {
   return v3(h[0] * x.x + h[1] * x.y + h[2] * x.z, h[1] * x.x + h[3] * x.y + h[4] * x.z,
@@ -374,17 +329,22 @@ INLINE float4 dcurv_forms(const jet_t* j, vec3 m, float s, float len, vec3 e1, v
   return s / len * (t - quad / len);
 }
 
+// One work item per vertex: the curvature of the smoothed field's level set through the vertex,
+// or (surface) through the point where its gradient line meets the smoothed isosurface, moved out
+// by the smoothing's shrinkage sigma2 H (evaluate_reference in curvature/volume_reference.cpp);
+// shift_out the signed distance from the vertex to the smoothed isosurface along the gradient
+// (INFINITY where the gradient vanished).
 __kernel void volume_curvature(__global const float* positions, uint count,
                                __global const float* blocks, __global const int* table, int4 dims,
                                __constant const float* frame_params, float isovalue, float sign,
-                               float max_shift, float voxel, float ao_scale,
+                               float ao_scale, int surface, float max_shift, float sigma2,
                                __global float* normals, __global float* k1_out,
                                __global float* k2_out, __global float* dir1_out,
                                __global float* dir2_out, __global float* H_out,
                                __global float* K_out, __global float4* dcurv_out,
                                __global float* shape_out, __global float* curved_out,
                                __global float* ao_out, __global float* gnorm_out,
-                               __global uchar* missed_out) {
+                               __global float* shift_out) {
   const uint i = get_global_id(0);
   if (i >= count) return;
   const samples_t s = {0, table, dims};
@@ -397,47 +357,53 @@ __kernel void volume_curvature(__global const float* positions, uint count,
   for (int k = 0; k < 3; ++k) f.origin[k] = frame_params[9 + k];
 
   const vec3 x0 = load3(positions, i);
-  const jet_t j0 = spline_jet(&s, blocks, &f, x0, 1);
-  const vec3 g0 = v3(j0.g[0], j0.g[1], j0.g[2]);
-  const float g0len = sqrt(dot3(g0, g0));
+  vec3 x = x0;
+  float t = 0.0f;
+  if (surface) {  // Newton steps along the gradient line x0 + t d to the smoothed isosurface
+    const jet_t j0 = spline_jet(&s, blocks, &f, x0, 1);
+    const vec3 g0 = v3(j0.g[0], j0.g[1], j0.g[2]);
+    const float g0len = sqrt(dot3(g0, g0));
+    if (g0len > 0.0f && finite(g0len)) {
+      const vec3 d = mul3(g0, 1.0f / g0len);
+      jet_t j = j0;
+      for (int step = 0; step < NEWTON_STEPS; ++step) {
+        if (step > 0) j = spline_jet(&s, blocks, &f, add3(x0, mul3(d, t)), 1);
+        const float slope = j.g[0] * d.x + j.g[1] * d.y + j.g[2] * d.z;
+        if (!(fabs(slope) > 0.0f)) break;
+        t = clamp(t - (j.value - isovalue) / slope, -max_shift, max_shift);
+      }
+      x = add3(x0, mul3(d, t));
+    }
+  }
+  const jet_t jet = spline_jet(&s, blocks, &f, x, 3);
+  const vec3 g = v3(jet.g[0], jet.g[1], jet.g[2]);
+  float len = sqrt(dot3(g, g));
   vec3 n = v3(0.0f, 0.0f, 0.0f), e1 = n, e2 = n;
-  float k1 = 0.0f, k2 = 0.0f, len = 0.0f;
+  float k1 = 0.0f, k2 = 0.0f, shift = INFINITY;
   float4 dc = (float4)(0.0f);
-  uchar missed = 1;
-  if (g0len > 0.0f && finite(g0len)) {
-    // Newton steps along the gradient line x0 + t d to the reconstructed isosurface.
-    const vec3 d = mul3(g0, 1.0f / g0len);
-    float t = 0.0f;
-    jet_t j = j0;
-    for (int step = 0; step < NEWTON_STEPS; ++step) {
-      if (step > 0) j = spline_jet(&s, blocks, &f, add3(x0, mul3(d, t)), 1);
-      const float slope = j.g[0] * d.x + j.g[1] * d.y + j.g[2] * d.z;
-      if (!(fabs(slope) > 0.0f)) break;
-      t = clamp(t - (j.value - isovalue) / slope, -max_shift, max_shift);
+  if (len > 0.0f && finite(len)) {
+    const vec3 m = mul3(g, 1.0f / len);
+    n = mul3(m, sign);
+    vec3 u, v;
+    tangent_basis(n, &u, &v);
+    const float a = sign * dot3(u, hess_mul(jet.h, u)) / len;
+    const float b = sign * dot3(u, hess_mul(jet.h, v)) / len;
+    const float c = sign * dot3(v, hess_mul(jet.h, v)) / len;
+    const float mean = 0.5f * (a + c), diff = 0.5f * (a - c), r = sqrt(diff * diff + b * b);
+    const float theta = 0.5f * atan2(2.0f * b, a - c);
+    k1 = mean + r;
+    k2 = mean - r;
+    e1 = add3(mul3(u, cos(theta)), mul3(v, sin(theta)));
+    e2 = cross3(n, e1);
+    dc = dcurv_forms(&jet, m, sign, len, e1, e2);
+    shift = (jet.value - isovalue) / len - t;
+    if (surface) {  // shrinkage_corrected: the parallel surface sigma2 H further out
+      const float e = sigma2 * 0.5f * (k1 + k2);
+      k1 /= fmax(1.0f + e * k1, 0.1f);
+      k2 /= fmax(1.0f + e * k2, 0.1f);
     }
-    const jet_t found = spline_jet(&s, blocks, &f, add3(x0, mul3(d, t)), 3);
-    const jet_t jet = final_step(&found, d, isovalue, voxel);
-    const vec3 g = v3(jet.g[0], jet.g[1], jet.g[2]);
-    len = sqrt(dot3(g, g));
-    if (len > 0.0f && finite(len)) {
-      const vec3 m = mul3(g, 1.0f / len);
-      n = mul3(m, sign);
-      vec3 u, v;
-      tangent_basis(n, &u, &v);
-      const float a = sign * dot3(u, hess_mul(jet.h, u)) / len;
-      const float b = sign * dot3(u, hess_mul(jet.h, v)) / len;
-      const float c = sign * dot3(v, hess_mul(jet.h, v)) / len;
-      const float mean = 0.5f * (a + c), diff = 0.5f * (a - c), r = sqrt(diff * diff + b * b);
-      const float theta = 0.5f * atan2(2.0f * b, a - c);
-      k1 = mean + r;
-      k2 = mean - r;
-      e1 = add3(mul3(u, cos(theta)), mul3(v, sin(theta)));
-      e2 = cross3(n, e1);
-      dc = dcurv_forms(&jet, m, sign, len, e1, e2);
-      missed = !(fabs(found.value - isovalue) <= (float)ON_SURFACE_VOXELS * voxel * len);
-    } else {
-      len = 0.0f;
-    }
+  } else {
+    len = 0.0f;
   }
   store3(n, normals, i);
   k1_out[i] = k1;
@@ -451,5 +417,5 @@ __kernel void volume_curvature(__global const float* positions, uint count,
   curved_out[i] = curvedness(k1, k2);
   ao_out[i] = ambient_occlusion(k1, k2, ao_scale);
   gnorm_out[i] = len;
-  missed_out[i] = missed;
+  shift_out[i] = shift;
 }

@@ -4,7 +4,10 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
+#include <unordered_map>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "core/error.h"
@@ -53,24 +56,134 @@ VolumeSetup volume_setup(const Mesh& mesh, const volume::Volume& volume, double 
                                  " are supported (the reconstruction's B-spline alone smooths "
                                  "by 0.645 voxel)");
   s.sigma = sigma;
-  s.max_shift = kMaxShiftVoxels * s.voxel;
+  const double mean_voxel =
+      std::cbrt(s.frame.spacing[0] * s.frame.spacing[1] * s.frame.spacing[2]);
+  s.floor = std::min(
+      sigma, std::max(kFloorVoxels * mean_voxel, 1.01 * volume::kMinScaleVoxels * s.voxel));
   s.inside = volume.inside;
+  s.max_shift = kMaxShiftVoxels * s.voxel;
   return s;
 }
 
-openvdb::Vec3d spline_reach(const VolumeSetup& setup) {
-  openvdb::Vec3d reach;
-  for (int a = 0; a < 3; ++a) reach[a] = setup.max_shift / setup.frame.spacing[a] + 1;
-  return reach;
+openvdb::Vec3d spline_reach(const VolumeSetup&) { return openvdb::Vec3d(0.5, 0.5, 0.5); }
+
+CutIndex::CutIndex(const Mesh& mesh, const volume::GridFrame& frame) {
+  if (!frame.clamp) return;  // a sparse grid's data does not stop at a box
+  const std::vector<std::uint8_t> open = boundary_vertices(mesh);
+  for (std::size_t i = 0; i < open.size(); ++i)
+    if (open[i]) points.push_back(mesh.positions[i]);
 }
 
-std::size_t finish_volume_field(const Mesh& mesh, const RawVertex& raw, float ao_scale,
-                                CurvatureField& field) {
+bool CutIndex::near(const Vec3f& p, double radius) const {
+  // Brute force over the cut's vertices would be O(n * m); bucket them by cells of `radius`.
+  if (points.empty()) return false;
+  if (radius != cell) {
+    cell = radius;
+    buckets.clear();
+    for (const Vec3f& q : points) buckets[key(q)].push_back(q);
+  }
+  const double r2 = radius * radius;
+  const auto c = cell_of(p);
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const auto it = buckets.find(pack(c[0] + dx, c[1] + dy, c[2] + dz));
+        if (it == buckets.end()) continue;
+        for (const Vec3f& q : it->second) {
+          const double x = q[0] - p[0], y = q[1] - p[1], z = q[2] - p[2];
+          if (x * x + y * y + z * z <= r2) return true;
+        }
+      }
+  return false;
+}
+
+std::array<std::int64_t, 3> CutIndex::cell_of(const Vec3f& p) const {
+  return {std::int64_t(std::floor(p[0] / cell)), std::int64_t(std::floor(p[1] / cell)),
+          std::int64_t(std::floor(p[2] / cell))};
+}
+
+std::uint64_t CutIndex::pack(std::int64_t x, std::int64_t y, std::int64_t z) {
+  const auto u = [](std::int64_t v) { return std::uint64_t(v + (1 << 20)) & 0x1fffff; };
+  return (u(z) << 42) | (u(y) << 21) | u(x);
+}
+
+std::uint64_t CutIndex::key(const Vec3f& p) const {
+  const auto c = cell_of(p);
+  return pack(c[0], c[1], c[2]);
+}
+
+namespace {
+
+/// Records whether the scale `sigma` fits vertex i of `mesh`, evaluated as entry j of `e`
+/// (volume_estimate.h): eroded, opposed (against `face`, its area-weighted normal); and whether
+/// its smoothing reaches the box's cut (flagged Boundary, not a reason for a finer scale).
+/// Returns true when it does not fit.
+bool record_fit(const VolumeEvaluation& e, std::size_t j, const Mesh& mesh, std::size_t i,
+                const Vec3f& face, const VolumeSetup& setup, const CutIndex& cut,
+                ScaleLadder& ladder) {
+  const Vec3f& n = e.field.normals[j];
+  ladder.scale[i] = float(setup.sigma);
+  // On the voxel staircase (surface) a vertex may lie half a voxel diagonal off the surface.
+  const double allowed = kMaxShiftScales * setup.sigma +
+                         (setup.point == VolumePoint::surface ? 0.87 * setup.voxel : 0.0);
+  ladder.eroded[i] = !(std::abs(double(e.raw.shift[j])) <= allowed);
+  ladder.opposed[i] = double(n[0]) * face[0] + double(n[1]) * face[1] + double(n[2]) * face[2] < 0;
+  ladder.outside[i] = cut.near(mesh.positions[i], kSupportDeviations * setup.sigma);
+  return ladder.eroded[i] || ladder.opposed[i];
+}
+
+}  // namespace
+
+VolumeEvaluation evaluate_with_finer_scales(const Mesh& mesh, VolumeSetup setup, bool finer_scales,
+                                            const VolumeEvaluate& evaluate, ScaleLadder& ladder) {
+  const std::size_t nv = mesh.positions.size();
+  const float asked = float(setup.sigma);
+  VolumeEvaluation all = evaluate(mesh.positions, setup);
+  const std::vector<Vec3f> faces = area_weighted_normals(mesh);
+  const CutIndex cut(mesh, setup.frame);
+  ladder.scale.assign(nv, 0.0f);
+  ladder.eroded.assign(nv, 0), ladder.opposed.assign(nv, 0), ladder.outside.assign(nv, 0);
+  ladder.refined = 0;
+  std::vector<std::size_t> which;  // the vertices evaluated at setup.sigma that it does not fit
+  for (std::size_t i = 0; i < nv; ++i)
+    if (record_fit(all, i, mesh, i, faces[i], setup, cut, ladder)) which.push_back(i);
+  CurvatureField& f = all.field;
+  while (finer_scales && setup.sigma > setup.floor && !which.empty()) {
+    setup.sigma = std::max(setup.sigma / kScaleStep, setup.floor);
+    Positions positions(which.size());
+    for (std::size_t j = 0; j < which.size(); ++j) positions[j] = mesh.positions[which[j]];
+    const VolumeEvaluation finer = evaluate(positions, setup);
+    all.bricks += finer.bricks;
+    all.steps.plan += finer.steps.plan, all.steps.gather += finer.steps.gather;
+    all.steps.smooth += finer.steps.smooth, all.steps.vertices += finer.steps.vertices;
+    const CurvatureField& g = finer.field;
+    std::vector<std::size_t> next;
+    for (std::size_t j = 0; j < which.size(); ++j) {
+      const std::size_t i = which[j];
+      f.normals[i] = g.normals[j], f.k1[i] = g.k1[j], f.k2[i] = g.k2[j];
+      f.dir1[i] = g.dir1[j], f.dir2[i] = g.dir2[j], f.H[i] = g.H[j], f.K[i] = g.K[j];
+      f.dcurv[i] = g.dcurv[j], f.shape_index[i] = g.shape_index[j];
+      f.curvedness[i] = g.curvedness[j], f.ao[i] = g.ao[j];
+      all.raw.gradient_norm[i] = finer.raw.gradient_norm[j];
+      all.raw.shift[i] = finer.raw.shift[j];
+      if (record_fit(finer, j, mesh, i, faces[i], setup, cut, ladder)) next.push_back(i);
+    }
+    which.swap(next);
+  }
+  for (std::size_t i = 0; i < nv; ++i)
+    if (ladder.scale[i] < asked) ++ladder.refined;
+  return all;
+}
+
+std::size_t finish_volume_field(const Mesh& mesh, const RawVertex& raw, const ScaleLadder& ladder,
+                                bool finer_scales, float ao_scale, CurvatureField& field) {
   const std::size_t nv = mesh.positions.size();
   VertexCorners corners;
   build_vertex_corners(mesh, corners);
   field.area = mixed_vertex_areas(mesh, corners);
   field.boundary = boundary_vertices(mesh, corners);
+  for (std::size_t i = 0; i < nv; ++i)
+    if (ladder.outside[i]) field.boundary[i] = 1;
   field.unreliable.assign(nv, 0);
   std::vector<float> lengths;
   lengths.reserve(nv);
@@ -85,7 +198,10 @@ std::size_t finish_volume_field(const Mesh& mesh, const RawVertex& raw, float ao
   std::vector<Vec3f> faces;
   std::size_t count = 0;
   for (std::size_t i = 0; i < nv; ++i) {
-    if (raw.gradient_norm[i] > weak_below && !raw.missed[i]) continue;
+    // With finer scales an eroded vertex keeps the floor's values; an opposed one never counts.
+    const bool bad = !(raw.gradient_norm[i] > weak_below) || ladder.opposed[i] ||
+                     (!finer_scales && ladder.eroded[i]);
+    if (!bad) continue;
     if (faces.empty()) faces = area_weighted_normals(mesh);
     field.unreliable[i] = 1;
     ++count;
@@ -100,40 +216,8 @@ std::size_t finish_volume_field(const Mesh& mesh, const RawVertex& raw, float ao
     field.curvedness[i] = 0;
     field.ao[i] = ambient_occlusion(0.0f, 0.0f, ao_scale);
   }
+  if (finer_scales) field.extra.push_back({"Scale", ladder.scale});
   return count;
-}
-
-VolumeEvaluation evaluate_with_finer_scales(const Mesh& mesh, VolumeSetup setup, bool finer_scales,
-                                            const VolumeEvaluate& evaluate, std::size_t& refined) {
-  refined = 0;
-  VolumeEvaluation all = evaluate(mesh.positions, setup);
-  CurvatureField& f = all.field;
-  while (finer_scales && setup.sigma > setup.voxel) {
-    std::vector<std::size_t> which;
-    for (std::size_t i = 0; i < all.raw.missed.size(); ++i)
-      if (all.raw.missed[i]) which.push_back(i);
-    if (which.empty()) break;
-    setup.sigma = std::max(setup.sigma / 2, setup.voxel);
-    Positions positions(which.size());
-    for (std::size_t j = 0; j < which.size(); ++j) positions[j] = mesh.positions[which[j]];
-    const VolumeEvaluation finer = evaluate(positions, setup);
-    all.bricks += finer.bricks;
-    all.steps.plan += finer.steps.plan, all.steps.gather += finer.steps.gather;
-    all.steps.smooth += finer.steps.smooth, all.steps.vertices += finer.steps.vertices;
-    const CurvatureField& g = finer.field;
-    for (std::size_t j = 0; j < which.size(); ++j) {
-      if (finer.raw.missed[j]) continue;
-      const std::size_t i = which[j];
-      f.normals[i] = g.normals[j], f.k1[i] = g.k1[j], f.k2[i] = g.k2[j];
-      f.dir1[i] = g.dir1[j], f.dir2[i] = g.dir2[j], f.H[i] = g.H[j], f.K[i] = g.K[j];
-      f.dcurv[i] = g.dcurv[j], f.shape_index[i] = g.shape_index[j];
-      f.curvedness[i] = g.curvedness[j], f.ao[i] = g.ao[j];
-      all.raw.gradient_norm[i] = finer.raw.gradient_norm[j];
-      all.raw.missed[i] = 0;
-      ++refined;
-    }
-  }
-  return all;
 }
 
 }  // namespace detail
@@ -142,16 +226,13 @@ namespace {
 
 Vec3f to_f3(const Eigen::Vector3d& v) { return {float(v.x()), float(v.y()), float(v.z())}; }
 
-/// The last Newton step along `d`, taken on the full jet's Taylor expansion: it moves the jet the
-/// last few 1e-3 voxel onto the surface without another evaluation. Steps over
-/// kMaxFinalStepVoxels are not taken (the surface was missed; the caller flags it).
-volume::Jet final_step(const volume::Jet& jet, const openvdb::Vec3d& d, float isovalue,
-                       double voxel) {
-  const double slope = jet.gradient[0] * d[0] + jet.gradient[1] * d[1] + jet.gradient[2] * d[2];
-  if (!(std::abs(slope) > 0)) return jet;
-  const double t = -(jet.value - isovalue) / slope;
-  if (!(std::abs(t) <= kMaxFinalStepVoxels * voxel)) return jet;
-  return volume::shifted_jet(jet, t * d);
+/// The curvature of the parallel surface at distance e = sigma2 H outward (volume_estimate.h:
+/// smoothing moves the isosurface inward by about sigma^2 H): k_i / (1 + e k_i), each factor
+/// kept at 0.1 or more; directions and dcurv unchanged.
+void shrinkage_corrected(PointCurvature& c, double sigma2) {
+  const double e = sigma2 * 0.5 * (c.k1 + c.k2);
+  c.k1 /= std::max(1 + e * c.k1, 0.1);
+  c.k2 /= std::max(1 + e * c.k2, 0.1);
 }
 
 }  // namespace
@@ -172,34 +253,40 @@ detail::VolumeEvaluation evaluate_reference(const Positions& positions,
   out.normals.resize(nv), out.k1.resize(nv), out.k2.resize(nv), out.dir1.resize(nv);
   out.dir2.resize(nv), out.H.resize(nv), out.K.resize(nv), out.dcurv.resize(nv);
   out.shape_index.resize(nv), out.curvedness.resize(nv), out.ao.resize(nv);
-  e.raw = {std::vector<float>(nv, 0.0f), std::vector<std::uint8_t>(nv, 0)};
+  e.raw = {std::vector<float>(nv, 0.0f), std::vector<float>(nv, 0.0f)};
   detail::RawVertex& raw = e.raw;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 256), [&](const auto& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       const Vec3f& p = positions[i];
       const openvdb::Vec3d x0(p[0], p[1], p[2]);
-      // The gradient line through the vertex, and Newton steps along it to F = isovalue.
-      const volume::Jet j0 = volume::spline_jet(smoothed, x0, 1);
-      const openvdb::Vec3d g0(j0.gradient[0], j0.gradient[1], j0.gradient[2]);
-      const double g0len = g0.length();
-      PointCurvature c;
-      bool missed = true;
-      if (g0len > 0 && std::isfinite(g0len)) {
-        const openvdb::Vec3d d = g0 / g0len;
-        double t = 0;
-        volume::Jet j = j0;
-        for (int step = 0; step < kNewtonSteps; ++step) {
-          if (step > 0) j = volume::spline_jet(smoothed, x0 + t * d, 1);
-          const double slope = j.gradient[0] * d[0] + j.gradient[1] * d[1] + j.gradient[2] * d[2];
-          if (!(std::abs(slope) > 0)) break;
-          t = std::clamp(t - (j.value - isovalue) / slope, -s.max_shift, s.max_shift);
+      // The level set of the smoothed field through the evaluation point (volume_estimate.h):
+      // the vertex itself, or (surface) where its gradient line meets the smoothed isosurface.
+      openvdb::Vec3d x = x0;
+      double t = 0;
+      if (s.point != VolumePoint::vertex) {
+        const volume::Jet j0 = volume::spline_jet(smoothed, x0, 1);
+        const openvdb::Vec3d g0(j0.gradient[0], j0.gradient[1], j0.gradient[2]);
+        const double g0len = g0.length();
+        if (g0len > 0 && std::isfinite(g0len)) {
+          const openvdb::Vec3d d = g0 / g0len;
+          volume::Jet j = j0;
+          for (int step = 0; step < kNewtonSteps; ++step) {
+            if (step > 0) j = volume::spline_jet(smoothed, x0 + t * d, 1);
+            const double slope =
+                j.gradient[0] * d[0] + j.gradient[1] * d[1] + j.gradient[2] * d[2];
+            if (!(std::abs(slope) > 0)) break;
+            t = std::clamp(t - (j.value - isovalue) / slope, -s.max_shift, s.max_shift);
+          }
+          x = x0 + t * d;
         }
-        const volume::Jet jet = volume::spline_jet(smoothed, x0 + t * d, 3);
-        c = implicit_curvature(final_step(jet, d, isovalue, s.voxel), s.inside);
-        missed = !(std::abs(jet.value - isovalue) <= kOnSurfaceVoxels * s.voxel * c.gradient_norm);
       }
+      const volume::Jet jet = volume::spline_jet(smoothed, x, 3);
+      PointCurvature c = implicit_curvature(jet, s.inside);
+      raw.shift[i] = c.gradient_norm > 0 && std::isfinite(c.gradient_norm)
+                         ? float((jet.value - isovalue) / c.gradient_norm - t)
+                         : std::numeric_limits<float>::infinity();
+      if (s.point == VolumePoint::surface) shrinkage_corrected(c, s.sigma * s.sigma);
       raw.gradient_norm[i] = float(c.gradient_norm);
-      raw.missed[i] = missed;
       out.normals[i] = to_f3(c.normal);
       out.k1[i] = float(c.k1), out.k2[i] = float(c.k2);
       out.dir1[i] = to_f3(c.dir1), out.dir2[i] = to_f3(c.dir2);
@@ -217,19 +304,24 @@ detail::VolumeEvaluation evaluate_reference(const Positions& positions,
 
 CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume& volume,
                                          float isovalue, double sigma, float ao_scale,
-                                         VolumeEstimateStats* stats, bool finer_scales) {
-  const detail::VolumeSetup setup = detail::volume_setup(mesh, volume, sigma);
+                                         VolumeEstimateStats* stats, bool finer_scales,
+                                         VolumePoint point) {
+  detail::VolumeSetup setup = detail::volume_setup(mesh, volume, sigma);
+  setup.point = point;
   if (!std::isfinite(ao_scale)) throw Error("curvature: ao_scale must be finite");
   const openvdb::FloatGrid& grid = *volume.grid;
-  std::size_t refined = 0;
+  detail::ScaleLadder ladder;
   detail::VolumeEvaluation e = detail::evaluate_with_finer_scales(
       mesh, setup, finer_scales,
       [&](const Positions& positions, const detail::VolumeSetup& s) {
         return evaluate_reference(positions, grid, s, isovalue, ao_scale);
       },
-      refined);
-  const std::size_t unreliable = detail::finish_volume_field(mesh, e.raw, ao_scale, e.field);
-  if (stats) *stats = VolumeEstimateStats{unreliable, 0, refined, {}};
+      ladder);
+  const std::size_t unreliable =
+      detail::finish_volume_field(mesh, e.raw, ladder, finer_scales, ao_scale, e.field);
+  if (stats)
+    *stats = VolumeEstimateStats{unreliable, 0, ladder.refined, detail::count_of(ladder.outside),
+                                 {}};
   return std::move(e.field);
 }
 

@@ -227,14 +227,33 @@ curvature::CurvatureField field_from_dict(const py::dict& arrays, std::size_t ve
     std::memcpy(static_cast<void*>(v.data()), a.data(), vertices * sizeof(E));
   });
   if (used != arrays.size()) {
+    // The others (Unreliable, Scale, features' arrays, ...): one value per vertex, written under
+    // their names after the curvature arrays.
     for (auto item : arrays) {
       const std::string key = py::str(item.first);
       bool known = false;
       io::for_each_array(f, [&](const char* name, auto&) { known = known || key == name; });
-      if (!known)
-        throw py::value_error(
-            "arrays: unknown array '" + key +
-            "' (names: Normals Area k1 k2 dir1 dir2 H K dcurv ShapeIndex Curvedness AO Boundary)");
+      if (known) continue;
+      py::array_t<float, py::array::c_style | py::array::forcecast> a;
+      try {
+        a = py::reinterpret_borrow<py::object>(item.second)
+                .cast<py::array_t<float, py::array::c_style | py::array::forcecast>>();
+      } catch (const py::error_already_set&) {
+        throw py::type_error("arrays['" + key + "']: expected a numeric array");
+      } catch (const py::cast_error&) {
+        throw py::type_error("arrays['" + key + "']: expected a numeric array");
+      }
+      if (a.ndim() != 1 || std::size_t(a.shape(0)) != vertices)
+        throw py::value_error("arrays['" + key + "']: expected shape (" +
+                              std::to_string(vertices) +
+                              ",) (one per vertex; arrays other than Normals Area k1 k2 dir1 "
+                              "dir2 H K dcurv ShapeIndex Curvedness AO Boundary are scalars)");
+      if (key == "Unreliable") {
+        f.unreliable.resize(vertices);
+        for (std::size_t i = 0; i < vertices; ++i) f.unreliable[i] = a.data()[i] != 0;
+      } else {
+        f.extra.push_back({key, std::vector<float>(a.data(), a.data() + vertices)});
+      }
     }
   }
   return f;
@@ -386,8 +405,12 @@ py::object curvature_of(const std::shared_ptr<PyMesh>& mesh, const volume::Volum
                         py::object iso, py::object ao_scale, bool cap, py::object device) {
   const DeviceChoice dc = device_choice(device);
   curvature::Options co;
-  co.estimator = estimator_of(estimator, "estimator");
   const std::string given = normals_of(normals_arg);
+  // The CLI's default (app/pipeline.cpp default_estimator): volume when there is a volume and no
+  // normals were asked for.
+  co.estimator = estimator.is_none() && volume && given.empty()
+                     ? curvature::Estimator::volume
+                     : estimator_of(estimator, "estimator");
   const bool mesh_estimator = !curvature::needs_volume(co.estimator);
   const std::string name = curvature::estimator_name(co.estimator);
   // The CLI's rules (app/pipeline.cpp estimate_curvature), as ValueErrors naming the argument.
@@ -744,9 +767,10 @@ flags vertices; an estimator fills only the arrays it can. `.report` says what w
 {'estimator', 'parameters' (e.g. {'scale': 1.5, 'ao_scale': 2.0}, world units), 'chosen'
 ({'scale': 'auto'|'given'}), 'unreliable' (count), 'normals'[, 'normal_fallbacks']}.
 
-estimator: one of isocurv.estimator_names() (the CLI's --estimator): 'rusinkiewicz' (the
-default), 'volume' (the volume's own derivatives at `scale`; needs `volume` and the mesh's
-isovalue: mesh.isovalue for meshes from extract, else iso=), or the other mesh estimators
+estimator: one of isocurv.estimator_names() (the CLI's --estimator): 'volume' (the volume's own
+derivatives at `scale`, per vertex Scale array; the default when `volume` is given and `normals`
+is not; needs the mesh's isovalue: mesh.isovalue for meshes from extract, else iso=),
+'rusinkiewicz' (the default otherwise), or the other mesh estimators
 batagelo, prantl3, prantl2, quadric, cubic, sampling, meyer. scale: the volume estimator's
 Gaussian sigma in world units, or 'auto'/None (from the data); an error with a mesh estimator.
 normals (mesh estimators): 'volume' (the gradient of `volume`, face normals where it cannot be

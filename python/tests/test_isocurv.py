@@ -139,11 +139,16 @@ class Meshes(unittest.TestCase):
                     np.testing.assert_array_equal(back_arrays[key], arrays[key], err_msg=name + " " + key)
             with self.assertRaisesRegex(ValueError, "k1"):
                 isocurv.write_mesh(os.path.join(d, "x.vtp"), mesh, {"k1": arrays["k1"][:-1]})
-            with self.assertRaisesRegex(ValueError, "unknown array"):
-                isocurv.write_mesh(os.path.join(d, "x.vtp"), mesh, {"curv": arrays["k1"]})
+            with self.assertRaisesRegex(ValueError, "curv"):
+                isocurv.write_mesh(os.path.join(d, "x.vtp"), mesh, {"curv": arrays["k1"][:-1]})
             with self.assertRaises(isocurv.Error):
                 isocurv.write_mesh(os.path.join(d, "x.vtp"), mesh, compress="gzip")
-            self.assertEqual(sorted(os.listdir(d)), ["a.vtp", "b.vtp", "c.ply"])
+            # Other scalar arrays (the volume estimator's Scale, features' arrays) go along.
+            isocurv.write_mesh(os.path.join(d, "e.vtp"), mesh, {"curv": arrays["k1"], "Scale": arrays["Scale"]})
+            _, extra = isocurv.read_mesh(os.path.join(d, "e.vtp"))
+            np.testing.assert_array_equal(extra["curv"], arrays["k1"])
+            np.testing.assert_array_equal(extra["Scale"], arrays["Scale"])
+            self.assertEqual(sorted(os.listdir(d)), ["a.vtp", "b.vtp", "c.ply", "e.vtp"])
 
     @unittest.skipUnless(os.path.exists(TORUS), "bundled datasets not built")
     def test_same_mesh_and_curvature_as_the_command_line(self):
@@ -198,18 +203,23 @@ class Estimators(unittest.TestCase):
         self.assertEqual(names[:2], ["rusinkiewicz", "volume"])
         self.assertIn("batagelo", names)
 
-    def test_default_is_rusinkiewicz_and_unchanged(self):
+    def test_default_is_volume_with_a_volume_else_rusinkiewicz(self):
         a = isocurv.curvature(self.mesh, self.v)
-        b = isocurv.curvature(self.mesh, self.v, estimator="rusinkiewicz", normals="volume")
+        b = isocurv.curvature(self.mesh, self.v, estimator="volume")
         self.assertIsInstance(a, dict)
         self.assertEqual(sorted(a), sorted(b))
         for key in a:
             np.testing.assert_array_equal(a[key], b[key], err_msg=key)
-        self.assertEqual(a.report["estimator"], "rusinkiewicz")
-        self.assertEqual(a.report["normals"], "volume")
-        self.assertEqual(a.report["normal_fallbacks"]["opposed"], 0)
+        self.assertEqual(a.report["estimator"], "volume")
+        self.assertEqual(a["Scale"].shape, (len(self.mesh.vertices),))
         self.assertGreater(a.report["parameters"]["ao_scale"], 0)
-        self.assertEqual(isocurv.curvature(self.mesh).report["normals"], "mesh")
+        # Asking for normals means a mesh estimator: Rusinkiewicz's, as the CLI does.
+        n = isocurv.curvature(self.mesh, self.v, normals="volume")
+        self.assertEqual(n.report["estimator"], "rusinkiewicz")
+        self.assertEqual(n.report["normals"], "volume")
+        self.assertEqual(n.report["normal_fallbacks"]["opposed"], 0)
+        alone = isocurv.curvature(self.mesh)
+        self.assertEqual((alone.report["estimator"], alone.report["normals"]), ("rusinkiewicz", "mesh"))
 
     def test_volume_estimator_on_a_sphere(self):
         self.assertEqual(self.mesh.isovalue, 255 - 10 * RADIUS)
@@ -252,7 +262,7 @@ class Estimators(unittest.TestCase):
     def test_bad_combinations_raise_value_errors_naming_the_argument(self):
         m, v = self.mesh, self.v
         with self.assertRaisesRegex(ValueError, "^scale: applies to estimator='volume' only$"):
-            isocurv.curvature(m, v, scale=1.0)
+            isocurv.curvature(m, v, estimator="rusinkiewicz", scale=1.0)
         with self.assertRaisesRegex(ValueError, "^estimator: 'volume' needs the volume argument"):
             isocurv.curvature(m, estimator="volume")
         with self.assertRaisesRegex(ValueError, "^normals: applies to the mesh estimators"):
@@ -269,7 +279,7 @@ class Estimators(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "^iso: estimator='volume' needs the mesh's isovalue"):
             isocurv.curvature(isocurv.Mesh(m.vertices, m.triangles), v, estimator="volume")
         with self.assertRaisesRegex(ValueError, "^iso: applies to estimator='volume' only"):
-            isocurv.curvature(m, v, iso=135)
+            isocurv.curvature(m, v, estimator="rusinkiewicz", iso=135)
         with self.assertRaisesRegex(ValueError, "^ao_scale: a positive number"):
             isocurv.curvature(m, ao_scale=-1)
         with self.assertRaisesRegex(TypeError, "^ao_scale"):

@@ -15,11 +15,11 @@ TEST(CliCompare, AnalyticDatasetJson) {
   const json j = parse_json(r.out, "compare --json");
   EXPECT_EQ(j["analytic_field"], "torus");
   EXPECT_EQ(j["normals"], "volume");
-  ASSERT_EQ(j["estimators"].size(), 8u) << j.dump(2);
+  ASSERT_EQ(j["estimators"].size(), 9u) << j.dump(2);
   std::map<std::string, json> by_name;
   for (const json& e : j["estimators"]) by_name[e["estimator"].get<std::string>()] = e;
   for (const char* n : {"rusinkiewicz", "batagelo", "prantl3", "prantl2", "quadric", "cubic",
-                        "sampling", "meyer"}) {
+                        "sampling", "meyer", "volume"}) {
     ASSERT_TRUE(by_name.count(n)) << n;
     EXPECT_GT(by_name[n]["counted"].get<int>(), 1000) << n;
     EXPECT_GE(by_name[n]["time_ms"].get<double>(), 0.0) << n;
@@ -31,6 +31,13 @@ TEST(CliCompare, AnalyticDatasetJson) {
   EXPECT_LT(by_name["batagelo"]["exact_error"]["K_relative_rms"].get<double>(), rk);
   // prantl2 and prantl3 have the same H (a property of the method), so they agree closely.
   EXPECT_LT(j["agreement_H_K"]["prantl3"]["prantl2"][0].get<double>(), 1e-4);
+  // The volume estimator, on the volume input, is the most accurate of them on this field.
+  for (const auto& [name, e] : by_name)
+    if (name != "volume") {
+      EXPECT_LE(by_name["volume"]["exact_error"]["H_relative_rms"].get<double>(),
+                e["exact_error"]["H_relative_rms"].get<double>())
+          << name;
+    }
   EXPECT_GT(j["agreement_H_K"]["rusinkiewicz"]["quadric"][0].get<double>(), 0.1);
 }
 
@@ -42,6 +49,7 @@ TEST(CliCompare, MeshFileAndReferenceDevice) {
   ASSERT_TRUE(r.ok()) << r.describe();
   EXPECT_NE(r.out.find("mesh normals"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("batagelo      reference"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("volume "), std::string::npos) << "a mesh file has no volume: " << r.out;
   EXPECT_EQ(r.out.find("analytic field"), std::string::npos) << r.out;
   const auto bad = run_isocurv({"compare", mesh, "--iso", "3"});
   EXPECT_EQ(bad.exit_code, 1) << bad.describe();

@@ -1,6 +1,6 @@
-// Curvature defaults on volumes (issue 12, section 2): volume normals by default, face normals
-// where the gradient misleads (counted in the JSON), area-weighted statistics without the
-// unreliable vertices.
+// Curvature defaults on volumes: the volume estimator by default (issue 37); for the mesh
+// estimators volume normals by default, face normals where the gradient misleads (counted in the
+// JSON); area-weighted statistics without the unreliable vertices.
 #include "tests/test_paths.h"
 #include <gtest/gtest.h>
 
@@ -49,8 +49,10 @@ TEST(CurvatureDefaults, CtLikeVolumeGivesPlausibleStatistics) {
       run_isocurv({"run", ball, "--iso", "120", "-o", dir / "out", "--size", "160x120", "--json"});
   ASSERT_TRUE(r.ok()) << r.describe();
   const json s = parse_json(r.out, "run --json");
-  EXPECT_EQ(s.value("normals", ""), "volume") << "the default on volume input";
-  ASSERT_TRUE(s.contains("normal_fallbacks")) << s.dump(2);
+  EXPECT_EQ(s.value("normals", ""), "volume estimator") << "the default on volume input";
+  EXPECT_EQ(s["estimator"].value("name", ""), "volume") << s.dump(2);
+  EXPECT_EQ(s["estimator"].value("scale_chosen", ""), "auto") << s.dump(2);
+  ASSERT_TRUE(s["estimator"].contains("scale_per_vertex")) << s.dump(2);
   const json& c = s["curvature"];
   ASSERT_TRUE(c.is_object()) << s.dump(2);
   EXPECT_NEAR(c["H"]["p50"].get<double>(), 1 / R, 0.1 / R) << c.dump(2);
@@ -80,7 +82,8 @@ TEST(CurvatureDefaults, ThinPlateFallbacksAreCounted) {
                                                                          : 0;
   const std::string path = dir / "plate_24x24x24_uint8.raw";
   write_file(path, bytes);
-  const auto r = run_isocurv({"curvature", path, "--iso", "40", "-o", dir / "p.vtp", "--json"});
+  const auto r = run_isocurv(
+      {"curvature", path, "--iso", "40", "--estimator", "rusinkiewicz", "-o", dir / "p.vtp", "--json"});
   ASSERT_TRUE(r.ok()) << r.describe();
   const json j = parse_json(r.out, "curvature --json");
   EXPECT_EQ(j.value("normals", ""), "volume");
@@ -118,7 +121,9 @@ TEST(CurvatureDefaults, LobsterAtAVoxelValue) {
   if (!fs::exists(lobster)) GTEST_SKIP() << "no " << lobster;
   TempDir dir("lobster");
   const auto r =
-      run_isocurv({"curvature", lobster, "--iso", "40", "-o", dir / "l.ply", "--json"}, 300);
+      run_isocurv({"curvature", lobster, "--iso", "40", "--estimator", "rusinkiewicz", "-o",
+                   dir / "l.ply", "--json"},
+                  300);
   ASSERT_TRUE(r.ok()) << r.describe();
   const json j = parse_json(r.out, "curvature --json");
   EXPECT_EQ(j.value("normals", ""), "volume");

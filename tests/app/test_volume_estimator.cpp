@@ -67,7 +67,9 @@ TEST(VolumeEstimatorCli, JsonFieldDataAndTighterStatistics) {
   EXPECT_LE(steps, s["timings_ms"]["curvature"].get<double>() * 1.01 + 0.1) << s.dump(2);
 
   const auto m =
-      run_isocurv({"curvature", ball, "--iso", "120.5", "-o", dir / "mesh.vtp", "--json"}, 120);
+      run_isocurv({"curvature", ball, "--iso", "120.5", "-o", dir / "mesh.vtp", "--estimator",
+                   "rusinkiewicz", "--json"},
+                  120);
   ASSERT_TRUE(m.ok()) << m.describe();
   const json sm = parse_json(m.out, "curvature --json");
   EXPECT_EQ(sm["estimator"].value("name", ""), "rusinkiewicz");
@@ -164,7 +166,9 @@ TEST(VolumeEstimatorCli, UsageErrors) {
       {{"curvature", ball, "-o", out, "--estimator", "volume", "--scale", "1e6"},
        1,
        "larger than the volume"},
-      {{"curvature", ball, "-o", out, "--scale", "2"}, 1, "--estimator volume"},
+      {{"curvature", ball, "-o", out, "--estimator", "rusinkiewicz", "--scale", "2"},
+       1,
+       "--estimator volume"},
       {{"curvature", ball, "-o", out, "--estimator", "volume", "--normals", "mesh"},
        1,
        "--normals"},

@@ -252,13 +252,15 @@ TEST(VolumeEstimator, AnisotropicAndRotatedGrids) {
         curvature::volume_estimate(m, v, 0.0f, 2.0, 1.0f, Device::default_device());
     const Errors e = errors(f, H, K);
     if (std::string(g.name) == "isotropic") iso_error = e.H;
-    // At sigma = 2 the smoothed quadric's zero set is the ellipsoid shrunk by about 3%
-    // (sigma^2 sum 1/a_i^2 = 0.063 off the isovalue), its curvature up by as much: the same on
-    // every grid, which is what this test is about.
-    EXPECT_LT(e.H, 0.06) << g.name;
-    EXPECT_LT(e.K, 0.12) << g.name;
+    // Smoothing a quadric adds a constant (sigma^2 sum 1/a_i^2 = 0.063 here), so the smoothed
+    // field's level set through a vertex is the ellipsoid itself: what is left is the
+    // reconstruction's own error, the same small figure on every grid. (Measured at the
+    // smoothed isosurface, as the estimator did before, the ellipsoid shrank by 3% and the
+    // curvature was off by as much.)
+    EXPECT_LT(e.H, 0.005) << g.name;
+    EXPECT_LT(e.K, 0.01) << g.name;
     if (iso_error > 0) {
-      EXPECT_NEAR(e.H, iso_error, 0.05 * iso_error) << g.name;
+      EXPECT_NEAR(e.H, iso_error, 0.003) << g.name;
     }
   }
 }
