@@ -108,10 +108,10 @@ Volume finish_dense(DenseImage&& image, const std::string& path, const std::stri
   for (std::size_t i = 0; i < 3; ++i) {
     const double s = image.spacing[i];
     if (!std::isfinite(s) || s == 0) {
-      char text[64];
-      std::snprintf(text, sizeof text, "invalid voxel spacing %g (axis %c): it must be finite and non-zero", s,
-                    char('x' + i));
-      throw Error(path, text);
+      char value[32];
+      std::snprintf(value, sizeof value, "%g", s);
+      throw Error(path, std::string("invalid voxel spacing ") + value + " (axis " + char('x' + i) +
+                            "): it must be finite and non-zero");
     }
     // A negative spacing is a flip: world = origin + index * spacing * axis in every format, so
     // the axis turns around and the spacing is its length (the flip itself is resolved below).
