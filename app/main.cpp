@@ -48,8 +48,11 @@ int main(int argc, char** argv) {
   // Name a mistyped command (CLI11 would only say that a subcommand is required).
   const auto known = app.get_subcommands([&](const CLI::App* c) { return c->check_name(argv[1]); });
   if (argv[1][0] != '-' && known.empty()) {
-    std::fprintf(stderr, "isocurv: unknown command '%s' (commands: info extract curvature run render view check devices; "
-                         "see isocurv --help)\n", argv[1]);
+    std::string names;  // every registered command, so the list cannot fall behind
+    for (const CLI::App* c : app.get_subcommands([](const CLI::App*) { return true; }))
+      names += (names.empty() ? "" : " ") + c->get_name();
+    std::fprintf(stderr, "isocurv: unknown command '%s' (commands: %s; see isocurv --help)\n", argv[1],
+                 names.c_str());
     return kUsageError;
   }
   try {

@@ -37,6 +37,15 @@ TEST(CliUsage, UnknownCommandIsAUsageError) {
                      "extrct");
 }
 
+TEST(CliUsage, UnknownCommandListsEveryCommand) {
+  // The list once named only the first eight commands.
+  const auto r = run_isocurv({"frobnicate"});
+  expect_usage_error(r, "frobnicate");
+  for (const char* c : {"info", "extract", "check", "curvature", "run", "compare", "features",
+                        "render", "view", "lines", "deform", "screen", "devices"})
+    EXPECT_NE(r.err.find(std::string(" ") + c), std::string::npos) << c << "\n" << r.describe();
+}
+
 TEST(CliUsage, BadInputIsStatus1) {
   TempDir dir("input");
   expect_clean_failure(run_isocurv({"info", dir / "missing.nrrd"}), "missing.nrrd");
