@@ -21,8 +21,11 @@
 //    (eroded: for a sphere or tube of radius r that happens above sigma ~ r / 2 or r, so thin
 //    parts keep a scale they survive, while flat parts keep the large noise-driven one),
 //  - the smoothed gradient points against the mesh's normal (opposed: two surfaces closer than
-//    the scale merged), or
-// At the floor a vertex keeps the floor's values.
+//    the scale merged).
+// At the floor a vertex keeps the floor's values; one still opposed there is measured once more
+// at the reconstruction's own limit (volume::kMinScaleVoxels of the largest spacing), and if
+// still opposed takes the level set through it oriented as the mesh says (normal and curvature
+// signs flipped): a thin gap or sheet's wall, seen through its neighbour.
 //
 // The box: outside a dense volume the samples repeat the nearest border sample (clamping, each
 // pass along its own axis), so no false edge appears where the data stops, and a closed surface
@@ -30,9 +33,12 @@
 // continues it straight across the cut, which biases what the smoothing sees: vertices within
 // kSupportDeviations deviations of the cut (the mesh's open boundary; detail::CutIndex) are
 // flagged Boundary. Their scale is not reduced: at finer scales the noise costs more than the
-// extension (bench_accuracy, sphere cut by the box). A vertex is Unreliable (flag 1, its curvature zero, AO that of a plane, its
+// extension (bench_accuracy, sphere cut by the box).
+//
+// A vertex is Unreliable (flag 1, its curvature zero, AO that of a plane, its
 // normal the area-weighted face normal) where the gradient is at most
-// volume::kWeakGradientFraction of its median over the vertices, or still opposed at the floor.
+// volume::kWeakGradientFraction of its median over the vertices (with finer scales off, also
+// where the scale does not fit it).
 //
 // Cost follows the surface: only the 8^3 bricks the vertices' B-splines read, and what the
 // prefilter's three passes need for them, are gathered and filtered; a vertex then reads 5^3

@@ -148,8 +148,20 @@ VolumeEvaluation evaluate_with_finer_scales(const Mesh& mesh, VolumeSetup setup,
   for (std::size_t i = 0; i < nv; ++i)
     if (record_fit(all, i, mesh, i, faces[i], setup, cut, ladder)) which.push_back(i);
   CurvatureField& f = all.field;
-  while (finer_scales && setup.sigma > setup.floor && !which.empty()) {
-    setup.sigma = std::max(setup.sigma / kScaleStep, setup.floor);
+  // Below the floor only the opposed vertices go on, to the reconstruction's own limit: there the
+  // field is the samples' B-spline, whose gradient agrees with the marching-cubes surface.
+  const double last = std::min(setup.floor, 1.01 * volume::kMinScaleVoxels * setup.voxel);
+  while (finer_scales && setup.sigma > last && !which.empty()) {
+    if (setup.sigma <= setup.floor) {
+      std::vector<std::size_t> opposed;
+      for (std::size_t i : which)
+        if (ladder.opposed[i]) opposed.push_back(i);
+      which.swap(opposed);
+      if (which.empty()) break;
+      setup.sigma = last;
+    } else {
+      setup.sigma = std::max(setup.sigma / kScaleStep, setup.floor);
+    }
     Positions positions(which.size());
     for (std::size_t j = 0; j < which.size(); ++j) positions[j] = mesh.positions[which[j]];
     const VolumeEvaluation finer = evaluate(positions, setup);
@@ -175,6 +187,24 @@ VolumeEvaluation evaluate_with_finer_scales(const Mesh& mesh, VolumeSetup setup,
   return all;
 }
 
+namespace {
+
+/// Vertex i's curvature for the opposite normal: n -> -n, (k1, k2) -> (-k2, -k1) with dir1 and
+/// dir2 swapped (so that dir1 x dir2 = n still), dcurv in the swapped, negated frame.
+void flip_orientation(std::size_t i, float ao_scale, CurvatureField& f) {
+  const Vec3f n = f.normals[i];
+  f.normals[i] = Vec3f{-n[0], -n[1], -n[2]};
+  const float k1 = -f.k2[i], k2 = -f.k1[i];
+  f.k1[i] = k1, f.k2[i] = k2, f.H[i] = -f.H[i];
+  std::swap(f.dir1[i], f.dir2[i]);
+  const std::array<float, 4> c = f.dcurv[i];
+  f.dcurv[i] = {-c[3], -c[2], -c[1], -c[0]};
+  f.shape_index[i] = shape_index(k1, k2);
+  f.ao[i] = ambient_occlusion(k1, k2, ao_scale);
+}
+
+}  // namespace
+
 std::size_t finish_volume_field(const Mesh& mesh, const RawVertex& raw, const ScaleLadder& ladder,
                                 bool finer_scales, float ao_scale, CurvatureField& field) {
   const std::size_t nv = mesh.positions.size();
@@ -198,9 +228,14 @@ std::size_t finish_volume_field(const Mesh& mesh, const RawVertex& raw, const Sc
   std::vector<Vec3f> faces;
   std::size_t count = 0;
   for (std::size_t i = 0; i < nv; ++i) {
-    // With finer scales an eroded vertex keeps the floor's values; an opposed one never counts.
-    const bool bad = !(raw.gradient_norm[i] > weak_below) || ladder.opposed[i] ||
-                     (!finer_scales && ladder.eroded[i]);
+    // With finer scales an eroded vertex keeps the floor's values, and one still opposed at the
+    // reconstruction's limit takes the level set through it oriented as the mesh says.
+    const bool weak = !(raw.gradient_norm[i] > weak_below);
+    if (!weak && finer_scales && ladder.opposed[i]) {
+      flip_orientation(i, ao_scale, field);
+      continue;
+    }
+    const bool bad = weak || (!finer_scales && (ladder.opposed[i] || ladder.eroded[i]));
     if (!bad) continue;
     if (faces.empty()) faces = area_weighted_normals(mesh);
     field.unreliable[i] = 1;
