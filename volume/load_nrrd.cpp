@@ -186,6 +186,9 @@ Volume load_nrrd(const std::string& path, const LoadOptions& options) {
     const Bytes text = read_bytes(data_path, data_offset, std::min<std::uint64_t>(data_size - data_offset, 1 << 20));
     std::size_t p = 0;
     for (long long i = 0; i < lines; ++i) {
+      // An empty payload has no buffer at all: memchr must not see its null pointer (UBSan, found
+      // by the nrrd fuzzer: `line skip: 1` before no data).
+      if (p >= text.size()) throw Error(data_path, "line skip runs past the data");
       const auto* nl = static_cast<const std::uint8_t*>(std::memchr(text.data() + p, '\n', text.size() - p));
       if (!nl) throw Error(data_path, "line skip runs past the data");
       p = std::size_t(nl - text.data()) + 1;
