@@ -5,4 +5,4 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh
-exec "${BUILD_DIR:-build}/app/isocurv" run "${BUILD_DIR:-build}/datasets/torus.vdb" -o out --normals volume --color K "$@"
+exec "${BUILD_DIR:-build}/app/isocurv" run "${BUILD_DIR:-build}/datasets/torus.vdb" -o out --color K "$@"
