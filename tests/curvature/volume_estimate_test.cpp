@@ -113,14 +113,17 @@ Case level_set_sphere() {
 }
 
 TEST(VolumeEstimator, KernelMatchesReference) {
+  using curvature::VolumePoint;
   for (const Case& c : {catalogue("torus", 40), level_set_sphere()}) {
-    for (double voxels : {1.0, 2.3}) {
+    for (const auto& [voxels, point] : {std::pair{1.0, VolumePoint::vertex},
+                                        std::pair{2.3, VolumePoint::vertex},
+                                        std::pair{1.7, VolumePoint::surface}}) {
       const double sigma = voxels * voxel_of(c.volume);
-      const curvature::CurvatureField ref =
-          curvature::volume_estimate_reference(c.mesh, c.volume, c.iso, sigma, 0.1f);
+      const curvature::CurvatureField ref = curvature::volume_estimate_reference(
+          c.mesh, c.volume, c.iso, sigma, 0.1f, nullptr, true, point);
       curvature::VolumeEstimateStats st;
       const curvature::CurvatureField dev = curvature::volume_estimate(
-          c.mesh, c.volume, c.iso, sigma, 0.1f, Device::default_device(), &st);
+          c.mesh, c.volume, c.iso, sigma, 0.1f, Device::default_device(), &st, true, point);
       EXPECT_GT(st.bricks, 0u);
       const FieldDifference d = compare(dev, ref, 0.5);
       // Float against double: prefilter sums of up to 37 taps, then 125 weighted samples.
@@ -133,9 +136,11 @@ TEST(VolumeEstimator, KernelMatchesReference) {
       EXPECT_LT(d.dcurv, 1e-2) << d.str();
       EXPECT_TRUE(d.same_boundary);
       EXPECT_EQ(dev.unreliable, ref.unreliable);
+      ASSERT_EQ(dev.extra.size(), ref.extra.size());
+      EXPECT_EQ(dev.extra.front().values, ref.extra.front().values) << "the same Scale per vertex";
       // Deterministic: a second run is bit-identical.
       const curvature::CurvatureField again = curvature::volume_estimate(
-          c.mesh, c.volume, c.iso, sigma, 0.1f, Device::default_device());
+          c.mesh, c.volume, c.iso, sigma, 0.1f, Device::default_device(), nullptr, true, point);
       EXPECT_EQ(again.H, dev.H);
       EXPECT_EQ(again.dcurv, dev.dcurv);
     }
