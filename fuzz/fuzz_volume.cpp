@@ -133,7 +133,8 @@ void check_vti(const Volume& v, const std::string& file) {
   // the voxel size (NaN, 0 and inf once became 1).
   const std::string spacing = isocurv::fuzz::xml_attribute(file, "ImageData", "Spacing");
   if (!spacing.empty() && isocurv::fuzz::xml_attribute(file, "ImageData", "Direction").empty() &&
-      file.find("Spacing=") == file.rfind("Spacing=")) {
+      file.find("Spacing=") == file.rfind("Spacing=") && file.find("<!") == std::string::npos &&
+      file.find("<ImageData ") == file.rfind("<ImageData ")) {  // one plain ImageData tag, no comments
     const char* p = spacing.c_str();
     double s[3];
     int n = 0;
