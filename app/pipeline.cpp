@@ -530,9 +530,9 @@ nlohmann::json surface_report(const Surface& s) {
             auto at = [&](double p) { return double(v[std::size_t(p * double(v.size() - 1))]); };
             e["scale_per_vertex"] = {{"min", at(0)},   {"p5", at(0.05)}, {"p50", at(0.5)},
                                      {"p95", at(0.95)}, {"max", at(1)},
-                                     {"rule", "the asked or auto scale, divided by sqrt(2) while "
-                                              "it erodes the vertex's surface, merges it with "
-                                              "another or reaches outside the box "
+                                     {"rule", "the asked or auto scale, divided by sqrt(2) down "
+                                              "to 0.8 voxel while the smoothing erodes the "
+                                              "vertex's surface or merges it with another "
                                               "(docs/curvature.md)"}};
           }
     }
