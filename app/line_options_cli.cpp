@@ -91,7 +91,7 @@ void ensure_curvature(Surface &s, const std::string &path,
     std::cerr << "isocurv: note: " << path
               << (had_some ? " lacks some curvature arrays the lines need"
                            : " has no curvature arrays")
-              << "; estimated them (Rusinkiewicz's estimator, "
+              << "; estimated them (" << s.estimator.estimator << " estimator, "
               << s.normals.source << " normals)\n";
 }
 
