@@ -261,15 +261,17 @@ CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalu
   VolumeSession& s = session_for(device);
   std::lock_guard<std::mutex> lock(s.mutex);
   detail::ScaleLadder ladder;
+  VertexCorners corners;  // built once: the cut and the areas both need them
+  build_vertex_corners(mesh, corners);
   detail::VolumeEvaluation e = detail::evaluate_with_finer_scales(
-      mesh, setup, finer_scales,
+      mesh, corners, setup, finer_scales,
       [&](const Positions& positions, const detail::VolumeSetup& at) {
         return evaluate(positions, volume, at, isovalue, ao_scale, device, s);
       },
       ladder);
   Clock::time_point t = Clock::now();
   const std::size_t unreliable =
-      detail::finish_volume_field(mesh, e.raw, ladder, finer_scales, ao_scale, e.field);
+      detail::finish_volume_field(mesh, corners, e.raw, ladder, finer_scales, ao_scale, e.field);
   e.steps.finish = lap(t);
   if (stats)
     *stats = VolumeEstimateStats{unreliable, e.bricks, ladder.refined,

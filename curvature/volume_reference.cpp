@@ -67,9 +67,10 @@ VolumeSetup volume_setup(const Mesh& mesh, const volume::Volume& volume, double 
 
 openvdb::Vec3d spline_reach(const VolumeSetup&) { return openvdb::Vec3d(0.5, 0.5, 0.5); }
 
-CutIndex::CutIndex(const Mesh& mesh, const volume::GridFrame& frame) {
+CutIndex::CutIndex(const Mesh& mesh, const VertexCorners& corners,
+                   const volume::GridFrame& frame) {
   if (!frame.clamp) return;  // a sparse grid's data does not stop at a box
-  const std::vector<std::uint8_t> open = boundary_vertices(mesh);
+  const std::vector<std::uint8_t> open = boundary_vertices(mesh, corners);
   for (std::size_t i = 0; i < open.size(); ++i)
     if (open[i]) points.push_back(mesh.positions[i]);
 }
@@ -134,13 +135,14 @@ bool record_fit(const VolumeEvaluation& e, std::size_t j, const Mesh& mesh, std:
 
 }  // namespace
 
-VolumeEvaluation evaluate_with_finer_scales(const Mesh& mesh, VolumeSetup setup, bool finer_scales,
+VolumeEvaluation evaluate_with_finer_scales(const Mesh& mesh, const VertexCorners& corners,
+                                            VolumeSetup setup, bool finer_scales,
                                             const VolumeEvaluate& evaluate, ScaleLadder& ladder) {
   const std::size_t nv = mesh.positions.size();
   const float asked = float(setup.sigma);
   VolumeEvaluation all = evaluate(mesh.positions, setup);
   const std::vector<Vec3f> faces = area_weighted_normals(mesh);
-  const CutIndex cut(mesh, setup.frame);
+  const CutIndex cut(mesh, corners, setup.frame);
   ladder.scale.assign(nv, 0.0f);
   ladder.eroded.assign(nv, 0), ladder.opposed.assign(nv, 0), ladder.outside.assign(nv, 0);
   ladder.refined = 0;
@@ -205,11 +207,10 @@ void flip_orientation(std::size_t i, float ao_scale, CurvatureField& f) {
 
 }  // namespace
 
-std::size_t finish_volume_field(const Mesh& mesh, const RawVertex& raw, const ScaleLadder& ladder,
+std::size_t finish_volume_field(const Mesh& mesh, const VertexCorners& corners,
+                                const RawVertex& raw, const ScaleLadder& ladder,
                                 bool finer_scales, float ao_scale, CurvatureField& field) {
   const std::size_t nv = mesh.positions.size();
-  VertexCorners corners;
-  build_vertex_corners(mesh, corners);
   field.area = mixed_vertex_areas(mesh, corners);
   field.boundary = boundary_vertices(mesh, corners);
   for (std::size_t i = 0; i < nv; ++i)
@@ -346,14 +347,16 @@ CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume&
   if (!std::isfinite(ao_scale)) throw Error("curvature: ao_scale must be finite");
   const openvdb::FloatGrid& grid = *volume.grid;
   detail::ScaleLadder ladder;
+  VertexCorners corners;  // built once: the cut and the areas both need them
+  build_vertex_corners(mesh, corners);
   detail::VolumeEvaluation e = detail::evaluate_with_finer_scales(
-      mesh, setup, finer_scales,
+      mesh, corners, setup, finer_scales,
       [&](const Positions& positions, const detail::VolumeSetup& s) {
         return evaluate_reference(positions, grid, s, isovalue, ao_scale);
       },
       ladder);
   const std::size_t unreliable =
-      detail::finish_volume_field(mesh, e.raw, ladder, finer_scales, ao_scale, e.field);
+      detail::finish_volume_field(mesh, corners, e.raw, ladder, finer_scales, ao_scale, e.field);
   if (stats)
     *stats = VolumeEstimateStats{unreliable, 0, ladder.refined, detail::count_of(ladder.outside),
                                  {}};

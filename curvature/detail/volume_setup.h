@@ -9,6 +9,7 @@
 
 #include "core/mesh.h"
 #include "curvature/curvature_field.h"
+#include "curvature/vertex_corners.h"
 #include "curvature/volume_estimate.h"
 #include "volume/gaussian_jet.h"
 #include "volume/volume.h"
@@ -48,7 +49,7 @@ struct RawVertex {
 /// is what the volume would have held. Empty for sparse grids (their data does not stop at a box).
 class CutIndex {
  public:
-  CutIndex(const Mesh& mesh, const volume::GridFrame& frame);
+  CutIndex(const Mesh& mesh, const VertexCorners& corners, const volume::GridFrame& frame);
   /// True when a cut vertex lies within `radius` (world units) of p. Not thread-safe (it buckets
   /// the cut by `radius` on first use).
   bool near(const Vec3f& p, double radius) const;
@@ -87,7 +88,8 @@ struct ScaleLadder {
 /// do not fit that scale (eroded, opposed or near the box: volume_estimate.h) again at
 /// sigma / kScaleStep, and so on down to setup.floor, each keeping the first scale it fits (or
 /// the floor's values).
-VolumeEvaluation evaluate_with_finer_scales(const Mesh& mesh, VolumeSetup setup, bool finer_scales,
+VolumeEvaluation evaluate_with_finer_scales(const Mesh& mesh, const VertexCorners& corners,
+                                            VolumeSetup setup, bool finer_scales,
                                             const VolumeEvaluate& evaluate, ScaleLadder& ladder);
 
 /// The number of set flags.
@@ -100,7 +102,8 @@ inline std::size_t count_of(const std::vector<std::uint8_t>& flags) {
 /// Fills Area, Boundary (the mesh's open boundary, or a smoothing that reaches the cut), Unreliable
 /// and the "Scale" array, and resets the unreliable vertices (see volume_estimate.h). Returns the
 /// number of unreliable vertices.
-std::size_t finish_volume_field(const Mesh& mesh, const RawVertex& raw, const ScaleLadder& ladder,
+std::size_t finish_volume_field(const Mesh& mesh, const VertexCorners& corners,
+                                const RawVertex& raw, const ScaleLadder& ladder,
                                 bool finer_scales, float ao_scale, CurvatureField& field);
 
 }  // namespace isocurv::curvature::detail
