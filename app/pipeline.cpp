@@ -472,12 +472,14 @@ nlohmann::json field_stats_json(const curvature::CurvatureField& field, const Me
   cs["k2"] = distribution_json(st.k2);
   cs["weights"] = st.area_weighted ? "Area (per-vertex mixed area)" : "none (the field has no Area array)";
   cs["vertices_counted"] = st.counted;
+  cs["unmeasured_vertices"] = st.unmeasured;
   cs["unreliable_vertices"] = st.unreliable;
   cs["unreliable_above"] = st.unreliable_above;
   cs["unreliable_rule"] = "max(|k1|, |k2|) > 1 / (half the mean edge length)";
   cs["non_finite_vertices"] = st.non_finite;
-  cs["excluded_from_statistics"] = "unreliable and non-finite vertices: left out of min, max, mean and "
-                                   "every percentile of H, K, k1, k2";
+  cs["excluded_from_statistics"] = "unmeasured (flagged Unreliable by the estimator), unreliable and "
+                                   "non-finite vertices: left out of min, max, mean and every percentile "
+                                   "of H, K, k1, k2";
   return cs;
 }
 

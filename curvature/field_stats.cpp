@@ -40,32 +40,59 @@ Distribution distribution(const std::vector<float>& values, const std::vector<st
 
 }  // namespace
 
+namespace {
+
+// Why a vertex is left out of the statistics.
+enum class Verdict { counted, unmeasured, non_finite, unreliable };
+
+Verdict verdict(const CurvatureField& field, std::size_t i, double unreliable_above) {
+  if (field.unreliable.size() == field.size() && field.unreliable[i]) return Verdict::unmeasured;
+  if (!std::isfinite(field.k1[i]) || !std::isfinite(field.k2[i]) || !std::isfinite(field.H[i]) ||
+      !std::isfinite(field.K[i]))
+    return Verdict::non_finite;
+  const double k = std::max(std::fabs(field.k1[i]), std::fabs(field.k2[i]));
+  if (unreliable_above > 0 && k > unreliable_above) return Verdict::unreliable;
+  return Verdict::counted;
+}
+
+double threshold(double mean_edge_length) { return mean_edge_length > 0 ? 2.0 / mean_edge_length : 0; }
+
+bool complete(const CurvatureField& field) {
+  const std::size_t n = field.size();
+  return field.k2.size() == n && field.H.size() == n && field.K.size() == n;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> counted_vertices(const CurvatureField& field, double mean_edge_length) {
+  std::vector<std::uint8_t> counted(field.size(), 0);
+  if (!complete(field)) return counted;
+  const double above = threshold(mean_edge_length);
+  for (std::size_t i = 0; i < counted.size(); ++i) counted[i] = verdict(field, i, above) == Verdict::counted;
+  return counted;
+}
+
 FieldStats field_stats(const CurvatureField& field, double mean_edge_length) {
   FieldStats s;
   const std::size_t n = field.size();
-  s.unreliable_above = mean_edge_length > 0 ? 2.0 / mean_edge_length : 0;
+  s.unreliable_above = threshold(mean_edge_length);
   s.area_weighted = field.area.size() == n;
   std::vector<double> weights(n, 1.0);
   std::vector<std::size_t> used;
   used.reserve(n);
-  const bool complete = field.k2.size() == n && field.H.size() == n && field.K.size() == n;
-  for (std::size_t i = 0; i < n && complete; ++i) {
+  for (std::size_t i = 0; i < n && complete(field); ++i) {
     if (s.area_weighted) weights[i] = std::isfinite(field.area[i]) ? field.area[i] : 0.0;
-    if (!std::isfinite(field.k1[i]) || !std::isfinite(field.k2[i]) || !std::isfinite(field.H[i]) ||
-        !std::isfinite(field.K[i])) {
-      ++s.non_finite;
-      continue;
-    }
-    const double k = std::max(std::fabs(field.k1[i]), std::fabs(field.k2[i]));
-    if (s.unreliable_above > 0 && k > s.unreliable_above) {
-      ++s.unreliable;
-      continue;
+    switch (verdict(field, i, s.unreliable_above)) {
+      case Verdict::unmeasured: ++s.unmeasured; continue;
+      case Verdict::non_finite: ++s.non_finite; continue;
+      case Verdict::unreliable: ++s.unreliable; continue;
+      case Verdict::counted: break;
     }
     used.push_back(i);
     s.weight += weights[i];
   }
   s.counted = used.size();
-  if (!complete) return s;
+  if (!complete(field)) return s;
   // Four independent sorts: in parallel (each result is the same as computed alone).
   tbb::parallel_invoke([&] { s.H = distribution(field.H, used, weights); },
                        [&] { s.K = distribution(field.K, used, weights); },

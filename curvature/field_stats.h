@@ -2,6 +2,7 @@
 // Summary statistics of a CurvatureField (stats.json and --json of the isocurv commands).
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "curvature/curvature_field.h"
@@ -21,22 +22,30 @@ struct Distribution {
   std::array<double, kStatPercentiles.size()> percentiles{};
 };
 
-/// Statistics of H, K, k1 and k2 over the reliable vertices of a field.
+/// Statistics of H, K, k1 and k2 over the measured, reliable vertices of a field.
 struct FieldStats {
+  /// Vertices the estimator flagged "Unreliable" (not measured: their values are placeholders,
+  /// zero curvature), left out of every Distribution.
+  std::size_t unmeasured = 0;
   /// A vertex is unreliable when max(|k1|, |k2|) exceeds this: 1 / (half the mean edge length),
   /// a curvature radius under half an edge, which the mesh cannot resolve (slivers, noise). 0
   /// when no mean edge length was given (then no vertex is unreliable).
   double unreliable_above = 0;
-  std::size_t unreliable = 0;  ///< unreliable vertices, left out of every Distribution
-  std::size_t non_finite = 0;  ///< vertices with a non-finite k1, k2, H or K, also left out
-  std::size_t counted = 0;     ///< vertices in the Distributions
+  std::size_t unreliable = 0;  ///< measured vertices over unreliable_above, left out of every Distribution
+  std::size_t non_finite = 0;  ///< other vertices with a non-finite k1, k2, H or K, also left out
+  std::size_t counted = 0;     ///< vertices in the Distributions (the field's size less the three above)
   bool area_weighted = false;  ///< weights are the Area array (else 1 per vertex: no Area array)
   double weight = 0;           ///< total weight of the counted vertices (their area)
   Distribution H, K, k1, k2;
 };
 
 /// The statistics of `field` (arrays of equal length; Area used as the weight when it has one
-/// entry per vertex) with the reliability threshold from `mean_edge_length` (world units).
+/// entry per vertex, Unreliable as the unmeasured flag when it has one) with the reliability
+/// threshold from `mean_edge_length` (world units).
 FieldStats field_stats(const CurvatureField& field, double mean_edge_length);
+
+/// Per vertex of `field`: 1 where field_stats counts it (measured, finite, within the
+/// threshold), else 0. Pictures take their colour range from these vertices.
+std::vector<std::uint8_t> counted_vertices(const CurvatureField& field, double mean_edge_length);
 
 }  // namespace isocurv::curvature

@@ -762,8 +762,10 @@ PYBIND11_MODULE(isocurv, m) {
       py::arg("ao_scale") = py::none(), py::arg("cap") = false, py::arg("device") = py::none(),
       R"doc(Per-vertex curvature of `mesh` as a CurvatureArrays (a dict) of numpy arrays named as in
 the files: Normals (n, 3), Area, k1, k2 (k1 >= k2), dir1, dir2 (n, 3), H, K, dcurv (n, 4),
-ShapeIndex, Curvedness, AO (n,), Boundary (n,) uint8, Unreliable (n,) uint8 where the estimator
-flags vertices; an estimator fills only the arrays it can. `.report` says what was used:
+ShapeIndex, Curvedness, AO (n,), Boundary (n,) uint8, Unreliable (n,) uint8: the unmeasured-vertex
+mask, 1 where the estimator could not measure (there every other array holds a placeholder, zero
+curvature, not NaN: leave those vertices out, as stats.json does); an estimator fills only the
+arrays it can. `.report` says what was used:
 {'estimator', 'parameters' (e.g. {'scale': 1.5, 'ao_scale': 2.0}, world units), 'chosen'
 ({'scale': 'auto'|'given'}), 'unreliable' (count), 'normals'[, 'normal_fallbacks']}.
 

@@ -135,10 +135,19 @@ vtkSmartPointer<vtkColorTransferFunction> make_color_map(const ColorRange& range
   return map;
 }
 
+std::array<double, 3> no_data_color(const std::string& cmap) {
+  if (cmap == "diverging") return {1.0, 0.85, 0.0};
+  if (cmap == "bgr") return {0.9, 0.0, 0.9};
+  return {0.9, 0.0, 0.0};
+}
+
 vtkSmartPointer<vtkUnsignedCharArray> vertex_colors(const std::vector<float>& values,
                                                     const ColorRange& range,
                                                     vtkColorTransferFunction* map,
-                                                    const std::vector<float>* ao) {
+                                                    const std::vector<float>* ao,
+                                                    const std::vector<std::uint8_t>* no_data,
+                                                    const std::array<double, 3>& no_data_rgb) {
+  if (no_data && no_data->size() != values.size()) no_data = nullptr;
   std::vector<double> table(3 * kTableSize);
   map->GetTable(range.lo, range.hi, kTableSize, table.data());
   auto colors = vtkSmartPointer<vtkUnsignedCharArray>::New();
@@ -148,8 +157,8 @@ vtkSmartPointer<vtkUnsignedCharArray> vertex_colors(const std::vector<float>& va
   unsigned char* out = colors->GetPointer(0);
   const double scale = (kTableSize - 1) / (range.hi - range.lo);
   for (std::size_t i = 0; i < values.size(); ++i) {
-    double rgb[3] = {0.5, 0.5, 0.5};
-    if (std::isfinite(values[i])) {
+    double rgb[3] = {no_data_rgb[0], no_data_rgb[1], no_data_rgb[2]};
+    if (std::isfinite(values[i]) && !(no_data && (*no_data)[i])) {
       const double t = std::clamp((values[i] - range.lo) * scale, 0.0, double(kTableSize - 1));
       const auto k = static_cast<std::size_t>(std::lround(t));
       std::copy(table.begin() + 3 * k, table.begin() + 3 * k + 3, rgb);

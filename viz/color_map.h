@@ -8,6 +8,8 @@
 // them: H_s2, H_ii, SI_ii, ...; viz::QuantityKind), grey for AO and viridis for the others.
 #include <vtkSmartPointer.h>
 
+#include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -58,12 +60,20 @@ ColorRange color_range(const std::vector<float>& values, const std::string& name
 vtkSmartPointer<vtkColorTransferFunction> make_color_map(const ColorRange& range,
                                                          const std::string& cmap = "diverging");
 
+/// The "no data" colour of map `cmap` (resolved), RGB in [0, 1]: one that map never takes, as
+/// ParaView's NaN colours (yellow beside diverging, magenta beside bgr, red beside viridis and
+/// grey).
+std::array<double, 3> no_data_color(const std::string& cmap);
+
 /// RGB colours (unsigned char, 3 components, named "Colors") for `values` through `map` over
 /// `range` (1024 steps); when `ao` is non-null each colour is multiplied by the vertex's AO
-/// (clamped to [0, 1]; --shading both). Non-finite values are mid grey.
+/// (clamped to [0, 1]; --shading both). Vertices flagged in `no_data` (one entry per value,
+/// optional) and non-finite values get `no_data_rgb`.
 vtkSmartPointer<vtkUnsignedCharArray> vertex_colors(const std::vector<float>& values,
                                                     const ColorRange& range,
                                                     vtkColorTransferFunction* map,
-                                                    const std::vector<float>* ao = nullptr);
+                                                    const std::vector<float>* ao = nullptr,
+                                                    const std::vector<std::uint8_t>* no_data = nullptr,
+                                                    const std::array<double, 3>& no_data_rgb = {0.5, 0.5, 0.5});
 
 }  // namespace isocurv::viz

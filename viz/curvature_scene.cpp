@@ -23,6 +23,8 @@
 
 #include "core/error.h"
 #include "core/framing_points.h"
+#include "core/mesh_measures.h"
+#include "curvature/field_stats.h"
 #include "io/field_arrays.h"
 #include "io/polydata.h"
 #include "viz/color_map.h"
@@ -86,6 +88,7 @@ struct CurvatureScene::Impl {
   std::string cmap = "diverging";
   PictureLayout layout;
   int bottom_reserved = 0;
+  bool no_data_shown = false;  // some vertex shown is unmeasured (its legend entry is drawn)
   bool glyphs_stale = true;  // the glyphs are built when first needed after a change
   // Screen-space mode: the image, drawn as RGBA pixels by a 2D actor in the overlay.
   bool image_on = false;
@@ -166,7 +169,7 @@ struct CurvatureScene::Impl {
     const std::string label = quantity_label(q);
     const std::string legend_title = unit.empty() ? label : label + "\n" + unit;
     layout = layout_picture(options.width, options.height, options.title, legend_title, range.lo,
-                            range.hi, bottom_reserved);
+                            range.hi, bottom_reserved, no_data_shown && !image_on);
     if (image_on)  // narrower (the legend column is wider) and independent of the values
       layout.surface = layout_picture(options.width, options.height, options.title, legend_title,
                                       -kWidestLabelValue, kWidestLabelValue, bottom_reserved)
@@ -259,20 +262,31 @@ struct CurvatureScene::Impl {
       return;
     }
     const std::vector<float> values = quantity_values(field, q);
-    // The range leaves out open-boundary vertices (a surface cut by the volume's box), whose
-    // one-sided curvature is an artefact that would otherwise set the scale.
+    // The range comes from the vertices the statistics count (curvature::field_stats: measured,
+    // finite, not a spike the mesh cannot resolve), less the open-boundary ones (a surface cut
+    // by the volume's box), whose one-sided curvature is an artefact that would otherwise set
+    // the scale. The unmeasured vertices (flagged Unreliable) take the "no data" colour.
+    const std::vector<std::uint8_t>* unmeasured =
+        field.unreliable.size() == values.size() && quantity_kind(q) != QuantityKind::flag ? &field.unreliable
+                                                                                           : nullptr;
+    no_data_shown = unmeasured && std::any_of(unmeasured->begin(), unmeasured->end(), [](std::uint8_t u) { return u; });
     std::vector<float> inner;
-    if (!options.range && field.boundary.size() == values.size()) {
+    if (!options.range) {
+      const std::vector<std::uint8_t> counted = curvature::counted_vertices(field, mean_edge_length(mesh));
+      const bool use_counted = counted.size() == values.size() &&
+                               std::any_of(counted.begin(), counted.end(), [](std::uint8_t c) { return c; });
+      const bool use_boundary = field.boundary.size() == values.size();
       inner.reserve(values.size());
       for (std::size_t i = 0; i < values.size(); ++i)
-        if (!field.boundary[i]) inner.push_back(values[i]);
+        if ((!use_counted || counted[i]) && !(use_boundary && field.boundary[i]) && !(unmeasured && (*unmeasured)[i]))
+          inner.push_back(values[i]);
     }
     range = color_range(inner.empty() ? values : inner, q, options.clamp_percentile, options.range);
     auto map = make_color_map(range, cmap);
     vtkPointData* pd = surface->GetPointData();
     pd->RemoveArray("Colors");
-    pd->AddArray(
-        vertex_colors(values, range, map, options.shading == Shading::both ? &field.ao : nullptr));
+    pd->AddArray(vertex_colors(values, range, map, options.shading == Shading::both ? &field.ao : nullptr,
+                               unmeasured, no_data_color(cmap)));
     pd->RemoveArray("AO");
     const bool ambient_ao = options.shading == Shading::ambient_ao;
     if (ambient_ao) {

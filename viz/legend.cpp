@@ -53,12 +53,21 @@ struct Legend::Impl {
   std::vector<vtkSmartPointer<vtkTextActor>> labels;
   vtkSmartPointer<vtkPolyData> bar = vtkSmartPointer<vtkPolyData>::New();
   vtkSmartPointer<vtkActor2D> bar_actor = vtkSmartPointer<vtkActor2D>::New();
+  vtkSmartPointer<vtkTextActor> no_data_label;
+  vtkSmartPointer<vtkPolyData> swatch = vtkSmartPointer<vtkPolyData>::New();
+  vtkSmartPointer<vtkActor2D> swatch_actor = vtkSmartPointer<vtkActor2D>::New();
   vtkSmartPointer<vtkPolyData> frame = vtkSmartPointer<vtkPolyData>::New();
   vtkSmartPointer<vtkActor2D> frame_actor = vtkSmartPointer<vtkActor2D>::New();
 
   explicit Impl(vtkRenderer* r) : renderer(r) {
     title = make_text(r);
     legend_title = make_text(r);
+    no_data_label = make_text(r);
+    auto swatch_mapper = vtkSmartPointer<vtkPolyDataMapper2D>::New();
+    swatch_mapper->SetInputData(swatch);
+    swatch_mapper->ScalarVisibilityOff();
+    swatch_actor->SetMapper(swatch_mapper);
+    r->AddViewProp(swatch_actor);
     auto bar_mapper = vtkSmartPointer<vtkPolyDataMapper2D>::New();
     bar_mapper->SetInputData(bar);
     bar_mapper->SetScalarModeToUseCellData();
@@ -129,6 +138,27 @@ void Legend::update(const PictureLayout& layout, const std::string& cmap, const 
   s.frame->Modified();
   s.bar_actor->SetVisibility(show_bar);
   s.frame_actor->SetVisibility(show_bar);
+
+  // The "no data" swatch: a square of that colour with a frame like the bar's.
+  const PixelBox& n = layout.no_data;
+  const bool swatch_on = show_bar && !n.empty();
+  show(s.no_data_label, layout.no_data_label, swatch_on);
+  if (swatch_on) {
+    auto sp = vtkSmartPointer<vtkPoints>::New();
+    sp->InsertNextPoint(n.x0, n.y0, 0);
+    sp->InsertNextPoint(n.x1, n.y0, 0);
+    sp->InsertNextPoint(n.x1, n.y1, 0);
+    sp->InsertNextPoint(n.x0, n.y1, 0);
+    auto quad = vtkSmartPointer<vtkCellArray>::New();
+    const vtkIdType q[4] = {0, 1, 2, 3};
+    quad->InsertNextCell(4, q);
+    s.swatch->SetPoints(sp);
+    s.swatch->SetPolys(quad);
+    s.swatch->Modified();
+    const std::array<double, 3> c = no_data_color(cmap);
+    s.swatch_actor->GetProperty()->SetColor(c[0], c[1], c[2]);
+  }
+  s.swatch_actor->SetVisibility(swatch_on);
 }
 
 }  // namespace isocurv::viz

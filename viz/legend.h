@@ -20,7 +20,8 @@ class Legend {
   Legend& operator=(const Legend&) = delete;
 
   /// Places the texts and the bar as `layout` says; the bar shows `cmap` (resolved) over `range`,
-  /// lo at the bottom. `show_bar` false hides the bar, its title and labels (not the title).
+  /// lo at the bottom, and the layout's "no data" swatch (when it has one) no_data_color(cmap).
+  /// `show_bar` false hides the bar, its title, labels and swatch (not the title).
   void update(const PictureLayout& layout, const std::string& cmap, const ColorRange& range,
               bool show_bar = true);
 

@@ -13,6 +13,7 @@ namespace isocurv::viz {
 namespace {
 
 constexpr int kTicks = 5;
+constexpr const char* kNoDataText = "no data";
 constexpr int kMinFontPx = 7;
 constexpr int kMaxFontPx = 48;
 constexpr double kFontPerPixel = 1.0 / 36;   // font size per pixel of the image's smaller side
@@ -79,7 +80,7 @@ std::string tick_label(double value, double range) {
 
 PictureLayout layout_picture(int width, int height, const std::string& title,
                              const std::string& legend_title, double lo, double hi,
-                             int bottom_reserved) {
+                             int bottom_reserved, bool no_data) {
   PictureLayout l;
   l.width = width;
   l.height = height;
@@ -114,14 +115,17 @@ PictureLayout layout_picture(int width, int height, const std::string& title,
       label_h = std::max(label_h, height_of(m));
     }
     const int bar_w = std::max(4, static_cast<int>(std::lround(kBarWidthPerFont * font)));
-    const int column = std::max(width_of(tm), bar_w + pad + label_w) + 2 * pad;
+    const PixelBox nm = no_data ? measure_text(kNoDataText, font) : PixelBox{};
+    const int column = std::max({width_of(tm), bar_w + pad + label_w, bar_w + pad + width_of(nm)}) + 2 * pad;
     if (column > kMaxLegendWidth * width && font > kMinFontPx) continue;
 
     const int x0 = width - column + pad;
     const int title_y = top - pad - height_of(tm);
     l.legend_title = place(legend_title, font, x0, title_y);
     const int free_top = (legend_title.empty() ? top - pad : title_y - pad) - (label_h + 1) / 2;
-    const int free_bottom = bottom_reserved + pad + (label_h + 1) / 2;
+    // The "no data" entry: a swatch as high as a label, its text beside it, at the bottom.
+    const int entry_h = no_data ? std::max(label_h, height_of(nm)) + 2 * pad : 0;
+    const int free_bottom = bottom_reserved + pad + (label_h + 1) / 2 + entry_h;
     const int bar_h = std::max(8, static_cast<int>(kBarHeightFraction * (free_top - free_bottom)));
     const int bar_top = std::max(free_bottom + 8, free_top);
     const int bar_bottom = std::max(free_bottom, bar_top - bar_h);
@@ -140,6 +144,16 @@ PictureLayout layout_picture(int width, int height, const std::string& title,
       const int yc = bar_bottom + (bar_top - bar_bottom) * i / (kTicks - 1);
       l.labels.push_back(place(text, font, l.bar.x1 + pad, yc - height_of(m) / 2));
       grow(l.labels.back().box);
+    }
+    l.no_data = {};
+    l.no_data_label = {};
+    if (no_data) {
+      const int h = std::max(label_h, height_of(nm));
+      const int y0 = bar_bottom - (label_h + 1) / 2 - 2 * pad - h;
+      l.no_data = {x0, y0, x0 + bar_w, y0 + h};
+      l.no_data_label = place(kNoDataText, font, l.no_data.x1 + pad, y0 + (h - height_of(nm)) / 2);
+      grow(l.no_data);
+      grow(l.no_data_label.box);
     }
     l.surface = {0, bottom_reserved, width - column, top};
     break;

@@ -38,7 +38,9 @@ struct PictureLayout {
   PixelBox bar;             ///< the colour bar, lo at the bottom, hi at the top
   std::vector<PlacedText> labels;  ///< one per tick, beside the bar
   std::vector<double> ticks;       ///< the tick values, bottom to top
-  PixelBox legend;                 ///< everything of the legend (title, bar, labels)
+  PixelBox no_data;                ///< the "no data" swatch under the bar (empty when not asked for)
+  PlacedText no_data_label;        ///< "no data", beside the swatch
+  PixelBox legend;                 ///< everything of the legend (title, bar, labels, swatch)
 };
 
 /// The ink extents of `text` (UTF-8, lines split at '\n') at `font_px` (Arial, as drawn by
@@ -51,10 +53,12 @@ PixelBox measure_text(const std::string& text, int font_px);
 /// (`legend_title`, then a bar with labels for 5 ticks from lo to hi), and the surface in the
 /// rest, above `bottom_reserved` pixels (the explorer's status line and slider). Font sizes grow
 /// with the image (about min(width, height) / 36 pixels, 9 to 48) and shrink where the legend
-/// would take more than 40% of the width. Every text box lies inside the image.
+/// would take more than 40% of the width. With `no_data`, a swatch labelled "no data" sits under
+/// the bar (the colour of the vertices that were not measured). Every text box lies inside the
+/// image.
 PictureLayout layout_picture(int width, int height, const std::string& title,
                              const std::string& legend_title, double lo, double hi,
-                             int bottom_reserved = 0);
+                             int bottom_reserved = 0, bool no_data = false);
 
 /// A tick label for a legend spanning `range` (hi - lo): %g with at least 3 significant digits,
 /// more when the range is small beside the value, so that the 5 ticks of a near-constant array

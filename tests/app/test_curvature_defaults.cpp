@@ -62,8 +62,8 @@ TEST(CurvatureDefaults, CtLikeVolumeGivesPlausibleStatistics) {
   EXPECT_LT(c["H"]["p95"].get<double>(), 2 / R) << c.dump(2);
   EXPECT_LT(c["unreliable_vertices"].get<double>(), 0.01 * s["vertices"].get<double>())
       << c.dump(2);
-  EXPECT_EQ(c["vertices_counted"].get<std::size_t>() + c["unreliable_vertices"].get<std::size_t>() +
-                c["non_finite_vertices"].get<std::size_t>(),
+  EXPECT_EQ(c["vertices_counted"].get<std::size_t>() + c["unmeasured_vertices"].get<std::size_t>() +
+                c["unreliable_vertices"].get<std::size_t>() + c["non_finite_vertices"].get<std::size_t>(),
             s["vertices"].get<std::size_t>());
   EXPECT_EQ(c.value("weights", "").rfind("Area", 0), 0u) << c.dump(2);
 }

@@ -57,5 +57,30 @@ TEST(FieldStats, UnreliableVerticesAreCountedAndLeftOut) {
   EXPECT_TRUE(field_stats(CurvatureField{}, 1).H.empty);
 }
 
+TEST(FieldStats, UnmeasuredVerticesAreCountedApartAndLeftOut) {
+  // The volume estimator flags the vertices it could not measure Unreliable and gives them zero
+  // curvature: counted as H = 0 they would drag the median of a convex surface to zero.
+  CurvatureField f = field({0, 2, 0, 3, 4, 0}, {1, 1, 1, 1, 1, 1});
+  f.unreliable = {1, 0, 1, 0, 0, 1};
+  const FieldStats s = field_stats(f, 0.1);
+  EXPECT_EQ(s.unmeasured, 3u);
+  EXPECT_EQ(s.unreliable, 0u);
+  EXPECT_EQ(s.counted, 3u);
+  EXPECT_EQ(s.H.min, 2) << "no placeholder zero among the values";
+  EXPECT_EQ(s.H.percentiles[3], 3) << "p50 of 2, 3, 4";
+  EXPECT_NEAR(s.H.mean, 3, 1e-12);
+  // A flagged vertex is unmeasured even where its placeholder is not finite or is huge.
+  f.H[0] = std::numeric_limits<float>::quiet_NaN();
+  f.k1[2] = 1e9f;
+  const FieldStats t = field_stats(f, 0.1);
+  EXPECT_EQ(t.unmeasured, 3u);
+  EXPECT_EQ(t.non_finite + t.unreliable, 0u);
+  // counted_vertices marks exactly the vertices the statistics use.
+  f.k1[3] = 1e9f;  // measured, over the threshold
+  const std::vector<std::uint8_t> c = counted_vertices(f, 0.1);
+  EXPECT_EQ(c, (std::vector<std::uint8_t>{0, 1, 0, 0, 1, 0}));
+  EXPECT_EQ(field_stats(f, 0.1).counted, 2u);
+}
+
 }  // namespace
 }  // namespace isocurv::curvature

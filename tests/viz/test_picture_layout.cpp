@@ -73,3 +73,25 @@ TEST(VizPictureLayout, TicksRunFromLoToHiWithZeroShownAsZero) {
   EXPECT_TRUE(l.title.text.empty());
   EXPECT_EQ(l.surface.y1, 600) << "without a title the surface reaches the top";
 }
+
+TEST(VizPictureLayout, NoDataEntrySitsUnderTheBarInsideTheLegend) {
+  for (const auto& [w, h] : {std::pair{300, 300}, std::pair{640, 480}, std::pair{1024, 768}, std::pair{3840, 2160}}) {
+    const std::string what = std::to_string(w) + "x" + std::to_string(h);
+    const viz::PictureLayout plain = viz::layout_picture(w, h, "title", "H\n1/mm", -0.5, 0.5);
+    EXPECT_TRUE(plain.no_data.empty()) << what;
+    EXPECT_TRUE(plain.no_data_label.text.empty()) << what;
+    const viz::PictureLayout l = viz::layout_picture(w, h, "title", "H\n1/mm", -0.5, 0.5, 0, true);
+    expect_fits(l, what + " with no data");
+    ASSERT_FALSE(l.no_data.empty()) << what;
+    EXPECT_EQ(l.no_data_label.text, "no data") << what;
+    EXPECT_TRUE(l.legend.contains(l.no_data)) << what;
+    EXPECT_TRUE(l.legend.contains(l.no_data_label.box)) << what;
+    EXPECT_TRUE((viz::PixelBox{0, 0, w, h}.contains(l.no_data_label.box))) << what;
+    EXPECT_LE(l.no_data.y1, l.bar.y0) << what << ": the swatch is under the bar";
+    for (const auto& t : l.labels) {
+      EXPECT_FALSE(t.box.overlaps(l.no_data_label.box)) << what << ": tick " << t.text;
+      EXPECT_FALSE(t.box.overlaps(l.no_data)) << what;
+    }
+    EXPECT_GE(l.no_data.y0, 0) << what;
+  }
+}
