@@ -41,8 +41,10 @@ void register_check(CLI::App& app) {
       "Example: isocurv check other_mesher_output.ply\n"
       "         isocurv check head.nrrd --iso 500 --json\n"
       "Small triangles: area under 1e-4 voxel face areas (volume input) or 1e-4 squared mean\n"
-      "edge lengths (mesh files). Exit status 0 when the check ran (whatever it found), 1 on bad\n"
-      "input.");
+      "edge lengths (mesh files). Exit status 0 for a clean mesh (fused, manifold, consistently\n"
+      "oriented outward; open or small triangles are reported, not problems), 1 when the check\n"
+      "reports problems (the report and --json are printed all the same) or on bad input, 2 on\n"
+      "a usage error.");
   static CommonOptions o;
   static std::string in;
   cmd->add_option("MESH_OR_VOLUME", in, "Mesh (.vtp .ply .obj .stl) or volume file")->required();
@@ -59,7 +61,14 @@ void register_check(CLI::App& app) {
     timer.stop();
     const std::size_t closed = c.closed_components(), inward = c.inward_components();
     const double volume = c.closed_signed_volume();
-    const bool inward_overall = closed > 0 && volume < 0;
+    // Judged only when every component is closed: where a surface is cut open (by the box of a
+    // CT, say), the closed components inside it are its cavities, inward by right.
+    const bool judged = closed > 0 && closed == c.components;
+    const bool inward_overall = judged && volume < 0;
+    const bool clean = c.duplicate_vertices == 0 && c.unreferenced_vertices == 0 &&
+                       c.degenerate_triangles == 0 && c.non_manifold_edges == 0 && c.oriented() &&
+                       !inward_overall;
+    if (!clean) command_exit_status() = 1;
     if (o.json) {
       nlohmann::json r = {{"input", in},
                           {"vertices", c.vertices},
@@ -95,7 +104,8 @@ void register_check(CLI::App& app) {
       r["closed_components"] = closed;
       r["inward_components"] = inward;
       r["closed_signed_volume"] = volume;
-      r["orientation"] = closed == 0 ? "n/a" : inward_overall ? "inward" : "outward";
+      r["orientation"] = !judged ? "n/a" : inward_overall ? "inward" : "outward";
+      r["problems_found"] = !clean;
       r["triangle_quality"] = {{"min_area", q.min_area},
                                {"min_angle_degrees", q.min_angle},
                                {"small_area_triangles", q.small},
@@ -123,6 +133,11 @@ void register_check(CLI::App& app) {
                 first_few(c.misoriented, "-").c_str());
     if (closed == 0)
       std::printf("  closed components     0 (no outward/inward judgement)\n");
+    else if (!judged)
+      std::printf(
+          "  closed components     %zu: %zu outward, %zu inward by signed volume; overall n/a (open "
+          "components: the inward ones may be their cavities)\n",
+          closed, closed - inward, inward);
     else
       std::printf(
           "  closed components     %zu: %zu outward, %zu inward by signed volume; overall %s "
@@ -140,9 +155,6 @@ void register_check(CLI::App& app) {
                 mc::kSmallAreaFraction, unit.c_str(), mc::kSmallAreaFraction * q.unit_area);
     std::printf("  smallest angle        %.6g degrees (%zu triangles under %g degree)\n",
                 q.min_angle, q.thin, mc::kThinAngleDegrees);
-    const bool clean = c.duplicate_vertices == 0 && c.unreferenced_vertices == 0 &&
-                       c.degenerate_triangles == 0 && c.non_manifold_edges == 0 && c.oriented() &&
-                       !inward_overall;
     std::printf("  verdict               %s%s\n", clean ? "fused and manifold" : "PROBLEMS FOUND",
                 c.watertight() ? ", watertight" : ", open");
   });

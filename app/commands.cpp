@@ -19,6 +19,11 @@ const std::pair<const char*, const char*> kDocPages[] = {
 
 }  // namespace
 
+int& command_exit_status() {
+  static int status = 0;
+  return status;
+}
+
 void register_commands(CLI::App& app) {
   register_info(app);
   register_extract(app);

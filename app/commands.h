@@ -5,6 +5,10 @@
 namespace isocurv::app {
 
 void register_commands(CLI::App& app);  ///< all subcommands below
+
+/// The exit status a command that ran to its end asks for (0 unless set): `check` sets 1 when it
+/// reports problems. main() returns it after a successful run.
+int& command_exit_status();
 void register_info(CLI::App& app);      ///< isocurv info VOLUME
 void register_devices(CLI::App& app);   ///< isocurv devices
 void register_extract(CLI::App& app);   ///< isocurv extract VOLUME -o MESH

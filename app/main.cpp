@@ -75,5 +75,5 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "isocurv: error: %s\n", one_line(e.what()).c_str());
     return kFailure;
   }
-  return 0;
+  return isocurv::app::command_exit_status();
 }

@@ -85,8 +85,9 @@ TEST(MeshesFromElsewhere, CheckReportsOrientationOfClosedComponents) {
   TempDir dir("check_inward");
   io::write_mesh(dir / "in.ply", flipped(sphere_mesh(dir)));
   const auto r = run_isocurv({"check", dir / "in.ply", "--json"});
-  ASSERT_TRUE(r.ok()) << r.describe();
+  ASSERT_EQ(r.exit_code, 1) << "an inward mesh is a problem the check reports: " << r.describe();
   const json j = parse_json(r.out, "check --json");
+  EXPECT_TRUE(j["problems_found"].get<bool>());
   EXPECT_TRUE(j["consistently_oriented"].get<bool>());
   EXPECT_EQ(j["orientation"], "inward");
   EXPECT_EQ(j["closed_components"].get<int>(), 1);
@@ -95,15 +96,30 @@ TEST(MeshesFromElsewhere, CheckReportsOrientationOfClosedComponents) {
   ASSERT_EQ(j["component_orientation"].size(), 1u);
   EXPECT_EQ(j["component_orientation"][0]["orientation"], "inward");
   const auto t = run_isocurv({"check", dir / "in.ply"});
-  ASSERT_TRUE(t.ok()) << t.describe();
+  ASSERT_EQ(t.exit_code, 1) << t.describe();
+  EXPECT_TRUE(t.err.empty()) << "a report, not an error: " << t.describe();
   EXPECT_NE(t.out.find("overall INWARD"), std::string::npos) << t.out;
   EXPECT_NE(t.out.find("--flip"), std::string::npos) << t.out;
   EXPECT_NE(t.out.find("PROBLEMS FOUND, watertight"), std::string::npos) << t.out;
 
   const auto good = run_isocurv({"check", dataset("sphere"), "--json"});
-  ASSERT_TRUE(good.ok()) << good.describe();
+  ASSERT_TRUE(good.ok()) << "a clean mesh exits 0: " << good.describe();
   EXPECT_EQ(parse_json(good.out, "check --json")["orientation"], "outward")
       << "the mesher's own output";
+  EXPECT_FALSE(parse_json(good.out, "check --json")["problems_found"].get<bool>());
+
+  // An open sheet with an inward tetrahedron beside it (a CT's skin cut by the box, and a cavity
+  // inside): the cavity is no problem, the orientation is not judged.
+  write_file(dir / "open.obj",
+             "v -5 -5 0\nv 5 -5 0\nv 5 5 0\nv -5 5 0\n"
+             "v 0 0 1\nv 1 0 1\nv 0 1 1\nv 0 0 2\n"
+             "f 1 2 3\nf 1 3 4\nf 5 6 7\nf 5 8 6\nf 5 7 8\nf 6 8 7\n");
+  const auto open = run_isocurv({"check", dir / "open.obj", "--json"});
+  ASSERT_TRUE(open.ok()) << "a cavity beside an open surface: " << open.describe();
+  const json oj = parse_json(open.out, "check --json");
+  EXPECT_EQ(oj["inward_components"].get<int>(), 1) << oj.dump(2);
+  EXPECT_EQ(oj["orientation"], "n/a");
+  EXPECT_FALSE(oj["problems_found"].get<bool>());
 }
 
 TEST(MeshesFromElsewhere, CheckListsOffendingVerticesAndEdges) {
@@ -114,7 +130,7 @@ TEST(MeshesFromElsewhere, CheckListsOffendingVerticesAndEdges) {
              "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nv 5 5 5\nv 0 -1 0\n"
              "f 1 2 3\nf 1 2 4\nf 2 1 5\nf 6 7 5\n");
   const auto r = run_isocurv({"check", dir / "fan.obj", "--json"});
-  ASSERT_TRUE(r.ok()) << r.describe();
+  ASSERT_EQ(r.exit_code, 1) << r.describe();
   const json j = parse_json(r.out, "check --json");
   EXPECT_EQ(j["non_manifold_edges"].get<int>(), 1);
   EXPECT_EQ(j["non_manifold_edge_ids"], json::parse("[[0, 1]]"));
@@ -124,7 +140,7 @@ TEST(MeshesFromElsewhere, CheckListsOffendingVerticesAndEdges) {
   EXPECT_FALSE(j["consistently_oriented"].get<bool>());
   EXPECT_EQ(j["duplicate_vertex_ids"], json::parse("[[6, 3]]"));
   const auto t = run_isocurv({"check", dir / "fan.obj"});
-  ASSERT_TRUE(t.ok()) << t.describe();
+  ASSERT_EQ(t.exit_code, 1) << t.describe();
   EXPECT_NE(t.out.find("duplicate vertices    1 (6=3)"), std::string::npos) << t.out;
   EXPECT_NE(t.out.find("non-manifold 1) (0-1)"), std::string::npos) << t.out;
   EXPECT_NE(t.out.find("INCONSISTENT (1 edges"), std::string::npos) << t.out;
@@ -133,7 +149,7 @@ TEST(MeshesFromElsewhere, CheckListsOffendingVerticesAndEdges) {
   const Mesh sphere = sphere_mesh(dir);
   io::write_mesh(dir / "u.ply", unwelded(sphere));
   const auto u = run_isocurv({"check", dir / "u.ply", "--json"});
-  ASSERT_TRUE(u.ok()) << u.describe();
+  ASSERT_EQ(u.exit_code, 1) << u.describe();
   const json uj = parse_json(u.out, "check --json");
   EXPECT_EQ(uj["duplicate_vertex_ids"].size(),
             3 * sphere.triangles.size() - sphere.positions.size());
@@ -147,7 +163,7 @@ TEST(MeshesFromElsewhere, CheckReportsTriangleQuality) {
   write_file(dir / "sliver.obj",
              "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 0.5 0.0001 1\nf 1 2 3\nf 4 5 6\n");
   const auto r = run_isocurv({"check", dir / "sliver.obj", "--json"});
-  ASSERT_TRUE(r.ok()) << r.describe();
+  ASSERT_TRUE(r.ok()) << "thin and small triangles are reported, not problems: " << r.describe();
   const json q = parse_json(r.out, "check --json")["triangle_quality"];
   ASSERT_TRUE(q.is_object()) << r.out;
   EXPECT_NEAR(q["min_area"].get<double>(), 5e-5, 1e-7);

@@ -177,7 +177,8 @@ TEST(CliCheck, HandWrittenObjWithDuplicateAndBoundary) {
              "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 0\n"
              "f 1 2 3\nf 5 3 4\n");
   const auto r = run_isocurv({"check", dir / "square.obj", "--json"});
-  ASSERT_EQ(r.exit_code, 0) << "check ran, whatever it found\n" << r.describe();
+  ASSERT_EQ(r.exit_code, 1) << "a duplicate vertex is a problem the check reports\n" << r.describe();
+  EXPECT_TRUE(r.err.empty()) << "a report, not an error: " << r.describe();
   const json j = parse_json(r.out, "check --json");
   EXPECT_EQ(j["vertices"].get<int>(), 5);
   EXPECT_EQ(j["triangles"].get<int>(), 2);
@@ -189,7 +190,7 @@ TEST(CliCheck, HandWrittenObjWithDuplicateAndBoundary) {
   EXPECT_NEAR(j["area"].get<double>(), 1.0, 1e-12);
 
   const auto text = run_isocurv({"check", dir / "square.obj"});
-  ASSERT_EQ(text.exit_code, 0) << text.describe();
+  ASSERT_EQ(text.exit_code, 1) << text.describe();
   EXPECT_NE(text.out.find("duplicate vertices    1"), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("boundary 6"), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("PROBLEMS FOUND, open"), std::string::npos) << text.out;
@@ -208,7 +209,7 @@ TEST(CliCheck, HandWrittenTetrahedronWithAFlippedFace) {
   EXPECT_EQ(g["euler_characteristic"].get<int>(), 2);
   EXPECT_EQ(g["genus"].get<int>(), 0);
   const auto bad = run_isocurv({"check", dir / "flipped.obj"});
-  ASSERT_TRUE(bad.ok()) << bad.describe();
+  ASSERT_EQ(bad.exit_code, 1) << "a flipped face is a problem: " << bad.describe();
   EXPECT_NE(bad.out.find("INCONSISTENT (3 edges"), std::string::npos) << bad.out;
   EXPECT_NE(bad.out.find("PROBLEMS FOUND, watertight"), std::string::npos) << bad.out;
   EXPECT_NE(bad.out.find("genus                 n/a"), std::string::npos) << bad.out;

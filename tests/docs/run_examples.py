@@ -9,7 +9,9 @@ The conventions (docs/design.md, "The examples test"):
   build/app first on PATH; a line ending in a backslash continues on the next;
 - it must exit with 0, or with N when its comment is `# exit N`;
 - `# slow` lines run only with ISOCURV_DOCS_SLOW=1; `# display` and `# skip` lines never run;
-- a ```python block runs as one script with the interpreter the module was built for;
+- a ```python block runs as one script with the interpreter the module was built for; without
+  the module (a sanitizer build) it is skipped, and so is the rest of its page, whose commands
+  may read what it wrote;
 - a line naming ../shared/datasets is skipped when the shared datasets are missing.
 Also: every relative link (file and #anchor) resolves, the README links every docs/ page, and
 every command's --help ends with "Docs: docs/PAGE.md" naming a page that exists.
@@ -201,11 +203,17 @@ def main():
         root = tempfile.mkdtemp(prefix="isocurv-docs-")
         try:
             work = scratch_checkout(build, source, root)
+            python_skipped = False  # the rest of the page may need what a skipped block wrote
             for lang, start, body in blocks(page):
+                if python_skipped and lang in ("python", "sh"):
+                    print(f"{rel}:{start}: skipped (after a skipped Python block)")
+                    skipped += 1
+                    continue
                 if lang == "python":
                     if not have_module:
                         print(f"{rel}:{start}: skipped (no Python module)")
                         skipped += 1
+                        python_skipped = True
                         continue
                     if "../shared/datasets" in "\n".join(body) and not have_shared:
                         print(f"{rel}:{start}: skipped (no shared datasets)")
