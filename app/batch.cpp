@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -146,6 +147,7 @@ void write_outputs(Pending& p, BatchKind kind, const BatchRequest& rq, const Com
 
 /// The probe of an output folder before any work: created if missing, and a file can be made in it.
 void require_writable_folder(const std::string& dir) {
+  require_folder_name(dir, "several inputs or isovalues");
   std::error_code ec;
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
     throw Error(
@@ -262,6 +264,20 @@ void require_series_cli(const BatchCli& b, CommonOptions& o) {
   if (b.format_given) throw Error("--format: a time series writes .vtp frames (ParaView's .pvd)");
   if (b.jobs_given) throw Error("--jobs applies to batches, not to --time-series");
   if (!isos.empty()) o.iso = isos[0];
+}
+
+void require_folder_name(const std::string& dir, const std::string& what) {
+  std::error_code ec;
+  if (fs::exists(dir, ec)) return;  // an existing folder (or file: the callers' own error)
+  std::string ext = fs::path(dir).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  static const char* const kFileLike[] = {".vtp", ".vtk", ".vtu", ".vti", ".pvtp", ".pvd", ".ply", ".obj",
+                                          ".stl", ".png", ".jpg", ".svg", ".json", ".csv", ".txt", ".nrrd",
+                                          ".nhdr", ".nii", ".gz", ".mhd", ".raw", ".vdb", ".vol"};
+  for (const char* e : kFileLike)
+    if (ext == e)
+      throw Error(dir, "the output (-o) of " + what + " is a folder, and this names a file (give a folder, e.g. " +
+                           (fs::path(dir).parent_path() / fs::path(dir).stem()).string() + "/)");
 }
 
 std::string iso_suffix(float iso) { return "_iso" + format_number(iso); }

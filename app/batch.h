@@ -61,6 +61,12 @@ std::vector<float> parse_isovalues(const std::string& text);
 /// or, for run, the folder).
 bool is_batch(const std::vector<std::string>& inputs, const std::vector<float>& isovalues);
 
+/// Refuses an output folder (`-o` of a batch, sweep, series, run or deform) that does not exist
+/// yet and is named like a file (.vtp .vtk .ply .obj .stl .png .json .svg .pvd .csv .vti .nrrd
+/// ...): one would otherwise get a folder called `sw.vtp`. `what` names the output in the
+/// message ("several inputs or isovalues", "a time series", ...). @throw Error naming it.
+void require_folder_name(const std::string& dir, const std::string& what);
+
 /// The output name's suffix for isovalue `iso` in a sweep: "_iso40", "_iso0.5", "_iso-1e-05".
 std::string iso_suffix(float iso);
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "app/batch.h"
 #include "app/commands.h"
 #include "app/pipeline.h"
 #include "core/error.h"
@@ -100,6 +101,7 @@ void run_deform(const DeformCli& c, const CommonOptions& o) {
                   " distinct, finite frame times");
 
   // Everything is checked: now the output folder.
+  require_folder_name(c.output, "deform");
   std::error_code ec;
   fs::create_directories(c.output, ec);
   if (ec || !fs::is_directory(c.output))

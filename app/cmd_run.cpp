@@ -160,6 +160,7 @@ void register_run(CLI::App& app) {
       throw Error("--lines: one input at one isovalue (not in batches)");
     if (run_as_batch(b, o, BatchKind::run, dir, &ro, format)) return;
     const std::string& in = b.inputs.front();
+    require_folder_name(dir, "run");  // before any work
     const nlohmann::json r = run_one(in, dir, o, ro, lo, format);
     if (o.json) {
       std::cout << r.dump(2) << "\n";

@@ -1,5 +1,7 @@
 #include "app/series.h"
 
+#include "app/batch.h"
+
 #include <glob.h>
 
 #include <algorithm>
@@ -119,6 +121,7 @@ std::vector<SeriesFrame> series_frames(const std::vector<std::string>& inputs,
 void run_series(const std::vector<std::string>& inputs, const SeriesCli& cli,
                 const SeriesLayout& layout, CommonOptions o, const FrameFunction& frame_fn) {
   const auto t_start = std::chrono::steady_clock::now();
+  require_folder_name(layout.dir, "a time series");
   const std::vector<SeriesFrame> frames = series_frames(inputs, o.volume.grid, cli.time_step);
   {
     std::error_code ec;

@@ -136,6 +136,28 @@ TEST(Batch, UnwritableOutputIsCaughtBeforeAnyWork) {
   expect_clean_failure(f, "must be a folder");
 }
 
+TEST(Batch, AnOutputNamedLikeAFileIsRefusedNotMadeAFolder) {
+  // A sweep, a batch, run and a time series: -o names a folder; "sw.vtp" is a slip, refused in
+  // one line before any work, and no folder of that name appears.
+  TempDir dir("file_like");
+  const auto sweep = run_isocurv({"extract", dataset("torus"), "--iso", "-0.5,0.125", "-o", dir / "sw.vtp"});
+  expect_clean_failure(sweep, "sw.vtp");
+  EXPECT_NE(sweep.err.find("is a folder"), std::string::npos) << sweep.describe();
+  EXPECT_NE(sweep.err.find("sw/"), std::string::npos) << "suggests the folder: " << sweep.describe();
+  const auto batch = run_isocurv({"curvature", dataset("sphere"), dataset("torus"), "-o", dir / "both.PLY"});
+  expect_clean_failure(batch, "both.PLY");
+  const auto run = run_isocurv({"run", dataset("sphere"), "-o", dir / "out.png"});
+  expect_clean_failure(run, "out.png");
+  const auto series = run_isocurv({"curvature", dataset("sphere"), dataset("torus"), "--time-series", "-o",
+                                   dir / "anim.pvd"});
+  expect_clean_failure(series, "anim.pvd");
+  for (const char* name : {"sw.vtp", "both.PLY", "out.png", "anim.pvd"}) EXPECT_FALSE(fs::exists(dir / name)) << name;
+  // A folder name with a dot that is no file type stays a folder.
+  const auto dotted = run_isocurv({"extract", dataset("torus"), "--iso", "-0.5,0.125", "-o", dir / "v1.2", "--quiet"});
+  ASSERT_TRUE(dotted.ok()) << dotted.describe();
+  EXPECT_TRUE(fs::is_directory(dir / "v1.2"));
+}
+
 TEST(Batch, MalformedIsovalueListIsAUsageError) {
   TempDir dir("badiso");
   expect_usage_error(run_isocurv({"extract", dataset("sphere"), "--iso", "0,x", "-o", dir / "o"}),
