@@ -103,7 +103,9 @@ void register_compare(CLI::App& app) {
       "         isocurv compare mesh.ply --json\n"
       "Estimators: rusinkiewicz, batagelo, prantl3, prantl2 (OpenCL, or their references with\n"
       "--device reference), quadric, cubic, sampling, meyer (double references, single-threaded),\n"
-      "and for volume input volume (at its auto scale; --normals applies to the mesh estimators).\n"
+      "and for volume input volume (at --scale, auto by default; --normals and --batagelo-weights\n"
+      "apply to the mesh estimators; --estimator and --ao-scale are refused: compare runs them all\n"
+      "and reports no AO).\n"
       "Statistics leave out boundary vertices, vertices an estimator flags Unreliable and those\n"
       "with max(|k1|,|k2|) above 1 / (half the mean edge length). Agreement: RMS(a - b) over the\n"
       "RMS of both, for H and K, over vertices counted for both.");
@@ -113,8 +115,16 @@ void register_compare(CLI::App& app) {
   add_common_options(*cmd, o);
   add_curvature_options(*cmd, o, /*mesh_input=*/true);
   cmd->callback([] {
+    // Options compare would otherwise ignore are refused, before any work.
+    if (!o.estimator.empty())
+      throw CLI::ValidationError("--estimator", "compare runs every estimator; for one, use isocurv curvature");
+    if (o.ao_scale > 0) throw CLI::ValidationError("--ao-scale", "compare reports no AO; use isocurv curvature");
+    if (o.scale != "auto" && parse_scales(o.scale).size() > 1)
+      throw CLI::ValidationError("--scale", "compare measures the volume estimator at one scale");
     StageTimer timer;
     Surface s = load_surface(in, o, timer);
+    if (o.scale != "auto" && !s.volume)
+      throw CLI::ValidationError("--scale", "applies to the volume estimator, which needs a volume input");
     prepare_mesh_for_curvature(s, in, o);
     const Mesh& mesh = s.mesh;
     curvature::Options co;
@@ -125,7 +135,8 @@ void register_compare(CLI::App& app) {
       normals = volume::gradient_normals_for_mesh(*s.volume, mesh, o.cap);
       co.vertex_normals = &normals.normals;
     }
-    co.ao_scale = o.ao_scale > 0 ? o.ao_scale : curvature::default_ao_scale(mesh);
+    co.ao_scale = curvature::default_ao_scale(mesh);
+    if (o.batagelo_weights == "inverse-square") co.batagelo_weights = curvature::NeighbourWeights::inverse_square;
     Device* device = reference_device(o) ? nullptr : &device_for(o);
     const double limit = 2 / mean_edge_length(mesh);
 
@@ -166,6 +177,7 @@ void register_compare(CLI::App& app) {
       curvature::Options vo = co;
       vo.estimator = curvature::Estimator::volume;
       vo.vertex_normals = nullptr;
+      vo.scale = o.scale == "auto" ? 0.0 : std::strtod(o.scale.c_str(), nullptr);
       Row r{"volume", device ? "opencl" : "reference", {}, {}, 0, 0};
       if (device) curvature::estimate_field(mesh, {&*s.volume, s.isovalue}, device, vo);
       timer.start("volume");

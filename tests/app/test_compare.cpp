@@ -56,3 +56,31 @@ TEST(CliCompare, MeshFileAndReferenceDevice) {
   ASSERT_EQ(bad.err_lines().size(), 1u) << bad.describe();
   EXPECT_EQ(bad.err_lines()[0].rfind("isocurv:", 0), 0u) << bad.describe();
 }
+
+TEST(CliCompare, OptionsItWouldIgnoreAreRefusedTheOthersTakeEffect) {
+  // compare runs every estimator and reports no AO: --estimator and --ao-scale would change
+  // nothing, so they are usage errors, before any work.
+  expect_usage_error(run_isocurv({"compare", dataset("torus"), "--estimator", "volume"}), "--estimator");
+  expect_usage_error(run_isocurv({"compare", dataset("torus"), "--ao-scale", "2"}), "--ao-scale");
+  expect_usage_error(run_isocurv({"compare", dataset("torus"), "--scale", "1,2"}), "--scale");
+  TempDir dir("compare_opts");
+  const std::string mesh = dir / "torus.ply";
+  ASSERT_TRUE(run_isocurv({"extract", dataset("torus"), "-o", mesh, "--quiet"}).ok());
+  expect_usage_error(run_isocurv({"compare", mesh, "--scale", "2"}), "--scale");
+  // --scale and --batagelo-weights reach the volume and batagelo rows: their H differs from the
+  // defaults' (and nothing else does).
+  auto rows = [](const std::vector<std::string>& extra) {
+    std::vector<std::string> args = {"compare", dataset("torus"), "--json"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto r = run_isocurv(args, 120);
+    EXPECT_TRUE(r.ok()) << r.describe();
+    std::map<std::string, json> by_name;
+    const json j = parse_json(r.out, "compare --json");
+    for (const json& e : j["estimators"]) by_name[e["estimator"].get<std::string>()] = e;
+    return by_name;
+  };
+  auto base = rows({}), scaled = rows({"--scale", "0.08", "--batagelo-weights", "inverse-square"});
+  EXPECT_NE(base["volume"]["H"]["p1"], scaled["volume"]["H"]["p1"]) << "--scale did not reach the volume row";
+  EXPECT_NE(base["batagelo"]["H"]["p1"], scaled["batagelo"]["H"]["p1"]) << "--batagelo-weights did not reach batagelo";
+  EXPECT_EQ(base["rusinkiewicz"]["H"], scaled["rusinkiewicz"]["H"]);
+}
