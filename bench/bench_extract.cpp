@@ -79,13 +79,14 @@ void run_case(const Case& c, int runs) {
   };
   steps = per_run.front();
   std::printf("%-26s   ours, %zu bricks, %zu seam vertices: prepare %.1f, select %.1f, gather %.1f, classify+scan "
-              "%.1f, seams %.1f, sort %.1f, emit %.1f, read %.1f, snap %.1f ms (%zu vertices snapped, %zu merged; "
-              "without snapping %.1f ms)\n", "", steps.bricks, steps.seam_vertices,
+              "%.1f, seams %.1f, sort %.1f, emit %.1f, read %.1f, snap %.1f ms (%zu vertices snapped, %zu merged); "
+              "with snapping %.1f ms, without %.1f ms: snap share %.0f%%\n", "", steps.bricks, steps.seam_vertices,
               median(&mc::ExtractTimings::prepare),
               median(&mc::ExtractTimings::select), median(&mc::ExtractTimings::gather),
               median(&mc::ExtractTimings::classify), median(&mc::ExtractTimings::seams),
               median(&mc::ExtractTimings::sort), median(&mc::ExtractTimings::emit), median(&mc::ExtractTimings::read),
-              median(&mc::ExtractTimings::snap), steps.snapped, steps.merged, t[3]);
+              median(&mc::ExtractTimings::snap), steps.snapped, steps.merged, t_ours, t[3],
+              100.0 * std::max(0.0, t_ours - t[3]) / t_ours);
   (void)fe_tris;
   (void)vdb_tris;
   std::fflush(stdout);
