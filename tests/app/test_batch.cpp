@@ -77,6 +77,12 @@ TEST(Batch, EachInputInItsFolderOneBadInputReportedOthersRun) {
     } else {
       EXPECT_EQ(e["mesh_bytes"], fs::file_size(e["mesh"].get<std::string>()));
       EXPECT_GT(e["triangles"].get<int>(), 0);
+      // Each input's curvature statistics, as its stats.json has them.
+      const nlohmann::json own = parse_json(read_file(e["stats"].get<std::string>()), "stats.json");
+      ASSERT_TRUE(e.contains("curvature")) << e.dump(2);
+      EXPECT_EQ(e["curvature"], own["curvature"]);
+      EXPECT_TRUE(e["curvature"]["H"]["p50"].is_number()) << e.dump(2);
+      EXPECT_EQ(e["estimator"], "volume") << e.dump(2);
     }
   }
   EXPECT_EQ(failed, 2);
