@@ -21,7 +21,7 @@ void register_lines(CLI::App &app) {
   auto *cmd = app.add_subcommand(
       "lines", "Feature lines of a volume's isosurface or a mesh: polylines "
                "(.vtp) or a line drawing (.svg)");
-  cmd->footer("Example: isocurv lines bunny.vdb --lines contours,suggestive "
+  cmd->footer("Example: isocurv lines ../shared/datasets/vg_bunny/bunny-128.vol --lines contours,suggestive "
               "--view +x -o bunny.svg\n"
               "The camera is the one isocurv render would use with the same "
               "camera options and --size, so\n"

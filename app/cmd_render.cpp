@@ -17,8 +17,9 @@ namespace isocurv::app {
 
 void register_render(CLI::App& app) {
   auto* cmd = app.add_subcommand("render", "Render a volume's isosurface or a mesh to a PNG, coloured by curvature (no display needed)");
-  cmd->footer("Example: isocurv render torus.vdb --color K --shading ambient-ao --dirs -o torus.png\n"
-              "        isocurv render bunny.vdb --lines contours,suggestive --view +x -o bunny.png\n"
+  cmd->footer("Example: isocurv render build/datasets/torus.vdb --color K --shading ambient-ao --dirs -o torus.png\n"
+              "         isocurv render ../shared/datasets/vg_bunny/bunny-128.vol --lines contours,suggestive -o bunny.png\n"
+              "(the bundled datasets, from the checkout: build/datasets and ../shared/datasets)\n"
               "A mesh without curvature arrays gets them estimated first.");
   static CommonOptions o;
   static RenderCli ro;

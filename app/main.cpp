@@ -32,7 +32,8 @@ std::string one_line(const std::string& text) {
 int main(int argc, char** argv) {
   isocurv::retain_freed_memory();  // the explorer re-extracts on every slider move
   isocurv::io::silence_vtk_output();  // VTK's messages reach the user only as our one-line errors
-  CLI::App app{"isocurv: isosurfaces and their curvature from volumes (OpenVDB, OpenCL, VTK)"};
+  // Named, so that usage lines say "isocurv", not the path it was started by (build/app/isocurv).
+  CLI::App app{"isocurv: isosurfaces and their curvature from volumes (OpenVDB, OpenCL, VTK)", "isocurv"};
   app.require_subcommand(0, 1);  // none given is handled below, after CLI11 named any stray option
   app.set_version_flag("--version", "isocurv 0.1.0");
   app.footer(

@@ -154,6 +154,20 @@ TEST(CliHelp, EveryCommandShowsAnExample) {
     EXPECT_NE(top.out.find(cmd), std::string::npos) << cmd << " missing from isocurv --help";
 }
 
+TEST(CliHelp, UsageNamesTheProgramNotItsPath) {
+  // The tests start the executable by its full path; the usage line still says "isocurv".
+  const auto top = run_isocurv({"--help"}, 20);
+  EXPECT_NE(top.out.find("Usage: isocurv [OPTIONS]"), std::string::npos) << top.out;
+  for (const char* cmd : {"extract", "render", "lines"}) {
+    const auto r = run_isocurv({cmd, "--help"}, 20);
+    EXPECT_NE(r.out.find(std::string("Usage: isocurv ") + cmd + " "), std::string::npos) << r.out;
+  }
+  // render's examples run from a checkout on the bundled datasets.
+  const auto render = run_isocurv({"render", "--help"}, 20);
+  EXPECT_NE(render.out.find("isocurv render build/datasets/torus.vdb"), std::string::npos) << render.out;
+  EXPECT_NE(render.out.find("../shared/datasets/vg_bunny/bunny-128.vol"), std::string::npos) << render.out;
+}
+
 TEST(CliHelp, ConventionsAreDocumented) {
   // DESIGN.md: "Say so in --help": normals point out of the object.
   const auto r = run_isocurv({"curvature", "--help"}, 20);
