@@ -27,4 +27,11 @@ Volume from_dense(const float* data, const std::array<int, 3>& dims, openvdb::ma
 /// Recomputes v.stats from v.grid over v.domain (used after editing a grid, and for sparse grids).
 void compute_stats(Volume& v);
 
+/// The exact percentiles (fractions in [0, 1]) of a volume whose finite values are all integers
+/// (an integer voxel type) spanning at most 2^20 values: for each fraction f the smallest value v
+/// with at least f of the finite voxels <= v, a value the volume holds. One counting pass over
+/// the data domain (dense) or the active voxels (sparse). Empty when the volume's values are not
+/// such integers (then the histogram's interpolated percentiles are what there is).
+std::vector<double> exact_integer_percentiles(const Volume& v, const std::vector<double>& fractions);
+
 }  // namespace isocurv::volume

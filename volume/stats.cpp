@@ -138,7 +138,55 @@ Acc reduce_values(const openvdb::FloatGrid& grid, const openvdb::CoordBBox& doma
   return acc;
 }
 
+/// One count per integer value lo, lo + 1, ..., lo + n - 1; `other` counts any finite value that
+/// is not one of them (then the values are not integers after all).
+struct IntCountAcc {
+  double lo = 0;
+  std::vector<std::uint64_t> counts;
+  std::uint64_t other = 0;
+  void add(float v, std::uint64_t count) {
+    if (!std::isfinite(v)) return;
+    const double k = double(v) - lo;
+    if (k >= 0 && k < double(counts.size()) && k == std::floor(k))
+      counts[std::size_t(k)] += count;
+    else
+      other += count;
+  }
+  void join(const IntCountAcc& o) {
+    for (std::size_t i = 0; i < counts.size(); ++i) counts[i] += o.counts[i];
+    other += o.other;
+  }
+};
+
+constexpr double kMaxExactValues = 1 << 20;
+
 }  // namespace
+
+std::vector<double> exact_integer_percentiles(const Volume& v, const std::vector<double>& fractions) {
+  static const char* const kIntegerTypes[] = {"uint8", "int8", "uint16", "int16", "uint32", "int32"};
+  const ValueStats& s = v.stats;
+  const bool integer_type =
+      std::any_of(std::begin(kIntegerTypes), std::end(kIntegerTypes), [&](const char* t) { return v.voxel_type == t; });
+  if (!v.grid || !integer_type || !(s.max >= s.min) || s.min != std::floor(s.min) ||
+      s.max - s.min + 1 > kMaxExactValues)
+    return {};
+  IntCountAcc init;
+  init.lo = s.min;
+  init.counts.assign(std::size_t(s.max - s.min + 1), 0);
+  const IntCountAcc c = reduce_values(*v.grid, v.domain, !v.dense, init);
+  std::uint64_t total = 0;
+  for (std::uint64_t n : c.counts) total += n;
+  if (c.other > 0 || total == 0) return {};
+  std::vector<double> out;
+  for (double f : fractions) {
+    const double want = f * double(total);
+    std::uint64_t below = 0;
+    std::size_t i = 0;
+    while (i + 1 < c.counts.size() && (c.counts[i] == 0 || double(below + c.counts[i]) < want)) below += c.counts[i++];
+    out.push_back(s.min + double(i));
+  }
+  return out;
+}
 
 void compute_stats(Volume& v) {
   ValueStats s;

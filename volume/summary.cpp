@@ -1,8 +1,12 @@
 // summary_json / summary_text: what `isocurv info` prints about a loaded volume.
 #include "volume/summary.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
+
+#include "volume/from_dense.h"
 
 namespace isocurv::volume {
 namespace {
@@ -30,6 +34,24 @@ std::string fmt(double v) {
 }
 
 std::string vec3(const openvdb::Vec3d& v) { return fmt(v.x()) + " " + fmt(v.y()) + " " + fmt(v.z()); }
+
+/// The 1st, 50th and 99th percentiles: exact values for integer data (exact_integer_percentiles),
+/// else interpolated within the 256-bin histogram. `exact` says which.
+std::vector<double> percentiles(const Volume& v, bool& exact) {
+  const std::vector<double> fractions = {0.01, 0.5, 0.99};
+  std::vector<double> p = exact_integer_percentiles(v, fractions);
+  exact = !p.empty();
+  if (!exact)
+    for (double f : fractions) p.push_back(percentile(v.stats, f));
+  return p;
+}
+
+/// The histogram's 256 bins summed into 16.
+std::vector<std::uint64_t> coarse_histogram(const ValueStats& s) {
+  std::vector<std::uint64_t> coarse(16, 0);
+  for (std::size_t i = 0; i < s.histogram.size(); ++i) coarse[i * 16 / s.histogram.size()] += s.histogram[i];
+  return coarse;
+}
 
 }  // namespace
 
@@ -66,11 +88,12 @@ nlohmann::json summary_json(const Volume& v) {
   j["mean"] = s.mean;
   j["nan_count"] = s.nan_count;
   j["inf_count"] = s.inf_count;
-  j["percentiles"] = {{"p1", percentile(s, 0.01)}, {"p50", percentile(s, 0.5)}, {"p99", percentile(s, 0.99)}};
-  // 16 coarse bins, each the sum of 16 of the 256 fine ones.
-  std::vector<std::uint64_t> coarse(16, 0);
-  for (std::size_t i = 0; i < s.histogram.size(); ++i) coarse[i * 16 / s.histogram.size()] += s.histogram[i];
-  j["histogram16"] = coarse;
+  bool exact = false;
+  const std::vector<double> p = percentiles(v, exact);
+  j["percentiles"] = {{"p1", p[0]}, {"p50", p[1]}, {"p99", p[2]}};
+  j["percentiles_exact"] = exact;  // integer data: values the volume holds; else interpolated
+  // 16 coarse bins, each the sum of 16 of the 256 fine ones, over [min, max].
+  j["histogram16"] = coarse_histogram(s);
   j["suggested_isovalue"] = s.suggested_isovalue;
   return j;
 }
@@ -108,11 +131,31 @@ std::string summary_text(const Volume& v) {
   }
   line("inside", v.inside == Inside::Above ? "above the isovalue" : "below the isovalue");
   line("value range", fmt(s.min) + " .. " + fmt(s.max) + "  (mean " + fmt(s.mean) + ")");
-  line("percentiles", "1%: " + fmt(percentile(s, 0.01)) + "  50%: " + fmt(percentile(s, 0.5)) +
-                          "  99%: " + fmt(percentile(s, 0.99)));
+  bool exact = false;
+  const std::vector<double> p = percentiles(v, exact);
+  line("percentiles", "1%: " + fmt(p[0]) + "  50%: " + fmt(p[1]) + "  99%: " + fmt(p[2]) +
+                          (exact ? "" : "  (interpolated in the histogram)"));
   line("non-finite", std::to_string(s.nan_count) + " NaN, " + std::to_string(s.inf_count) + " Inf" +
                          (s.nan_count + s.inf_count ? " (replaced by the outside value)" : ""));
   line("suggested iso", fmt(s.suggested_isovalue) + (v.grid_class == "level set" ? " (level set zero)" : " (Otsu)"));
+  // The histogram as text: 16 bins over the range, bars on a log scale (CT and MR histograms are
+  // dominated by the air), with the counts.
+  const std::vector<std::uint64_t> coarse = coarse_histogram(s);
+  std::uint64_t most = 0;
+  for (std::uint64_t c : coarse) most = std::max(most, c);
+  if (most > 0 && s.max > s.min) {
+    line("histogram", "16 bins, bars on a log scale");
+    const double width = (s.max - s.min) / 16;
+    constexpr int kBar = 30;
+    for (std::size_t i = 0; i < coarse.size(); ++i) {
+      const int bar = coarse[i] == 0 ? 0
+                      : std::max(1, int(std::lround(kBar * std::log1p(double(coarse[i])) / std::log1p(double(most)))));
+      char edges[64];
+      std::snprintf(edges, sizeof edges, "%10.4g .. %-10.4g", s.min + width * double(i), s.min + width * double(i + 1));
+      out << "  " << edges << " " << std::string(std::size_t(bar), '#') << std::string(std::size_t(kBar - bar), ' ') << " "
+          << coarse[i] << "\n";
+    }
+  }
   return out.str();
 }
 

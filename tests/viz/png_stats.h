@@ -3,6 +3,7 @@
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPNGReader.h>
+#include <vtkSmartPointer.h>
 
 #include <algorithm>
 #include <cmath>
@@ -61,6 +62,47 @@ inline PngStats png_stats(const std::string& path, double max_x_fraction = 0.8) 
 /// that differ from the scene's background gradient (bottom -> top colours, 0..1) by more than
 /// `tolerance` in some channel, leaving out the pixels inside `skip` boxes (title, legend).
 /// {0, 0, 0, 0} when there are none.
+/// A PNG's pixels, read back (rows bottom-up, as VTK).
+struct Pixels {
+  vtkSmartPointer<vtkImageData> image;  ///< owns the data
+  int width = 0, height = 0, components = 0;
+  const unsigned char* data = nullptr;
+  const unsigned char* at(int x, int y) const {
+    return data + (static_cast<std::size_t>(y) * width + x) * components;
+  }
+};
+
+inline Pixels read_pixels(const std::string& path) {
+  vtkNew<vtkPNGReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  Pixels p;
+  p.image = reader->GetOutput();
+  int dims[3];
+  p.image->GetDimensions(dims);
+  p.width = dims[0];
+  p.height = dims[1];
+  p.components = p.image->GetNumberOfScalarComponents();
+  p.data = static_cast<const unsigned char*>(p.image->GetScalarPointer());
+  return p;
+}
+
+/// Fraction of the pixels of `path` with x in [x0, x1) (fractions of the width; the legend lies
+/// right of 0.8) within `tolerance` of the RGB `c` (0..255) in every channel.
+inline double fraction_near(const std::string& path, const int c[3], double x0 = 0, double x1 = 0.8,
+                            int tolerance = 40) {
+  const Pixels px = read_pixels(path);
+  double hits = 0, count = 0;
+  for (int y = 0; y < px.height; ++y)
+    for (int x = int(x0 * px.width); x < int(x1 * px.width); ++x, count += 1) {
+      const unsigned char* p = px.at(x, y);
+      if (std::abs(p[0] - c[0]) < tolerance && std::abs(p[1] - c[1]) < tolerance &&
+          std::abs(p[2] - c[2]) < tolerance)
+        hits += 1;
+    }
+  return count > 0 ? hits / count : 0;
+}
+
 struct Box {
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };

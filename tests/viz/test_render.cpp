@@ -4,10 +4,6 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include <vtkImageData.h>
-#include <vtkNew.h>
-#include <vtkPNGReader.h>
-
 #include "core/error.h"
 #include "png_stats.h"
 #include "test_surfaces.h"
@@ -271,32 +267,6 @@ TEST_F(VizRenderTest, AmbientAoShadesTheAmbientTermOnly) {
   EXPECT_GT(lambert, closed) << "lambert ignores AO";
 }
 
-namespace {
-
-// Fraction of the pixels with x in [x0, x1) (fractions of the width; the legend is right of 0.8)
-// near the RGB `c` (0..255).
-double fraction_near(const std::string& path, const int c[3], double x0 = 0, double x1 = 0.8,
-                     int tolerance = 40) {
-  vtkNew<vtkPNGReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  vtkImageData* image = reader->GetOutput();
-  int dims[3];
-  image->GetDimensions(dims);
-  const int nc = image->GetNumberOfScalarComponents();
-  const auto* pixels = static_cast<const unsigned char*>(image->GetScalarPointer());
-  double hits = 0, count = 0;
-  for (int y = 0; y < dims[1]; ++y)
-    for (int x = int(x0 * dims[0]); x < int(x1 * dims[0]); ++x, count += 1) {
-      const unsigned char* p = pixels + (std::size_t(y) * dims[0] + x) * nc;
-      if (std::abs(p[0] - c[0]) < tolerance && std::abs(p[1] - c[1]) < tolerance && std::abs(p[2] - c[2]) < tolerance)
-        hits += 1;
-    }
-  return count > 0 ? hits / count : 0;
-}
-
-}  // namespace
-
 TEST_F(VizRenderTest, UnmeasuredVerticesGetTheNoDataColourAndStayOutOfTheRange) {
   // A torus whose outer half the estimator could not measure (flagged Unreliable, placeholder
   // zero curvature), with 4% measured spikes (radius under half an edge, as slivers give): enough
@@ -326,11 +296,11 @@ TEST_F(VizRenderTest, UnmeasuredVerticesGetTheNoDataColourAndStayOutOfTheRange) 
   const int yellow[3] = {255, 217, 0};
   const std::string with = path("unmeasured.png");
   viz::render_png(with, torus.mesh, f, o);
-  EXPECT_GT(fraction_near(with, yellow), 0.01) << "unmeasured vertices are not drawn in the no-data colour";
-  EXPECT_GT(fraction_near(with, yellow, 0.8, 1.0), 0.0005) << "no no-data swatch in the legend";
+  EXPECT_GT(test::fraction_near(with, yellow), 0.01) << "unmeasured vertices are not drawn in the no-data colour";
+  EXPECT_GT(test::fraction_near(with, yellow, 0.8, 1.0), 0.0005) << "no no-data swatch in the legend";
   const std::string without = path("measured.png");
   f.unreliable.assign(n, 0);
   viz::render_png(without, torus.mesh, f, o);
-  EXPECT_LT(fraction_near(without, yellow), 0.001) << "the no-data colour where every vertex is measured";
-  EXPECT_EQ(fraction_near(without, yellow, 0.8, 1.0), 0) << "a no-data swatch with nothing unmeasured";
+  EXPECT_LT(test::fraction_near(without, yellow), 0.001) << "the no-data colour where every vertex is measured";
+  EXPECT_EQ(test::fraction_near(without, yellow, 0.8, 1.0), 0) << "a no-data swatch with nothing unmeasured";
 }

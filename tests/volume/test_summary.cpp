@@ -1,6 +1,9 @@
 // summary_json / summary_text contents.
 #include <gtest/gtest.h>
 
+#include <sstream>
+#include <string>
+
 #include "volume/from_dense.h"
 #include "volume/summary.h"
 
@@ -22,9 +25,12 @@ TEST(VolumeSummary, JsonAndTextCarryTheFacts) {
   EXPECT_EQ(j["max"], 99.0);
   EXPECT_NEAR(j["mean"].get<double>(), 49.5, 1e-9);
   EXPECT_EQ(j["nan_count"], 0);
-  EXPECT_NEAR(j["percentiles"]["p50"].get<double>(), 49.5, 1.0);
-  EXPECT_NEAR(j["percentiles"]["p1"].get<double>(), 1.0, 1.0);
-  EXPECT_NEAR(j["percentiles"]["p99"].get<double>(), 98.0, 1.0);
+  // Integer data: exact values the volume holds. Each of 0..99 is 1% of the voxels, so the
+  // smallest value with at least 50% at or below it is 49 (1%: 0, 99%: 98).
+  EXPECT_EQ(j["percentiles"]["p50"].get<double>(), 49.0);
+  EXPECT_EQ(j["percentiles"]["p1"].get<double>(), 0.0);
+  EXPECT_EQ(j["percentiles"]["p99"].get<double>(), 98.0);
+  EXPECT_TRUE(j["percentiles_exact"].get<bool>());
   ASSERT_EQ(j["histogram16"].size(), 16u);
   std::uint64_t total = 0;
   for (const auto& c : j["histogram16"]) total += c.get<std::uint64_t>();
@@ -32,6 +38,37 @@ TEST(VolumeSummary, JsonAndTextCarryTheFacts) {
   EXPECT_TRUE(j.contains("suggested_isovalue"));
 
   const std::string text = summary_text(v);
-  for (const char* needle : {"ten.raw", "raw", "10 x 10 x 10", "0.5 0.5 0.5", "0 .. 99", "above", "Otsu"})
+  for (const char* needle : {"ten.raw", "raw", "10 x 10 x 10", "0.5 0.5 0.5", "0 .. 99", "above", "Otsu",
+                             "50%: 49 ", "histogram"})
     EXPECT_NE(text.find(needle), std::string::npos) << needle << "\n" << text;
+  // The histogram as text: 16 rows, each with a bar and its count, the counts adding up.
+  std::size_t rows = 0;
+  std::uint64_t counted = 0;
+  std::istringstream in(text);
+  for (std::string row; std::getline(in, row);)
+    if (row.find('#') != std::string::npos) {
+      ++rows;
+      counted += std::stoull(row.substr(row.find_last_of(' ') + 1));
+    }
+  EXPECT_EQ(rows, 16u) << text;
+  EXPECT_EQ(counted, 1000u) << text;
+}
+
+TEST(VolumeSummary, WideIntegerRangesAreExactAndFloatsInterpolated) {
+  // int16 CT-like values over 4,000 levels (more than the histogram's 256 bins): still exact.
+  std::vector<float> ct(20 * 20 * 20);
+  for (std::size_t i = 0; i < ct.size(); ++i) ct[i] = float(-1024 + int(i % 4000));
+  auto xf = openvdb::math::Transform::createLinearTransform(1.0);
+  const Volume v = from_dense(ct.data(), {20, 20, 20}, xf, {"ct.raw", "raw", "int16", "", Inside::Above});
+  const auto j = summary_json(v);
+  EXPECT_TRUE(j["percentiles_exact"].get<bool>());
+  // 8000 voxels: 0..3999 twice. 50% (4000 voxels) at or below -1024 + 1999.
+  EXPECT_EQ(j["percentiles"]["p50"].get<double>(), -1024.0 + 1999);
+  EXPECT_EQ(j["percentiles"]["p1"].get<double>(), -1024.0 + 39);
+  // Float data: interpolated, and said so.
+  std::vector<float> f(1000);
+  for (std::size_t i = 0; i < f.size(); ++i) f[i] = 0.001f * float(i);
+  const Volume fv = from_dense(f.data(), {10, 10, 10}, xf, {"f.raw", "raw", "float", "", Inside::Above});
+  EXPECT_FALSE(summary_json(fv)["percentiles_exact"].get<bool>());
+  EXPECT_NE(summary_text(fv).find("interpolated"), std::string::npos);
 }
