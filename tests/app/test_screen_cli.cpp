@@ -117,7 +117,7 @@ TEST(CliScreen, SizeLimitAndBadOutputsAreOneErrorLine) {
     const auto r = run_isocurv(args);
     EXPECT_NE(r.exit_code, 0) << r.describe();
     EXPECT_FALSE(r.timed_out);
-    ASSERT_GE(r.err_lines().size(), 1u) << r.describe();
+    ASSERT_EQ(r.err_lines().size(), 1u) << "one error line, exactly: " << r.describe();
     EXPECT_EQ(r.err_lines()[0].rfind("isocurv:", 0), 0u) << r.describe();
   }
   EXPECT_TRUE(dir.entries().empty());
