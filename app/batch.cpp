@@ -144,7 +144,7 @@ void write_outputs(Pending& p, BatchKind kind, const BatchRequest& rq, const Com
   p.entry["triangles"] = r["triangles"];
   // The curvature statistics (stats.json's, which say what they count), so that one file
   // compares the inputs.
-  if (r.contains("estimator")) p.entry["estimator"] = r["estimator"].contains("name") ? r["estimator"]["name"] : r["estimator"];
+  if (r.contains("estimator")) p.entry["estimator"] = r["estimator"]["name"];
   if (r.contains("curvature")) p.entry["curvature"] = r["curvature"];
   p.entry["timings_ms"] = p.timer.json();
 }

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -14,6 +15,7 @@
 #include "core/mesh_measures.h"
 #include "curvature/ao_scale.h"
 #include "curvature/estimator.h"
+#include "curvature/field_stats.h"
 #include "curvature/mesh_estimators.h"
 #include "datasets/exact_curvature.h"
 #include "datasets/field.h"
@@ -26,19 +28,14 @@ using curvature::CurvatureField;
 
 constexpr double kPercentiles[3] = {1, 50, 99};
 
-// Vertices every statistic counts for one estimator: finite, not flagged Unreliable, not on an
-// open boundary, and with max(|k1|, |k2|) at most 1 / (half the mean edge length), the rule of
-// the other commands' statistics (curvature/field_stats.h).
-std::vector<bool> counted(const CurvatureField& f, double limit) {
+// Vertices every statistic counts for one estimator: those the other commands' statistics count
+// (curvature::counted_vertices: measured, finite, max(|k1|, |k2|) at most 1 / (half the mean
+// edge length)), less those on an open boundary.
+std::vector<bool> counted(const CurvatureField& f, double mean_edge) {
+  const std::vector<std::uint8_t> stats = curvature::counted_vertices(f, mean_edge);
   std::vector<bool> keep(f.size());
-  for (std::size_t i = 0; i < f.size(); ++i) {
-    const bool finite = std::isfinite(f.H[i]) && std::isfinite(f.K[i]) &&
-                        std::isfinite(f.k1[i]) && std::isfinite(f.k2[i]);
-    const bool flagged = !f.unreliable.empty() && f.unreliable[i];
-    const bool edge = !f.boundary.empty() && f.boundary[i];
-    keep[i] = finite && !flagged && !edge &&
-              std::max(std::abs(f.k1[i]), std::abs(f.k2[i])) <= limit;
-  }
+  for (std::size_t i = 0; i < f.size(); ++i)
+    keep[i] = stats[i] && !(!f.boundary.empty() && f.boundary[i]);
   return keep;
 }
 
@@ -136,9 +133,9 @@ void register_compare(CLI::App& app) {
       co.vertex_normals = &normals.normals;
     }
     co.ao_scale = curvature::default_ao_scale(mesh);
-    if (o.batagelo_weights == "inverse-square") co.batagelo_weights = curvature::NeighbourWeights::inverse_square;
+    apply_estimator_parameters(o, co);  // --scale reaches the volume row, the weights batagelo's
     Device* device = reference_device(o) ? nullptr : &device_for(o);
-    const double limit = 2 / mean_edge_length(mesh);
+    const double mean_edge = mean_edge_length(mesh), limit = 2 / mean_edge;
 
     const std::unique_ptr<datasets::Field> field = analytic_source(s, o);
     std::vector<double> exact_h, exact_k;
@@ -169,7 +166,7 @@ void register_compare(CLI::App& app) {
       r.f = curvature::estimate_mesh(e.id, mesh, d, co);
       r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       timer.stop();
-      r.keep = counted(r.f, limit);
+      r.keep = counted(r.f, mean_edge);
       for (std::uint8_t u : r.f.unreliable) r.flagged += u;
       rows.push_back(std::move(r));
     }
@@ -177,7 +174,6 @@ void register_compare(CLI::App& app) {
       curvature::Options vo = co;
       vo.estimator = curvature::Estimator::volume;
       vo.vertex_normals = nullptr;
-      vo.scale = o.scale == "auto" ? 0.0 : std::strtod(o.scale.c_str(), nullptr);
       Row r{"volume", device ? "opencl" : "reference", {}, {}, 0, 0};
       if (device) curvature::estimate_field(mesh, {&*s.volume, s.isovalue}, device, vo);
       timer.start("volume");
@@ -185,7 +181,7 @@ void register_compare(CLI::App& app) {
       r.f = curvature::estimate_field(mesh, {&*s.volume, s.isovalue}, device, vo);
       r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       timer.stop();
-      r.keep = counted(r.f, limit);
+      r.keep = counted(r.f, mean_edge);
       for (std::uint8_t u : r.f.unreliable) r.flagged += u;
       rows.push_back(std::move(r));
     }

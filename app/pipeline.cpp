@@ -109,6 +109,13 @@ curvature::Estimator default_estimator(const CommonOptions& o, bool volume_input
                                            : curvature::Estimator::rusinkiewicz;
 }
 
+void apply_estimator_parameters(const CommonOptions& o, curvature::Options& co) {
+  if (o.batagelo_weights == "inverse-square")
+    co.batagelo_weights = curvature::NeighbourWeights::inverse_square;
+  const std::vector<std::string> scales = parse_scales(o.scale);
+  co.scale = scales[0] == "auto" ? 0.0 : std::strtod(scales[0].c_str(), nullptr);
+}
+
 void add_curvature_options(CLI::App& cmd, CommonOptions& o, bool mesh_input) {
   cmd.add_option("--estimator", o.estimator,
                  "Curvature estimator: volume (from the volume's derivatives at --scale; the default "
@@ -399,10 +406,8 @@ curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Vol
     throw Error("--scale applies to --estimator volume");
   if (!o.batagelo_weights.empty() && co.estimator != curvature::Estimator::batagelo)
     throw Error("--batagelo-weights applies to --estimator batagelo");
-  if (o.batagelo_weights == "inverse-square")
-    co.batagelo_weights = curvature::NeighbourWeights::inverse_square;
-  const std::vector<std::string> scales = parse_scales(o.scale);
-  co.scale = scales[0] == "auto" ? 0.0 : std::strtod(scales[0].c_str(), nullptr);
+  apply_estimator_parameters(o, co);
+  const std::vector<std::string> scales = parse_scales(o.scale);  // several: arrays per scale, below
   NormalsUsed chosen;
   chosen.source = !mesh_estimator ? "volume estimator"
                   : o.normals.empty() ? (volume ? "volume" : "mesh")

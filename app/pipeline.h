@@ -46,6 +46,9 @@ struct CommonOptions {
 /// for an entry that is not a positive finite number, a repeated one, or auto among several.
 std::vector<std::string> parse_scales(const std::string& text);
 
+/// Sets what --scale (its first value; 0 for auto) and --batagelo-weights ask for in `co`.
+void apply_estimator_parameters(const CommonOptions& o, curvature::Options& co);
+
 /// Adds --iso --device --cap --snap --json --quiet and the volume options.
 void add_common_options(CLI::App& cmd, CommonOptions& o, bool with_iso = true);
 /// Adds --estimator, --scale, --normals, --batagelo-weights and --ao-scale, and --flip when the

@@ -38,10 +38,6 @@ Distribution distribution(const std::vector<float>& values, const std::vector<st
   return d;
 }
 
-}  // namespace
-
-namespace {
-
 // Why a vertex is left out of the statistics.
 enum class Verdict { counted, unmeasured, non_finite, unreliable };
 
@@ -80,7 +76,8 @@ FieldStats field_stats(const CurvatureField& field, double mean_edge_length) {
   std::vector<double> weights(n, 1.0);
   std::vector<std::size_t> used;
   used.reserve(n);
-  for (std::size_t i = 0; i < n && complete(field); ++i) {
+  const bool whole = complete(field);
+  for (std::size_t i = 0; i < n && whole; ++i) {
     if (s.area_weighted) weights[i] = std::isfinite(field.area[i]) ? field.area[i] : 0.0;
     switch (verdict(field, i, s.unreliable_above)) {
       case Verdict::unmeasured: ++s.unmeasured; continue;
@@ -92,7 +89,7 @@ FieldStats field_stats(const CurvatureField& field, double mean_edge_length) {
     s.weight += weights[i];
   }
   s.counted = used.size();
-  if (!complete(field)) return s;
+  if (!whole) return s;
   // Four independent sorts: in parallel (each result is the same as computed alone).
   tbb::parallel_invoke([&] { s.H = distribution(field.H, used, weights); },
                        [&] { s.K = distribution(field.K, used, weights); },
