@@ -83,6 +83,7 @@ void register_lines(CLI::App &app) {
     } catch (const Error &e) {
       throw CLI::ValidationError("--lines", e.what());
     }
+    require_lines_supported(lo.lines, o);
     StageTimer timer;
     Surface s = load_surface(in, o, timer);
     ensure_curvature(s, in, o, timer);

@@ -39,6 +39,7 @@ void register_render(CLI::App& app) {
     } catch (const Error& e) {
       throw CLI::ValidationError("--lines", e.what());
     }
+    require_lines_supported(lo.lines, o);
     StageTimer timer;
     if (!ro.dirs_out.empty() && !ro.opts.dirs) throw Error(ro.dirs_out, "--dirs-out needs --dirs");
     if (!ro.dirs_out.empty()) viz::check_glyphs_path(ro.dirs_out);

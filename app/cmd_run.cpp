@@ -137,6 +137,7 @@ void register_run(CLI::App& app) {
     } catch (const Error& e) {
       throw CLI::ValidationError("--lines", e.what());
     }
+    require_lines_supported(lo.lines, o);
     for (const std::string& input : b.inputs)
       if (is_mesh_path(input))
         throw Error(input, "isocurv run takes a volume; use isocurv curvature or render for meshes");

@@ -93,6 +93,7 @@ void register_view(CLI::App& app) {
     } catch (const Error& e) {
       throw CLI::ValidationError("--lines", e.what());
     }
+    require_lines_supported(lo.lines, o);
     if (ins.size() > 1 && !series.enabled)
       throw Error("isocurv view takes one volume (several are the frames of a series with --time-series)");
     // The frames (one without --time-series); the current one's volume and mesher.

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "curvature/mesh_estimators.h"
 #include "lines/extract.h"
 #include "lines/reference.h"
 
@@ -54,6 +55,26 @@ lines::Options line_options(const LineCli &cli) {
   o.lines = cli.list.empty() ? lines::LineSelection{}
                              : lines::parse_line_selection(cli.list);
   return o;
+}
+
+void require_lines_supported(const lines::LineSelection &lines, const CommonOptions &o) {
+  if (!lines.needs_dcurv() || o.estimator.empty())
+    return;  // the defaults (volume, rusinkiewicz) give everything the lines read
+  const auto m = curvature::mesh_estimator_from_name(o.estimator);
+  if (!m)
+    return;
+  const curvature::MeshEstimatorInfo &info = curvature::mesh_estimator_info(*m);
+  if (info.directions && info.derivative)
+    return;
+  std::string able;
+  for (const curvature::MeshEstimatorInfo &e : curvature::mesh_estimators())
+    if (e.directions && e.derivative)
+      able += std::string(e.name) + ", ";
+  lines::LineSelection asked = lines;
+  asked.contours = false;
+  throw Error("--lines " + asked.to_string() + " needs principal directions and the curvature "
+              "derivative, which the " + info.name + " estimator does not give; with it only "
+              "--lines contours works (or choose " + able + "volume)");
 }
 
 Camera picture_camera(const Mesh &mesh, const ViewSpec &view, int width,

@@ -32,6 +32,13 @@ void add_line_options(CLI::App &cmd, LineCli &cli,
 /// cli.options with the parsed --lines selection. @throw Error for a bad list.
 lines::Options line_options(const LineCli &cli);
 
+/// Refuses, before any work, a selection the --estimator cannot feed: suggestive
+/// contours, ridges and valleys need principal directions and the curvature
+/// derivative, which prantl2, prantl3 and meyer do not give (contours work with
+/// every estimator). @throw Error, one line naming the estimator and the ones
+/// that would do.
+void require_lines_supported(const lines::LineSelection &lines, const CommonOptions &o);
+
 /// The camera render and the explorer use for `mesh` in a width x height
 /// picture: fit_camera over the mesh's bounds with `view`.
 Camera picture_camera(const Mesh &mesh, const ViewSpec &view, int width,

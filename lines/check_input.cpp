@@ -16,8 +16,19 @@ void check_input(const Mesh& mesh, const curvature::CurvatureField& field, const
   need(field.normals.size(), "Normals");
   need(field.k1.size(), "k1");
   need(field.k2.size(), "k2");
-  need(field.dir1.size(), "dir1");
-  need(field.dir2.size(), "dir2");
+  // Contours need no directions: estimators without them (prantl2, prantl3, meyer) still draw
+  // contours, their dir1/dir2 empty.
+  if (options.lines.needs_directions() || !field.dir1.empty() || !field.dir2.empty()) {
+    if (options.lines.needs_directions() && field.dir1.empty() && nv > 0) {
+      LineSelection need_d = options.lines;
+      need_d.contours = false;
+      throw Error("lines: " + need_d.to_string() +
+                  " need the principal directions (dir1, dir2), which this curvature field "
+                  "lacks (an estimator without them?); only contours can be drawn");
+    }
+    need(field.dir1.size(), "dir1");
+    need(field.dir2.size(), "dir2");
+  }
   if (options.lines.needs_dcurv()) {
     if (field.dcurv.empty() && nv > 0) {
       LineSelection need_d = options.lines;

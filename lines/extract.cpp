@@ -40,9 +40,20 @@ struct Buffer {
   }
 };
 
+std::string build_options();
+
+// What extract keeps on a device between calls (Device::state): the kernels, the buffers, the
+// host storage of the downloads.
 struct Session {
-  cl::Context context;
-  std::mutex mutex;
+  explicit Session(Device& device) {
+    cl::Program& program = device.program("lines", kernels::lines_kernels_cl, build_options());
+    vertex_view = cl::Kernel(program, "line_vertex_view");
+    vertex_smooth = cl::Kernel(program, "line_vertex_smooth");
+    vertex_flags = cl::Kernel(program, "line_vertex_flags");
+    face_count = cl::Kernel(program, "line_face_count");
+    face_emit = cl::Kernel(program, "line_face_emit");
+  }
+  std::mutex mutex;  // one extract at a time per device (kernel arguments are shared state)
   cl::Kernel vertex_view, vertex_smooth, vertex_flags, face_count, face_emit;
   // The call's inputs: read in place on CPU devices, copies elsewhere.
   InputBuffer triangles, positions, normals, dir1, dir2, k1, k2, dcurv;
@@ -73,22 +84,11 @@ std::string build_options() {
   return buf;
 }
 
+// The session of `device`, created (program built, kernels made) on first use.
 Session& session_for(Device& device) {
-  static std::mutex registry_mutex;
-  static std::vector<std::unique_ptr<Session>> sessions;
-  std::lock_guard<std::mutex> lock(registry_mutex);
-  for (auto& s : sessions)
-    if (s->context() == device.context()()) return *s;
-  auto s = std::make_unique<Session>();
-  s->context = device.context();
-  cl::Program& program = device.program("lines", kernels::lines_kernels_cl, build_options());
-  s->vertex_view = cl::Kernel(program, "line_vertex_view");
-  s->vertex_smooth = cl::Kernel(program, "line_vertex_smooth");
-  s->vertex_flags = cl::Kernel(program, "line_vertex_flags");
-  s->face_count = cl::Kernel(program, "line_face_count");
-  s->face_emit = cl::Kernel(program, "line_face_emit");
-  sessions.push_back(std::move(s));
-  return *sessions.back();
+  static std::mutex creating;  // Device::state is for one thread at a time
+  std::lock_guard<std::mutex> lock(creating);
+  return device.state<Session>();
 }
 
 template <class T, class A>
@@ -126,7 +126,7 @@ Segments run(const Mesh& mesh, const curvature::CurvatureField& field, const Cam
     s.triangles.bind(device, mesh.triangles);
     s.positions.bind(device, mesh.positions);
     s.normals.bind(device, field.normals);
-    s.dir1.bind(device, field.dir1);
+    s.dir1.bind(device, field.dir1);  // empty for contours from a field without directions
     s.dir2.bind(device, field.dir2);
     s.k1.bind(device, field.k1);
     s.k2.bind(device, field.k2);
@@ -152,8 +152,8 @@ Segments run(const Mesh& mesh, const curvature::CurvatureField& field, const Cam
   if (sel.view_dependent()) {
     set_args(s.vertex_view, *s.positions.bound(), *s.normals.bound(), *s.dir1.bound(),
              *s.dir2.bound(), *s.k1.bound(), *s.k2.bound(), *s.dcurv.bound(),
-             cl_int(sel.suggestive), cl_int(with_dcurv), cl_uint(nv), eye, towards, s.view.buffer,
-             s.kn.buffer);
+             cl_int(sel.suggestive), cl_int(with_dcurv), cl_int(!field.dir1.empty()), cl_uint(nv),
+             eye, towards, s.view.buffer, s.kn.buffer);
     launch(q, s.vertex_view, nv, kGroup);
   }
   if (smooth && !s.have_pairs) {

@@ -31,6 +31,9 @@ struct LineSelection {
   /// Suggestive contours and ridges/valleys need the curvature derivative
   /// (dcurv).
   bool needs_dcurv() const { return suggestive || ridges || valleys; }
+  /// Suggestive contours and ridges/valleys need the principal directions
+  /// (dir1, dir2); contours need only the normals.
+  bool needs_directions() const { return suggestive || ridges || valleys; }
   /// True when the lines depend on the camera (contours or suggestive
   /// contours).
   bool view_dependent() const { return contours || suggestive; }

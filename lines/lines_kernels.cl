@@ -37,20 +37,24 @@ typedef struct {
 bool finite3(float3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
 
 // Per vertex: view = (ndotv, kr, num, finite) for the camera, and kn = (kr, num) for the
-// smoothing. `finite` is 1 where the vertex's curvature inputs (k1, k2, normal, directions and,
-// with check_dcurv, dcurv) are all finite, else 0: face_segments then need not read them. eye.w != 0: orthographic, `toward` is the
-// direction towards the camera; else v = normalize(eye - p).
+// smoothing. `finite` is 1 where the vertex's curvature inputs (k1, k2, normal, directions when
+// with_dirs and, with check_dcurv, dcurv) are all finite, else 0: face_segments then need not read
+// them. eye.w != 0: orthographic, `toward` is the direction towards the camera; else
+// v = normalize(eye - p).
 __kernel void line_vertex_view(__global const float* positions, __global const float* normals,
                                __global const float* dir1, __global const float* dir2,
                                __global const float* k1s, __global const float* k2s,
                                __global const float4* dcurv, int with_dcurv, int check_dcurv,
-                               uint vertex_count, float4 eye, float4 toward,
+                               int with_dirs, uint vertex_count, float4 eye, float4 toward,
                                __global float4* view, __global float2* kn) {
   const uint i = get_global_id(0);
   if (i >= vertex_count) return;
   const float3 p = vload3(i, positions);
   const float3 v = eye.w != 0 ? toward.xyz : normalize(eye.xyz - p);
-  const float3 normal = vload3(i, normals), d1 = vload3(i, dir1), d2 = vload3(i, dir2);
+  const float3 normal = vload3(i, normals);
+  // Contours alone: a field without directions (kr, num stay 0).
+  const float3 d1 = with_dirs ? vload3(i, dir1) : (float3)(0),
+               d2 = with_dirs ? vload3(i, dir2) : (float3)(0);
   const float ndotv = dot(normal, v);
   const float u = dot(v, d1), w = dot(v, d2);
   const float u2 = u * u, w2 = w * w, sin2 = u2 + w2;

@@ -41,6 +41,7 @@ VertexView vertex_view(const Mesh &mesh, const curvature::CurvatureField &f,
   const V3 v = camera.view_vector({p[0], p[1], p[2]});
   VertexView q;
   q.ndotv = dot(to_v3(f.normals[i]), v);
+  if (f.dir1.empty()) return q;  // contours alone, from a field without directions
   const double u = dot(v, to_v3(f.dir1[i])), w = dot(v, to_v3(f.dir2[i]));
   const double u2 = u * u, w2 = w * w, sin2 = u2 + w2;
   const double k1 = f.k1[i], k2 = f.k2[i];
@@ -169,9 +170,11 @@ Segments extract_reference(const Mesh &mesh,
       finite =
           finite && std::isfinite(field.k1[i]) && std::isfinite(field.k2[i]);
       for (int c = 0; c < 3; ++c)
-        finite = finite && std::isfinite(field.normals[i][c]) &&
-                 std::isfinite(field.dir1[i][c]) &&
-                 std::isfinite(field.dir2[i][c]);
+        finite = finite && std::isfinite(field.normals[i][c]);
+      if (!field.dir1.empty())
+        for (int c = 0; c < 3; ++c)
+          finite = finite && std::isfinite(field.dir1[i][c]) &&
+                   std::isfinite(field.dir2[i][c]);
       if (sel.needs_dcurv())
         for (float d : field.dcurv[i])
           finite = finite && std::isfinite(d);

@@ -42,9 +42,10 @@ struct Segment {
 /// ridge, valley).
 using Segments = std::vector<Segment>;
 
-/// Throws Error unless `field` fits `mesh` (normals, k1, k2, dir1, dir2 one per
-/// vertex; dcurv too when the selection needs it, with a message saying which
-/// lines need it when it is missing) and every triangle index is a vertex.
+/// Throws Error unless `field` fits `mesh` (normals, k1, k2 one per vertex;
+/// dir1, dir2 too, except that contours alone accept them empty; dcurv too when
+/// the selection needs it; a missing array the selection needs gets a message
+/// saying which lines need it) and every triangle index is a vertex.
 void check_input(const Mesh &mesh, const curvature::CurvatureField &field,
                  const Options &options);
 

@@ -58,26 +58,23 @@ cl::Buffer& ClBuffer::reserve(cl::Context& context, std::size_t need) {
   return buffer;
 }
 
-MeshPassSession& mesh_pass_session(Device& device) {
-  static std::mutex registry_mutex;
-  static std::vector<std::unique_ptr<MeshPassSession>> sessions;
-  std::lock_guard<std::mutex> lock(registry_mutex);
-  for (auto& s : sessions)
-    if (s->context() == device.context()()) return *s;
-  auto s = std::make_unique<MeshPassSession>();
-  s->context = device.context();
+MeshPassSession::MeshPassSession(Device& device) {
   cl::Program& program =
       device.program("curvature_mesh_estimators", program_source().c_str(), build_options());
-  s->corner_normals_areas = cl::Kernel(program, "corner_normals_areas");
-  s->vertex_normals_areas = cl::Kernel(program, "vertex_normals_areas");
-  s->vertex_boundary = cl::Kernel(program, "vertex_boundary");
-  s->vertex_boundary_large = cl::Kernel(program, "vertex_boundary_large");
-  s->batagelo_tensor = cl::Kernel(program, "batagelo_tensor");
-  s->batagelo_dcurv = cl::Kernel(program, "batagelo_dcurv");
-  s->prantl_faces = cl::Kernel(program, "prantl_faces");
-  s->prantl_vertices = cl::Kernel(program, "prantl_vertices");
-  sessions.push_back(std::move(s));
-  return *sessions.back();
+  corner_normals_areas = cl::Kernel(program, "corner_normals_areas");
+  vertex_normals_areas = cl::Kernel(program, "vertex_normals_areas");
+  vertex_boundary = cl::Kernel(program, "vertex_boundary");
+  vertex_boundary_large = cl::Kernel(program, "vertex_boundary_large");
+  batagelo_tensor = cl::Kernel(program, "batagelo_tensor");
+  batagelo_dcurv = cl::Kernel(program, "batagelo_dcurv");
+  prantl_faces = cl::Kernel(program, "prantl_faces");
+  prantl_vertices = cl::Kernel(program, "prantl_vertices");
+}
+
+MeshPassSession& mesh_pass_session(Device& device) {
+  static std::mutex creating;  // Device::state is for one thread at a time
+  std::lock_guard<std::mutex> lock(creating);
+  return device.state<MeshPassSession>();
 }
 
 double lap_ms(std::chrono::steady_clock::time_point& since) {

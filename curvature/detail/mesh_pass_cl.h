@@ -26,9 +26,9 @@ struct ClBuffer {
   cl::Buffer& reserve(cl::Context& context, std::size_t need);
 };
 
-/// One per OpenCL context; `mutex` serialises calls (kernel arguments are shared state).
+/// One per device (Device::state); `mutex` serialises calls (kernel arguments are shared state).
 struct MeshPassSession {
-  cl::Context context;
+  explicit MeshPassSession(Device& device);  ///< builds the program, makes the kernels
   std::mutex mutex;
   cl::Kernel corner_normals_areas, vertex_normals_areas, vertex_boundary, vertex_boundary_large;
   cl::Kernel batagelo_tensor, batagelo_dcurv, prantl_faces, prantl_vertices;
@@ -40,7 +40,7 @@ struct MeshPassSession {
   Neighbours neighbours;             ///< host copy of the distinct 1-ring (batagelo)
 };
 
-/// The session of device's context, created (program built, kernels made) on first use.
+/// The session of `device`, created (program built, kernels made) on first use.
 MeshPassSession& mesh_pass_session(Device& device);
 
 constexpr std::size_t kGroup = 64;  ///< work-group size of every launch

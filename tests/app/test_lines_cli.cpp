@@ -94,6 +94,29 @@ TEST(CliLines, MeshFileWithoutCurvatureIsEstimatedWithANote) {
   EXPECT_NE(r.out.find("wrote"), std::string::npos);
 }
 
+// prantl2, prantl3 and meyer give no directions or derivative: contours work, the other line
+// types are refused in one line naming the estimator, before any output is written.
+TEST(CliLines, EstimatorsWithoutDirectionsDrawContoursOnly) {
+  TempDir dir("lines_prantl");
+  for (const char *est : {"prantl2", "prantl3", "meyer"}) {
+    const auto ok = run_isocurv({"lines", dataset("torus"), "--estimator", est, "--lines",
+                                 "contours", "-o", dir / (std::string(est) + ".vtp"), "--json"});
+    ASSERT_TRUE(ok.ok()) << ok.describe();
+    EXPECT_GT(nlohmann::json::parse(ok.out)["segments"]["contours"].get<int>(), 50) << est;
+    for (const char *sel : {"contours,suggestive", "ridges"}) {
+      const auto r = run_isocurv({"lines", dataset("torus"), "--estimator", est, "--lines", sel,
+                                  "-o", dir / "refused.vtp"});
+      expect_clean_failure(r, est);
+      expect_one_error_line(r, "only --lines contours");
+    }
+  }
+  const auto r = run_isocurv({"render", dataset("torus"), "--estimator", "meyer", "--lines",
+                              "ridges", "-o", dir / "refused.png"});
+  expect_clean_failure(r, "meyer");
+  EXPECT_FALSE(std::filesystem::exists(dir / "refused.vtp"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "refused.png"));
+}
+
 TEST(CliLines, BadInput) {
   TempDir dir("lines_bad");
   expect_usage_error(run_isocurv({"lines", dataset("torus"), "--lines",

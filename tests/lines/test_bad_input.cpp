@@ -44,6 +44,32 @@ TEST(LinesInput, NoDcurvOnlyContours) {
   EXPECT_GT(extract_reference(s.mesh, s.field, cam, o).size(), 0u);
 }
 
+TEST(LinesInput, NoDirectionsOnlyContours) {
+  test::Surface s = test::with_curvature(test::icosphere(3));
+  s.field.dir1.clear();
+  s.field.dir2.clear();
+  s.field.dcurv.clear();
+  Camera cam;
+  cam.position = {0, 0, 5};
+  for (const char *asked : {"suggestive", "ridges", "contours,valleys"}) {
+    Options o;
+    o.lines = parse_line_selection(asked);
+    try {
+      extract_reference(s.mesh, s.field, cam, o);
+      FAIL() << "expected an Error for " << asked;
+    } catch (const Error &e) {
+      EXPECT_NE(std::string(e.what()).find("only contours"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(extract(s.mesh, s.field, cam, o, Device::default_device()), Error) << asked;
+  }
+  Options o;
+  o.lines = parse_line_selection("contours");
+  EXPECT_GT(extract(s.mesh, s.field, cam, o, Device::default_device()).size(), 0u);
+  // Directions of the wrong length are still an error.
+  s.field.dir1.resize(3);
+  EXPECT_THROW(extract_reference(s.mesh, s.field, cam, o), Error);
+}
+
 TEST(LinesInput, MismatchedFieldAndBadIndices) {
   test::Surface s = test::with_curvature(test::icosphere(2));
   test::Surface short_field = s;

@@ -109,6 +109,38 @@ TEST(LinesKernel, Deterministic) {
     EXPECT_LE(a[i - 1].face, a[i].face); // face order
 }
 
+// Contours from a field without directions or derivative (prantl2, prantl3, meyer): the kernel
+// and the reference give the contours the full field gives, segment for segment.
+TEST(LinesKernel, ContoursWithoutDirectionsMatchTheFullField) {
+  const test::Surface full = bumpy();
+  test::Surface bare = bumpy();
+  bare.field.dir1.clear();
+  bare.field.dir2.clear();
+  bare.field.dcurv.clear();
+  Options o;
+  o.lines = parse_line_selection("contours");
+  Device &d = Device::default_device();
+  for (bool ortho : {false, true}) {
+    Camera cam = perspective();
+    cam.ortho = ortho;
+    const Segments want = extract(full.mesh, full.field, cam, o, d);
+    ASSERT_GT(want.size(), 50u);
+    for (const Segments &got :
+         {extract(bare.mesh, bare.field, cam, o, d), extract_reference(bare.mesh, bare.field, cam, o)}) {
+      ASSERT_EQ(got.size(), want.size()) << (ortho ? "ortho" : "perspective");
+      for (std::size_t i = 0; i < got.size(); ++i) {
+        EXPECT_EQ(got[i].face, want[i].face);
+        EXPECT_EQ(got[i].edge_a, want[i].edge_a);
+        EXPECT_EQ(got[i].edge_b, want[i].edge_b);
+        EXPECT_LT(test::seg_length(got[i].a, want[i].a), 1e-3 * test::mean_edge(full.mesh));
+      }
+    }
+  }
+  // Group sizes above 1: the kernel path ran with 64-wide groups (core/cl_launch.h) over a vertex
+  // count that is not a multiple of 64.
+  EXPECT_NE(bare.mesh.vertex_count() % 64, 0u);
+}
+
 TEST(LinesKernel, EmptyMeshAndNothingSelected) {
   Options o;
   Mesh empty;
