@@ -2,8 +2,11 @@
 // curvature (SEEDS-SPEC 3.2 (d), 4.2 (c)): what matters for isocurv's own meshes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -27,6 +30,22 @@ namespace isocurv::test {
 namespace {
 
 using curvature::CurvatureField;
+
+struct Percentiles {
+  double p50, p90;
+};
+
+// The median and 90th percentile of |x - exact| / RMS(exact) over the vertices.
+Percentiles scaled_error_percentiles(const std::vector<double>& x,
+                                     const std::vector<double>& exact) {
+  double ss = 0;
+  for (double v : exact) ss += v * v;
+  const double scale = std::sqrt(ss / double(exact.size()));
+  std::vector<double> e;
+  for (std::size_t i = 0; i < x.size(); ++i) e.push_back(std::abs(x[i] - exact[i]) / scale);
+  std::sort(e.begin(), e.end());
+  return {e[e.size() / 2], e[e.size() * 9 / 10]};
+}
 
 TEST(EstimatorsMarchingCubes, TorusWithVolumeNormals) {
   openvdb::initialize();
@@ -52,6 +71,31 @@ TEST(EstimatorsMarchingCubes, TorusWithVolumeNormals) {
       {"cubic", [&] { return curvature::estimate_cubic_fit_reference(m, o); }},
       {"sampling", [&] { return curvature::estimate_normal_sampling_reference(m, o); }},
       {"meyer", [&] { return curvature::estimate_meyer_reference(m, o); }}};
+  // Each estimator's accuracy bounds: relative RMS of H and K, and the median and 90th
+  // percentile of |x - exact| / RMS(exact) (the per-vertex terms of the relative RMS), which
+  // bound the bulk of the vertices where a few blow-ups make the RMS meaningless. The RMS bounds
+  // are the estimators' known accuracy on this mesh (docs/curvature.md, "On marching-cubes
+  // meshes", bench_estimators: rusinkiewicz 0.0125 / 0.0349, batagelo 0.0161 / 0.0267, prantl3
+  // 0.0128 / 0.0358, cubic 0.028 / 0.033, meyer 0.38 / 0.47) with a 1.5x margin; the
+  // percentile bounds are the values measured here (printed) with a 1.5x margin. quadric and
+  // sampling "fail outright on these meshes" (docs/curvature.md: they divide by the tiny edges
+  // that marching cubes and snapping leave, and neither uses the normals): their RMS is 12 (H)
+  // and 2900 (K) from a few vertices, so only their percentiles are bounded; sampling's p90 is
+  // already several times the curvature (measured p50 0.22 / 0.27, p90 2.5 / 9.8). meyer uses no
+  // normals either and sees marching cubes' irregular triangles (measured p50 0.11 / 0.18).
+  struct Bound {
+    double rms_h, rms_k, p50_h, p50_k, p90_h, p90_k;
+  };
+  constexpr double kNone = std::numeric_limits<double>::infinity();
+  const std::map<std::string, Bound> bounds = {
+      {"rusinkiewicz", {0.019, 0.052, 0.0096, 0.019, 0.032, 0.090}},
+      {"batagelo", {0.024, 0.040, 0.0098, 0.017, 0.041, 0.064}},
+      {"prantl3", {0.019, 0.054, 0.0098, 0.020, 0.032, 0.089}},
+      {"prantl2", {0.019, 0.055, 0.0098, 0.021, 0.032, 0.092}},
+      {"quadric", {kNone, kNone, 0.065, 0.12, 0.55, 0.75}},
+      {"cubic", {0.042, 0.050, 0.021, 0.020, 0.074, 0.082}},
+      {"sampling", {kNone, kNone, 0.33, 0.40, 3.7, 15}},
+      {"meyer", {0.57, 0.70, 0.17, 0.27, 0.96, 1.2}}};
   std::map<std::string, std::pair<double, double>> err;
   for (const auto& [name, fn] : estimators) {
     const CurvatureField f = fn();
@@ -59,9 +103,21 @@ TEST(EstimatorsMarchingCubes, TorusWithVolumeNormals) {
     err[name] = {relative_rms(h, eh), relative_rms(k, ek)};
     std::size_t flagged = 0;
     for (std::uint8_t u : f.unreliable) flagged += u;
-    std::printf("  torus 64^3 (%zu v) %-12s relative RMS H %.4f K %.4f, %zu unreliable\n",
-                m.vertex_count(), name.c_str(), err[name].first, err[name].second, flagged);
+    const Percentiles ph = scaled_error_percentiles(h, eh), pk = scaled_error_percentiles(k, ek);
+    std::printf(
+        "  torus 64^3 (%zu v) %-12s relative RMS H %.4f K %.4f, p50 H %.4f K %.4f, p90 H %.4f "
+        "K %.4f, %zu unreliable\n",
+        m.vertex_count(), name.c_str(), err[name].first, err[name].second, ph.p50, pk.p50,
+        ph.p90, pk.p90, flagged);
     EXPECT_TRUE(all_finite(f)) << name;
+    EXPECT_EQ(flagged, 0u) << name << ": every vertex of a closed, fine mesh can be measured";
+    const Bound& b = bounds.at(name);
+    EXPECT_LT(err[name].first, b.rms_h) << name;
+    EXPECT_LT(err[name].second, b.rms_k) << name;
+    EXPECT_LT(ph.p50, b.p50_h) << name;
+    EXPECT_LT(pk.p50, b.p50_k) << name;
+    EXPECT_LT(ph.p90, b.p90_h) << name;
+    EXPECT_LT(pk.p90, b.p90_k) << name;
   }
   const auto [rh, rk] = err["rusinkiewicz"];
   // Appendix A4 at 64^3 (vtkMarchingCubes, exact-gradient normals): Rusinkiewicz 0.0104 / 0.0327,
