@@ -8,20 +8,29 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
 
+#include <openvdb/tools/Dense.h>
+
+#include <filesystem>
+
+#include "core/camera.h"
 #include "core/cl_device.h"
 #include "core/error.h"
 #include "core/mesh.h"
 #include "core/mesh_measures.h"
+#include "core/framing_points.h"
 #include "core/program_cache.h"
 #include "curvature/ao_scale.h"
 #include "curvature/curvature_field.h"
@@ -30,13 +39,27 @@
 #include "curvature/face_average_normals.h"
 #include "curvature/reference.h"
 #include "curvature/topology.h"
+#include "features/features.h"
 #include "io/compression.h"
 #include "io/field_arrays.h"
 #include "io/mesh_file.h"
+#include "lines/extract.h"
+#include "lines/line_files.h"
+#include "lines/line_types.h"
+#include "lines/options.h"
+#include "lines/polylines.h"
+#include "lines/reference.h"
+#include "lines/visibility.h"
 #include "mc/extract.h"
 #include "mc/extract_reference.h"
 #include "mc/mesh_check.h"
 #include "mc/options.h"
+#include "screen/estimate.h"
+#include "screen/gbuffer.h"
+#include "screen/image_files.h"
+#include "screen/rasterise.h"
+#include "screen/ray_cast.h"
+#include "volume/dense_field.h"
 #include "volume/from_dense.h"
 #include "volume/gradient_normals.h"
 #include "volume/load.h"
@@ -87,6 +110,95 @@ struct PyMesh {
   Mesh mesh;
   std::optional<float> isovalue;  ///< set by extract (the volume estimator needs it)
 };
+
+// Arguments taken as any object and checked by the function, so that a wrong type raises a
+// TypeError naming the argument ("volume: expected an isocurv.Volume ..., not str") instead of
+// pybind11's list of signatures; the signatures still show the type (the casters below).
+struct VolumeArg {
+  py::object obj;
+};
+struct MeshArg {
+  py::object obj;
+};
+struct VolumeOrMeshArg {
+  py::object obj;
+};
+struct PathArg {  ///< a file name: a str or an os.PathLike (pathlib.Path)
+  py::object obj;
+};
+
+}  // namespace
+
+namespace pybind11::detail {
+template <class T>
+struct any_object_caster {
+  bool load(handle src, bool) {
+    value.obj = reinterpret_borrow<object>(src);
+    return true;
+  }
+  T value;
+  operator T*() { return &value; }
+  operator T&() { return value; }
+  template <typename U>
+  using cast_op_type = movable_cast_op_type<U>;
+};
+template <>
+struct type_caster<VolumeArg> : any_object_caster<VolumeArg> {
+  static constexpr auto name = const_name<volume::Volume>();
+};
+template <>
+struct type_caster<MeshArg> : any_object_caster<MeshArg> {
+  static constexpr auto name = const_name<PyMesh>();
+};
+template <>
+struct type_caster<VolumeOrMeshArg> : any_object_caster<VolumeOrMeshArg> {
+  static constexpr auto name = const_name<volume::Volume>() + const_name(" | ") + const_name<PyMesh>();
+};
+template <>
+struct type_caster<PathArg> : any_object_caster<PathArg> {
+  static constexpr auto name = const_name("str | os.PathLike");
+};
+}  // namespace pybind11::detail
+
+namespace {
+
+std::string type_name_of(const py::handle& o) { return Py_TYPE(o.ptr())->tp_name; }
+
+/// The Volume `a` holds (TypeError naming `arg` otherwise).
+const volume::Volume& volume_of(const VolumeArg& a, const char* arg) {
+  if (!a.obj || !py::isinstance<volume::Volume>(a.obj))
+    throw py::type_error(std::string(arg) +
+                         ": expected an isocurv.Volume (from isocurv.load or isocurv.from_array), "
+                         "not " + type_name_of(a.obj));
+  return a.obj.cast<const volume::Volume&>();
+}
+
+/// The same, or nullptr for None.
+const volume::Volume* optional_volume(const VolumeArg& a, const char* arg) {
+  if (!a.obj || a.obj.is_none()) return nullptr;
+  return &volume_of(a, arg);
+}
+
+/// The Mesh `a` holds (TypeError naming `arg` otherwise).
+std::shared_ptr<PyMesh> mesh_of(const MeshArg& a, const char* arg) {
+  if (!a.obj || !py::isinstance<PyMesh>(a.obj))
+    throw py::type_error(std::string(arg) +
+                         ": expected an isocurv.Mesh (from isocurv.extract, isocurv.read_mesh or "
+                         "isocurv.Mesh(vertices, triangles)), not " + type_name_of(a.obj));
+  return a.obj.cast<std::shared_ptr<PyMesh>>();
+}
+
+/// A file name from a str or an os.PathLike (pathlib.Path); TypeError naming `arg` otherwise.
+std::string path_of(const PathArg& a, const char* arg) {
+  if (a.obj && py::isinstance<py::str>(a.obj)) return a.obj.cast<std::string>();
+  py::object os = py::module_::import("os");
+  if (a.obj && !a.obj.is_none() && py::hasattr(a.obj, "__fspath__")) {
+    py::object s = os.attr("fsdecode")(os.attr("fspath")(a.obj));
+    return s.cast<std::string>();
+  }
+  throw py::type_error(std::string(arg) + ": expected a file name (a str or a pathlib.Path), not " +
+                       type_name_of(a.obj));
+}
 
 volume::Inside inside_of(const std::string& s) {
   if (s == "above") return volume::Inside::Above;
@@ -400,9 +512,61 @@ py::object curvature_arrays(curvature::CurvatureField&& field, py::dict report) 
   return out;
 }
 
-py::object curvature_of(const std::shared_ptr<PyMesh>& mesh, const volume::Volume* volume,
-                        py::object estimator, py::object scale, py::object normals_arg,
-                        py::object iso, py::object ao_scale, bool cap, py::object device) {
+/// A ValueError unless `mesh` lies in `volume`: its bounding box (finite vertices) within the
+/// volume's world bounds (the domain's corners through the transform) grown by one voxel (the
+/// longest voxel edge). A mesh of another volume, or of this one loaded with another spacing or
+/// origin, would otherwise be measured in the volume's outside: wrong curvature, no error.
+void check_mesh_in_volume(const Mesh& mesh, const volume::Volume& volume) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  std::array<double, 3> mlo{inf, inf, inf}, mhi{-inf, -inf, -inf};
+  bool any = false;
+  for (const Vec3f& p : mesh.positions) {
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) continue;
+    any = true;
+    for (int k = 0; k < 3; ++k) mlo[k] = std::min(mlo[k], double(p[k])), mhi[k] = std::max(mhi[k], double(p[k]));
+  }
+  if (!any || !volume.grid) return;
+  std::array<double, 3> vlo{inf, inf, inf}, vhi{-inf, -inf, -inf};
+  const openvdb::Coord a = volume.domain.min(), b = volume.domain.max();
+  for (int c = 0; c < 8; ++c) {
+    const openvdb::Vec3d w = volume.grid->transform().indexToWorld(
+        openvdb::Vec3d(c & 1 ? b.x() : a.x(), c & 2 ? b.y() : a.y(), c & 4 ? b.z() : a.z()));
+    for (int k = 0; k < 3; ++k) vlo[k] = std::min(vlo[k], w[k]), vhi[k] = std::max(vhi[k], w[k]);
+  }
+  const openvdb::Vec3d s = volume.spacing();
+  const double voxel = std::max({s.x(), s.y(), s.z()});
+  double beyond = 0;
+  for (int k = 0; k < 3; ++k) beyond = std::max({beyond, vlo[k] - mlo[k], mhi[k] - vhi[k]});
+  if (!(beyond > voxel * (1 + 1e-6))) return;
+  auto box = [](const std::array<double, 3>& lo, const std::array<double, 3>& hi) {
+    std::string t;
+    for (int k = 0; k < 3; ++k) {
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%s[%g, %g]", k ? " x " : "", lo[k], hi[k]);
+      t += buf;
+    }
+    return t;
+  };
+  char far[32];
+  std::snprintf(far, sizeof far, "%.3g", beyond / voxel);
+  throw py::value_error("mesh: does not lie in the volume: its bounding box " + box(mlo, mhi) +
+                        " reaches " + far + " voxels beyond the volume's world bounds " +
+                        box(vlo, vhi) +
+                        " (pass the volume the mesh was extracted from, with the same spacing "
+                        "and origin)");
+}
+
+/// A curvature estimate and what it used (CurvatureArrays.report).
+struct Estimated {
+  curvature::CurvatureField field;
+  py::dict report;
+};
+
+/// curvature()'s estimate (the CLI's rules), also what features() and lines() estimate when
+/// given no curvature arrays.
+Estimated estimate_of(const std::shared_ptr<PyMesh>& mesh, const volume::Volume* volume,
+                      py::object estimator, py::object scale, py::object normals_arg,
+                      py::object iso, py::object ao_scale, bool cap, py::object device) {
   const DeviceChoice dc = device_choice(device);
   curvature::Options co;
   const std::string given = normals_of(normals_arg);
@@ -444,6 +608,7 @@ py::object curvature_of(const std::shared_ptr<PyMesh>& mesh, const volume::Volum
     throw py::value_error("iso: applies to estimator='volume' only");
   }
   if (mesh->mesh.triangles.empty()) throw py::value_error("mesh: has no triangles");
+  if (volume) check_mesh_in_volume(mesh->mesh, *volume);
   const std::optional<float> ao = ao_scale_of(ao_scale);
   co.ao_scale = ao ? *ao : curvature::default_ao_scale(mesh->mesh);
   curvature::CurvatureField field;
@@ -463,8 +628,42 @@ py::object curvature_of(const std::shared_ptr<PyMesh>& mesh, const volume::Volum
     field = curvature::estimate_field(mesh->mesh, {volume, isovalue},
                                       dc.reference ? nullptr : &opened_device(dc), co, &report);
   }
-  return curvature_arrays(std::move(field),
-                          report_dict(report, source, source == "volume" ? &vn : nullptr));
+  return {std::move(field), report_dict(report, source, source == "volume" ? &vn : nullptr)};
+}
+
+py::object curvature_of(const MeshArg& mesh_arg, const VolumeArg& volume_arg, py::object estimator,
+                        py::object scale, py::object normals_arg, py::object iso,
+                        py::object ao_scale, bool cap, py::object device) {
+  const std::shared_ptr<PyMesh> mesh = mesh_of(mesh_arg, "mesh");
+  const volume::Volume* volume = optional_volume(volume_arg, "volume");
+  Estimated e = estimate_of(mesh, volume, estimator, scale, normals_arg, iso, ao_scale, cap, device);
+  return curvature_arrays(std::move(e.field), e.report);
+}
+
+/// The isovalue extract() uses on `v`: `iso`, or the suggested one for None; checked as the
+/// command line's checked_isovalue (app/pipeline.cpp) checks --iso, with its messages after
+/// "iso: " instead of the file name: outside [min, max], or at the end of the range where no
+/// voxel can be inside (a voxel equal to the isovalue is outside), is a ValueError.
+float checked_isovalue(const volume::Volume& v, const py::object& iso) {
+  const float value =
+      iso.is_none() ? float(v.stats.suggested_isovalue) : finite_number(iso, "iso");
+  if (!std::isfinite(value)) throw py::value_error("iso: isovalue must be a finite number");
+  auto num = [](double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", x);
+    return std::string(buf);
+  };
+  const std::string range = "[" + num(v.stats.min) + ", " + num(v.stats.max) + "]";
+  if (!iso.is_none() && (value < v.stats.min || value > v.stats.max))
+    throw py::value_error("iso: isovalue " + num(value) + " is outside the value range " + range);
+  const bool above = v.inside == volume::Inside::Above;
+  if (value == float(above ? v.stats.max : v.stats.min))
+    throw py::value_error("iso: isovalue " + num(value) + " equals the " +
+                          (above ? "maximum" : "minimum") +
+                          " value, so there is no surface: a voxel equal to the isovalue counts "
+                          "as outside, and none is " + (above ? "above" : "below") +
+                          " it (the range is " + range + ")");
+  return value;
 }
 
 /// isocurv.Topology: a mesh's triangles prepared once on the device, for the curvature of many
@@ -476,7 +675,8 @@ struct PyTopology {
   std::mutex lock;  ///< one frame at a time (taken without the GIL, before device_lock)
 };
 
-std::shared_ptr<PyTopology> make_topology(const std::shared_ptr<PyMesh>& mesh, py::object device) {
+std::shared_ptr<PyTopology> make_topology(const MeshArg& mesh_arg, py::object device) {
+  const std::shared_ptr<PyMesh> mesh = mesh_of(mesh_arg, "mesh");
   const DeviceChoice dc = device_choice(device);
   if (dc.reference)
     throw py::value_error(
@@ -541,6 +741,465 @@ py::object topology_curvature(PyTopology& t, const py::object& positions, py::ob
     }
   }
   return curvature_arrays(std::move(field), report_dict(r, source, nullptr));
+}
+
+/// A copy of `v` as a numpy array of `shape`.
+template <class T>
+py::array copy_array(const std::vector<T>& v, std::vector<py::ssize_t> shape) {
+  py::array_t<T> a(shape);
+  if (!v.empty()) std::memcpy(a.mutable_data(), v.data(), v.size() * sizeof(T));
+  return std::move(a);
+}
+
+/// %g of x (names of radii given as numbers, messages).
+std::string g_format(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
+
+/// The isovalue of `mesh` for the volume stages: iso= when given, else mesh.isovalue (set by
+/// extract); a ValueError naming `why` when neither.
+float mesh_isovalue(const PyMesh& mesh, const py::object& iso, const std::string& why) {
+  if (!iso.is_none()) return finite_number(iso, "iso");
+  if (mesh.isovalue) return *mesh.isovalue;
+  throw py::value_error("iso: " + why +
+                        " needs the mesh's isovalue (meshes from isocurv.extract carry it as "
+                        "mesh.isovalue; else pass iso=)");
+}
+
+/// The curvature field the features and lines read: `arrays` (a dict as curvature() returns)
+/// checked to carry `needed`, or, for None, curvature(mesh, volume, iso=iso) with its defaults.
+curvature::CurvatureField field_for(const std::shared_ptr<PyMesh>& mesh,
+                                    const volume::Volume* volume, const py::object& arrays,
+                                    const py::object& iso, py::object device,
+                                    std::initializer_list<const char*> needed) {
+  if (arrays.is_none()) {
+    // The CLI's default estimator: the volume's own with a volume, else Rusinkiewicz's.
+    const py::object est_iso = volume ? iso : py::none();
+    return estimate_of(mesh, volume, py::none(), py::none(), py::none(), est_iso, py::none(), false,
+                       device)
+        .field;
+  }
+  if (!py::isinstance<py::dict>(arrays))
+    throw py::type_error("arrays: expected a dict of numpy arrays (as curvature() returns)");
+  const py::dict d = arrays.cast<py::dict>();
+  std::string missing;
+  for (const char* name : needed)
+    if (!d.contains(name)) missing += std::string(missing.empty() ? "" : ", ") + name;
+  if (!missing.empty())
+    throw py::value_error("arrays: lacks " + missing +
+                          " (pass what isocurv.curvature() returns, or None to estimate it)");
+  return field_from_dict(d, mesh->mesh.positions.size());
+}
+
+/// radius= as the CLI's --radius: a number, a str "R[,R...]" (a trailing % is of the mesh's
+/// bounding-box diagonal) or a sequence of those.
+void radii_of(const py::object& radius, double diagonal, features::Options& fo) {
+  auto bad = [](const std::string& item) {
+    return py::value_error("radius: '" + item +
+                           "' is not a positive number (world units, or N% of the bounding-box "
+                           "diagonal)");
+  };
+  auto add_text = [&](const std::string& list) {
+    std::size_t start = 0;
+    while (start <= list.size()) {
+      const std::size_t comma = std::min(list.find(',', start), list.size());
+      const std::string item = list.substr(start, comma - start);
+      start = comma + 1;
+      const bool percent = !item.empty() && item.back() == '%';
+      const std::string number = percent ? item.substr(0, item.size() - 1) : item;
+      std::size_t used = 0;
+      double r = 0;
+      try {
+        r = std::stod(number, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (number.empty() || used != number.size() || !(r > 0) || !std::isfinite(r)) throw bad(item);
+      fo.radii.push_back(percent ? r / 100 * diagonal : r);
+      fo.radius_names.push_back(item);
+    }
+  };
+  auto add = [&](const py::handle& item) {
+    if (py::isinstance<py::str>(item)) return add_text(item.cast<std::string>());
+    if (py::isinstance<py::bool_>(item) ||
+        !(py::isinstance<py::float_>(item) || py::isinstance<py::int_>(item) ||
+          py::hasattr(item, "__float__")))
+      throw py::type_error("radius: expected a number (world units), a str such as '2%' or "
+                           "'4,2%', or a list of those, not " + type_name_of(item));
+    const double r = item.cast<double>();
+    if (!(r > 0) || !std::isfinite(r)) throw bad(py::str(item).cast<std::string>());
+    fo.radii.push_back(r);
+    fo.radius_names.push_back(g_format(r));
+  };
+  if (py::isinstance<py::str>(radius) || !py::isinstance<py::sequence>(radius)) {
+    add(radius);
+  } else {
+    for (const py::handle item : radius.cast<py::sequence>()) add(item);
+  }
+  if (fo.radii.empty()) throw py::value_error("radius: no radius given");
+}
+
+py::object features_of(const MeshArg& mesh_arg, const VolumeArg& volume_arg,
+                       const py::object& radius, const py::object& names, const py::object& samples,
+                       bool adaptive, const py::object& arrays, const py::object& iso,
+                       py::object device) {
+  const std::shared_ptr<PyMesh> mesh = mesh_of(mesh_arg, "mesh");
+  const volume::Volume* volume = optional_volume(volume_arg, "volume");
+  const DeviceChoice dc = device_choice(device);
+  if (mesh->mesh.triangles.empty()) throw py::value_error("mesh: has no triangles");
+  if (volume) check_mesh_in_volume(mesh->mesh, *volume);
+  features::Options fo;
+  if (!names.is_none()) {
+    std::string list;
+    if (py::isinstance<py::str>(names)) {
+      list = names.cast<std::string>();
+    } else if (py::isinstance<py::sequence>(names)) {
+      for (const py::handle n : names.cast<py::sequence>()) {
+        if (!py::isinstance<py::str>(n))
+          throw py::type_error("features: expected names (str), not " + type_name_of(n));
+        list += (list.empty() ? "" : ",") + n.cast<std::string>();
+      }
+    } else {
+      throw py::type_error("features: expected 'all', a comma list or a list of names, not " +
+                           type_name_of(names));
+    }
+    if (list != "all") {
+      try {
+        fo.features = features::parse_features(list);
+      } catch (const Error& e) {
+        throw py::value_error(std::string("features: ") + e.what());
+      }
+    }
+  }
+  for (features::Feature f : fo.features)
+    if (f == features::Feature::Vr && !volume)
+      throw py::value_error("features: Vr needs the volume argument (the volume integral "
+                            "invariant reads the volume)");
+  radii_of(radius, bounding_box_diagonal(mesh->mesh), fo);
+  if (samples.is_none()) {
+    fo.samples = volume ? 256 : 0;
+  } else {
+    if (!py::isinstance<py::int_>(samples) || py::isinstance<py::bool_>(samples))
+      throw py::type_error("samples: expected an int (0, or N >= 32 with a volume)");
+    const long n = samples.cast<long>();
+    if (n != 0 && (n < 32 || n > 1 << 20))
+      throw py::value_error("samples: 0 (the exact neighbourhoods) or N in 32..1048576, not " +
+                            std::to_string(n));
+    if (n > 0 && !volume)
+      throw py::value_error("samples: sampled neighbourhoods trace the volume's isosurface; pass "
+                            "volume= or samples=0");
+    fo.samples = int(n);
+  }
+  fo.adaptive = adaptive;
+  if (adaptive && fo.samples == 0)
+    throw py::value_error("adaptive: applies to sampled neighbourhoods (samples=N with a volume)");
+  if (volume) fo.isovalue = mesh_isovalue(*mesh, iso, "features with a volume");
+  else if (!iso.is_none()) throw py::value_error("iso: applies with a volume only");
+  const curvature::CurvatureField field =
+      field_for(mesh, volume, arrays, iso, device, {"Normals", "Area"});
+  features::FeatureField f;
+  {
+    py::gil_scoped_release release;
+    std::lock_guard<std::mutex> lock(device_lock);
+    f = dc.reference ? features::compute(mesh->mesh, field, volume, fo)
+                     : features::compute(mesh->mesh, field, volume, fo, opened_device(dc));
+  }
+  py::object out = curvature_arrays_type();
+  const py::ssize_t n = py::ssize_t(mesh->mesh.positions.size());
+  py::list array_names;
+  for (const features::Array& a : f.arrays) {
+    out[a.name.c_str()] = copy_array(a.values, {n});
+    array_names.append(a.name);
+  }
+  out["FeatureBoundary"] = copy_array(f.boundary, {n});
+  py::dict report;
+  py::list radii;
+  for (std::size_t i = 0; i < fo.radii.size(); ++i) {
+    py::dict r;
+    r["as_given"] = fo.radius_names[i];
+    r["world"] = fo.radii[i];
+    radii.append(r);
+  }
+  std::size_t boundary = 0;
+  for (std::uint8_t b : f.boundary) boundary += b;
+  report["radii"] = radii;
+  report["arrays"] = array_names;
+  report["mean_curvature_from"] = volume ? "volume integral invariant" : "surface samples";
+  report["boundary_vertices"] = boundary;
+  report["neighbourhoods"] = fo.samples > 0 ? "sampled" : "exact";
+  report["samples"] = fo.samples;
+  report["adaptive"] = fo.adaptive;
+  report["samples_taken"] = f.samples_taken;
+  report["traced_fraction"] = f.traced_fraction;
+  out.attr("report") = report;
+  return out;
+}
+
+/// The camera keywords (the CLI's --view --azimuth --elevation --zoom --ortho) as a ViewSpec.
+ViewSpec view_of(const std::string& view, double azimuth, double elevation, double zoom,
+                 bool ortho) {
+  ViewSpec spec;
+  try {
+    spec.view = parse_named_view(view);
+  } catch (const Error& e) {
+    throw py::value_error(std::string("view: ") + e.what());
+  }
+  if (!(azimuth >= -360 && azimuth <= 360))
+    throw py::value_error("azimuth: expected -360..360 degrees");
+  if (!(elevation >= -90 && elevation <= 90))
+    throw py::value_error("elevation: expected -90..90 degrees");
+  if (!(zoom >= 0.05 && zoom <= 50)) throw py::value_error("zoom: expected 0.05..50");
+  spec.azimuth_deg = azimuth, spec.elevation_deg = elevation, spec.zoom = zoom, spec.ortho = ortho;
+  return spec;
+}
+
+/// size=(width, height) as the CLI's --size WIDTHxHEIGHT, each 16..8192.
+std::array<int, 2> size_of(const py::object& size) {
+  std::array<int, 2> wh{};
+  try {
+    const auto v = size.cast<std::vector<long>>();
+    if (v.size() != 2) throw py::cast_error();
+    wh = {int(std::clamp<long>(v[0], -1, 1 << 20)), int(std::clamp<long>(v[1], -1, 1 << 20))};
+  } catch (const py::cast_error&) {
+    throw py::type_error("size: expected (width, height), two ints");
+  }
+  if (wh[0] < 16 || wh[1] < 16 || wh[0] > screen::kMaxImageSide || wh[1] > screen::kMaxImageSide)
+    throw py::value_error("size: expected (width, height), each 16..8192");
+  return wh;
+}
+
+py::dict camera_dict(const Camera& c) {
+  py::dict d;
+  d["position"] = py::make_tuple(c.position[0], c.position[1], c.position[2]);
+  d["focal_point"] = py::make_tuple(c.focal_point[0], c.focal_point[1], c.focal_point[2]);
+  d["view_up"] = py::make_tuple(c.view_up[0], c.view_up[1], c.view_up[2]);
+  d["ortho"] = c.ortho;
+  d["view_angle"] = c.view_angle_deg;
+  d["parallel_scale"] = c.parallel_scale;
+  return d;
+}
+
+bool has_extension(const std::string& path, const char* ext) {
+  std::string e = std::filesystem::path(path).extension().string();
+  for (char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return e == ext;
+}
+
+py::object lines_of(const MeshArg& mesh_arg, const VolumeArg& volume_arg, const py::object& arrays,
+                    const std::string& list, double suggestive_threshold, double suggestive_angle,
+                    int line_smoothing, double ridge_threshold, const std::string& view,
+                    double azimuth, double elevation, double zoom, bool ortho,
+                    const py::object& size, const py::object& visible_arg,
+                    const PathArg& output_arg, const py::object& iso, py::object device) {
+  const std::shared_ptr<PyMesh> mesh = mesh_of(mesh_arg, "mesh");
+  const volume::Volume* volume = optional_volume(volume_arg, "volume");
+  const DeviceChoice dc = device_choice(device);
+  const std::string output =
+      output_arg.obj && !output_arg.obj.is_none() ? path_of(output_arg, "output") : "";
+  const bool svg = !output.empty() && has_extension(output, ".svg");
+  if (!output.empty() && !svg && !has_extension(output, ".vtp"))
+    throw py::value_error("output: lines writes .vtp (polylines) or .svg (a drawing), not '" +
+                          std::filesystem::path(output).extension().string() + "'");
+  const bool visible = visible_arg.is_none() ? svg : visible_arg.cast<bool>();
+  if (svg && !visible)
+    throw py::value_error("visible: an .svg drawing shows the visible lines only (as the CLI's)");
+  lines::Options lo;
+  try {
+    lo.lines = lines::parse_line_selection(list);
+  } catch (const Error& e) {
+    std::string m = e.what();
+    if (m.rfind("--lines: ", 0) == 0) m = m.substr(9);
+    throw py::value_error("lines: " + m);
+  }
+  if (!(suggestive_threshold >= 0 && suggestive_threshold <= 1e6))
+    throw py::value_error("suggestive_threshold: expected 0..1e6 (times m^2)");
+  if (!(suggestive_angle >= 0 && suggestive_angle <= 89.9))
+    throw py::value_error("suggestive_angle: expected 0..89.9 degrees");
+  if (line_smoothing < 0 || line_smoothing > 100)
+    throw py::value_error("line_smoothing: expected 0..100 passes");
+  if (!(ridge_threshold >= 0 && ridge_threshold <= 1e6))
+    throw py::value_error("ridge_threshold: expected 0..1e6 (times m)");
+  lo.suggestive_threshold = suggestive_threshold;
+  lo.suggestive_angle_deg = suggestive_angle;
+  lo.smoothing_steps = line_smoothing;
+  lo.ridge_threshold = ridge_threshold;
+  const ViewSpec spec = view_of(view, azimuth, elevation, zoom, ortho);
+  const std::array<int, 2> wh = size_of(size);
+  if (mesh->mesh.triangles.empty()) throw py::value_error("mesh: has no triangles");
+  if (volume) check_mesh_in_volume(mesh->mesh, *volume);
+  if (!arrays.is_none() && !iso.is_none())
+    throw py::value_error("iso: applies when the curvature is estimated here (arrays=None)");
+  curvature::CurvatureField field =
+      field_for(mesh, volume, arrays, iso, device, {"Normals", "k1", "k2"});
+  lines::Polylines poly;
+  Camera camera;
+  {
+    py::gil_scoped_release release;
+    camera = fit_camera_to_points(framing_points(mesh->mesh), spec, double(wh[0]) / wh[1]);
+    lines::Segments segs;
+    {
+      std::lock_guard<std::mutex> lock(device_lock);
+      segs = dc.reference ? lines::extract_reference(mesh->mesh, field, camera, lo)
+                          : lines::extract(mesh->mesh, field, camera, lo, opened_device(dc));
+    }
+    if (visible)
+      segs = lines::select_segments(
+          segs, lines::VisibilityTester(mesh->mesh).visible_segments(segs, camera));
+    poly = lines::join_segments(segs);
+    if (svg)
+      lines::write_svg(output, poly, camera, wh[0], wh[1]);
+    else if (!output.empty())
+      lines::write_vtp(output, poly);
+  }
+  const std::size_t nl = poly.line_count();
+  py::dict out;
+  const float* pts = poly.points.empty() ? nullptr : poly.points.data()->data();
+  py::array points = copy_array(std::vector<float>(pts, pts + 3 * poly.points.size()),
+                                {py::ssize_t(poly.points.size()), 3});
+  out["points"] = points;
+  out["offsets"] = copy_array(poly.offsets, {py::ssize_t(poly.offsets.size())});
+  py::list lines_list;
+  for (std::size_t i = 0; i < nl; ++i)
+    lines_list.append(points[py::slice(poly.offsets[i], poly.offsets[i + 1], 1)]);
+  out["polylines"] = lines_list;
+  std::vector<std::uint8_t> types(nl);
+  for (std::size_t i = 0; i < nl; ++i) types[i] = std::uint8_t(poly.type[i]);
+  out["type"] = copy_array(types, {py::ssize_t(nl)});
+  out["strength"] = copy_array(poly.strength, {py::ssize_t(nl)});
+  py::list type_names;
+  for (int t = 0; t < lines::kLineTypeCount; ++t) type_names.append(lines::to_string(lines::LineType(t)));
+  out["type_names"] = type_names;
+  py::dict length;
+  for (int t = 0; t < lines::kLineTypeCount; ++t)
+    if (lo.lines.has(lines::LineType(t)))
+      length[lines::to_string(lines::LineType(t)).c_str()] = poly.length(lines::LineType(t));
+  out["length"] = length;
+  out["camera"] = camera_dict(camera);
+  return out;
+}
+
+/// An image of the G-buffer's layout (x + width y, y up) as a numpy [row, column] array with
+/// row 0 at the top (as the PNG shows it, and as matplotlib's imshow draws it).
+template <class T>
+py::array image_of(const std::vector<T>& v, int width, int height) {
+  py::array_t<T> a({py::ssize_t(height), py::ssize_t(width)});
+  T* out = a.mutable_data();
+  for (int r = 0; r < height; ++r)
+    std::memcpy(out + std::size_t(r) * width, v.data() + std::size_t(height - 1 - r) * width,
+                std::size_t(width) * sizeof(T));
+  return std::move(a);
+}
+
+py::object screen_of(const VolumeOrMeshArg& source, const py::object& iso, const std::string& view,
+                     double azimuth, double elevation, double zoom, bool ortho,
+                     const py::object& size, const std::string& estimator, int edges, bool lod,
+                     int lod_size, int fan, const std::string& depth, const std::string& rule,
+                     double smooth, int mellado_radius, const PathArg& raw_arg,
+                     py::object device) {
+  const bool is_volume = source.obj && py::isinstance<volume::Volume>(source.obj);
+  const bool is_mesh = source.obj && py::isinstance<PyMesh>(source.obj);
+  if (!is_volume && !is_mesh)
+    throw py::type_error("volume_or_mesh: expected an isocurv.Volume (ray cast) or an "
+                         "isocurv.Mesh (rasterised), not " + type_name_of(source.obj));
+  const DeviceChoice dc = device_choice(device);
+  const std::string raw = raw_arg.obj && !raw_arg.obj.is_none() ? path_of(raw_arg, "raw") : "";
+  if (!raw.empty() && !has_extension(raw, ".vti"))
+    throw py::value_error("raw: writes a .vti file (VTK image data), not '" + raw + "'");
+  screen::ScreenOptions so;
+  if (estimator != "prantl" && estimator != "mellado")
+    throw py::value_error("estimator: expected 'prantl' or 'mellado', not '" + estimator + "'");
+  so.estimator =
+      estimator == "mellado" ? screen::ScreenEstimator::mellado : screen::ScreenEstimator::prantl;
+  if (edges != 2 && edges != 3) throw py::value_error("edges: expected 2 or 3");
+  if (lod_size < 1 || lod_size > 64) throw py::value_error("lod_size: expected 1..64 pixels");
+  if (fan != 4 && fan != 8) throw py::value_error("fan: expected 4 or 8");
+  if (depth != "linear" && depth != "window")
+    throw py::value_error("depth: expected 'linear' or 'window', not '" + depth + "'");
+  if (rule != "report" && rule != "paper")
+    throw py::value_error("discontinuity: expected 'report' or 'paper', not '" + rule + "'");
+  if (mellado_radius < 1 || mellado_radius > 32)
+    throw py::value_error("mellado_radius: expected 1..32 pixels");
+  if (!(smooth >= 0 && smooth <= volume::kMaxSmoothingVoxels))
+    throw py::value_error("smooth: expected 0..6 voxels");
+  so.edges = edges, so.lod = lod, so.size_max = lod_size, so.fan = fan;
+  so.depth = depth == "window" ? screen::DepthMapping::window : screen::DepthMapping::linear;
+  so.rule = rule == "paper" ? screen::DiscontinuityRule::paper : screen::DiscontinuityRule::report;
+  so.mellado_radius = mellado_radius;
+  const ViewSpec spec = view_of(view, azimuth, elevation, zoom, ortho);
+  const std::array<int, 2> wh = size_of(size);
+  std::shared_ptr<PyMesh> mesh;
+  const volume::Volume* vol = nullptr;
+  float value = 0;
+  if (is_mesh) {
+    mesh = source.obj.cast<std::shared_ptr<PyMesh>>();
+    if (!iso.is_none()) throw py::value_error("iso: applies to a volume (the ray cast) only");
+    if (smooth > 0) throw py::value_error("smooth: applies to a volume (the ray cast) only");
+    if (mesh->mesh.triangles.empty()) throw py::value_error("volume_or_mesh: the mesh has no triangles");
+  } else {
+    vol = &source.obj.cast<const volume::Volume&>();
+    value = iso.is_none() ? float(vol->stats.suggested_isovalue) : finite_number(iso, "iso");
+  }
+  screen::GBuffer g;
+  screen::ScreenCurvature c;
+  Camera camera;
+  bool empty = false;
+  {
+    py::gil_scoped_release release;
+    std::optional<volume::DenseField> cast;
+    const double aspect = double(wh[0]) / wh[1];
+    if (vol) {
+      cast.emplace(*vol);
+      if (smooth > 0) cast->smooth(smooth);
+      std::array<double, 6> bounds{};
+      if (!cast->surface_bounds(value, bounds)) empty = true, bounds = cast->bounds;
+      camera = fit_camera(bounds, spec, aspect);
+    } else {
+      camera = fit_camera_to_points(framing_points(mesh->mesh), spec, aspect);
+    }
+    const screen::ViewFrame frame = screen::view_frame(camera, wh[0], wh[1]);
+    std::lock_guard<std::mutex> lock(device_lock);
+    if (cast)
+      g = dc.reference ? screen::ray_cast_reference(*cast, value, frame)
+                       : screen::ray_cast(*cast, value, frame, opened_device(dc));
+    else
+      g = screen::rasterise(mesh->mesh, area_weighted_normals(mesh->mesh), frame);
+    c = dc.reference ? screen::estimate_reference(g, so)
+                     : screen::estimate(g, opened_device(dc), so);
+    if (!raw.empty()) screen::write_raw(raw, c);
+  }
+  py::object out = curvature_arrays_type();
+  out["H"] = image_of(c.H, c.width, c.height);
+  if (so.estimator == screen::ScreenEstimator::prantl) out["K"] = image_of(c.K, c.width, c.height);
+  out["Valid"] = image_of(c.valid, c.width, c.height);
+  out["Step"] = image_of(c.step, c.width, c.height);
+  py::dict report;
+  report["producer"] = vol ? "ray cast" : "rasterised mesh";
+  report["estimator"] = screen::estimator_label(so, vol ? smooth : 0);
+  if (vol) report["isovalue"] = value;
+  report["surface_pixels"] = g.valid_count();
+  report["estimated_pixels"] = c.valid_count();
+  report["empty"] = empty;
+  report["camera"] = camera_dict(camera);
+  out.attr("report") = report;
+  return out;
+}
+
+/// Volume.to_numpy(): the data domain's voxels as a float32 array [z, y, x].
+py::array volume_to_numpy(const volume::Volume& v) {
+  const openvdb::CoordBBox box = v.domain;
+  if (!v.grid || box.empty()) return py::array_t<float>(std::vector<py::ssize_t>{0, 0, 0});
+  const openvdb::Coord d = box.dim();
+  py::array_t<float> a({py::ssize_t(d.z()), py::ssize_t(d.y()), py::ssize_t(d.x())});
+  float* p = a.mutable_data();
+  {
+    py::gil_scoped_release release;
+    // LayoutXYZ: x varies fastest, the C order of an array indexed [z, y, x].
+    openvdb::tools::Dense<float, openvdb::tools::LayoutXYZ> dense(box, p);
+    openvdb::tools::copyToDense(*v.grid, dense);
+  }
+  return std::move(a);
 }
 
 }  // namespace
@@ -629,6 +1288,14 @@ PYBIND11_MODULE(isocurv, m) {
           "voxel_type", [](const volume::Volume& v) { return v.voxel_type; },
           "The voxel type in the file or array, e.g. 'uint16'")
       .def_property_readonly("path", [](const volume::Volume& v) { return v.path; })
+      .def("to_numpy", &volume_to_numpy,
+           R"doc(The voxels of the data domain as a new float32 numpy array indexed [z, y, x] (x
+fastest; its shape is volume.shape), whatever the file's voxel_type: the volume holds every type
+as 32-bit floats (integers are exact up to 2^24), so from_array(a).to_numpy() equals
+a.astype(numpy.float32). array[0, 0, 0] is the domain's first voxel, at volume.origin for dense
+files and arrays; a sparse .vdb grid gives its active box, its inactive voxels holding the grid's
+background. NaN and infinite voxels of the file hold what loading replaced them with (an outside
+value). A copy: writing to it does not change the volume.)doc")
       .def("__repr__", [](const volume::Volume& v) {
         const auto d = v.domain.dim();
         return "<isocurv.Volume " + std::to_string(d.x()) + "x" + std::to_string(d.y()) + "x" +
@@ -679,8 +1346,9 @@ PYBIND11_MODULE(isocurv, m) {
 
   m.def(
       "load",
-      [](const std::string& path, py::object spacing, py::object origin, py::object inside,
+      [](const PathArg& path_arg, py::object spacing, py::object origin, py::object inside,
          std::string grid, py::object dims, std::string type, py::object endian) {
+        const std::string path = path_of(path_arg, "path");
         volume::LoadOptions lo;
         lo.grid = grid;
         if (!spacing.is_none()) lo.spacing = triple(spacing, "spacing");
@@ -727,12 +1395,12 @@ PYBIND11_MODULE(isocurv, m) {
 
   m.def(
       "extract",
-      [](const volume::Volume& v, py::object iso, bool cap, float snap, py::object device) {
+      [](const VolumeArg& volume_arg, py::object iso, bool cap, float snap, py::object device) {
+        const volume::Volume& v = volume_of(volume_arg, "volume");
         if (!(snap >= 0 && snap <= 0.5f))
           throw py::value_error("snap: expected 0..0.5 (a fraction of a voxel)");
         const DeviceChoice dc = device_choice(device);
-        const float value = iso.is_none() ? float(v.stats.suggested_isovalue) : iso.cast<float>();
-        if (!std::isfinite(value)) throw py::value_error("iso: must be a finite number");
+        const float value = checked_isovalue(v, iso);
         auto out = std::make_shared<PyMesh>();
         mc::Options mo;
         mo.cap = cap;
@@ -752,11 +1420,13 @@ PYBIND11_MODULE(isocurv, m) {
       "cap=True closes "
       "surfaces cut by the volume's box; snap as the CLI's --snap; device: None (a GPU, else "
       "PoCL), a "
-      "device number, or 'reference' (the C++ mesher). An iso that gives no surface returns an "
-      "empty mesh.");
+      "device number, or 'reference' (the C++ mesher). An iso outside volume.value_range, or at "
+      "its inside end (the maximum for inside='above': a voxel equal to the isovalue is "
+      "outside), raises ValueError with the command line's message; another iso that gives no "
+      "surface returns an empty mesh.");
 
   m.def(
-      "curvature", &curvature_of, py::arg("mesh"), py::arg("volume") = nullptr, py::kw_only(),
+      "curvature", &curvature_of, py::arg("mesh"), py::arg("volume") = py::none(), py::kw_only(),
       py::arg("estimator") = py::none(), py::arg("scale") = py::none(),
       py::arg("normals") = py::none(), py::arg("iso") = py::none(),
       py::arg("ao_scale") = py::none(), py::arg("cap") = false, py::arg("device") = py::none(),
@@ -780,7 +1450,76 @@ trusted; the default with a volume), 'mesh' (the faces, Max's weights; the defau
 'area' or 'face-average'; an error with estimator='volume'. cap=True when the mesh was
 extracted with cap=True. ao_scale: ambient-occlusion radius in world units (default 4 mean edge
 lengths). Normals point out of the object, so a solid sphere of radius R has k1 = k2 = H = +1/R.
+A mesh that does not lie in `volume` (its bounding box more than a voxel beyond the volume's
+world bounds: a mesh of another volume, or other spacing or origin) raises ValueError.
 Wrong combinations raise ValueError naming the argument.)doc");
+
+  m.def("features", &features_of, py::arg("mesh"), py::arg("volume") = py::none(), py::kw_only(),
+        py::arg("radius"), py::arg("features") = py::none(), py::arg("samples") = py::none(),
+        py::arg("adaptive") = false, py::arg("arrays") = py::none(), py::arg("iso") = py::none(),
+        py::arg("device") = py::none(),
+        R"doc(Neighbourhood features of `mesh` at a radius of support (isocurv features; see
+docs/features.md) as a CurvatureArrays: one (n,) float32 array per feature and radius, named as
+in the files (LBE, NSV, Vr, H_ii, K_ii, SI_ii; with several radii suffixed _r<radius as given>,
+H_ii_r2%), and FeatureBoundary (n,) uint8, 1 where some ball left what is known (the volume's
+domain or an open boundary): its values are finite but biased. `.report`: {'radii' [{'as_given',
+'world'}], 'arrays', 'mean_curvature_from', 'boundary_vertices', 'neighbourhoods', 'samples',
+'adaptive', 'samples_taken', 'traced_fraction'}.
+
+radius (required): world units, a str 'R[,R...]' where N% is of the mesh's bounding-box diagonal
+(as --radius), or a list of those. features: 'all' (default: those the input allows; Vr needs
+`volume`), a comma list or a list of names. samples: per vertex for LBE, NSV and K_ii; N >= 32
+traces N/16 curves on the volume's isosurface, 0 the exact neighbourhoods; default 256 with a
+volume, 0 without. adaptive: two-stage sampling (samples > 0). arrays: the mesh's curvature (a
+dict as curvature() returns; Normals and Area are read); None estimates curvature(mesh, volume)
+with its defaults. iso: the isovalue, with a volume, for a mesh without mesh.isovalue.)doc");
+
+  m.def("lines", &lines_of, py::arg("mesh"), py::arg("volume") = py::none(), py::kw_only(),
+        py::arg("arrays") = py::none(), py::arg("lines") = "contours,suggestive",
+        py::arg("suggestive_threshold") = 0.05, py::arg("suggestive_angle") = 10.0,
+        py::arg("line_smoothing") = 4, py::arg("ridge_threshold") = 1.5, py::arg("view") = "iso",
+        py::arg("azimuth") = 0.0, py::arg("elevation") = 0.0, py::arg("zoom") = 1.0,
+        py::arg("ortho") = false, py::arg("size") = py::make_tuple(1024, 768),
+        py::arg("visible") = py::none(), py::arg("output") = py::none(),
+        py::arg("iso") = py::none(), py::arg("device") = py::none(),
+        R"doc(Feature lines of `mesh` (isocurv lines; see docs/lines.md) as a dict:
+'points' (p, 3) float32 and 'offsets' (L + 1,) uint32 (line i is points[offsets[i]:offsets[i+1]],
+a closed loop repeating its first point), 'polylines' (those L slices, views of 'points'), 'type'
+(L,) uint8 (0 contours, 1 suggestive, 2 ridges, 3 valleys: the .vtp's LineType; 'type_names'
+names them), 'strength' (L,) float32 in [0, 1], 'length' {type name: world length} and 'camera'
+{position, focal_point, view_up, ortho, view_angle, parallel_scale}.
+
+lines: comma list of contours, suggestive, ridges, valleys or all (--lines); the thresholds as
+--suggestive-threshold, --suggestive-angle, --line-smoothing, --ridge-threshold. The camera (the
+contours depend on it) is the one isocurv render and lines use for the same view ('iso', '+x',
+'-x', '+y', '-y', '+z', '-z'), azimuth, elevation, zoom, ortho and size (width, height).
+visible=True keeps only the lines no triangle hides (the .svg's ray cast); default: True for an
+.svg output, else False. output: a .vtp (the lines, cell arrays LineType and Strength) or .svg
+drawing to write as well. arrays: the curvature (a dict as curvature() returns); None estimates
+curvature(mesh, volume) with its defaults (iso= for a mesh without mesh.isovalue).)doc");
+
+  m.def("screen", &screen_of, py::arg("volume_or_mesh"), py::kw_only(),
+        py::arg("iso") = py::none(), py::arg("view") = "iso", py::arg("azimuth") = 0.0,
+        py::arg("elevation") = 0.0, py::arg("zoom") = 1.0, py::arg("ortho") = false,
+        py::arg("size") = py::make_tuple(1024, 768), py::arg("estimator") = "prantl",
+        py::arg("edges") = 2, py::arg("lod") = false, py::arg("lod_size") = 8, py::arg("fan") = 4,
+        py::arg("depth") = "linear", py::arg("discontinuity") = "report",
+        py::arg("smooth") = 0.0, py::arg("mellado_radius") = 4, py::arg("raw") = py::none(),
+        py::arg("device") = py::none(),
+        R"doc(Screen-space curvature per pixel (isocurv screen; see docs/screen.md): a Volume's
+isosurface at `iso` (default volume.suggested_isovalue) ray cast, no mesh, or a Mesh rasterised;
+then Prantl's per-pixel shape operator (estimator='prantl') or Mellado's sphere fit ('mellado',
+H only). Returns a CurvatureArrays of images, numpy arrays [rows, columns] = (height, width), row
+0 at the top of the picture: 'H' float32, 'K' float32 (prantl only), 'Valid' uint8 (1 where
+estimated; silhouettes, depth discontinuities and the background are 0 and hold H = K = 0, not
+NaN) and 'Step' uint8 (the LOD step used); `.report`: {'producer', 'estimator', 'isovalue',
+'surface_pixels', 'estimated_pixels', 'empty' (the isovalue gives no surface), 'camera'}.
+
+The image is the whole size (width, height), fitted as isocurv render fits its camera (the CLI's
+PNG puts a smaller image inside a title and legend). edges (2|3), lod, lod_size, fan (4|8), depth
+('linear'|'window'), discontinuity ('report'|'paper'), smooth (voxels, volume only) and
+mellado_radius as the CLI's --edges --lod --lod-size --fan --depth --discontinuity --smooth
+--mellado-radius. raw: a .vti to write as the CLI's --raw (y up, arrays H, K, Valid).)doc");
 
   m.def("estimator_names", &curvature::estimator_names,
         "The names curvature(estimator=...) takes, as the CLI's --estimator.");
@@ -812,7 +1551,8 @@ lengths of these positions.)doc")
 
   m.def(
       "read_mesh",
-      [](const std::string& path) {
+      [](const PathArg& path_arg) {
+        const std::string path = path_of(path_arg, "path");
         io::MeshFile f;
         {
           py::gil_scoped_release release;
@@ -830,8 +1570,10 @@ lengths of these positions.)doc")
 
   m.def(
       "write_mesh",
-      [](const std::string& path, const std::shared_ptr<PyMesh>& mesh, py::object arrays,
+      [](const PathArg& path_arg, const MeshArg& mesh_arg, py::object arrays,
          const std::string& compress) {
+        const std::string path = path_of(path_arg, "path");
+        const std::shared_ptr<PyMesh> mesh = mesh_of(mesh_arg, "mesh");
         const io::Compression c = io::parse_compression(compress);
         std::optional<curvature::CurvatureField> field;
         if (!arrays.is_none()) {
@@ -852,7 +1594,8 @@ lengths of these positions.)doc")
 
   m.def(
       "check",
-      [](const std::shared_ptr<PyMesh>& mesh) {
+      [](const MeshArg& mesh_arg) {
+        const std::shared_ptr<PyMesh> mesh = mesh_of(mesh_arg, "mesh");
         mc::MeshCheck c;
         {
           py::gil_scoped_release release;

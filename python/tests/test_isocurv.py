@@ -4,7 +4,9 @@ A sphere sampled into numpy arrays of every voxel type is the oracle (k1 = k2 = 
 module's results are compared with the command line's files, and bad arguments must raise
 TypeError or ValueError naming the argument, bad files isocurv.Error.
 """
+import filecmp
 import os
+import pathlib
 import subprocess
 import tempfile
 import threading
@@ -14,8 +16,11 @@ import numpy as np
 
 import isocurv
 
+EXE = None  # set below from BUILD
 BUILD = os.environ.get("ISOCURV_BUILD_DIR", os.path.join(os.path.dirname(__file__), "..", "..", "build"))
 TORUS = os.path.join(BUILD, "datasets", "torus.vdb")
+EXE = os.path.join(BUILD, "app", "isocurv")
+HAVE_CLI = os.path.exists(TORUS) and os.access(EXE, os.X_OK)
 RADIUS = 12.0
 
 
@@ -355,6 +360,353 @@ class Topologies(unittest.TestCase):
         bad[0, 0] = np.nan
         with self.assertRaises(isocurv.Error):
             topo.curvature(bad)
+
+
+class Arguments(unittest.TestCase):
+    """Paths as str or pathlib.Path, wrong types naming the argument, the CLI's isovalue rule."""
+
+    def setUp(self):
+        self.v = isocurv.from_array(ball(np.float32))
+        self.mesh = isocurv.extract(self.v, 135)
+
+    def test_pathlib_paths_are_accepted_everywhere(self):
+        with tempfile.TemporaryDirectory() as d:
+            d = pathlib.Path(d)
+            arrays = isocurv.curvature(self.mesh, self.v)
+            isocurv.write_mesh(d / "m.vtp", self.mesh, arrays)
+            back, back_arrays = isocurv.read_mesh(d / "m.vtp")
+            np.testing.assert_array_equal(back.vertices, self.mesh.vertices)
+            np.testing.assert_array_equal(back_arrays["H"], arrays["H"])
+            isocurv.lines(self.mesh, arrays=arrays, output=d / "l.vtp")
+            isocurv.lines(self.mesh, arrays=arrays, output=d / "l.svg")
+            isocurv.screen(self.v, iso=135, size=(32, 24), raw=d / "s.vti")
+            self.assertEqual(sorted(os.listdir(d)), ["l.svg", "l.vtp", "m.vtp", "s.vti"])
+            if os.path.exists(TORUS):
+                self.assertEqual(isocurv.load(pathlib.Path(TORUS)).shape, isocurv.load(TORUS).shape)
+            with self.assertRaises(isocurv.Error):
+                isocurv.load(d / "missing.nrrd")
+        with self.assertRaisesRegex(TypeError, "^path: expected a file name"):
+            isocurv.load(3)
+        with self.assertRaisesRegex(TypeError, "^path: expected a file name"):
+            isocurv.read_mesh(None)
+        with self.assertRaisesRegex(TypeError, "^output: expected a file name"):
+            isocurv.lines(self.mesh, output=1.5)
+
+    def test_a_wrong_type_names_the_argument(self):
+        m, v = self.mesh, self.v
+        with self.assertRaisesRegex(TypeError, r"^volume: expected an isocurv\.Volume .*, not str$"):
+            isocurv.extract("ct.nrrd")
+        with self.assertRaisesRegex(TypeError, r"^volume: expected an isocurv\.Volume"):
+            isocurv.curvature(m, "ct.nrrd")
+        with self.assertRaisesRegex(TypeError, r"^volume: expected an isocurv\.Volume"):
+            isocurv.curvature(m, volume=m)
+        with self.assertRaisesRegex(TypeError, r"^mesh: expected an isocurv\.Mesh .*, not isocurv\.Volume$"):
+            isocurv.curvature(v)
+        with self.assertRaisesRegex(TypeError, r"^mesh: expected an isocurv\.Mesh"):
+            isocurv.write_mesh("x.vtp", v)
+        with self.assertRaisesRegex(TypeError, r"^mesh: expected an isocurv\.Mesh"):
+            isocurv.check(None)
+        with self.assertRaisesRegex(TypeError, r"^mesh: expected an isocurv\.Mesh"):
+            isocurv.Topology(v)
+        with self.assertRaisesRegex(TypeError, r"^mesh: expected an isocurv\.Mesh"):
+            isocurv.features(v, radius=2)
+        with self.assertRaisesRegex(TypeError, r"^volume_or_mesh: expected an isocurv\.Volume"):
+            isocurv.screen("ct.nrrd")
+        with self.assertRaisesRegex(TypeError, "^iso: expected a number"):
+            isocurv.extract(v, iso="high")
+        # Plain-typed arguments get pybind11's message, whose signature names each argument.
+        with self.assertRaisesRegex(TypeError, r"cap: bool"):
+            isocurv.extract(v, 135, cap="yes")
+        # The signatures show the types.
+        self.assertIn("volume: isocurv.Volume", isocurv.extract.__doc__)
+        self.assertIn("mesh: isocurv.Mesh, volume: isocurv.Volume = None", isocurv.curvature.__doc__)
+        self.assertIn("path: str | os.PathLike", isocurv.load.__doc__)
+
+    def test_extract_refuses_an_isovalue_outside_the_range_as_the_cli_does(self):
+        lo, hi = self.v.value_range
+        self.assertEqual((lo, "%g" % hi), (0, "246.34"))
+        with self.assertRaisesRegex(ValueError, r"^iso: isovalue 300 is outside the value range \[0, 246.34\]$"):
+            isocurv.extract(self.v, 300)
+        with self.assertRaisesRegex(ValueError, r"^iso: isovalue -1 is outside the value range"):
+            isocurv.extract(self.v, -1)
+        with self.assertRaisesRegex(ValueError, r"^iso: isovalue 246.34 equals the maximum value, so there is no surface"):
+            isocurv.extract(self.v, hi)
+        self.assertGreater(len(isocurv.extract(self.v, lo).vertices), 0)  # every voxel above 0 is inside
+        below = isocurv.from_array(-ball(np.float32), inside="below")
+        with self.assertRaisesRegex(ValueError, r"^iso: isovalue -246.34 equals the minimum value"):
+            isocurv.extract(below, below.value_range[0])
+
+    @unittest.skipUnless(HAVE_CLI, "command line or bundled datasets not built")
+    def test_extract_message_is_the_command_lines(self):
+        v = isocurv.load(TORUS)
+        for iso in ("5", repr(v.value_range[1])):
+            cli = subprocess.run([EXE, "extract", TORUS, "--iso", iso, "-o", os.devnull + ".vtp"],
+                                 capture_output=True, text=True)
+            self.assertEqual(cli.returncode, 1)
+            with self.assertRaises(ValueError) as e:
+                isocurv.extract(v, float(iso))
+            message = str(e.exception)
+            self.assertTrue(message.startswith("iso: "), message)
+            self.assertEqual(cli.stderr.strip(), "isocurv: " + TORUS + ": " + message[len("iso: "):])
+
+    def test_curvature_refuses_a_mesh_outside_the_volume(self):
+        moved = isocurv.from_array(ball(np.float32), origin=(40, 0, 0))
+        with self.assertRaisesRegex(ValueError, r"^mesh: does not lie in the volume: its bounding box .* voxels beyond"):
+            isocurv.curvature(self.mesh, moved)
+        with self.assertRaisesRegex(ValueError, r"^mesh: does not lie in the volume"):
+            isocurv.curvature(self.mesh, moved, normals="volume")
+        with self.assertRaisesRegex(ValueError, r"^mesh: does not lie in the volume"):
+            isocurv.features(self.mesh, moved, radius=2)
+        coarse = isocurv.from_array(ball(np.float32), spacing=(0.5, 0.5, 0.5))
+        with self.assertRaisesRegex(ValueError, r"^mesh: does not lie in the volume"):
+            isocurv.curvature(self.mesh, coarse)
+        # Within a voxel is fine: a small shift, or a capped mesh on the volume's box.
+        near = isocurv.from_array(ball(np.float32), origin=(0.5, -0.5, 0))
+        isocurv.curvature(self.mesh, near)
+        capped = isocurv.extract(self.v, 20, cap=True)
+        self.assertGreater(isocurv.check(capped)["area"], 0)
+        isocurv.curvature(capped, self.v, cap=True)
+
+
+class VolumeArrays(unittest.TestCase):
+    def test_to_numpy_gives_the_voxels_z_y_x_as_float32(self):
+        for dtype in (np.uint8, np.int16, np.float32, np.float64):
+            a = ball(dtype)
+            v = isocurv.from_array(a, spacing=(1, 2, 3), origin=(5, 6, 7))
+            out = v.to_numpy()
+            self.assertEqual(out.dtype, np.float32)
+            self.assertEqual(out.shape, a.shape)
+            self.assertEqual(out.shape, v.shape)
+            np.testing.assert_array_equal(out, a.astype(np.float32), err_msg=str(dtype))
+        # Not symmetric in its axes: [z, y, x] is the order, not [x, y, z].
+        ramp = np.arange(3 * 4 * 5, dtype=np.uint16).reshape(3, 4, 5)
+        np.testing.assert_array_equal(isocurv.from_array(ramp).to_numpy(), ramp)
+        out = isocurv.from_array(ramp).to_numpy()
+        out[0, 0, 0] = 99  # a copy
+        self.assertEqual(isocurv.from_array(ramp).to_numpy()[0, 0, 0], 0)
+
+    @unittest.skipUnless(os.path.exists(TORUS), "bundled datasets not built")
+    def test_to_numpy_of_a_loaded_file(self):
+        v = isocurv.load(TORUS)
+        a = v.to_numpy()
+        self.assertEqual(a.shape, v.shape)
+        # A sparse level set: its active voxels' range, and the background (+-) elsewhere.
+        self.assertLessEqual(float(a.min()), v.value_range[0])
+        self.assertGreaterEqual(float(a.max()), v.value_range[1])
+        # The array's own volume has the same surface.
+        again = isocurv.extract(isocurv.from_array(a, spacing=v.spacing, origin=v.origin, inside=v.inside), 0.0)
+        direct = isocurv.extract(v, 0.0)
+        np.testing.assert_array_equal(again.vertices, direct.vertices)
+        self.assertEqual(len(again.triangles), len(direct.triangles))
+
+
+class Unmeasured(unittest.TestCase):
+    def test_unreliable_marks_unmeasured_vertices_with_zeros_not_nan(self):
+        # A small ball, and one extra triangle out in the flat zero region where the volume's
+        # gradient vanishes: the volume estimator cannot measure its three vertices.
+        v = isocurv.from_array(ball(np.float32, scale=20))
+        mesh = isocurv.extract(v, 135)
+        n = len(mesh.vertices)
+        odd = isocurv.Mesh(np.vstack([mesh.vertices, [[2, 2, 2], [3, 2, 2], [2, 3, 2]]]),
+                           np.vstack([mesh.triangles, [[n, n + 1, n + 2]]]))
+        a = isocurv.curvature(odd, v, estimator="volume", scale=1.0, iso=135)
+        self.assertEqual(a["Unreliable"].dtype, np.uint8)
+        self.assertEqual(a["Unreliable"].shape, (n + 3,))
+        np.testing.assert_array_equal(np.nonzero(a["Unreliable"])[0], [n, n + 1, n + 2])
+        self.assertEqual(a.report["unreliable"], 3)
+        for key in ("H", "K", "k1", "k2", "dir1", "dcurv", "Normals", "AO"):
+            self.assertTrue(np.isfinite(a[key]).all(), key)  # a mask, never NaN
+        np.testing.assert_array_equal(a["H"][n:], 0)
+        measured = a["Unreliable"] == 0
+        self.assertAlmostEqual(float(np.median(a["H"][measured])) * 6, 1, delta=0.05)
+
+
+class Features(unittest.TestCase):
+    def setUp(self):
+        self.v = isocurv.from_array(ball(np.float32))
+        self.mesh = isocurv.extract(self.v, 255 - 10 * RADIUS)
+
+    def test_the_sphere(self):
+        f = isocurv.features(self.mesh, self.v, radius=3)
+        self.assertIsInstance(f, dict)
+        self.assertEqual(sorted(f), ["FeatureBoundary", "H_ii", "K_ii", "LBE", "NSV", "SI_ii", "Vr"])
+        n = len(self.mesh.vertices)
+        for key in f:
+            self.assertEqual(f[key].shape, (n,), key)
+        self.assertEqual(f["FeatureBoundary"].dtype, np.uint8)
+        self.assertEqual(f["H_ii"].dtype, np.float32)
+        self.assertAlmostEqual(float(np.median(f["H_ii"])) * RADIUS, 1, delta=0.05)
+        self.assertAlmostEqual(float(np.median(f["LBE"])) * RADIUS**2, 1, delta=0.1)
+        self.assertEqual(f.report["radii"], [{"as_given": "3", "world": 3.0}])
+        self.assertEqual(f.report["neighbourhoods"], "sampled")
+        # A mesh alone: the exact neighbourhoods and the surface form of H_ii; no Vr.
+        alone = isocurv.features(self.mesh, radius=["2%", 3.5], features="LBE,H_ii")
+        self.assertEqual(sorted(alone), ["FeatureBoundary", "H_ii_r2%", "H_ii_r3.5", "LBE_r2%", "LBE_r3.5"])
+        self.assertEqual(alone.report["neighbourhoods"], "exact")
+        self.assertAlmostEqual(float(np.median(alone["H_ii_r3.5"])) * RADIUS, 1, delta=0.1)
+        # Given curvature arrays are used as they are.
+        arrays = isocurv.curvature(self.mesh)
+        again = isocurv.features(self.mesh, radius=3, features=["LBE"], arrays=arrays)
+        np.testing.assert_array_equal(again["LBE"], isocurv.features(self.mesh, radius=3, features=["LBE"])["LBE"])
+        # They write along with the curvature arrays.
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "f.vtp")
+            isocurv.write_mesh(path, self.mesh, {**arrays, **again})
+            _, back = isocurv.read_mesh(path)
+            np.testing.assert_array_equal(back["LBE"], again["LBE"])
+
+    def test_bad_arguments(self):
+        m, v = self.mesh, self.v
+        with self.assertRaisesRegex(TypeError, "radius"):
+            isocurv.features(m, v)  # radius is required
+        for bad in (0, -1, "x", "4,", float("nan")):
+            with self.assertRaisesRegex(ValueError, "^radius: "):
+                isocurv.features(m, v, radius=bad)
+        with self.assertRaisesRegex(ValueError, "^features: unknown feature 'curv'"):
+            isocurv.features(m, v, radius=2, features="LBE,curv")
+        with self.assertRaisesRegex(ValueError, "^features: Vr needs the volume"):
+            isocurv.features(m, radius=2, features="Vr")
+        with self.assertRaisesRegex(ValueError, "^samples: sampled neighbourhoods"):
+            isocurv.features(m, radius=2, samples=64)
+        with self.assertRaisesRegex(ValueError, "^samples: 0"):
+            isocurv.features(m, v, radius=2, samples=8)
+        with self.assertRaisesRegex(ValueError, "^adaptive: applies to sampled"):
+            isocurv.features(m, v, radius=2, samples=0, adaptive=True)
+        with self.assertRaisesRegex(ValueError, "^arrays: lacks Area"):
+            isocurv.features(m, radius=2, arrays={"Normals": isocurv.curvature(m)["Normals"]})
+        with self.assertRaisesRegex(ValueError, "^iso: features with a volume needs the mesh's isovalue"):
+            isocurv.features(isocurv.Mesh(m.vertices, m.triangles), v, radius=2)
+
+    @unittest.skipUnless(HAVE_CLI, "command line or bundled datasets not built")
+    def test_same_arrays_as_the_command_line(self):
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "f.vtp")
+            subprocess.run([EXE, "features", TORUS, "--radius", "5%,0.2", "-o", out, "--quiet"], check=True)
+            _, cli = isocurv.read_mesh(out)
+        v = isocurv.load(TORUS)
+        f = isocurv.features(isocurv.extract(v), v, radius="5%,0.2")
+        self.assertEqual(len(f), 13)
+        for key in f:
+            np.testing.assert_array_equal(f[key], cli[key], err_msg=key)
+
+
+class Lines(unittest.TestCase):
+    def setUp(self):
+        self.v = isocurv.from_array(ball(np.float32))
+        self.mesh = isocurv.extract(self.v, 255 - 10 * RADIUS)
+
+    def test_polylines_points_and_types(self):
+        out = isocurv.lines(self.mesh, self.v, lines="contours", view="+z")
+        self.assertEqual(out["type_names"], ["contours", "suggestive", "ridges", "valleys"])
+        points, offsets = out["points"], out["offsets"]
+        self.assertEqual(points.dtype, np.float32)
+        self.assertEqual(points.shape[1], 3)
+        self.assertEqual(offsets[-1], len(points))
+        self.assertEqual(len(out["polylines"]), len(out["type"]))
+        self.assertEqual(len(offsets), len(out["type"]) + 1)
+        np.testing.assert_array_equal(out["type"], 0)
+        for i, line in enumerate(out["polylines"]):
+            np.testing.assert_array_equal(line, points[offsets[i]:offsets[i + 1]])
+        # The sphere's occluding contour seen along z: a circle of radius ~R around the centre's z
+        # axis (a perspective camera sees a little less than the equator).
+        everything = np.vstack(out["polylines"])
+        r = np.hypot(everything[:, 0] - 15.5, everything[:, 1] - 16.5)
+        self.assertAlmostEqual(float(np.median(r)) / RADIUS, 1, delta=0.05)
+        self.assertAlmostEqual(out["length"]["contours"] / (2 * np.pi * RADIUS), 1, delta=0.05)
+        self.assertEqual(sorted(out["camera"]), ["focal_point", "ortho", "parallel_scale", "position", "view_angle", "view_up"])
+        # No triangle hides the contour; the visible lines are nearly all of it.
+        seen = isocurv.lines(self.mesh, self.v, lines="contours", view="+z", visible=True)
+        self.assertGreater(seen["length"]["contours"], 0.9 * out["length"]["contours"])
+
+    def test_bad_arguments(self):
+        m = self.mesh
+        with self.assertRaisesRegex(ValueError, "^lines: unknown line type 'edges'"):
+            isocurv.lines(m, lines="contours,edges")
+        with self.assertRaisesRegex(ValueError, "^view: unknown view"):
+            isocurv.lines(m, view="front")
+        with self.assertRaisesRegex(ValueError, "^size: "):
+            isocurv.lines(m, size=(8, 8))
+        with self.assertRaisesRegex(ValueError, "^output: lines writes .vtp"):
+            isocurv.lines(m, output="lines.png")
+        with self.assertRaisesRegex(ValueError, "^visible: an .svg drawing"):
+            isocurv.lines(m, output="lines.svg", visible=False)
+        with self.assertRaisesRegex(ValueError, "^suggestive_angle: "):
+            isocurv.lines(m, suggestive_angle=90)
+        with self.assertRaisesRegex(ValueError, "^arrays: lacks k1"):
+            isocurv.lines(m, arrays={"Normals": isocurv.curvature(m)["Normals"]})
+
+    @unittest.skipUnless(HAVE_CLI, "command line or bundled datasets not built")
+    def test_same_files_as_the_command_line(self):
+        v = isocurv.load(TORUS)
+        mesh = isocurv.extract(v)
+        with tempfile.TemporaryDirectory() as d:
+            for name, extra in (("a.vtp", []), ("b.svg", ["--view", "+x", "--lines", "all"])):
+                cli, ours = os.path.join(d, "cli_" + name), os.path.join(d, name)
+                subprocess.run([EXE, "lines", TORUS, "-o", cli, "--quiet"] + extra, check=True)
+                kw = {"view": "+x", "lines": "all"} if extra else {}
+                out = isocurv.lines(mesh, v, output=ours, **kw)
+                self.assertTrue(filecmp.cmp(cli, ours, shallow=False), name)
+                self.assertGreater(len(out["polylines"]), 0)
+
+
+class Screen(unittest.TestCase):
+    def test_ray_cast_sphere(self):
+        v = isocurv.from_array(ball(np.float32))
+        s = isocurv.screen(v, iso=255 - 10 * RADIUS, size=(120, 90))
+        self.assertEqual(sorted(s), ["H", "K", "Step", "Valid"])
+        self.assertEqual(s["H"].shape, (90, 120))  # [rows, columns]
+        self.assertEqual((s["H"].dtype, s["Valid"].dtype), (np.float32, np.uint8))
+        valid = s["Valid"] == 1
+        self.assertGreater(valid.sum(), 500)
+        self.assertEqual(s.report["estimated_pixels"], int(valid.sum()))
+        self.assertAlmostEqual(float(np.median(s["H"][valid])) * RADIUS, 1, delta=0.01)
+        self.assertAlmostEqual(float(np.median(s["K"][valid])) * RADIUS**2, 1, delta=0.02)
+        self.assertFalse(valid[0, 0])  # the corners are background, H = 0 there
+        self.assertEqual(s["H"][0, 0], 0)
+        self.assertEqual(s.report["producer"], "ray cast")
+        mellado = isocurv.screen(v, iso=255 - 10 * RADIUS, size=(120, 90), estimator="mellado")
+        self.assertNotIn("K", mellado)
+        self.assertAlmostEqual(float(np.median(mellado["H"][mellado["Valid"] == 1])) * RADIUS, 1, delta=0.02)
+        none = isocurv.screen(v, iso=1000, size=(32, 32))
+        self.assertTrue(none.report["empty"])
+        self.assertEqual(int(none["Valid"].sum()), 0)
+
+    def test_row_zero_is_the_top(self):
+        # Seen from +x (z up): a large ball above a small one; the large one's H is the smaller.
+        z, y, x = np.mgrid[0:64, 0:24, 0:24].astype(np.float64)
+        big = 10 - np.sqrt((x - 11.5) ** 2 + (y - 11.5) ** 2 + (z - 44) ** 2)
+        small = 5 - np.sqrt((x - 11.5) ** 2 + (y - 11.5) ** 2 + (z - 12) ** 2)
+        v = isocurv.from_array(np.maximum(big, small).astype(np.float32))
+        s = isocurv.screen(v, iso=0, view="+x", size=(64, 128))
+        valid = s["Valid"] == 1
+        top, bottom = s["H"][:64][valid[:64]], s["H"][64:][valid[64:]]
+        self.assertAlmostEqual(float(np.median(top)) * 10, 1, delta=0.05)
+        self.assertAlmostEqual(float(np.median(bottom)) * 5, 1, delta=0.05)
+
+    def test_a_mesh_is_rasterised(self):
+        v = isocurv.from_array(ball(np.float32))
+        mesh = isocurv.extract(v, 255 - 10 * RADIUS)
+        s = isocurv.screen(mesh, size=(120, 90), view="+y")
+        self.assertEqual(s.report["producer"], "rasterised mesh")
+        valid = s["Valid"] == 1
+        self.assertGreater(valid.sum(), 500)
+        self.assertGreater(float(np.median(s["H"][valid])), 0)
+
+    def test_bad_arguments(self):
+        v = isocurv.from_array(ball(np.float32))
+        mesh = isocurv.extract(v, 135)
+        with self.assertRaisesRegex(ValueError, "^estimator: expected 'prantl' or 'mellado'"):
+            isocurv.screen(v, estimator="rusinkiewicz")
+        with self.assertRaisesRegex(ValueError, "^iso: applies to a volume"):
+            isocurv.screen(mesh, iso=135)
+        with self.assertRaisesRegex(ValueError, "^smooth: "):
+            isocurv.screen(v, smooth=7)
+        with self.assertRaisesRegex(ValueError, "^edges: "):
+            isocurv.screen(v, edges=4)
+        with self.assertRaisesRegex(ValueError, "^raw: writes a .vti"):
+            isocurv.screen(v, raw="x.png")
+        with self.assertRaisesRegex(ValueError, "^size: "):
+            isocurv.screen(v, size=(9000, 10))
 
 
 if __name__ == "__main__":
