@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <vector>
 
 #include "core/error.h"
 #include "curvature/reference.h"
@@ -174,13 +175,13 @@ TEST(Features, TorusFieldMeanCurvatureAtSmallRadius) {
   const auto field =
       datasets::make_field("torus"); // tube 0.25 about a circle of radius 0.6
   VolumeSurface s = surface_of(datasets::sample(*field, 96), field->isovalue());
-  std::vector<double> exact(s.mesh.vertex_count());
+  std::vector<double> exact(s.mesh.vertex_count()), c2(s.mesh.vertex_count());
   for (std::size_t v = 0; v < exact.size(); ++v) {
     const Vec3f &p = s.mesh.positions[v];
-    exact[v] =
-        datasets::exact_curvature(
-            *field, datasets::project_to_surface(*field, {p[0], p[1], p[2]}))
-            .H;
+    const datasets::SurfaceCurvature c = datasets::exact_curvature(
+        *field, datasets::project_to_surface(*field, {p[0], p[1], p[2]}));
+    exact[v] = c.H;
+    c2[v] = 0.5 * (c.k1 * c.k1 + c.k2 * c.k2);
   }
   for (double r : {0.05, 0.1}) {
     features::Options o;
@@ -190,11 +191,51 @@ TEST(Features, TorusFieldMeanCurvatureAtSmallRadius) {
     const features::FeatureField out =
         features::compute(s.mesh, s.field, &s.volume, o);
     const Error2 h = compare(array(out, "H_ii"), exact, out.boundary);
-    std::printf(
-        "torus field 96^3 r=%.2f: H_ii rel.rms %.4f (bias grows with r)\n", r,
-        h.rel_rms);
+    const Error2 lbe = compare(array(out, "LBE"), c2, out.boundary);
+    std::printf("torus field 96^3 r=%.2f: H_ii rel.rms %.4f (bias grows with r), "
+                "LBE vs Curvedness^2 rel.rms %.4f\n",
+                r, h.rel_rms, lbe.rel_rms);
     EXPECT_LT(h.rel_rms, 0.05);
+    // LBE on the marching-cubes torus (volume normals): measured 0.044 at r = 0.05 (about 2.5
+    // voxels: few neighbours) and 0.0116 at r = 0.1, asserted with a 1.5x margin.
+    EXPECT_LT(lbe.rel_rms, r < 0.075 ? 0.066 : 0.018);
   }
+}
+
+TEST(Features, TorusLbeTendsToCurvednessSquared) {
+  // A-LBE: as r -> 0, LBE -> Curvedness^2 = (k1^2 + k2^2) / 2. Torus(1, 0.4) with exact
+  // normals and the reference's Voronoi areas, r = 0.1, every vertex.
+  std::vector<double> errors;
+  for (int n : {120, 240, 480}) {
+    const test::Torus t = test::torus(1.0, 0.4, n, 2 * n / 5);
+    std::vector<Vec3f> normals;
+    std::vector<double> c2;
+    for (std::size_t v = 0; v < t.mesh.vertex_count(); ++v) {
+      const Eigen::Vector3d nv = t.normal(v);
+      normals.push_back({float(nv.x()), float(nv.y()), float(nv.z())});
+      c2.push_back(0.5 * (t.k1(v) * t.k1(v) + t.k2(v) * t.k2(v)));
+    }
+    curvature::Options co;
+    co.vertex_normals = &normals;
+    const curvature::CurvatureField field = curvature::estimate_reference(t.mesh, co);
+    features::Options o;
+    o.radii = {0.1};
+    o.features = {features::Feature::LBE};
+    const features::FeatureField out = features::compute(t.mesh, field, nullptr, o);
+    const Error2 e = compare(array(out, "LBE"), c2, out.boundary);
+    std::printf("torus(1, 0.4) %dx%d, r = 0.1: LBE vs Curvedness^2 rel.rms %.4f\n", t.nu, t.nv,
+                e.rel_rms);
+    EXPECT_EQ(e.count, t.mesh.vertex_count()) << "a closed torus has no boundary";
+    errors.push_back(e.rel_rms);
+  }
+  // At a fixed r the error is the discrete sum's (it falls as the mesh refines; measured 0.107,
+  // 0.0267, 0.0074: second order, 4.0x and 3.6x per doubling) plus the continuum's O(r^2) bias,
+  // which the 0.0074 bounds. Asserted: at least first order (each doubling at least halves the
+  // error), and at 480x192 the spec's reference computation (Appendix A6: 0.0074) within a
+  // 1.5x margin (the spec's acceptance line allows 0.02).
+  EXPECT_LT(errors[1], 0.5 * errors[0]);
+  EXPECT_LT(errors[2], 0.5 * errors[1]);
+  EXPECT_LT(errors[2], 1.5 * 0.0074);
 }
 
 TEST(Features, CtLikeBallMeanCurvatureBeatsPerVertexCurvature) {
