@@ -1002,6 +1002,8 @@ py::object lines_of(const MeshArg& mesh_arg, const VolumeArg& volume_arg, const 
   if (!output.empty() && !svg && !has_extension(output, ".vtp"))
     throw py::value_error("output: lines writes .vtp (polylines) or .svg (a drawing), not '" +
                           std::filesystem::path(output).extension().string() + "'");
+  if (!visible_arg.is_none() && !py::isinstance<py::bool_>(visible_arg))
+    throw py::type_error("visible: expected True, False or None, not " + type_name_of(visible_arg));
   const bool visible = visible_arg.is_none() ? svg : visible_arg.cast<bool>();
   if (svg && !visible)
     throw py::value_error("visible: an .svg drawing shows the visible lines only (as the CLI's)");
@@ -1215,7 +1217,9 @@ PYBIND11_MODULE(isocurv, m) {
       "..., ...}\n"
       "  isocurv.write_mesh('ct.vtp', mesh, arrays)\n"
       "  topo = isocurv.Topology(mesh)               # a deforming mesh: "
-      "topo.curvature(positions)\n\n"
+      "topo.curvature(positions)\n"
+      "  isocurv.features(mesh, v, radius='2%'), isocurv.lines(mesh, arrays=arrays), "
+      "isocurv.screen(v)\n\n"
       "Errors raise isocurv.Error (a RuntimeError) with the command line's one-line message; "
       "wrong\n"
       "argument types raise TypeError, wrong shapes or values ValueError, naming the argument.";
@@ -1236,8 +1240,8 @@ PYBIND11_MODULE(isocurv, m) {
     py::dict ns;
     ns["__module__"] = "isocurv";
     ns["__doc__"] =
-        "The dict of numpy arrays curvature() returns, with .report: the estimator, its "
-        "parameters and the unreliable count.";
+        "The dict of numpy arrays curvature(), features() and screen() return, with .report: "
+        "what was used (for curvature: the estimator, its parameters and the unreliable count).";
     py::object dict_type =
         py::reinterpret_borrow<py::object>(reinterpret_cast<PyObject*>(&PyDict_Type));
     py::object cls = py::module_::import("builtins")

@@ -628,6 +628,8 @@ class Lines(unittest.TestCase):
             isocurv.lines(m, size=(8, 8))
         with self.assertRaisesRegex(ValueError, "^output: lines writes .vtp"):
             isocurv.lines(m, output="lines.png")
+        with self.assertRaisesRegex(TypeError, "^visible: expected True"):
+            isocurv.lines(m, visible="yes")
         with self.assertRaisesRegex(ValueError, "^visible: an .svg drawing"):
             isocurv.lines(m, output="lines.svg", visible=False)
         with self.assertRaisesRegex(ValueError, "^suggestive_angle: "):
