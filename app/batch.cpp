@@ -113,14 +113,15 @@ void write_outputs(Pending& p, BatchKind kind, const BatchRequest& rq, const Com
   p.timer.start("write");
   std::uint64_t mesh_bytes = 0;
   outputs.write(p.mesh_path, [&](const std::string& tmp) {
-    io::write_mesh(tmp, s.mesh, s.field ? &*s.field : nullptr, o.compress);
+    const io::Metadata context =
+        context_metadata(s, p.input, rq.render ? rq.render->opts.length_unit : "");
+    io::write_mesh(tmp, s.mesh, s.field ? &*s.field : nullptr, o.compress, &context);
     mesh_bytes = file_bytes(tmp);
   });
   if (kind == BatchKind::run) {
     p.timer.start("render");
     const viz::RenderOptions opts = render_options_for(
-        *rq.render, p.input, s.isovalue, with_ao(estimator_title(s.estimator), o),
-        s.volume ? s.volume->world_space : "", &*s.field);
+        *rq.render, p.input, surface_context(s), with_ao(estimator_title(s.estimator), o), &*s.field);
     outputs.write(p.png_path, [&](const std::string& tmp) { viz::render_png(tmp, s.mesh, *s.field, opts); });
   }
   p.timer.stop();

@@ -22,7 +22,8 @@ nlohmann::json curvature_one(const std::string& in, const std::string& out,
   s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer,
                                &s.normals, &s.estimator);
   timer.start("write");
-  io::write_mesh(out, s.mesh, &*s.field, o.compress);
+  const io::Metadata context = context_metadata(s, in);
+  io::write_mesh(out, s.mesh, &*s.field, o.compress, &context);
   timer.stop();
   nlohmann::json r = surface_report(s);
   r["input"] = in;

@@ -17,7 +17,8 @@ nlohmann::json extract_one(const std::string& in, const std::string& out, const 
   StageTimer timer;
   Surface s = load_surface(in, o, timer, EmptySurface::warn);
   timer.start("write");
-  io::write_mesh(out, s.mesh, nullptr, o.compress);
+  const io::Metadata context = context_metadata(s, in);
+  io::write_mesh(out, s.mesh, nullptr, o.compress, &context);
   timer.stop();
   nlohmann::json r = surface_report(s);
   r["input"] = in;

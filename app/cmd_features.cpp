@@ -144,7 +144,8 @@ void register_features(CLI::App &app) {
         {"FeatureBoundary",
          std::vector<float>(f.boundary.begin(), f.boundary.end())});
     timer.start("write");
-    io::write_mesh(out, s.mesh, &*s.field);
+    const io::Metadata context = context_metadata(s, in);
+    io::write_mesh(out, s.mesh, &*s.field, {}, &context);
     timer.stop();
     nlohmann::json r = surface_report(s);
     nlohmann::json radii = nlohmann::json::array();

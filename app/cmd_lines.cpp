@@ -34,6 +34,7 @@ void register_lines(CLI::App &app) {
   static CommonOptions o;
   static LineCli lc;
   static ViewSpec view;
+  static AnatomicalCli anatomical;
   static int width = 1024, height = 768;
   static std::string out;
   static std::vector<std::string> ins;
@@ -47,7 +48,7 @@ void register_lines(CLI::App &app) {
   add_common_options(*cmd, o);
   add_curvature_options(*cmd, o, true);
   add_line_options(*cmd, lc, "contours,suggestive");
-  add_camera_options(*cmd, view);
+  add_camera_options(*cmd, view, &anatomical);
   cmd->add_option_function<std::string>(
          "--size",
          [](const std::string &s) {
@@ -87,7 +88,8 @@ void register_lines(CLI::App &app) {
     StageTimer timer;
     Surface s = load_surface(in, o, timer);
     ensure_curvature(s, in, o, timer);
-    const Camera cam = picture_camera(s.mesh, view, width, height);
+    const Camera cam = picture_camera(
+        s.mesh, resolve_view(view, anatomical, surface_context(s).world_space, in), width, height);
     lines::Segments segs = extract_lines(s.mesh, *s.field, cam, lo, o, timer);
     const std::size_t all = segs.size();
     if (svg) {

@@ -54,10 +54,13 @@ void register_render(CLI::App& app) {
     } else if (!o.ao.empty()) {
       apply_ao(s.mesh, *s.field, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer);  // --ao-method on the file's curvature
     }
+    const SurfaceContext context = surface_context(s);
+    const std::string from_file = context.file_estimator.empty()
+                                      ? "curvature from the file"
+                                      : "from the file: " + context.file_estimator;
     const viz::RenderOptions opts = render_options_for(
-        ro, in, s.volume ? std::optional<float>(s.isovalue) : std::nullopt,
-        with_ao(estimated ? estimator_title(s.estimator) : "curvature from the file", o),
-        s.volume ? s.volume->world_space : "", &*s.field);
+        ro, in, context, with_ao(estimated ? estimator_title(s.estimator) : from_file, o),
+        &*s.field);
     viz::LinesForCamera lines_for;
     if (lo.lines.any())
       lines_for = [&](const Camera& cam) {
@@ -83,6 +86,8 @@ void register_render(CLI::App& app) {
         r["color"] = {{"array", opts.color},
                       {"cmap", viz::resolve_color_map(opts.cmap, opts.color)},
                       {"range", {layout.ticks.front(), layout.ticks.back()}}};
+      r["title"] = layout.title.text;          // as drawn (shortened to fit)
+      r["legend_title"] = layout.legend_title.text;  // the quantity and its unit
       r["timings_ms"] = timer.json();
       std::cout << r.dump(2) << "\n";
     } else if (!o.quiet) {

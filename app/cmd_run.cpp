@@ -58,13 +58,14 @@ nlohmann::json run_one(const std::string& in, const std::string& dir, const Comm
   timer.start("write");
   std::uint64_t mesh_bytes = 0;
   outputs.write(mesh_path, [&](const std::string& tmp) {
-    io::write_mesh(tmp, s.mesh, &*s.field, o.compress);
+    const io::Metadata context = context_metadata(s, in, ro.opts.length_unit);
+    io::write_mesh(tmp, s.mesh, &*s.field, o.compress, &context);
     mesh_bytes = file_bytes(tmp);
   });
   timer.start("render");
   const viz::RenderOptions opts =
-      render_options_for(ro, in, s.isovalue, with_ao(estimator_title(s.estimator), o),
-                         s.volume ? s.volume->world_space : "", &*s.field);
+      render_options_for(ro, in, surface_context(s), with_ao(estimator_title(s.estimator), o),
+                         &*s.field);
   viz::LinesForCamera lines_for;
   if (lo.lines.any())
     lines_for = [&](const Camera& cam) {

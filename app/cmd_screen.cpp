@@ -10,6 +10,7 @@
 #include "app/picture_title.h"
 #include "app/pipeline.h"
 #include "app/render_options_cli.h"
+#include "viz/camera_file.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/framing_points.h"
@@ -48,6 +49,7 @@ void register_screen(CLI::App& app) {
       "that misses the volume gives an empty image\nand a warning. Sizes up to 8192x8192.");
   static CommonOptions o;
   static ViewSpec view;
+  static AnatomicalCli anatomical;
   static screen::PictureOptions po;
   static screen::ScreenOptions so;
   static int width = 1024, height = 768;
@@ -57,7 +59,12 @@ void register_screen(CLI::App& app) {
   cmd->add_option("-o,--output", out, "PNG picture to write")->required();
   cmd->add_option("--raw", raw, "Also write the per-pixel H, K and Valid as VTK image data (.vti)");
   add_common_options(*cmd, o);
-  add_camera_options(*cmd, view);
+  add_camera_options(*cmd, view, &anatomical);
+  static std::string camera_file;
+  cmd->add_option("--camera", camera_file,
+                  "Camera JSON saved by the explorer ('k'); replaces --view and the fitting")
+      ->check(CLI::ExistingFile)
+      ->group("Camera");
   cmd->add_option("--color", po.quantity, "Quantity to colour by: H or K")
       ->check(CLI::IsMember({"H", "K"}))
       ->capture_default_str()
@@ -164,7 +171,7 @@ void register_screen(CLI::App& app) {
     std::array<double, 6> bounds{};  // a volume's: the box around its surface's bricks
     std::vector<std::array<double, 3>> frame_points;  // a mesh's: its vertices without specks
     float iso = 0;
-    std::string format;
+    std::string format, world_space;
     std::size_t triangles = 0;
     bool empty = false;
     if (is_mesh_path(in)) {
@@ -175,10 +182,12 @@ void register_screen(CLI::App& app) {
       frame_points = framing_points(surf->mesh);
       empty = surf->mesh.triangles.empty();
       if (empty) throw Error(in, "the mesh has no triangles");
+      world_space = surface_context(*surf).world_space;
     } else {
       timer.start("load");
       volume::Volume v = volume::load(in, to_load_options(o.volume));
       format = v.format;
+      world_space = v.world_space;
       iso = o.iso ? *o.iso : float(v.stats.suggested_isovalue);
       if (!std::isfinite(iso)) throw Error(in, "isovalue must be a finite number");
       timer.start("index");
@@ -209,13 +218,17 @@ void register_screen(CLI::App& app) {
     // it does not fit.
     viz::ColorRange range = po.range ? *po.range : viz::ColorRange{-8.88e88, 8.88e88};
     viz::PictureLayout layout = screen::screen_layout(width, height, po, range);
+    const ViewSpec seen_from = resolve_view(view, anatomical, world_space, in);
+    const std::optional<Camera> saved =
+        camera_file.empty() ? std::nullopt : std::optional<Camera>(viz::load_camera(camera_file));
     Camera camera;
     for (int pass = 0; pass < 2; ++pass) {
       const int sw = layout.surface.x1 - layout.surface.x0,
                 sh = layout.surface.y1 - layout.surface.y0;
       if (sw < 1 || sh < 1) throw Error(out, "the picture leaves no room for the surface");
-      camera = surf ? fit_camera_to_points(frame_points, view, double(sw) / sh)
-                    : fit_camera(bounds, view, double(sw) / sh);
+      camera = saved  ? *saved
+               : surf ? fit_camera_to_points(frame_points, seen_from, double(sw) / sh)
+                      : fit_camera(bounds, seen_from, double(sw) / sh);
       const screen::ViewFrame frame = screen::view_frame(camera, sw, sh);
       timer.start(cast ? "cast" : "rasterise");
       if (cast)

@@ -145,7 +145,11 @@ void register_view(CLI::App& app) {
     setup.isovalue = iso;
     setup.min_value = static_cast<float>(vol->stats.min);
     setup.max_value = static_cast<float>(vol->stats.max);
-    setup.view = render_options_for(ro, in, iso, with_ao(estimator_title(o), o), vol->world_space);
+    SurfaceContext context;
+    context.isovalue = iso;
+    context.length_unit = vol->length_unit;
+    context.world_space = vol->world_space;
+    setup.view = render_options_for(ro, in, context, with_ao(estimator_title(o), o));
     if (ro.title.empty())
       setup.title_for = [](float value, const std::string& quantity) {
         return picture_title(in, quantity, value, with_ao(estimator_title(o), o));

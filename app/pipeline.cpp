@@ -12,7 +12,9 @@
 #include <map>
 #include <memory>
 
+#include "app/picture_title.h"
 #include "core/atomic_file.h"
+#include "core/camera.h"
 #include "core/error.h"
 #include "core/mesh_measures.h"
 #include "core/program_cache.h"
@@ -324,6 +326,7 @@ Surface load_surface(const std::string& path, const CommonOptions& o, StageTimer
     timer.stop();
     s.mesh = std::move(f.mesh);
     s.field = std::move(f.field);
+    s.file_metadata = std::move(f.metadata);
     return s;
   }
   s.volume = load_volume(path, o, timer, &s.isovalue);
@@ -563,6 +566,56 @@ nlohmann::json surface_report(const Surface& s) {
   if (s.field && s.field->size() == s.mesh.positions.size())
     r["curvature"] = field_stats_json(*s.field, s.mesh);
   return r;
+}
+
+SurfaceContext surface_context(const Surface& s) {
+  SurfaceContext c;
+  if (s.volume) {
+    c.isovalue = s.isovalue;
+    c.length_unit = s.volume->length_unit;
+    c.world_space = s.volume->world_space;
+    return c;
+  }
+  curvature::EstimatorReport made;
+  for (const auto& [key, value] : s.file_metadata) {
+    if (key == "isovalue") {
+      char* end = nullptr;
+      const float iso = std::strtof(value.c_str(), &end);
+      if (end != value.c_str() && *end == 0 && std::isfinite(iso)) c.isovalue = iso;
+    } else if (key == "length_unit") {
+      c.length_unit = value;
+    } else if (key == "world_space") {
+      if (anatomical_frame_named(value)) c.world_space = value;
+    } else if (key == "estimator") {
+      made.estimator = value;
+    } else if (key == "scale") {
+      char* end = nullptr;
+      const double scale = std::strtod(value.c_str(), &end);
+      if (end != value.c_str() && *end == 0 && std::isfinite(scale))
+        made.parameters.emplace_back("scale", scale);
+    }
+  }
+  if (!made.estimator.empty()) c.file_estimator = estimator_title(made);
+  return c;
+}
+
+io::Metadata context_metadata(const Surface& s, const std::string& input,
+                              const std::string& length_unit) {
+  const SurfaceContext c = surface_context(s);
+  io::Metadata m;
+  if (c.isovalue) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.9g", double(*c.isovalue));
+    m.emplace_back("isovalue", buf);
+  }
+  const std::string unit = length_unit.empty() ? c.length_unit : length_unit;
+  if (!unit.empty()) m.emplace_back("length_unit", unit);
+  if (!c.world_space.empty()) m.emplace_back("world_space", c.world_space);
+  std::string source = s.volume ? input : "";
+  for (const auto& [key, value] : s.file_metadata)
+    if (key == "source") source = value;  // a mesh file keeps the volume it came from
+  if (!source.empty()) m.emplace_back("source", std::filesystem::path(source).filename().string());
+  return m;
 }
 
 nlohmann::json program_report() {

@@ -17,6 +17,7 @@
 #include "curvature/estimator.h"
 #include "curvature/options.h"
 #include "io/compression.h"
+#include "io/mesh_file.h"
 #include "mc/options.h"
 #include "volume/volume.h"
 
@@ -109,7 +110,30 @@ struct Surface {
   curvature::EstimatorReport estimator;  ///< set by estimate_curvature
   std::size_t welded = 0;    ///< duplicate vertices merged by prepare_mesh_for_curvature
   bool flipped = false;      ///< triangles reversed by --flip
+  io::Metadata file_metadata;  ///< a mesh file's field data (io::MeshFile::metadata)
 };
+
+/// Where a surface came from, for titles, legends and anatomical views: from its volume, or from
+/// the field data of a mesh file isocurv wrote (context_metadata), so that `render mesh.vtp`
+/// shows what `run` showed.
+struct SurfaceContext {
+  std::optional<float> isovalue;  ///< the isovalue the mesh was extracted at
+  std::string length_unit;        ///< world length unit ("mm"); empty: unknown
+  std::string world_space;        ///< Volume::world_space ("RAS", "LPS", ...); empty: none
+  /// A mesh file's curvature as titles name it: "volume, scale 1.5" (estimator_title of the
+  /// file's "estimator" and "scale"); empty for volumes and files without them.
+  std::string file_estimator;
+};
+
+/// The context of `s`: its volume's (isovalue, Volume::length_unit, world_space), else its mesh
+/// file's field data.
+SurfaceContext surface_context(const Surface& s);
+
+/// The context of `s` as the field-data pairs io::write_mesh adds to a .vtp: "isovalue" (%.9g),
+/// "length_unit" (`length_unit` when given, e.g. --unit, else the context's), "world_space" and
+/// "source" (the input's file name); empty values are left out.
+io::Metadata context_metadata(const Surface& s, const std::string& input,
+                              const std::string& length_unit = "");
 
 /// True for --device reference: the C++ references (mc::extract_reference, the double-precision
 /// curvature::estimate_reference) instead of OpenCL. Slow, single-threaded, needs no driver.

@@ -95,19 +95,20 @@ void add_render_options(CLI::App& cmd, RenderCli& r, bool files) {
   cmd.add_option("--unit", opts.length_unit,
                  "The volume's length unit for the legend, e.g. mm (default: 'length': 1/length)")
       ->group("Rendering");
-  add_camera_options(cmd, opts.view, &r.anatomical_view);
+  add_camera_options(cmd, opts.view, &r.anatomical);
   cmd.add_option("--camera", r.camera_file,
                  "Camera JSON saved by the explorer ('k'); replaces --view and the fitting")
       ->check(CLI::ExistingFile)
       ->group("Camera");
 }
 
-void add_camera_options(CLI::App& cmd, ViewSpec& view, std::string* anatomical) {
+void add_camera_options(CLI::App& cmd, ViewSpec& view, AnatomicalCli* anatomical) {
   cmd.add_option_function<std::string>(
          "--view",
          [&view, anatomical](const std::string& s) {
+           if (anatomical) anatomical->view_given = true;
            if (anatomical && is_anatomical_view(s)) {
-             *anatomical = s;
+             anatomical->view = s;
              return;
            }
            try {
@@ -125,15 +126,38 @@ void add_camera_options(CLI::App& cmd, ViewSpec& view, std::string* anatomical) 
                      "+z -z (the camera on that side of the centre, looking at it)") +
              (anatomical ? "; NIfTI (world RAS), MetaImage (world LPS) and NRRD volumes with a "
                            "space field also take anterior, posterior, left, right, superior, "
-                           "inferior"
+                           "inferior, and default to a three-quarter view from the front with "
+                           "superior up"
                          : ""))
+      ->group("Camera");
+  cmd.add_option_function<std::string>(
+         "--view-up",
+         [&view, anatomical](const std::string& s) {
+           if (anatomical && is_anatomical_view(s)) {
+             anatomical->up = s;
+             return;
+           }
+           try {
+             view.view_up = parse_direction(s);
+           } catch (const Error& e) {
+             throw CLI::ValidationError("--view-up", e.what());
+           }
+         },
+         std::string("The picture's up direction: +x -x +y -y +z -z or X,Y,Z (e.g. -z for a scan "
+                     "stored head down)") +
+             (anatomical ? "; anatomical volumes also superior, inferior, anterior, ..." : ""))
       ->group("Camera");
   cmd.add_option("--azimuth", view.azimuth_deg,
                  "Then turn the camera this many degrees about the view up")
       ->check(CLI::Range(-360.0, 360.0))
       ->group("Camera");
-  cmd.add_option("--elevation", view.elevation_deg, "Then raise the camera this many degrees")
-      ->check(CLI::Range(-90.0, 90.0))
+  cmd.add_option("--elevation", view.elevation_deg,
+                 "Then raise the camera this many degrees (-180..180: over the top and beyond)")
+      ->check(CLI::Range(-180.0, 180.0))
+      ->group("Camera");
+  cmd.add_option("--roll", view.roll_deg,
+                 "Last, turn the picture this many degrees anticlockwise")
+      ->check(CLI::Range(-360.0, 360.0))
       ->group("Camera");
   cmd.add_option("--zoom", view.zoom,
                  "Magnification after fitting the surface into the view (default 1)")
@@ -143,24 +167,43 @@ void add_camera_options(CLI::App& cmd, ViewSpec& view, std::string* anatomical) 
       ->group("Camera");
 }
 
+ViewSpec resolve_view(const ViewSpec& view, const AnatomicalCli& anatomical,
+                      const std::string& world_space, const std::string& input) {
+  ViewSpec v = view;
+  const auto frame = anatomical_frame(world_space);
+  for (const std::string* name : {&anatomical.view, &anatomical.up})
+    if (!name->empty() && !frame)
+      throw Error(input,
+                  std::string(name == &anatomical.view ? "--view " : "--view-up ") + *name +
+                      " needs a volume whose world axes are anatomical (NIfTI: RAS, MetaImage: "
+                      "LPS, NRRD with a space field, or a mesh isocurv made from one); use " +
+                      (name == &anatomical.view ? "iso, +x, -x, +y, -y, +z or -z"
+                                                : "+x, -x, +y, -y, +z, -z or X,Y,Z"));
+  if (frame) {
+  if (!anatomical.view.empty())
+    v.axes = anatomical_axes(anatomical.view, *frame);
+  else if (!anatomical.view_given)
+    v.axes = anatomical_axes("iso", *frame);  // the face, superior up
+  if (!anatomical.up.empty()) {
+    // The anatomical direction as a world vector: the first axis of the view that looks from it.
+    v.view_up = anatomical_axes(anatomical.up, *frame).first;
+  }
+  }
+  std::array<double, 3> toward, up;
+  view_axes(v, toward, up);  // an up along the view: the error now, before any work
+  return v;
+}
+
 std::optional<AnatomicalFrame> anatomical_frame(const std::string& world_space) {
   return anatomical_frame_named(world_space);
 }
 
 viz::RenderOptions render_options_for(const RenderCli& r, const std::string& input,
-                                      std::optional<float> isovalue, const std::string& estimator,
-                                      const std::string& world_space,
+                                      const SurfaceContext& context, const std::string& estimator,
                                       const curvature::CurvatureField* field) {
   viz::RenderOptions o = r.opts;
-  if (!r.anatomical_view.empty()) {
-    const auto frame = anatomical_frame(world_space);
-    if (!frame)
-      throw Error(input,
-                  "--view " + r.anatomical_view +
-                      " needs a volume whose world axes are anatomical (NIfTI: RAS, MetaImage: "
-                      "LPS, NRRD with a space field); use iso, +x, -x, +y, -y, +z or -z");
-    o.view.axes = anatomical_axes(r.anatomical_view, *frame);
-  }
+  if (o.length_unit.empty()) o.length_unit = context.length_unit;
+  o.view = resolve_view(o.view, r.anatomical, context.world_space, input);
   if (field) {
     try {
       o.color = viz::resolve_quantity(*field, o.color);
@@ -169,7 +212,7 @@ viz::RenderOptions render_options_for(const RenderCli& r, const std::string& inp
     }
   }
   if (!r.camera_file.empty()) o.camera = viz::load_camera(r.camera_file);
-  o.title = r.title.empty() ? picture_title(input, o.color, isovalue, estimator) : r.title;
+  o.title = r.title.empty() ? picture_title(input, o.color, context.isovalue, estimator) : r.title;
   return o;
 }
 

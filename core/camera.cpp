@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/error.h"
 
@@ -100,6 +101,12 @@ std::pair<Vec, Vec> anatomical_axes(const std::string& name, AnatomicalFrame fra
   if (name == "left") return {scale(right, -1), superior};
   if (name == "superior") return {superior, anterior};
   if (name == "inferior") return {scale(superior, -1), anterior};
+  if (name == "iso") {
+    Vec toward = anterior, up = superior;
+    azimuth(toward, up, kIsoAzimuthDeg);
+    elevation(toward, up, kIsoElevationDeg);
+    return {toward, up};
+  }
   throw Error("unknown anatomical view '" + name +
               "' (expected anterior, posterior, left, right, superior or inferior)");
 }
@@ -123,10 +130,35 @@ void view_axes(const ViewSpec& spec, Vec& toward, Vec& up) {
     case NamedView::plus_z: toward = {0, 0, 1}, up = y; break;
     case NamedView::minus_z: toward = {0, 0, -1}, up = y; break;
   }
+  if (spec.view_up) {
+    const Vec u = normalized(*spec.view_up);
+    const Vec t = normalized(toward);
+    const Vec across = sub(u, scale(t, dot(u, t)));
+    if (!(std::sqrt(dot(across, across)) > 1e-6))
+      throw Error("--view-up lies along the viewing direction; choose another up or another view");
+    up = normalized(across);
+  }
   if (spec.azimuth_deg != 0) azimuth(toward, up, spec.azimuth_deg);
   if (spec.elevation_deg != 0) elevation(toward, up, spec.elevation_deg);
   toward = normalized(toward);
   up = normalized(sub(up, scale(toward, dot(up, toward))));
+  // The up turned about the direction of projection (-toward): clockwise on screen, so the
+  // picture turns anticlockwise for positive angles.
+  if (spec.roll_deg != 0) up = normalized(rotate(up, scale(toward, -1), spec.roll_deg));
+}
+
+std::array<double, 3> parse_direction(const std::string& text) {
+  static const std::pair<const char*, Vec> kAxes[] = {
+      {"+x", {1, 0, 0}}, {"-x", {-1, 0, 0}}, {"+y", {0, 1, 0}},
+      {"-y", {0, -1, 0}}, {"+z", {0, 0, 1}}, {"-z", {0, 0, -1}}};
+  for (const auto& [n, v] : kAxes)
+    if (text == n) return v;
+  Vec v{};
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%lf,%lf,%lf%c", &v[0], &v[1], &v[2], &tail) == 3 &&
+      std::isfinite(v[0] + v[1] + v[2]) && dot(v, v) > 0)
+    return normalized(v);
+  throw Error("bad direction '" + text + "' (expected +x, -x, +y, -y, +z, -z or X,Y,Z)");
 }
 
 Camera fit_camera(const std::array<double, 6>& bounds, const ViewSpec& spec, double aspect,

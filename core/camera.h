@@ -32,7 +32,15 @@ struct ViewSpec {
   /// When set: (toward camera, view up), unit and perpendicular, replacing `view` (anatomical
   /// views, anatomical_axes).
   std::optional<std::pair<std::array<double, 3>, std::array<double, 3>>> axes{};
+  /// When set: the picture's up direction, replacing the view's own before the azimuth and
+  /// elevation (made perpendicular to the viewing direction; along it is an Error).
+  std::optional<std::array<double, 3>> view_up{};
+  double roll_deg = 0;  ///< last, the picture turned this many degrees anticlockwise on screen
 };
+
+/// Parses a --view-up direction: +x -x +y -y +z -z, or three numbers X,Y,Z (not all zero).
+/// @throw Error naming the choices.
+std::array<double, 3> parse_direction(const std::string& text);
 
 /// A camera in world units. Perspective: `view_angle_deg` is the full vertical angle (as VTK's).
 /// Orthographic: `parallel_scale` is half the view's height in world units.
@@ -64,12 +72,15 @@ bool is_anatomical_view(const std::string& name);
 /// The (toward camera, view up) of an anatomical view in `frame`: "anterior" puts the camera in
 /// front of the patient (looking at the face) with superior up; "posterior" behind; "left" and
 /// "right" on that side (lateral views), superior up; "superior" above, "inferior" below, with
-/// anterior up. @throw Error for another name.
+/// anterior up; "iso" is the default three-quarter view of an anatomical volume: from the front,
+/// turned 35 degrees towards the patient's left and raised 30 degrees, superior up. @throw Error
+/// for another name.
 std::pair<std::array<double, 3>, std::array<double, 3>> anatomical_axes(const std::string& name,
                                                                        AnatomicalFrame frame);
 
 /// Unit vector from the object's centre towards the camera, and the view up, for `spec` (its
-/// named view, or its axes, turned by its azimuth and elevation).
+/// named view, or its axes; its view_up; turned by its azimuth and elevation, then rolled).
+/// @throw Error when spec.view_up lies along the viewing direction.
 void view_axes(const ViewSpec& spec, std::array<double, 3>& toward_camera,
                std::array<double, 3>& view_up);
 

@@ -15,6 +15,8 @@
 // with 9 significant digits, which also round-trips exactly. Mesh::edge_keys are not stored.
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/mesh.h"
 #include "io/compression.h"
@@ -22,22 +24,33 @@
 
 namespace isocurv::io {
 
+/// Text (name, value) pairs of a .vtp's field data: how the curvature was made
+/// (CurvatureField::metadata) and where the surface came from ("isovalue", "length_unit",
+/// "world_space", "source": app/pipeline.h's context_metadata).
+using Metadata = std::vector<std::pair<std::string, std::string>>;
+
 /// A mesh read from a file, with whatever curvature arrays the file carried.
 struct MeshFile {
   Mesh mesh;
   /// Present when the file carried at least one of the named arrays. Each array then holds one
   /// value per vertex, or is empty when the file did not carry it (e.g. .obj gives Normals only).
+  /// Its metadata is the file's field data (as `metadata`).
   std::optional<curvature::CurvatureField> field;
+  /// The field data's one-value string arrays (.vtp only; at most 64, values up to 1,024 bytes:
+  /// longer ones are left out).
+  Metadata metadata;
 };
 
 /// Writes `mesh` (and the non-empty arrays of `field`, when given) to `path`, the format chosen by
 /// the extension (.vtp, .ply, .obj, .stl; case-insensitive). Written atomically: on failure no
 /// file is left and an existing one is untouched. Throws Error for an unknown extension, a field
 /// whose arrays do not match the vertex count, or any write failure. `compression` applies to
-/// .vtp only (the other formats are uncompressed).
+/// .vtp only (the other formats are uncompressed). `context`, when given, joins the field's
+/// metadata in the .vtp's field data (keys the field's metadata already has are not repeated);
+/// the other formats have no place for either.
 void write_mesh(const std::string& path, const Mesh& mesh,
                 const curvature::CurvatureField* field = nullptr,
-                const Compression& compression = {});
+                const Compression& compression = {}, const Metadata* context = nullptr);
 
 /// Reads a mesh file written by write_mesh (or any reasonable .vtp/.ply/.obj/.stl). Throws Error
 /// naming the file for a missing, unreadable, truncated or malformed file, an unknown extension or

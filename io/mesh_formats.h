@@ -11,7 +11,7 @@
 namespace isocurv::io::detail {
 
 void write_vtp(const std::string& path, const Mesh& mesh, const curvature::CurvatureField* field,
-               const Compression& compression);
+               const Compression& compression, const Metadata* context = nullptr);
 MeshFile read_vtp(const std::string& path);
 
 void write_ply(const std::string& path, const Mesh& mesh, const curvature::CurvatureField* field);

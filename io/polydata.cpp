@@ -83,7 +83,8 @@ void read_array(vtkDataArray* array, const char* name, vtkIdType n, std::vector<
 
 }  // namespace
 
-vtkSmartPointer<vtkPolyData> to_polydata(const Mesh& mesh, const curvature::CurvatureField* field) {
+vtkSmartPointer<vtkPolyData> to_polydata(const Mesh& mesh, const curvature::CurvatureField* field,
+                                         const Metadata* context) {
   auto poly = vtkSmartPointer<vtkPolyData>::New();
   auto points = vtkSmartPointer<vtkPoints>::New();
   points->SetData(make_array("Points", mesh.positions));
@@ -99,13 +100,18 @@ vtkSmartPointer<vtkPolyData> to_polydata(const Mesh& mesh, const curvature::Curv
       if (std::strcmp(name, "Normals") == 0) pd->SetNormals(array);
       else pd->AddArray(array);
     });
-    for (const auto& [key, value] : field->metadata) {  // how the field was made
-      auto text = vtkSmartPointer<vtkStringArray>::New();
-      text->SetName(key.c_str());
-      text->InsertNextValue(value);
-      poly->GetFieldData()->AddArray(text);
-    }
   }
+  auto add_text = [&](const std::string& key, const std::string& value) {
+    if (poly->GetFieldData()->GetAbstractArray(key.c_str())) return;  // the field's wins
+    auto text = vtkSmartPointer<vtkStringArray>::New();
+    text->SetName(key.c_str());
+    text->InsertNextValue(value);
+    poly->GetFieldData()->AddArray(text);
+  };
+  if (field)
+    for (const auto& [key, value] : field->metadata) add_text(key, value);  // how it was made
+  if (context)
+    for (const auto& [key, value] : *context) add_text(key, value);  // where it came from
   return poly;
 }
 
@@ -171,7 +177,19 @@ MeshFile from_polydata(vtkPolyData* poly, const std::string& source) {
     field.extra.push_back(std::move(e));
     any = true;
   }
-  if (any) out.field = std::move(field);
+  // The field data's text: how the curvature was made, where the surface came from.
+  if (vtkFieldData* fd = poly->GetFieldData())
+    for (int i = 0; i < fd->GetNumberOfArrays() && out.metadata.size() < 64; ++i) {
+      auto* text = vtkStringArray::SafeDownCast(fd->GetAbstractArray(i));
+      if (!text || !text->GetName() || text->GetNumberOfValues() != 1) continue;
+      const std::string value = text->GetValue(0);
+      if (value.size() > 1024) continue;
+      out.metadata.emplace_back(text->GetName(), value);
+    }
+  if (any) {
+    field.metadata = out.metadata;
+    out.field = std::move(field);
+  }
   return out;
 }
 

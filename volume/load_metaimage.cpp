@@ -141,6 +141,7 @@ Volume load_metaimage(const std::string& path, const LoadOptions& options) {
   }
   Volume v = finish_dense(std::move(image), path, "metaimage", options);
   v.world_space = "LPS";
+  v.length_unit = "mm";  // MetaIO has no unit field; ElementSpacing is in millimetres by convention
   return v;
 }
 

@@ -150,6 +150,12 @@ Volume load_nifti(const std::string& path, const LoadOptions& options) {
   }
   Volume v = finish_dense(std::move(image), path, "nifti", options);
   v.world_space = "RAS";
+  switch (raw[123] & 0x07) {  // xyzt_units, spatial bits (one byte: no byte order)
+    case 1: v.length_unit = "m"; break;
+    case 2: v.length_unit = "mm"; break;
+    case 3: v.length_unit = "um"; break;
+    default: break;  // 0: unknown
+  }
   return v;
 }
 

@@ -2,6 +2,7 @@
 // gzip or ASCII encoding; geometry from "space directions" + "space origin", else "spacings";
 // the anatomical meaning of the world axes from "space" (Volume::world_space).
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -235,6 +236,23 @@ Volume load_nrrd(const std::string& path, const LoadOptions& options) {
   }
   Volume v = finish_dense(std::move(image), path, "nrrd", options);
   v.world_space = world_space;
+  if (fields.count("space units")) {
+    // "mm" "mm" "mm": the unit when all three agree and it is a plain word.
+    std::vector<std::string> units;
+    const std::string su = get("space units");
+    for (std::size_t i = 0; i < su.size();) {
+      const std::size_t a = su.find('"', i);
+      if (a == std::string::npos) break;
+      const std::size_t b = su.find('"', a + 1);
+      if (b == std::string::npos) break;
+      units.push_back(su.substr(a + 1, b - a - 1));
+      i = b + 1;
+    }
+    const bool plain = units.size() == 3 && !units[0].empty() && units[0].size() <= 8 &&
+                       std::all_of(units[0].begin(), units[0].end(),
+                                   [](unsigned char c) { return std::isalpha(c) != 0; });
+    if (plain && units[1] == units[0] && units[2] == units[0]) v.length_unit = units[0];
+  }
   return v;
 }
 

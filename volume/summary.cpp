@@ -62,6 +62,7 @@ nlohmann::json summary_json(const Volume& v) {
   j["format"] = v.format;
   j["grid_name"] = v.grid_name;
   if (!v.world_space.empty()) j["world_space"] = v.world_space;
+  if (!v.length_unit.empty()) j["length_unit"] = v.length_unit;
   j["grid_class"] = v.grid_class;
   j["voxel_type"] = v.voxel_type;
   j["dense"] = v.dense;
@@ -109,6 +110,7 @@ std::string summary_text(const Volume& v) {
   line("format", v.format + (v.dense ? " (dense)" : " (sparse)"));
   if (!v.grid_name.empty()) line("grid", v.grid_name);
   if (!v.world_space.empty()) line("world axes", v.world_space + " (anatomical: +x +y +z)");
+  if (!v.length_unit.empty()) line("length unit", v.length_unit);
   line("grid class", v.grid_class);
   line("voxel type", v.voxel_type);
   line("dimensions", std::to_string(dim.x()) + " x " + std::to_string(dim.y()) + " x " + std::to_string(dim.z()) +

@@ -38,6 +38,10 @@ struct Volume {
   /// What the world axes mean anatomically, as three letters for +x +y +z: "RAS" (NIfTI),
   /// "LPS" (MetaImage, ITK), or NRRD's `space` ("RAS", "LAS", "LPS"); empty when unknown.
   std::string world_space;
+  /// The world length unit the header states ("mm", "m", "um"): NIfTI's xyzt_units, NRRD's
+  /// `space units`, MetaImage's millimetres (MetaIO's and ITK's convention; the format has no
+  /// unit field); empty when the file says nothing (raw, .vol, .vti, .vdb).
+  std::string length_unit;
   bool dense = true;              ///< true when every voxel of `domain` was stored in the file
   openvdb::CoordBBox domain;      ///< index-space data domain (inclusive)
   Inside inside = Inside::Above;  ///< which side is the object

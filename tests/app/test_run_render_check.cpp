@@ -292,7 +292,7 @@ namespace {
 /// A 32^3 uint8 NRRD: a ball at the centre and a small one towards +x +y +z, so the views
 /// from +y and -y differ (mirror images).
 std::string write_blobs_nrrd(const std::string& path, const std::string& space,
-                             const std::string& directions) {
+                             const std::string& directions, const std::string& more = "") {
   std::string data(32 * 32 * 32, '\0');
   for (int z = 0; z < 32; ++z)
     for (int y = 0; y < 32; ++y)
@@ -304,7 +304,7 @@ std::string write_blobs_nrrd(const std::string& path, const std::string& space,
       }
   write_file(
       path, "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 32 32 32\nencoding: raw\nspace: " + space +
-                "\nspace directions: " + directions + "\nspace origin: (0,0,0)\n\n" + data);
+                "\nspace directions: " + directions + "\nspace origin: (0,0,0)\n" + more + "\n" + data);
   return path;
 }
 
@@ -331,6 +331,90 @@ TEST(RenderOptions, NrrdSpaceGivesTheAnatomicalViews) {
   const auto info = run_isocurv({"info", lps, "--json"});
   ASSERT_TRUE(info.ok()) << info.describe();
   EXPECT_EQ(parse_json(info.out, "info").value("world_space", ""), "LPS");
+}
+
+TEST(RenderOptions, AnatomicalVolumesDefaultToTheFaceWithSuperiorUp) {
+  TempDir dir("anatomical_default");
+  auto render = [&](const std::string& in, std::vector<std::string> extra, const std::string& png) {
+    std::vector<std::string> args = {"render", in, "--iso", "100", "--size", "120x90",
+                                     "-o", dir / png, "--quiet"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto r = run_isocurv(args);
+    EXPECT_TRUE(r.ok()) << r.describe();
+    return read_file(dir / png);
+  };
+  // RAS: the face is +y; LPS: -y. The default is iso from the front (turned 35, raised 30).
+  const std::string ras =
+      write_blobs_nrrd(dir / "ras.nrrd", "right-anterior-superior", "(1,0,0) (0,1,0) (0,0,1)");
+  const std::string lps =
+      write_blobs_nrrd(dir / "lps.nrrd", "left-posterior-superior", "(1,0,0) (0,1,0) (0,0,1)");
+  const std::string ras_default = render(ras, {}, "ras.png");
+  EXPECT_EQ(ras_default, render(ras, {"--view", "+y", "--azimuth", "35", "--elevation", "30"}, "ras_y.png"));
+  EXPECT_NE(ras_default, render(ras, {"--view", "iso"}, "ras_iso.png")) << "--view iso is the plain iso";
+  EXPECT_EQ(render(lps, {}, "lps.png"),
+            render(lps, {"--view", "-y", "--azimuth", "35", "--elevation", "30"}, "lps_y.png"));
+  // --view-up by anatomical name and by vector; a raw volume has no anatomical names.
+  EXPECT_EQ(render(ras, {"--view", "+x", "--view-up", "inferior"}, "ras_inf.png"),
+            render(ras, {"--view", "+x", "--view-up", "-z"}, "ras_mz.png"));
+  EXPECT_NE(render(ras, {"--view", "+x", "--view-up", "-z"}, "a.png"),
+            render(ras, {"--view", "+x"}, "b.png"));
+  const auto along = run_isocurv({"render", ras, "--iso", "100", "--view", "+x", "--view-up",
+                                  "1,0,0", "-o", dir / "along.png"});
+  expect_clean_failure(along, "--view-up");
+  const auto raw = run_isocurv({"render", dataset("torus"), "--view-up", "superior", "-o",
+                                dir / "raw.png"});
+  expect_clean_failure(raw, "anatomical");
+  EXPECT_FALSE(fs::exists(dir / "along.png"));
+  EXPECT_FALSE(fs::exists(dir / "raw.png"));
+}
+
+TEST(RenderOptions, ASavedMeshKeepsItsIsovalueEstimatorUnitAndFrame) {
+  TempDir dir("context_round_trip");
+  const std::string ras = write_blobs_nrrd(dir / "ras.nrrd", "right-anterior-superior",
+                                           "(1,0,0) (0,1,0) (0,0,1)",
+                                           "space units: \"mm\" \"mm\" \"mm\"\n");
+  const auto info = run_isocurv({"info", ras, "--json"});
+  ASSERT_TRUE(info.ok()) << info.describe();
+  EXPECT_EQ(parse_json(info.out, "info").value("length_unit", ""), "mm");
+  const std::string mesh = dir / "ras.vtp";
+  const auto c = run_isocurv({"curvature", ras, "--iso", "100", "-o", mesh, "--quiet"});
+  ASSERT_TRUE(c.ok()) << c.describe();
+  const io::MeshFile m = io::read_mesh(mesh);
+  auto meta = [&](const io::MeshFile& f, const std::string& key) {
+    for (const auto& [k, v] : f.metadata)
+      if (k == key) return v;
+    return std::string();
+  };
+  EXPECT_EQ(meta(m, "isovalue"), "100");
+  EXPECT_EQ(meta(m, "length_unit"), "mm");
+  EXPECT_EQ(meta(m, "world_space"), "RAS");
+  EXPECT_EQ(meta(m, "source"), "ras.nrrd");
+  EXPECT_EQ(meta(m, "estimator"), "volume");
+  const auto r = run_isocurv({"render", mesh, "--size", "200x150", "-o", dir / "m.png", "--json"});
+  ASSERT_TRUE(r.ok()) << r.describe();
+  const json j = parse_json(r.out, "render --json");
+  const std::string title = j.value("title", "");
+  EXPECT_NE(title.find("iso 100"), std::string::npos) << title;
+  EXPECT_NE(title.find("from the file: volume, scale"), std::string::npos) << title;
+  EXPECT_NE(j.value("legend_title", "").find("1/mm"), std::string::npos) << j.dump();
+  // The frame came with the mesh: anatomical views work on it, and match the volume's.
+  const auto a = run_isocurv({"render", mesh, "--view", "anterior", "--size", "120x90", "-o",
+                              dir / "ma.png", "--quiet"});
+  ASSERT_TRUE(a.ok()) << a.describe();
+  // --unit given to run survives into the mesh and back.
+  const auto run = run_isocurv({"run", dataset("torus"), "--unit", "um", "-o", dir / "out", "--quiet"});
+  ASSERT_TRUE(run.ok()) << run.describe();
+  const auto back = run_isocurv({"render", dir / "out/torus.vtp", "--size", "200x150", "-o",
+                                 dir / "t.png", "--json"});
+  ASSERT_TRUE(back.ok()) << back.describe();
+  EXPECT_NE(parse_json(back.out, "render").value("legend_title", "").find("1/um"), std::string::npos)
+      << back.out;
+  // A mesh from elsewhere (no field data) still renders, with no isovalue in its title.
+  const auto obj = run_isocurv({"extract", dataset("torus"), "-o", dir / "t.obj", "--quiet"});
+  ASSERT_TRUE(obj.ok()) << obj.describe();
+  const auto plain = run_isocurv({"render", dir / "t.obj", "--size", "200x150", "-o", dir / "o.png", "--json"});
+  ASSERT_TRUE(plain.ok()) << plain.describe();
+  EXPECT_EQ(parse_json(plain.out, "render").value("title", "").find("iso "), std::string::npos);
 }
 
 TEST(RenderColor, AnyPointArrayWithItsRangeAndUnknownNamesListed) {

@@ -211,5 +211,65 @@ TEST(Camera, AnatomicalViewsInRasAndLps) {
   expect_vec(toward, {0, -1, 0});
 }
 
+TEST(Camera, ViewUpReplacesTheViewsUpAndAlongTheViewIsRefused) {
+  // headsq is stored head down: seen from -y with -z up, the face is upright.
+  ViewSpec s{NamedView::minus_y};
+  s.view_up = parse_direction("-z");
+  Vec t, u;
+  view_axes(s, t, u);
+  expect_vec(t, {0, -1, 0});
+  expect_vec(u, {0, 0, -1});
+  // an oblique up is made perpendicular to the view
+  s.view_up = parse_direction("1,-1,0");
+  view_axes(s, t, u);
+  expect_vec(u, {1, 0, 0}, 1e-12);
+  s.view_up = parse_direction("0,2,0");
+  EXPECT_THROW(view_axes(s, t, u), Error);
+  for (const char* bad : {"0,0,0", "up", "1,2", "1,2,3,4", "nan,0,1"})
+    EXPECT_THROW(parse_direction(bad), Error) << bad;
+  expect_vec(parse_direction("0,0,-5"), {0, 0, -1});
+}
+
+TEST(Camera, RollTurnsThePictureAnticlockwise) {
+  // From +z (right = +x, up = +y), a quarter turn anticlockwise brings what was on the right
+  // (+x) to the top.
+  ViewSpec s{NamedView::plus_z};
+  s.roll_deg = 90;
+  Vec t, u;
+  view_axes(s, t, u);
+  expect_vec(t, {0, 0, 1});
+  expect_vec(u, {1, 0, 0}, 1e-12);
+  s.roll_deg = 360;
+  view_axes(s, t, u);
+  expect_vec(u, {0, 1, 0}, 1e-12);
+}
+
+TEST(Camera, ElevationBeyondNinetyGoesOverTheTop) {
+  // From +x, raised 120 degrees: past the top (+z), now on the -x side, above, upside down;
+  // raised 180: from -x, with -z up. Continuous, never degenerate.
+  ViewSpec s{NamedView::plus_x};
+  Vec t, u;
+  s.elevation_deg = 120;
+  view_axes(s, t, u);
+  expect_vec(t, {std::cos(120 * kPi / 180), 0, std::sin(120 * kPi / 180)}, 1e-12);
+  EXPECT_NEAR(dot(t, u), 0, 1e-12);
+  EXPECT_LT(u[2], 0);
+  s.elevation_deg = 180;
+  view_axes(s, t, u);
+  expect_vec(t, {-1, 0, 0}, 1e-12);
+  expect_vec(u, {0, 0, -1}, 1e-12);
+}
+
+TEST(Camera, AnatomicalIsoIsFromTheFrontAboveWithSuperiorUp) {
+  for (AnatomicalFrame f : {AnatomicalFrame::ras, AnatomicalFrame::lps, AnatomicalFrame::las}) {
+    const auto [t, u] = anatomical_axes("iso", f);
+    const Vec anterior = anatomical_axes("anterior", f).first;
+    EXPECT_NEAR(dot(t, anterior), std::cos(35 * kPi / 180) * std::cos(30 * kPi / 180), 1e-12);
+    EXPECT_NEAR(t[2], std::sin(30 * kPi / 180), 1e-12);  // raised 30 degrees
+    EXPECT_GT(u[2], 0.8);                                  // superior (+z) is up
+    EXPECT_NEAR(dot(t, u), 0, 1e-12);
+  }
+}
+
 }  // namespace
 }  // namespace isocurv
