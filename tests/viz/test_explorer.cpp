@@ -6,11 +6,10 @@
 #include <fstream>
 
 #include "core/error.h"
-#include "fresh_dir.h"
+#include "explorer_fixture.h"
 #include "lines/polylines.h"
 #include "lines/reference.h"
 #include "png_stats.h"
-#include "test_surfaces.h"
 #include "viz/camera_file.h"
 #include "viz/explorer.h"
 #include "viz/quantity.h"
@@ -18,41 +17,24 @@
 namespace fs = std::filesystem;
 using namespace isocurv;
 
-namespace {
+class VizExplorer : public test::ExplorerTest {};
+class VizCameraFile : public test::ExplorerTest {};
 
-fs::path fresh_dir(const std::string& name) {
-  return test::fresh_dir("isocurv_explorer_test", name);
-}
-
-}  // namespace
-
-TEST(VizExplorer, ScriptedSliderMoveAndKeysChangeTheImage) {
-  const fs::path dir = fresh_dir("script");
-  std::vector<float> calls;
-  viz::ExplorerSetup setup;
-  setup.isovalue = 0.25f;
-  setup.min_value = 0.1f;
-  setup.max_value = 0.6f;
-  setup.view.width = 640;
-  setup.view.height = 480;
+TEST_F(VizExplorer, ScriptedSliderMoveAndKeysChangeTheImage) {
+  viz::ExplorerSetup setup = torus_setup(0.25f, 640, 480);
   setup.view.title = "scripted explorer";
-  setup.screenshot_prefix = (dir / "shot").string();
-  setup.surface = [&](float iso) {  // a torus whose tube radius is the isovalue
-    calls.push_back(iso);
-    auto t = test::torus(1.f, iso, 64, 32);
-    return viz::Surface{std::move(t.mesh), std::move(t.field), 0, "synthetic torus"};
-  };
-  const std::string before = (dir / "before.png").string(), after = (dir / "after.png").string(),
-                    colour = (dir / "colour.png").string(), glyphs = (dir / "glyphs.png").string();
+  setup.screenshot_prefix = file("shot");
+  const std::string before = file("before.png"), after = file("after.png"),
+                    colour = file("colour.png"), glyphs = file("glyphs.png");
   using A = viz::ExplorerAction;
   setup.script = {A::screenshot(before), A::set_isovalue(0.5f), A::screenshot(after),
                   A::press('c'),         A::screenshot(colour), A::press('d'),
                   A::screenshot(glyphs), A::press('s')};
   viz::run_explorer(setup);
 
-  ASSERT_EQ(calls.size(), 2u);
-  EXPECT_FLOAT_EQ(calls[0], 0.25f);
-  EXPECT_FLOAT_EQ(calls[1], 0.5f);
+  ASSERT_EQ(extracted.size(), 2u);
+  EXPECT_FLOAT_EQ(extracted[0], 0.25f);
+  EXPECT_FLOAT_EQ(extracted[1], 0.5f);
   for (const std::string& p : {before, after, colour, glyphs}) {
     ASSERT_TRUE(fs::exists(p)) << p;
     const auto s = test::png_stats(p);
@@ -66,17 +48,10 @@ TEST(VizExplorer, ScriptedSliderMoveAndKeysChangeTheImage) {
   EXPECT_GT(test::pixel_difference(colour, glyphs), 1000) << "'d' did not draw glyphs";
   EXPECT_GT(test::png_stats(colour).bluish, 0.005) << "K on a torus has a negative part";
   EXPECT_TRUE(fs::exists(dir / "shot-001.png")) << "'s' saves <prefix>-001.png";
-  if (!HasFailure()) fs::remove_all(dir);
 }
 
-TEST(VizExplorer, ColourKeyReachesTheSurfacesExtraArrays) {
-  const fs::path dir = fresh_dir("extras");
-  viz::ExplorerSetup setup;
-  setup.isovalue = 0.4f;
-  setup.min_value = 0.1f;
-  setup.max_value = 0.6f;
-  setup.view.width = 480;
-  setup.view.height = 360;
+TEST_F(VizExplorer, ColourKeyReachesTheSurfacesExtraArrays) {
+  viz::ExplorerSetup setup = torus_setup(0.4f, 480, 360);
   // A torus carrying one extra array (as `features` writes): its x coordinate, a left-right ramp
   // that the sequential (viridis) map shows in greens the diverging map never has.
   auto make = [](float iso) {
@@ -97,7 +72,7 @@ TEST(VizExplorer, ColourKeyReachesTheSurfacesExtraArrays) {
   ASSERT_LT(at("LBE_r0.3"), static_cast<long>(names.size())) << "the extra array is listed";
   const long presses = at("LBE_r0.3") - at("H");  // the explorer starts on H
   ASSERT_GT(presses, 0);
-  const std::string h = (dir / "h.png").string(), extra = (dir / "extra.png").string();
+  const std::string h = file("h.png"), extra = file("extra.png");
   using A = viz::ExplorerAction;
   setup.script = {A::screenshot(h)};
   for (long i = 0; i < presses; ++i) setup.script.push_back(A::press('c'));
@@ -106,25 +81,19 @@ TEST(VizExplorer, ColourKeyReachesTheSurfacesExtraArrays) {
   ASSERT_TRUE(fs::exists(h) && fs::exists(extra));
   EXPECT_LT(test::png_stats(h).greenish, 0.002) << "H is drawn with the diverging map";
   EXPECT_GT(test::png_stats(extra).greenish, 0.01) << "'c' did not reach the extra array";
-  if (!HasFailure()) fs::remove_all(dir);
 }
 
-TEST(VizExplorer, FailedUpdateKeepsThePreviousSurface) {
-  const fs::path dir = fresh_dir("failure");
+TEST_F(VizExplorer, FailedUpdateKeepsThePreviousSurface) {
   int calls = 0;
-  viz::ExplorerSetup setup;
-  setup.isovalue = 0.3f;
+  viz::ExplorerSetup setup = torus_setup(0.3f, 320, 240);
   setup.min_value = 0.f;
   setup.max_value = 1.f;
-  setup.view.width = 320;
-  setup.view.height = 240;
   setup.surface = [&](float iso) -> viz::Surface {
     ++calls;
     if (iso > 0.5f) throw Error("synthetic", "no surface at this isovalue");
-    auto t = test::torus(1.f, iso, 32, 16);
-    return {std::move(t.mesh), std::move(t.field), 0, {}};
+    return test::torus_surface(iso, 32, 16, "");
   };
-  const std::string before = (dir / "before.png").string(), after = (dir / "after.png").string();
+  const std::string before = file("before.png"), after = file("after.png");
   using A = viz::ExplorerAction;
   setup.script = {A::screenshot(before), A::set_isovalue(0.9f), A::screenshot(after)};
   viz::run_explorer(setup);
@@ -134,10 +103,9 @@ TEST(VizExplorer, FailedUpdateKeepsThePreviousSurface) {
   const long differ = test::pixel_difference(before, after);
   EXPECT_GT(differ, 0);
   EXPECT_LT(differ, 320 * 240 * 3 / 4);
-  if (!HasFailure()) fs::remove_all(dir);
 }
 
-TEST(VizExplorer, BadSetupIsAnError) {
+TEST_F(VizExplorer, BadSetupIsAnError) {
   viz::ExplorerSetup setup;
   EXPECT_THROW(viz::run_explorer(setup), Error);  // no callback
   setup.surface = [](float) { return viz::Surface{}; };
@@ -150,25 +118,13 @@ TEST(VizExplorer, BadSetupIsAnError) {
   EXPECT_THROW(viz::run_explorer(setup), Error);
 }
 
-TEST(VizExplorer, TypedIsovalueOpenSaveCameraViewsAndResize) {
-  const fs::path dir = fresh_dir("keys");
-  std::vector<float> calls;
+TEST_F(VizExplorer, TypedIsovalueOpenSaveCameraViewsAndResize) {
   std::vector<std::string> opened, saved;
-  viz::ExplorerSetup setup;
-  setup.isovalue = 0.25f;
-  setup.min_value = 0.1f;
-  setup.max_value = 0.6f;
-  setup.view.width = 400;
-  setup.view.height = 300;
-  setup.camera_path = (dir / "camera.json").string();
-  setup.surface_path = (dir / "surface.vtp").string();
+  viz::ExplorerSetup setup = torus_setup(0.25f, 400, 300, 48, 24);
+  setup.camera_path = file("camera.json");
+  setup.surface_path = file("surface.vtp");
   setup.title_for = [](float iso, const std::string& q) {
     return q + " at " + std::to_string(iso);
-  };
-  setup.surface = [&](float iso) {
-    calls.push_back(iso);
-    auto t = test::torus(1.f, iso, 48, 24);
-    return viz::Surface{std::move(t.mesh), std::move(t.field), 0, {}};
   };
   setup.open_mesh = [&](const std::string& path) {
     opened.push_back(path);
@@ -180,9 +136,8 @@ TEST(VizExplorer, TypedIsovalueOpenSaveCameraViewsAndResize) {
     EXPECT_EQ(field.H.size(), mesh.positions.size());
     saved.push_back(path);
   };
-  const std::string iso = (dir / "iso.png").string(), side = (dir / "side.png").string(),
-                    reset = (dir / "reset.png").string(), mesh = (dir / "mesh.png").string(),
-                    big = (dir / "big.png").string();
+  const std::string iso = file("iso.png"), side = file("side.png"), mesh = file("mesh.png"),
+                    big = file("big.png");
   using A = viz::ExplorerAction;
   setup.script = {A::screenshot(iso),  A::press('i'),
                   A::type("0.4x"),     A::press(8),
@@ -199,8 +154,8 @@ TEST(VizExplorer, TypedIsovalueOpenSaveCameraViewsAndResize) {
                   A::resize(640, 360), A::screenshot(big)};
   viz::run_explorer(setup);
 
-  ASSERT_EQ(calls.size(), 2u);
-  EXPECT_FLOAT_EQ(calls[1], 0.4f) << "the typed isovalue was used";
+  ASSERT_EQ(extracted.size(), 2u);
+  EXPECT_FLOAT_EQ(extracted[1], 0.4f) << "the typed isovalue was used";
   EXPECT_EQ(saved, std::vector<std::string>{setup.surface_path});
   EXPECT_EQ(opened, std::vector<std::string>{"elsewhere.ply"});
   ASSERT_TRUE(fs::exists(setup.camera_path));
@@ -210,11 +165,9 @@ TEST(VizExplorer, TypedIsovalueOpenSaveCameraViewsAndResize) {
   EXPECT_GT(test::pixel_difference(side, mesh), 3000) << "the opened mesh is shown";
   ASSERT_TRUE(fs::exists(big));
   EXPECT_EQ(test::png_stats(big).width, 640);
-  if (!HasFailure()) fs::remove_all(dir);
 }
 
-TEST(VizCameraFile, RoundTripAndBadFiles) {
-  const fs::path dir = fresh_dir("camera");
+TEST_F(VizCameraFile, RoundTripAndBadFiles) {
   Camera cam;
   cam.position = {1, 2, 3};
   cam.focal_point = {0, 0.5, 0};
@@ -242,21 +195,10 @@ TEST(VizCameraFile, RoundTripAndBadFiles) {
     EXPECT_THROW(viz::load_camera(b), Error) << bad;
   }
   EXPECT_THROW(viz::load_camera((dir / "missing.json").string()), Error);
-  fs::remove_all(dir);
 }
 
-TEST(VizExplorer, LinesKeyDrawsLinesThatFollowSurfaceAndCamera) {
-  const fs::path dir = fresh_dir("lines");
-  viz::ExplorerSetup setup;
-  setup.isovalue = 0.3f;
-  setup.min_value = 0.1f;
-  setup.max_value = 0.6f;
-  setup.view.width = 480;
-  setup.view.height = 360;
-  setup.surface = [&](float iso) {
-    auto t = test::torus(1.f, iso, 64, 32);
-    return viz::Surface{std::move(t.mesh), std::move(t.field), 0, ""};
-  };
+TEST_F(VizExplorer, LinesKeyDrawsLinesThatFollowSurfaceAndCamera) {
+  viz::ExplorerSetup setup = torus_setup(0.3f, 480, 360);
   std::vector<bool> changed;  // surface_changed of each lines call
   setup.lines = [&](const viz::Surface& s, const Camera& cam, bool surface_changed) {
     changed.push_back(surface_changed);
@@ -264,8 +206,7 @@ TEST(VizExplorer, LinesKeyDrawsLinesThatFollowSurfaceAndCamera) {
     o.lines = lines::parse_line_selection("contours");
     return lines::join_segments(lines::extract_reference(s.mesh, s.field, cam, o));
   };
-  const std::string off = (dir / "off.png").string(), on = (dir / "on.png").string(),
-                    iso = (dir / "iso.png").string();
+  const std::string off = file("off.png"), on = file("on.png"), iso = file("iso.png");
   using A = viz::ExplorerAction;
   setup.script = {A::screenshot(off), A::press('l'), A::screenshot(on), A::set_isovalue(0.45f),
                   A::screenshot(iso), A::press('r'), A::press('l'),     A::press('l')};
@@ -278,5 +219,4 @@ TEST(VizExplorer, LinesKeyDrawsLinesThatFollowSurfaceAndCamera) {
       << "'r' moved the camera";
   EXPECT_GT(test::pixel_difference(off, on), 300) << "'l' drew no lines";
   EXPECT_GT(test::pixel_difference(on, iso), 1000);
-  fs::remove_all(dir);
 }

@@ -7,9 +7,8 @@
 #include <filesystem>
 
 #include "core/error.h"
-#include "fresh_dir.h"
+#include "explorer_fixture.h"
 #include "png_stats.h"
-#include "test_surfaces.h"
 #include "viz/curvature_scene.h"
 #include "viz/explorer.h"
 
@@ -17,10 +16,6 @@ namespace fs = std::filesystem;
 using namespace isocurv;
 
 namespace {
-
-fs::path fresh_dir(const std::string& name) {
-  return test::fresh_dir("isocurv_explorer_screen", name);
-}
 
 struct Cast {
   float iso = 0;
@@ -50,52 +45,24 @@ viz::ScreenImage disc_image(float iso, int w, int h) {
   return img;
 }
 
-/// An explorer on isovalues 0.1 .. 0.6 (starting at `iso`), width x height, whose surface is a
-/// torus with that tube radius; `extracted` (when given) counts the extractions.
-viz::ExplorerSetup torus_setup(float iso, int width, int height, int* extracted = nullptr) {
-  viz::ExplorerSetup setup;
-  setup.isovalue = iso;
-  setup.min_value = 0.1f;
-  setup.max_value = 0.6f;
-  setup.view.width = width;
-  setup.view.height = height;
-  setup.surface = [extracted](float value) {
-    if (extracted) ++*extracted;
-    auto t = test::torus(1.f, value, 64, 32);
-    return viz::Surface{std::move(t.mesh), std::move(t.field), 0, "torus"};
-  };
-  return setup;
-}
-
 bool same(const Camera& a, const Camera& b) {
   return a.position == b.position && a.focal_point == b.focal_point && a.view_up == b.view_up;
 }
 
 }  // namespace
 
-TEST(VizExplorerScreen, SliderReCastsAndLeavingExtractsTheIsovalueReached) {
-  const fs::path dir = fresh_dir("slider");
-  std::vector<float> extracted;
+class VizExplorerScreen : public test::ExplorerTest {};
+
+TEST_F(VizExplorerScreen, SliderReCastsAndLeavingExtractsTheIsovalueReached) {
   std::vector<Cast> casts;
-  viz::ExplorerSetup setup;
-  setup.isovalue = 0.25f;
-  setup.min_value = 0.1f;
-  setup.max_value = 0.6f;
-  setup.view.width = 640;
-  setup.view.height = 480;
+  viz::ExplorerSetup setup = torus_setup(0.25f, 640, 480);
   setup.view.color = "ShapeIndex";  // screen-space mode switches to H
-  setup.surface = [&](float iso) {
-    extracted.push_back(iso);
-    auto t = test::torus(1.f, iso, 64, 32);
-    return viz::Surface{std::move(t.mesh), std::move(t.field), 0, "torus"};
-  };
   setup.screen.image = [&](float iso, const viz::Surface* mesh, const Camera& cam, int w, int h) {
     casts.push_back({iso, mesh != nullptr, cam, w, h});
     return disc_image(iso, w, h);
   };
-  const std::string mesh_png = (dir / "mesh.png").string(), h_png = (dir / "h.png").string(),
-                    h2_png = (dir / "h2.png").string(), k_png = (dir / "k.png").string(),
-                    back_png = (dir / "back.png").string();
+  const std::string mesh_png = file("mesh.png"), h_png = file("h.png"), h2_png = file("h2.png"),
+                    k_png = file("k.png"), back_png = file("back.png");
   using A = viz::ExplorerAction;
   setup.script = {A::screenshot(mesh_png), A::press('x'),         A::screenshot(h_png),
                   A::set_isovalue(0.5f),   A::screenshot(h2_png), A::press('c'),
@@ -134,18 +101,13 @@ TEST(VizExplorerScreen, SliderReCastsAndLeavingExtractsTheIsovalueReached) {
   EXPECT_NEAR(side, 0.6 * std::min(casts[0].width, casts[0].height), 6)
       << "the foreground is the disc";
   EXPECT_NEAR(tall, side, 6);
-  if (!HasFailure()) fs::remove_all(dir);
 }
 
-TEST(VizExplorerScreen, StartsWithoutExtractingAndRasterisesAnOpenedMesh) {
-  const fs::path dir = fresh_dir("start");
-  int extracted = 0, framed = 0;
+TEST_F(VizExplorerScreen, StartsWithoutExtractingAndRasterisesAnOpenedMesh) {
+  int framed = 0;
   std::vector<Cast> casts;
-  viz::ExplorerSetup setup = torus_setup(0.3f, 480, 360, &extracted);
-  setup.open_mesh = [&](const std::string&) {
-    auto t = test::torus(1.f, 0.2f, 64, 32);
-    return viz::Surface{std::move(t.mesh), std::move(t.field), 0, "opened"};
-  };
+  viz::ExplorerSetup setup = torus_setup(0.3f, 480, 360);
+  setup.open_mesh = [&](const std::string&) { return test::torus_surface(0.2f, 64, 32, "opened"); };
   setup.screen.start_on = true;
   setup.screen.bounds = [&](float, std::array<double, 6>& b) {
     ++framed;
@@ -157,13 +119,13 @@ TEST(VizExplorerScreen, StartsWithoutExtractingAndRasterisesAnOpenedMesh) {
     casts.push_back({iso, mesh != nullptr, cam, w, h});
     return disc_image(iso, w, h);
   };
-  const std::string first = (dir / "first.png").string(), failed = (dir / "failed.png").string();
+  const std::string first = file("first.png"), failed = file("failed.png");
   using A = viz::ExplorerAction;
   setup.script = {A::screenshot(first),  A::set_isovalue(0.4f), A::set_isovalue(0.58f),
                   A::screenshot(failed), A::press('o'),         A::type("torus.ply\r")};
   viz::run_explorer(setup);
 
-  EXPECT_EQ(extracted, 0) << "screen-space mode from the start extracts nothing";
+  EXPECT_TRUE(extracted.empty()) << "screen-space mode from the start extracts nothing";
   EXPECT_GE(framed, 1) << "the camera is framed on the volume's surface box";
   ASSERT_GE(casts.size(), 3u);
   EXPECT_FLOAT_EQ(casts[0].iso, 0.3f);
@@ -172,10 +134,9 @@ TEST(VizExplorerScreen, StartsWithoutExtractingAndRasterisesAnOpenedMesh) {
   EXPECT_TRUE(casts.back().of_mesh) << "the opened mesh is rasterised";
   ASSERT_TRUE(fs::exists(failed));
   EXPECT_GT(test::png_stats(failed).reddish, 0.03) << "a failed cast keeps the previous image";
-  if (!HasFailure()) fs::remove_all(dir);
 }
 
-TEST(VizExplorerScreen, ASlowCastIsCoarseWhileTheSliderIsDraggedAndFullOnRelease) {
+TEST_F(VizExplorerScreen, ASlowCastIsCoarseWhileTheSliderIsDraggedAndFullOnRelease) {
   std::vector<Cast> casts;
   viz::ExplorerSetup setup = torus_setup(0.3f, 480, 360);
   setup.screen.start_on = true;

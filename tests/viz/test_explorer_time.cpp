@@ -1,23 +1,17 @@
 // The explorer's time slider and play/pause (space) for a time series, driven by a script.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 
 #include "core/error.h"
-#include "fresh_dir.h"
+#include "explorer_fixture.h"
 #include "png_stats.h"
-#include "test_surfaces.h"
 #include "viz/explorer.h"
 
 namespace fs = std::filesystem;
 using namespace isocurv;
 
 namespace {
-
-fs::path fresh_time_dir(const std::string& name) {
-  return test::fresh_dir("isocurv_explorer_time", name);
-}
 
 /// A series of tori whose tube radius grows with the frame; `frame` is the one set_frame made
 /// current, and every surface call is recorded as (frame, isovalue).
@@ -27,35 +21,35 @@ struct TorusSeries {
   std::vector<int> set_calls;
 };
 
-viz::ExplorerSetup series_setup(TorusSeries& ts, int frames) {
-  viz::ExplorerSetup setup;
-  setup.isovalue = 0.3f;
-  setup.min_value = 0.1f;
-  setup.max_value = 0.6f;
-  setup.view.width = 480;
-  setup.view.height = 360;
-  setup.frames = frames;
-  setup.play_fps = 50;
-  setup.set_frame = [&ts](int k) {
-    ts.set_calls.push_back(k);
-    if (k == 3) throw Error("frame 3 is broken");
-    ts.frame = k;
-  };
-  setup.frame_label = [](int k) { return "torus_" + std::to_string(k); };
-  setup.surface = [&ts](float iso) {
-    ts.calls.emplace_back(ts.frame, iso);
-    auto t = test::torus(1.f, iso * (1 + 0.3f * ts.frame), 64, 32);
-    return viz::Surface{std::move(t.mesh), std::move(t.field), 0, ""};
-  };
-  return setup;
-}
+}  // namespace
 
-TEST(VizExplorerTime, TimeSliderReextractsAtTheCurrentIsovalue) {
-  const fs::path dir = fresh_time_dir("slider");
+class VizExplorerTime : public test::ExplorerTest {
+ protected:
+  /// torus_setup's explorer as a series of `frames` tori (frame 3 fails to load), played at 50
+  /// frames a second, recorded in `ts`.
+  viz::ExplorerSetup series_setup(int frames) {
+    viz::ExplorerSetup setup = torus_setup(0.3f, 480, 360);
+    setup.frames = frames;
+    setup.play_fps = 50;
+    setup.set_frame = [this](int k) {
+      ts.set_calls.push_back(k);
+      if (k == 3) throw Error("frame 3 is broken");
+      ts.frame = k;
+    };
+    setup.frame_label = [](int k) { return "torus_" + std::to_string(k); };
+    setup.surface = [this](float iso) {
+      ts.calls.emplace_back(ts.frame, iso);
+      return test::torus_surface(iso * (1 + 0.3f * ts.frame), 64, 32, "");
+    };
+    return setup;
+  }
   TorusSeries ts;
-  viz::ExplorerSetup setup = series_setup(ts, 5);
-  const std::string f0 = (dir / "f0.png").string(), f2 = (dir / "f2.png").string(),
-                    bad = (dir / "bad.png").string();  // the status line names the failure
+};
+
+TEST_F(VizExplorerTime, TimeSliderReextractsAtTheCurrentIsovalue) {
+  viz::ExplorerSetup setup = series_setup(5);
+  const std::string f0 = file("f0.png"), f2 = file("f2.png"),
+                    bad = file("bad.png");  // the status line names the failure
   using A = viz::ExplorerAction;
   setup.script = {A::screenshot(f0), A::set_isovalue(0.35f), A::set_frame(2),
                   A::screenshot(f2), A::set_frame(3),        A::screenshot(bad)};
@@ -69,12 +63,10 @@ TEST(VizExplorerTime, TimeSliderReextractsAtTheCurrentIsovalue) {
   EXPECT_EQ(ts.set_calls, (std::vector<int>{2, 3, 2}))
       << "after a failure the shown frame is made current again";
   EXPECT_GT(test::pixel_difference(f0, f2), 2000) << "the frame change did not change the image";
-  if (!HasFailure()) fs::remove_all(dir);
 }
 
-TEST(VizExplorerTime, SpacePlaysAndPauses) {
-  TorusSeries ts;
-  viz::ExplorerSetup setup = series_setup(ts, 3);  // frames 0, 1, 2: never the broken 3
+TEST_F(VizExplorerTime, SpacePlaysAndPauses) {
+  viz::ExplorerSetup setup = series_setup(3);  // frames 0, 1, 2: never the broken 3
   using A = viz::ExplorerAction;
   setup.script = {A::press(' ')};
   for (int i = 0; i < 8; ++i) setup.script.push_back(A::press('c'));  // ~0.8 s of play
@@ -88,14 +80,11 @@ TEST(VizExplorerTime, SpacePlaysAndPauses) {
   EXPECT_LE(after_pause, 60u);
 }
 
-TEST(VizExplorerTime, OneFrameHasNoTimeSlider) {
-  TorusSeries ts;
-  viz::ExplorerSetup setup = series_setup(ts, 1);
+TEST_F(VizExplorerTime, OneFrameHasNoTimeSlider) {
+  viz::ExplorerSetup setup = series_setup(1);
   using A = viz::ExplorerAction;
   setup.script = {A::set_frame(2), A::press(' ')};
   viz::run_explorer(setup);
   EXPECT_TRUE(ts.set_calls.empty());
   EXPECT_EQ(ts.calls.size(), 1u);
 }
-
-}  // namespace
