@@ -15,6 +15,7 @@
 #include <memory>
 
 #include "app/picture_title.h"
+#include "app/shared_pictures.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "io/mesh_file.h"
@@ -103,11 +104,14 @@ struct Pending {
   Surface surface;
   std::string input, mesh_path, png_path, stats_path;
   nlohmann::json entry;  ///< filled in by the writer
+  std::size_t tag = 0;   ///< the index its entry will have in the summary (shared pictures)
   StageTimer timer;
 };
 
 /// Writes an entry's outputs together (mesh, PNG for run, stats.json) and completes its entry.
-void write_outputs(Pending& p, BatchKind kind, const BatchRequest& rq, const CommonOptions& o) {
+/// With `shared` (run's --range shared), the PNG is only noted, for shared->draw() at the end.
+void write_outputs(Pending& p, BatchKind kind, const BatchRequest& rq, const CommonOptions& o,
+                   SharedPictures* shared) {
   const Surface& s = p.surface;
   AtomicFileSet outputs;
   p.timer.start("write");
@@ -122,7 +126,11 @@ void write_outputs(Pending& p, BatchKind kind, const BatchRequest& rq, const Com
     p.timer.start("render");
     const viz::RenderOptions opts = render_options_for(
         *rq.render, p.input, surface_context(s), with_ao(estimator_title(s.estimator), o), &*s.field);
-    outputs.write(p.png_path, [&](const std::string& tmp) { viz::render_png(tmp, s.mesh, *s.field, opts); });
+    if (shared)
+      shared->add({p.mesh_path, p.png_path, opts, "", p.tag}, s.mesh, *s.field);
+    else
+      outputs.write(p.png_path,
+                    [&](const std::string& tmp) { viz::render_png(tmp, s.mesh, *s.field, opts); });
   }
   p.timer.stop();
   nlohmann::json r = surface_report(s);
@@ -320,6 +328,11 @@ void run_batch(const BatchRequest& rq, const CommonOptions& o) {
     ++failed;
   };
 
+  // run: one colour range and camera for every picture (--range shared), drawn at the end.
+  std::optional<SharedPictures> shared;
+  if (rq.kind == BatchKind::run) shared.emplace(*rq.render);
+  SharedPictures* pictures = shared && shared->active() ? &*shared : nullptr;
+
   const bool overlap = rq.jobs >= 2;
   std::future<Loaded> next;
   if (overlap && !inputs.empty())
@@ -410,10 +423,11 @@ void run_batch(const BatchRequest& rq, const CommonOptions& o) {
         in_flight = std::move(p);
         Pending* raw = in_flight.get();
         writing =
-            std::async(std::launch::async, [raw, &rq, &o] { write_outputs(*raw, rq.kind, rq, o); });
+            std::async(std::launch::async, [raw, &rq, &o] { write_outputs(*raw, rq.kind, rq, o, nullptr); });
       } else {
         try {
-          write_outputs(*p, rq.kind, rq, o);
+          p->tag = entries.size();  // the entry goes in next
+          write_outputs(*p, rq.kind, rq, o, pictures);
           entries.push_back(p->entry);
         } catch (const std::exception& e) {
           fail(p->entry, e.what());
@@ -423,6 +437,20 @@ void run_batch(const BatchRequest& rq, const CommonOptions& o) {
     loaded = Loaded{};
   }
   collect();
+  nlohmann::json picture_report;
+  if (pictures) {
+    const viz::ColorRange range = pictures->range();
+    picture_report = {{"range", "shared"}, {"camera", rq.render->camera_file.empty() ? "shared" : "--camera"}};
+    if (!rq.render->opts.range) picture_report["color_range"] = {range.lo, range.hi};
+    for (const SharedPictureFailure& f : pictures->draw()) {
+      nlohmann::json& entry = entries.at(f.tag);
+      if (entry.value("status", "") != "ok") continue;  // failed already (its stats.json)
+      std::fprintf(stderr, "isocurv: %s\n", one_line(f.message).c_str());
+      entry["status"] = "failed";
+      entry["error"] = one_line(f.message);
+      ++failed;
+    }
+  }
   // Folders of inputs that wrote nothing are removed again (only when empty).
   for (const std::string& f : folders) {
     std::error_code ec;
@@ -444,6 +472,7 @@ void run_batch(const BatchRequest& rq, const CommonOptions& o) {
       {"device", reference_device(o) ? device_name(o) : device_for(o).info().name},
       {"programs", program_report()},
       {"wall_ms", std::round(total_ms * 1000) / 1000}};
+  if (!picture_report.is_null()) summary["pictures"] = picture_report;
   const std::string summary_path = (fs::path(rq.dir) / "summary.json").string();
   write_text_file(summary_path, summary.dump(2) + "\n");
   if (o.json) {

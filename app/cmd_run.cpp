@@ -8,6 +8,7 @@
 #include "app/line_options_cli.h"
 #include "app/pipeline.h"
 #include "app/series.h"
+#include "app/shared_pictures.h"
 #include "app/picture_title.h"
 #include "app/render_options_cli.h"
 #include "core/atomic_file.h"
@@ -24,9 +25,11 @@ namespace {
 
 /// One volume -> the folder `dir` with <stem>.<format> (every curvature array), <stem>.png,
 /// stats.json and, with --lines, <stem>-lines.vtp, written together or not at all; returns the
-/// stats.json report.
+/// stats.json report. With `shared` (a series' --range shared), the picture and the lines are
+/// left to shared->draw() and only noted here.
 nlohmann::json run_one(const std::string& in, const std::string& dir, const CommonOptions& o,
-                       const RenderCli& ro, const lines::Options& lo, const std::string& format) {
+                       const RenderCli& ro, const lines::Options& lo, const std::string& format,
+                       SharedPictures* shared = nullptr) {
   namespace fs = std::filesystem;
   StageTimer timer;
   Surface s =
@@ -67,13 +70,17 @@ nlohmann::json run_one(const std::string& in, const std::string& dir, const Comm
       render_options_for(ro, in, surface_context(s), with_ao(estimator_title(s.estimator), o),
                          &*s.field);
   viz::LinesForCamera lines_for;
-  if (lo.lines.any())
+  if (lo.lines.any() && !shared)
     lines_for = [&](const Camera& cam) {
       poly = lines::join_segments(extract_lines(s.mesh, *s.field, cam, lo, o, timer));
       return *poly;
     };
-  outputs.write(png_path,
-                [&](const std::string& tmp) { viz::render_png(tmp, s.mesh, *s.field, opts, lines_for); });
+  if (shared)
+    shared->add({mesh_path, png_path, opts, lo.lines.any() ? lines_path : ""}, s.mesh, *s.field);
+  else
+    outputs.write(png_path, [&](const std::string& tmp) {
+      viz::render_png(tmp, s.mesh, *s.field, opts, lines_for);
+    });
   if (!ro.dirs_out.empty())
     outputs.write(ro.dirs_out, [&](const std::string& tmp) {
       viz::write_glyphs(tmp, viz::direction_glyphs(s.mesh, *s.field, viz::glyph_options(opts)));
@@ -87,6 +94,8 @@ nlohmann::json run_one(const std::string& in, const std::string& dir, const Comm
   r["input"] = in;
   r["mesh"] = mesh_path;
   r["png"] = png_path;
+  if (shared) r["picture"] = "drawn after the last frame, with the series' shared colour range and camera";
+  if (shared && lo.lines.any()) r["lines"] = lines_path;
   r["mesh_bytes"] = mesh_bytes;
   r["compression"] = io::to_string(o.compress);
   if (poly) {
@@ -152,10 +161,34 @@ void register_run(CLI::App& app) {
       require_series_cli(b, o);
       if (format != "vtp")
         throw Error("--format " + format + ": a time series writes .vtp frames (ParaView's .pvd reads XML files)");
-      run_series(b.inputs, series, {"run", dir, /*folder_per_frame=*/true, format}, o,
-                 [&lo](const SeriesFrame& f, CommonOptions& fo, const std::string& path) {
-                   return run_one(f.path, path, fo, ro, lo, format);
-                 });
+      SharedPictures shared(ro);
+      SharedPictures* pictures = shared.active() ? &shared : nullptr;
+      // The pictures are drawn once every frame is known, also when a bad frame stopped the
+      // series (the frames written keep their pictures).
+      auto draw = [&] {
+        if (!pictures) return;
+        const std::vector<SharedPictureFailure> failures = shared.draw(
+            [&](const Mesh& mesh, const curvature::CurvatureField& field, const Camera& cam) {
+              StageTimer ignored;
+              return lines::join_segments(extract_lines(mesh, field, cam, lo, o, ignored));
+            });
+        for (const SharedPictureFailure& f : failures) std::cerr << "isocurv: " << f.message << "\n";
+        if (!failures.empty())
+          throw Error(std::to_string(failures.size()) + " pictures of the series failed (listed above)");
+      };
+      try {
+        run_series(b.inputs, series, {"run", dir, /*folder_per_frame=*/true, format}, o,
+                   [&lo, pictures](const SeriesFrame& f, CommonOptions& fo, const std::string& path) {
+                     return run_one(f.path, path, fo, ro, lo, format, pictures);
+                   });
+      } catch (const Error&) {
+        try {
+          draw();
+        } catch (const Error&) {
+        }
+        throw;
+      }
+      draw();
       return;
     }
     if (lo.lines.any() && (b.inputs.size() > 1 || b.iso.find(',') != std::string::npos))

@@ -73,15 +73,20 @@ void register_screen(CLI::App& app) {
       ->check(CLI::IsMember(viz::color_map_names()))
       ->capture_default_str()
       ->group("Rendering");
-  cmd->add_option_function<std::vector<double>>(
+  cmd->add_option_function<std::vector<std::string>>(
          "--range",
-         [](const std::vector<double>& v) {
-           if (!(v[0] < v[1]))
-             throw CLI::ValidationError("--range", "expected MIN MAX with MIN < MAX");
-           po.range = viz::ColorRange{v[0], v[1]};
+         [](const std::vector<std::string>& v) {
+           std::string text = v[0];
+           if (v.size() == 2) text += "," + v[1];
+           double lo = 0, hi = 0;
+           char tail = 0;
+           if (std::sscanf(text.c_str(), "%lf,%lf%c", &lo, &hi, &tail) != 2 || !std::isfinite(lo) ||
+               !std::isfinite(hi) || !(lo < hi))
+             throw CLI::ValidationError("--range", "expected MIN,MAX (or MIN MAX) with MIN < MAX");
+           po.range = viz::ColorRange{lo, hi};
          },
-         "Colour exactly this value range (MIN MAX)")
-      ->expected(2)
+         "Colour exactly this value range (MIN,MAX or MIN MAX)")
+      ->expected(1, 2)
       ->group("Rendering");
   cmd->add_option("--percentile", po.clamp_percentile,
                   "The automatic colour range leaves out this percentage of extreme values")

@@ -1,5 +1,6 @@
 #include "app/render_options_cli.h"
 
+#include <cmath>
 #include <cstdio>
 
 #include "app/picture_title.h"
@@ -26,15 +27,28 @@ void add_render_options(CLI::App& cmd, RenderCli& r, bool files) {
       ->check(CLI::IsMember(viz::color_map_names()))
       ->capture_default_str()
       ->group("Rendering");
-  cmd.add_option_function<std::vector<double>>(
+  cmd.add_option_function<std::vector<std::string>>(
          "--range",
-         [&opts](const std::vector<double>& v) {
-           if (!(v[0] < v[1]))
-             throw CLI::ValidationError("--range", "expected MIN MAX with MIN < MAX");
-           opts.range = viz::ColorRange{v[0], v[1]};
+         [&r](const std::vector<std::string>& v) {
+           const std::string bad = "expected shared, each, MIN,MAX or MIN MAX with MIN < MAX";
+           if (v.size() == 1 && (v[0] == "shared" || v[0] == "each")) {
+             r.range_mode = v[0];
+             r.opts.range.reset();
+             return;
+           }
+           std::string text = v[0];
+           if (v.size() == 2) text += "," + v[1];
+           double lo = 0, hi = 0;
+           char tail = 0;
+           if (std::sscanf(text.c_str(), "%lf,%lf%c", &lo, &hi, &tail) != 2 || !std::isfinite(lo) ||
+               !std::isfinite(hi) || !(lo < hi))
+             throw CLI::ValidationError("--range", bad);
+           r.opts.range = viz::ColorRange{lo, hi};
          },
-         "Colour exactly this value range (MIN MAX; default: from the values, see --percentile)")
-      ->expected(2)
+         "Colour range: MIN,MAX (or MIN MAX) exactly; shared (the default) gives the pictures of "
+         "a sweep, batch or series one range from all their values, and one camera; each: every "
+         "picture its own (from its values, see --percentile)")
+      ->expected(1, 2)
       ->group("Rendering");
   cmd.add_option("--percentile", opts.clamp_percentile,
                  "The automatic colour range leaves out this percentage of extreme values (0..49)")

@@ -24,6 +24,9 @@ struct RenderCli {
   std::string dirs_out;         ///< --dirs-out FILE.vtp: the direction glyphs as line cells
   std::string title;            ///< --title TEXT: replaces the title scheme (picture_title)
   AnatomicalCli anatomical;     ///< --view and --view-up by anatomical names
+  /// --range shared|each: several pictures (sweep, batch, series) share one colour range and
+  /// camera (app/shared_pictures.h), or each has its own. A MIN,MAX range is in opts.range.
+  std::string range_mode = "shared";
 };
 
 /// Adds --color, --cmap, --range, --percentile, --shading, --ao, --dirs, --dirs-count,

@@ -31,6 +31,7 @@
 #include "viz/direction_glyphs.h"
 #include "viz/legend.h"
 #include "viz/quantity.h"
+#include "viz/range_values.h"
 
 namespace isocurv::viz {
 namespace {
@@ -270,18 +271,8 @@ struct CurvatureScene::Impl {
         field.unreliable.size() == values.size() && quantity_kind(q) != QuantityKind::flag ? &field.unreliable
                                                                                            : nullptr;
     no_data_shown = unmeasured && std::any_of(unmeasured->begin(), unmeasured->end(), [](std::uint8_t u) { return u; });
-    std::vector<float> inner;
-    if (!options.range) {
-      const std::vector<std::uint8_t> counted = curvature::counted_vertices(field, mean_edge_length(mesh));
-      const bool use_counted = counted.size() == values.size() &&
-                               std::any_of(counted.begin(), counted.end(), [](std::uint8_t c) { return c; });
-      const bool use_boundary = field.boundary.size() == values.size();
-      inner.reserve(values.size());
-      for (std::size_t i = 0; i < values.size(); ++i)
-        if ((!use_counted || counted[i]) && !(use_boundary && field.boundary[i]) && !(unmeasured && (*unmeasured)[i]))
-          inner.push_back(values[i]);
-    }
-    range = color_range(inner.empty() ? values : inner, q, options.clamp_percentile, options.range);
+    range = options.range ? color_range({}, q, options.clamp_percentile, options.range)
+                          : color_range(range_values(mesh, field, q), q, options.clamp_percentile);
     auto map = make_color_map(range, cmap);
     vtkPointData* pd = surface->GetPointData();
     pd->RemoveArray("Colors");
@@ -410,8 +401,9 @@ Camera CurvatureScene::frame_camera(const std::array<double, 6>* bounds) {
   const PixelBox& s = impl_->layout.surface;
   const double aspect =
       s.empty() ? double(o.width) / double(o.height) : double(s.x1 - s.x0) / double(s.y1 - s.y0);
-  const Camera cam = bounds ? fit_camera(*bounds, o.view, aspect)
-                            : fit_camera_to_points(framing_points(impl_->mesh), o.view, aspect);
+  const Camera cam = bounds                      ? fit_camera(*bounds, o.view, aspect)
+                     : !o.frame_points.empty() ? fit_camera_to_points(o.frame_points, o.view, aspect)
+                                               : fit_camera_to_points(framing_points(impl_->mesh), o.view, aspect);
   apply_camera(impl_->renderer, cam);
   return cam;
 }

@@ -1,7 +1,9 @@
 #pragma once
 // How a curvature surface is shown: shared by render_png and the explorer.
 #include <optional>
+#include <array>
 #include <string>
+#include <vector>
 
 #include "core/camera.h"
 #include "viz/color_map.h"
@@ -39,6 +41,9 @@ struct RenderOptions {
   std::string length_unit;  ///< the volume's length unit for the legend ("mm"); empty: "length"
   ViewSpec view;            ///< viewpoint, turns, zoom and projection (fit_camera)
   std::optional<Camera> camera;  ///< when set, used as it is instead of fitting `view`
+  /// When not empty (and no `camera`), the camera is fitted to these points (world units)
+  /// instead of the mesh's framing points: the pictures of a sweep or series share a camera.
+  std::vector<std::array<double, 3>> frame_points;
 };
 
 }  // namespace isocurv::viz

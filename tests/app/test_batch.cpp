@@ -5,6 +5,8 @@
 
 #include "io/mesh_file.h"
 #include "tests/app/cli.h"
+#include "tests/viz/png_stats.h"
+#include "viz/curvature_scene.h"
 
 namespace isocurv::test {
 namespace {
@@ -116,6 +118,55 @@ TEST(Batch, SweepWritesEachIsovalueAsASingleCallWould) {
   }
   EXPECT_NE(read(dir / "out/torus/torus_iso-0.5.ply").positions.size(),
             read(dir / "out/torus/torus_iso0.125.ply").positions.size());
+}
+
+// A sweep's pictures share one colour range and one camera by default: their legends are the
+// same pixels, and the thin torus looks smaller than the fat one; with --range each, each picture
+// has its own legend and fills its frame.
+TEST(Batch, SweepPicturesShareOneRangeAndCameraUnlessEach) {
+  TempDir dir("sweep_pictures");
+  const std::vector<std::string> common = {"run", dataset("torus"), "--iso", "-0.5,0.125",
+                                           "--size", "320x240", "--json"};
+  auto run = [&](const std::string& out, const std::vector<std::string>& extra) {
+    std::vector<std::string> args = common;
+    args.insert(args.end(), {"-o", dir / out});
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto r = run_isocurv(args, 120);
+    EXPECT_TRUE(r.ok()) << r.describe();
+    return parse_json(r.out, "run --json");
+  };
+  const nlohmann::json shared = run("shared", {});
+  const nlohmann::json each = run("each", {"--range", "each"});
+  ASSERT_TRUE(shared.contains("pictures")) << shared.dump();
+  EXPECT_EQ(shared["pictures"]["range"], "shared");
+  const double lo = shared["pictures"]["color_range"][0], hi = shared["pictures"]["color_range"][1];
+  EXPECT_LT(lo, hi);
+  EXPECT_FALSE(each.contains("pictures"));
+  auto png = [&](const std::string& out, const char* iso) {
+    return dir / (out + "/torus/torus_iso" + std::string(iso) + ".png");
+  };
+  EXPECT_EQ(test::legend_difference(png("shared", "-0.5"), png("shared", "0.125")), 0);
+  EXPECT_GT(test::legend_difference(png("each", "-0.5"), png("each", "0.125")), 20);
+  // The surface's width on screen (title and legend left out).
+  auto width = [&](const std::string& path) {
+    const std::vector<test::Box> skip = {{int(0.8 * 320), 0, 320, 240}, {0, int(0.88 * 240), 320, 240}};
+    const test::Box b = test::foreground_box(path, viz::kBackgroundBottom, viz::kBackgroundTop, skip);
+    return double(b.x1 - b.x0);
+  };
+  const double thin_shared = width(png("shared", "-0.5")), fat_shared = width(png("shared", "0.125"));
+  const double thin_each = width(png("each", "-0.5")), fat_each = width(png("each", "0.125"));
+  EXPECT_NE(thin_shared, fat_shared);
+  EXPECT_NEAR(thin_each, fat_each, 0.04 * 320) << "each picture fills its own frame";
+  EXPECT_GT(std::abs(thin_shared - fat_shared), 2 * std::abs(thin_each - fat_each) + 2)
+      << "one camera: the sizes differ as the surfaces do";
+  // A range given exactly applies to every picture and is not reported as shared.
+  const nlohmann::json fixed = run("fixed", {"--range", "-1,1"});
+  EXPECT_FALSE(fixed["pictures"].contains("color_range")) << fixed.dump();
+  EXPECT_EQ(test::legend_difference(png("fixed", "-0.5"), png("fixed", "0.125")), 0);
+  expect_usage_error(run_isocurv({"run", dataset("torus"), "--range", "1,-1", "-o", dir / "bad"}),
+                     "--range");
+  expect_usage_error(run_isocurv({"run", dataset("torus"), "--range", "everything", "-o", dir / "bad"}),
+                     "--range");
 }
 
 TEST(Batch, JobsTwoWritesTheSameFilesAsJobsOne) {

@@ -16,6 +16,7 @@
 #include "io/mesh_file.h"
 #include "io/pvd_collection.h"
 #include "tests/app/cli.h"
+#include "tests/viz/png_stats.h"
 
 namespace isocurv::test {
 namespace {
@@ -229,6 +230,30 @@ TEST(SeriesCli, RunFeaturesAndLinesOverASeries) {
     EXPECT_TRUE(j["entries"][1].contains("features"));
     EXPECT_EQ(io::read_pvd(dir / "feat/series.pvd").size(), 2u);
   }
+}
+
+// run over a series draws every frame with one colour range and one camera (--range shared, the
+// default): the legends are the same pixels; with --range each they are not.
+TEST(SeriesCli, RunPicturesShareOneRangeAcrossFrames) {
+  TempDir dir("shared");
+  auto run = [&](const std::string& out, const std::vector<std::string>& extra) {
+    auto args = std::vector<std::string>{"run", "--time-series", frame_of("pulsing_sphere", 0),
+                                         frame_of("pulsing_sphere", 4), "--color", "K",
+                                         "--size", "200x150", "-o", dir / out, "--quiet"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto r = run_isocurv(args, 300);
+    EXPECT_TRUE(r.ok()) << r.describe();
+  };
+  run("shared", {});
+  run("each", {"--range", "each"});
+  auto png = [&](const std::string& out, int i) {
+    const std::string f = "pulsing_sphere_" + std::to_string(i);
+    return dir / (out + "/" + f + "/" + f + ".png");
+  };
+  EXPECT_EQ(test::legend_difference(png("shared", 0), png("shared", 4)), 0);
+  EXPECT_GT(test::legend_difference(png("each", 0), png("each", 4)), 20);
+  const nlohmann::json stats = parse_json(read_file(dir / "shared/pulsing_sphere_4/stats.json"), "stats");
+  EXPECT_TRUE(stats.contains("picture")) << stats.dump();
 }
 
 TEST(SeriesCli, UsageErrors) {

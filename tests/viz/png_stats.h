@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <cstdlib>
 #include <string>
 
@@ -190,6 +191,19 @@ inline long pixel_difference(const std::string& a, const std::string& b) {
   const auto* pb = static_cast<const unsigned char*>(ib->GetScalarPointer());
   long differ = 0;
   for (long i = 0; i < n; ++i) differ += pa[i] != pb[i];
+  return differ;
+}
+
+/// The number of pixels in which the legend columns of two same-sized pictures differ (right of
+/// 80% of the width, below the title's top 15%); -1 when the sizes differ.
+inline long legend_difference(const std::string& a, const std::string& b) {
+  const Pixels pa = read_pixels(a), pb = read_pixels(b);
+  if (pa.width != pb.width || pa.height != pb.height || pa.components < 3 || pb.components < 3)
+    return -1;
+  long differ = 0;
+  for (int y = 0; y < int(0.85 * pa.height); ++y)
+    for (int x = int(0.8 * pa.width); x < pa.width; ++x)
+      differ += std::memcmp(pa.at(x, y), pb.at(x, y), 3) != 0;
   return differ;
 }
 
