@@ -60,14 +60,16 @@ void run_deform(const DeformCli& c, const CommonOptions& o) {
   if (c.frames < 1 || c.frames > 100000) throw Error("--frames must be between 1 and 100000");
   if (!std::isfinite(c.amplitude) || !std::isfinite(c.waves) || c.waves <= 0)
     throw Error("--amplitude must be finite and --waves positive");
+  // Only the estimators with a prepared path (curvature/topology.h): the others are refused by
+  // name, in one line that lists those deform takes.
   const std::optional<curvature::Estimator> est = curvature::estimator_from_name(c.estimator);
-  if (!est ||
-      !(*est == curvature::Estimator::rusinkiewicz || *est == curvature::Estimator::batagelo ||
-        *est == curvature::Estimator::prantl3 || *est == curvature::Estimator::prantl2))
-    throw Error(
-        "--estimator must be rusinkiewicz, batagelo, prantl3 or prantl2 (the estimators "
-        "with a prepared-topology path), not '" +
-        c.estimator + "'");
+  if (!est)
+    throw Error("--estimator must be one of " + curvature::prepared_estimator_names() +
+                " (the estimators with a prepared-topology path), not '" + c.estimator + "'");
+  if (!curvature::has_prepared_path(*est))
+    throw Error("--estimator " + c.estimator + ": deform runs only " +
+                curvature::prepared_estimator_names() + "; " +
+                curvature::no_prepared_path_reason(*est));
   if (!is_mesh_path(c.input))
     throw Error(c.input + ": deform takes a mesh file (" + io::mesh_extensions() + ")");
   if (reference_device(o))
@@ -213,7 +215,8 @@ void register_deform(CLI::App& app) {
       "topology: one .vtp per frame, a .pvd collection and timings.json");
   cmd->footer(
       "Example: isocurv deform sphere.vtp --deformer affine --frames 60 -o anim/\n"
-      "         isocurv deform horse.ply --deformer skin --skin horse_rig.json -o anim/ --json\n"
+      "         isocurv deform build/datasets/finger.vtp --deformer skin\n"
+      "           --skin build/datasets/finger_rig.json --frames 9 -o finger/  (the sample rig)\n"
       "affine: scaled about the origin by diag(a, b, c), a = 1 + 0.5 sin 2 pi t and b, c a third\n"
       "and two thirds of a period later (a unit sphere becomes ellipsoids with axes in [0.5,\n"
       "1.5]); noise: p + A sin(2 pi t) noise(p) n along the rest normals "
@@ -232,7 +235,8 @@ void register_deform(CLI::App& app) {
                   "noise: peak displacement, fraction of the bounding-box diagonal (0.02)");
   cmd->add_option("--waves", c.waves, "noise: wavelengths per bounding-box diagonal (4)");
   cmd->add_option("--estimator", c.estimator,
-                  "rusinkiewicz (default), batagelo, prantl3 or prantl2");
+                  "rusinkiewicz (default), batagelo, prantl3 or prantl2 (those with a prepared "
+                  "path; the others are refused)");
   cmd->add_option("--ao-scale", o.ao_scale, "Ambient-occlusion radius (default 4 mean edges)");
   cmd->add_option("-o,--output", c.output, "Output folder (created if missing)")->required();
   add_common_options(*cmd, o, false);

@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "curvature/detail/local_geometry.h"
 #include "curvature/detail/mesh_pass_cl.h"
+#include "curvature/estimator.h"
 #include "curvature/input.h"
 
 namespace isocurv::curvature {
@@ -113,10 +114,38 @@ void estimate_resident(Estimator e, Topology& topo, Device& device, const Option
       detail::estimate_resident_mesh_pass(e, topo, device, options, out, timings);
       return;
     default:
-      throw Error(
-          "curvature: only the rusinkiewicz, batagelo, prantl3 and prantl2 estimators "
-          "run on a prepared topology");
+      throw Error("curvature: a prepared topology runs only " + prepared_estimator_names() + "; " +
+                  no_prepared_path_reason(e));
   }
+}
+
+bool has_prepared_path(Estimator e) {
+  switch (e) {
+    case Estimator::rusinkiewicz:
+    case Estimator::batagelo:
+    case Estimator::prantl3:
+    case Estimator::prantl2:
+      return true;
+    case Estimator::volume:
+    case Estimator::quadric:
+    case Estimator::cubic:
+    case Estimator::sampling:
+    case Estimator::meyer:
+      return false;
+  }
+  return false;
+}
+
+std::string prepared_estimator_names() { return "rusinkiewicz, batagelo, prantl3 and prantl2"; }
+
+std::string no_prepared_path_reason(Estimator e) {
+  if (has_prepared_path(e)) return {};
+  const std::string name = estimator_name(e);
+  if (e == Estimator::volume)
+    return name + " needs the volume the mesh was extracted from, not a mesh alone";
+  return name +
+         " has no prepared-topology path (a double-precision C++ reference on the host, without "
+         "device kernels)";
 }
 
 }  // namespace isocurv::curvature

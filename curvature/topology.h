@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "core/cl_device.h"
@@ -88,6 +89,22 @@ void estimate_resident(Topology& topo, Device& device, const Options& options, C
 ///        an OpenCL failure
 void estimate_resident(Estimator e, Topology& topo, Device& device, const Options& options,
                        CurvatureField& out, Timings* timings = nullptr);
+
+/// True for the estimators with a prepared path (estimate_resident): rusinkiewicz, batagelo,
+/// prantl3 and prantl2, the mesh estimators with kernels. The others have none: volume needs the
+/// volume, not only a mesh; quadric, cubic, sampling and meyer are double-precision C++ references
+/// on the host (no kernels) that build their own 1-ring from the mesh on every call, so a
+/// "prepared" path for them would only be a cold estimate per frame.
+bool has_prepared_path(Estimator e);
+
+/// The names of the estimators with a prepared path, for messages: "rusinkiewicz, batagelo,
+/// prantl3 and prantl2".
+std::string prepared_estimator_names();
+
+/// Why `e` has no prepared path, one clause that starts with its name ("quadric has no
+/// prepared-topology path (...)"), for the one-line errors of estimate_resident, isocurv deform
+/// and the Python Topology, which add the estimators that have one; empty when it has one.
+std::string no_prepared_path_reason(Estimator e);
 
 /// Uploads `positions` into topo.positions() (blocking), after check_positions and a count check.
 void upload_positions(const Positions& positions, Topology& topo);

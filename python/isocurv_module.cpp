@@ -695,12 +695,9 @@ std::shared_ptr<PyTopology> make_topology(const MeshArg& mesh_arg, py::object de
 py::object topology_curvature(PyTopology& t, const py::object& positions, py::object estimator,
                               py::object normals_arg, py::object ao_scale) {
   const curvature::Estimator e = estimator_of(estimator, "estimator");
-  if (e != curvature::Estimator::rusinkiewicz && e != curvature::Estimator::batagelo &&
-      e != curvature::Estimator::prantl3 && e != curvature::Estimator::prantl2)
-    throw py::value_error(
-        "estimator: Topology runs rusinkiewicz, batagelo, prantl3 or prantl2 (the estimators "
-        "with a prepared-topology path), not '" +
-        std::string(curvature::estimator_name(e)) + "'");
+  if (!curvature::has_prepared_path(e))
+    throw py::value_error("estimator: Topology runs only " + curvature::prepared_estimator_names() +
+                          "; " + curvature::no_prepared_path_reason(e));
   std::string source = normals_of(normals_arg);
   if (source == "volume")
     throw py::value_error("normals: Topology takes 'mesh', 'area' or 'face-average' (no volume)");

@@ -1,10 +1,12 @@
 // curvature::Topology: per-frame estimates on a prepared topology are bit-identical to cold ones.
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/error.h"
+#include "curvature/estimator.h"
 #include "curvature/mesh_estimators.h"
 #include "curvature/topology.h"
 #include "deform/affine.h"
@@ -131,6 +133,48 @@ TEST(PreparedTopology, BadInputIsAnError) {
   o.vertex_normals = &normals;
   EXPECT_THROW(curvature::estimate(m.positions, topo, dev, o, out), Error);
   EXPECT_THROW(curvature::estimate_resident(Estimator::quadric, topo, dev, {}, out), Error);
+}
+
+// The prepared path is exactly the mesh estimators with kernels; every other estimator is refused
+// in one line that names it and those that have the path (isocurv deform and the Python Topology
+// repeat it).
+TEST(PreparedTopology, EveryEstimatorWithoutThePathIsRefusedByName) {
+  Device& dev = test::device();
+  const Mesh m = test::icosphere(1);
+  curvature::Topology topo = curvature::prepare(m.triangles, m.vertex_count(), dev);
+  curvature::upload_positions(m.positions, topo);
+  const std::vector<Estimator> all = {Estimator::rusinkiewicz, Estimator::volume,
+                                      Estimator::batagelo,     Estimator::prantl3,
+                                      Estimator::prantl2,      Estimator::quadric,
+                                      Estimator::cubic,        Estimator::sampling,
+                                      Estimator::meyer};
+  ASSERT_EQ(all.size(), curvature::estimator_names().size());
+  for (Estimator e : all) {
+    const std::string name = curvature::estimator_name(e);
+    SCOPED_TRACE(name);
+    const std::optional<MeshEstimator> me = curvature::mesh_estimator_from_name(name);
+    EXPECT_EQ(curvature::has_prepared_path(e), me && curvature::mesh_estimator_info(*me).kernels);
+    curvature::CurvatureField out;
+    if (curvature::has_prepared_path(e)) {
+      EXPECT_TRUE(curvature::no_prepared_path_reason(e).empty());
+      curvature::estimate_resident(e, topo, dev, {}, out);
+      EXPECT_EQ(out.H.size(), m.vertex_count());
+      continue;
+    }
+    const std::string reason = curvature::no_prepared_path_reason(e);
+    EXPECT_EQ(reason.rfind(name + " ", 0), 0u) << reason;
+    EXPECT_EQ(reason.find('\n'), std::string::npos) << reason;
+    try {
+      curvature::estimate_resident(e, topo, dev, {}, out);
+      ADD_FAILURE() << "estimate_resident ran " << name;
+    } catch (const Error& err) {
+      const std::string what = err.what();
+      EXPECT_NE(what.find(reason), std::string::npos) << what;
+      EXPECT_NE(what.find("rusinkiewicz, batagelo, prantl3 and prantl2"), std::string::npos)
+          << what;
+      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    }
+  }
 }
 
 TEST(PreparedTopology, EmptyMeshGivesEmptyField) {
