@@ -160,15 +160,8 @@ void write_outputs(Pending& p, BatchKind kind, const BatchRequest& rq, const Com
 
 /// The probe of an output folder before any work: created if missing, and a file can be made in it.
 void require_writable_folder(const std::string& dir) {
-  require_folder_name(dir, "several inputs or isovalues");
+  make_output_folder(dir, "several inputs or isovalues");
   std::error_code ec;
-  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
-    throw Error(
-        dir,
-        "the output (-o) must be a folder for several inputs or isovalues, and this is a file");
-  fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir))
-    throw Error(dir, "cannot create the output folder: " + ec.message());
   const std::string probe =
       (fs::path(dir) / (".isocurv-probe-" + std::to_string(getpid()))).string();
   std::FILE* f = std::fopen(probe.c_str(), "wb");
@@ -291,6 +284,16 @@ void require_folder_name(const std::string& dir, const std::string& what) {
     if (ext == e)
       throw Error(dir, "the output (-o) of " + what + " is a folder, and this names a file (give a folder, e.g. " +
                            (fs::path(dir).parent_path() / fs::path(dir).stem()).string() + "/)");
+}
+
+void make_output_folder(const std::string& dir, const std::string& what) {
+  require_folder_name(dir, what);
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw Error(dir, "the output (-o) of " + what + " must be a folder, and this is a file");
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir))
+    throw Error(dir, "cannot create the output folder: " + ec.message());
 }
 
 std::string iso_suffix(float iso) { return "_iso" + format_number(iso); }

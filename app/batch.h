@@ -67,6 +67,10 @@ bool is_batch(const std::vector<std::string>& inputs, const std::vector<float>& 
 /// message ("several inputs or isovalues", "a time series", ...). @throw Error naming it.
 void require_folder_name(const std::string& dir, const std::string& what);
 
+/// The output folder `dir` made ready: require_folder_name, then an existing file refused and the
+/// folder created (with its parents) if missing. @throw Error naming `dir`.
+void make_output_folder(const std::string& dir, const std::string& what);
+
 /// The output name's suffix for isovalue `iso` in a sweep: "_iso40", "_iso0.5", "_iso-1e-05".
 std::string iso_suffix(float iso);
 

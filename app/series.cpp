@@ -123,15 +123,7 @@ void run_series(const std::vector<std::string>& inputs, const SeriesCli& cli,
   const auto t_start = std::chrono::steady_clock::now();
   require_folder_name(layout.dir, "a time series");
   const std::vector<SeriesFrame> frames = series_frames(inputs, o.volume.grid, cli.time_step);
-  {
-    std::error_code ec;
-    if (fs::exists(layout.dir, ec) && !fs::is_directory(layout.dir, ec))
-      throw Error(layout.dir,
-                  "the output (-o) of a time series must be a folder, and this is a file");
-    fs::create_directories(layout.dir, ec);
-    if (ec || !fs::is_directory(layout.dir))
-      throw Error(layout.dir, "cannot create the output folder: " + ec.message());
-  }
+  make_output_folder(layout.dir, "a time series");
   const std::string pvd_path = (fs::path(layout.dir) / "series.pvd").string();
   const std::string json_path = (fs::path(layout.dir) / "series.json").string();
   io::PvdCollection pvd(pvd_path);

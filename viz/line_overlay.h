@@ -11,9 +11,9 @@ class vtkRenderer;
 
 namespace isocurv::viz {
 
-/// One actor holding polylines coloured by LineType (contours black, suggestive
-/// contours dark grey, ridges red, valleys blue; opacity from Strength), drawn
-/// unlit and `width` pixels wide. Hidden lines are removed by the depth test
+/// Polylines coloured by LineType (contours black, suggestive contours dark
+/// grey, ridges red, valleys blue; opacity from Strength), drawn unlit, 2 pixels
+/// wide over a white halo 4 pixels wide, so that they show on every colour map. Hidden lines are removed by the depth test
 /// against the surface: adding the overlay turns on VTK's polygon offset for
 /// every polygon mapper (VTK's global setting), which pushes surfaces back by
 /// about a depth-buffer step per unit of slope, so lines lying on the surface

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/le_bytes.h"
 #include "core/error.h"
 #include "io/mesh_file.h"
 #include "tests/io/test_meshes.h"
@@ -21,12 +22,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-template <class T>
-std::string le(T v) {
-  std::string out(sizeof(T), '\0');
-  std::memcpy(out.data(), &v, sizeof(T));
-  return out;
-}
+using isocurv::test::le;
 
 /// One array of a raw-appended .vtp: where it sits, its attributes and its appended bytes.
 struct Array {

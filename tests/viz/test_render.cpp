@@ -105,6 +105,35 @@ TEST_F(VizRenderTest, AoDarkensAndGlyphsAddLines) {
   EXPECT_GT(s_dirs.white, s_plain.white + 0.001);
 }
 
+// A red ridge on a surface at the red end of the map stays visible: its white halo.
+TEST_F(VizRenderTest, LinesStayVisibleOnTheirOwnColour) {
+  const auto torus = test::torus(1.f, 0.4f);
+  viz::RenderOptions o;
+  o.color = "H";  // positive everywhere on this torus: all of it at the red end of the range
+  o.cmap = "diverging";
+  o.range = viz::ColorRange{-1e-3, 1e-3};
+  o.width = 320;
+  o.height = 240;
+  o.title = "";
+  o.view.view = NamedView::plus_z;
+  lines::Polylines ridge;  // the torus's top circle, as a ridge
+  for (int i = 0; i <= 96; ++i) {
+    const float a = float(i) * 6.2831853f / 96;
+    ridge.points.push_back({std::cos(a), std::sin(a), 0.4f});
+  }
+  ridge.offsets = {0, std::uint32_t(ridge.points.size())};
+  ridge.type = {lines::LineType::ridge};
+  ridge.strength = {1.f};
+  const std::string plain = path("plain.png"), lined = path("lined.png");
+  viz::render_png(plain, torus.mesh, torus.field, o);
+  viz::render_png(lined, torus.mesh, torus.field, o, [&](const Camera&) { return ridge; });
+  const int white[3] = {255, 255, 255};
+  const double before = test::fraction_near(plain, white, 0, 0.8, 30);
+  const double after = test::fraction_near(lined, white, 0, 0.8, 30);
+  EXPECT_LT(before, 0.001);
+  EXPECT_GT(after, before + 0.004) << "the ridge's halo is missing: red on red";
+}
+
 TEST_F(VizRenderTest, EveryQuantityRenders) {
   const auto torus = test::torus(48, 24);
   viz::RenderOptions o;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/le_bytes.h"
 #include "test_files.h"
 #include "volume/load.h"
 
@@ -20,13 +21,7 @@ using namespace voltest;
 
 namespace {
 
-/// `n` little-endian bytes of `v`.
-template <class T>
-std::string le(T v) {
-  std::string out(sizeof(T), '\0');
-  std::memcpy(out.data(), &v, sizeof(T));
-  return out;
-}
+using isocurv::test::le;
 
 /// The 2x2x2 values 0 .. 7 as Float32 bytes.
 std::string eight_floats() {
