@@ -14,10 +14,10 @@ namespace isocurv::viz {
 
 void run_explorer(const ExplorerSetup& setup) {
   if (!setup.surface) throw Error("explorer: no surface callback given");
-  if (!(setup.min_value < setup.max_value))
+  if (setup.has_isovalue && !(setup.min_value < setup.max_value))
     throw Error("explorer: empty isovalue range [" + std::to_string(setup.min_value) + ", " +
                 std::to_string(setup.max_value) + "]");
-  if (setup.isovalue < setup.min_value || setup.isovalue > setup.max_value)
+  if (setup.has_isovalue && (setup.isovalue < setup.min_value || setup.isovalue > setup.max_value))
     throw Error("explorer: isovalue " + std::to_string(setup.isovalue) + " outside the value range [" +
                 std::to_string(setup.min_value) + ", " + std::to_string(setup.max_value) + "]");
   if (setup.view.width < 64 || setup.view.height < 64) throw Error("explorer: window too small");

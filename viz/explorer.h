@@ -1,7 +1,9 @@
 #pragma once
 // The interactive isosurface explorer: a VTK window with the surface coloured by curvature and an
-// isovalue slider. It never extracts anything itself: the caller supplies a callback that turns
-// an isovalue into a surface (the app composes mc::extract and curvature::estimate).
+// isovalue slider, and a time slider for a series (of volumes, or of meshes: then without the
+// isovalue slider). It never extracts or reads anything itself: the caller supplies a callback
+// that turns an isovalue into a surface (the app composes mc::extract and curvature::estimate, or
+// reads a series' mesh file). The parts are in viz/detail/ (internal).
 #include <array>
 #include <functional>
 #include <string>
@@ -26,11 +28,13 @@ struct Surface {
 
 /// One step of a scripted run (for tests and demos), executed on a timer inside the event loop.
 struct ExplorerAction {
-  enum class Kind { SetIsovalue, Key, Type, Screenshot, Resize, SetFrame };
+  enum class Kind { SetIsovalue, Key, Type, Screenshot, Resize, SetFrame, Status, Wait };
   Kind kind = Kind::Key;
   float isovalue = 0;  ///< SetIsovalue: moves the slider there, as a user would
   char key = 0;        ///< Key: a key press ('c', 'a', 'd', 's', 'r', '\r' for Enter, ...)
-  std::string path;    ///< Screenshot: PNG path; Type: the characters typed, one key each
+  /// Screenshot: PNG path; Status: the text file the status line's text is written to (a test
+  /// reads the frame label there); Type: the characters typed, one key each
+  std::string path;
   int width = 0, height = 0;  ///< Resize: the window's new size
   int frame = 0;              ///< SetFrame: moves the time slider there, as a user would
 
@@ -40,6 +44,8 @@ struct ExplorerAction {
   static ExplorerAction screenshot(std::string path) { return {Kind::Screenshot, 0, 0, std::move(path), 0, 0}; }
   static ExplorerAction resize(int w, int h) { return {Kind::Resize, 0, 0, {}, w, h}; }
   static ExplorerAction set_frame(int f) { return {Kind::SetFrame, 0, 0, {}, 0, 0, f}; }
+  static ExplorerAction status(std::string path) { return {Kind::Status, 0, 0, std::move(path), 0, 0}; }
+  static ExplorerAction wait() { return {Kind::Wait, 0, 0, {}, 0, 0}; }  ///< one tick, nothing done
 };
 
 /// The explorer's screen-space mode ('x'; SEEDS-SPEC 4.4): curvature per pixel of the surface as
@@ -69,6 +75,11 @@ struct ExplorerSetup {
   float isovalue = 0;                       ///< initial isovalue
   float min_value = 0, max_value = 1;       ///< slider range (the volume's value range)
   std::function<Surface(float iso)> surface;  ///< re-extracts and re-estimates; may throw Error
+  /// False for surfaces that no isovalue makes (a series of mesh files): no isovalue slider, 'i'
+  /// is refused, the status line names the frame instead of an isovalue, screen-space mode
+  /// rasterises the mesh shown, and surface() gets `isovalue` (to ignore); min_value and
+  /// max_value are not used.
+  bool has_isovalue = true;
   /// 'o': reads a mesh file (with curvature estimated when it carries none); may throw Error.
   /// Unset: 'o' says that opening is not available.
   std::function<Surface(const std::string& path)> open_mesh;
@@ -96,6 +107,12 @@ struct ExplorerSetup {
   double play_fps = 10;
   /// When set: the text the status line shows for frame k (e.g. its file and time).
   std::function<std::string(int frame)> frame_label;
+  /// Frames share their colour ranges, so that an animation does not flicker (a mesh series):
+  /// each array's range is the one the first frame gives it (the range render would use for that
+  /// frame alone), held for every frame; an array the first frame lacks takes its range from the
+  /// frame it is first shown on. view.range (--range) wins when set; a mesh opened with 'o' and
+  /// screen-space images keep ranges of their own. False: each surface its own range.
+  bool shared_color_range = false;
   ScreenMode screen;  ///< screen-space mode ('x'), when screen.image is set
   /// When non-empty: run these actions (one per timer tick, ~100 ms apart) and close the window.
   std::vector<ExplorerAction> script;
@@ -112,7 +129,8 @@ struct ExplorerSetup {
 /// +x, -x, +y, -y, +z, -z) and r resets the camera to the current one, i types an isovalue, o types
 /// a mesh file to open, w types a path to save the surface shown (proposing surface_path), k saves
 /// the camera to camera_path, s saves a screenshot (name printed on stdout), space plays / pauses a
-/// time series (setup.frames). While typing, Enter applies, Escape cancels, BackSpace deletes. The
+/// time series (setup.frames; a series of meshes has no isovalue slider, setup.has_isovalue).
+/// While typing, Enter applies, Escape cancels, BackSpace deletes. The
 /// mouse rotates, pans and zooms. Dragging the slider re-runs the callback live while updates take
 /// under 150 ms, otherwise on release. A failed update (Error from the callback) is shown on the
 /// status line and the previous surface stays. Interactive use needs an X display; a scripted run

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -21,6 +23,14 @@ inline viz::Surface torus_surface(float tube, int nu = 64, int nv = 32,
                                   std::string detail = "torus") {
   TestSurface t = torus(1.f, tube, nu, nv);
   return viz::Surface{std::move(t.mesh), std::move(t.field), 0, std::move(detail)};
+}
+
+/// The whole text of the file `path` (a script's status line, say); empty when it is missing.
+inline std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 class ExplorerTest : public ::testing::Test {

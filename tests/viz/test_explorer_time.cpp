@@ -88,3 +88,77 @@ TEST_F(VizExplorerTime, OneFrameHasNoTimeSlider) {
   EXPECT_TRUE(ts.set_calls.empty());
   EXPECT_EQ(ts.calls.size(), 1u);
 }
+
+// A series of meshes (ExplorerSetup::has_isovalue false, as `isocurv view --time-series` of mesh
+// files): no isovalue, the status line names the frame, and with shared_color_range every frame
+// is coloured over the first frame's range (the legend does not change from frame to frame).
+class VizExplorerMeshSeries : public test::ExplorerTest {
+ protected:
+  /// Three tori, tube radius 0.2, 0.3, 0.4 (H from about 2.5 down to 1.3), as a mesh series.
+  viz::ExplorerSetup mesh_series(bool shared) {
+    viz::ExplorerSetup setup = torus_setup(0.3f, 480, 360);
+    setup.has_isovalue = false;
+    setup.min_value = setup.max_value = 0;  // not used without an isovalue
+    setup.shared_color_range = shared;
+    setup.frames = 3;
+    setup.set_frame = [this](int k) { frame = k; };
+    setup.frame_label = [](int k) { return "torus_" + std::to_string(k) + ".vtp"; };
+    setup.surface = [this](float iso) {
+      extracted.push_back(iso);
+      return test::torus_surface(0.2f + 0.1f * frame, 64, 32, "mesh");
+    };
+    return setup;
+  }
+  int frame = 0;
+};
+
+TEST_F(VizExplorerMeshSeries, NoIsovalueAndTheFirstFramesColourRange) {
+  viz::ExplorerSetup setup = mesh_series(true);
+  using A = viz::ExplorerAction;
+  setup.script = {A::screenshot(file("f0.png")), A::status(file("s0.txt")),
+                  A::set_isovalue(0.5f),  // no slider: nothing happens
+                  A::press('i'),          A::status(file("i.txt")),
+                  A::set_frame(2),        A::screenshot(file("f2.png")),
+                  A::status(file("s2.txt"))};
+  viz::run_explorer(setup);
+  EXPECT_EQ(extracted.size(), 2u) << "frame 0, then frame 2; the isovalue moves nothing";
+  const std::string s0 = test::read_text(file("s0.txt")), s2 = test::read_text(file("s2.txt"));
+  EXPECT_NE(s0.find("mesh of frame 0"), std::string::npos) << s0;
+  EXPECT_EQ(s0.find("isovalue"), std::string::npos) << "no isovalue for meshes:\n" << s0;
+  EXPECT_NE(s0.find("frame 0 of 3 (torus_0.vtp)"), std::string::npos) << s0;
+  EXPECT_NE(s2.find("frame 2 of 3 (torus_2.vtp)"), std::string::npos) << s2;
+  EXPECT_NE(test::read_text(file("i.txt")).find("no isovalue here"), std::string::npos);
+  EXPECT_GT(test::pixel_difference(file("f0.png"), file("f2.png")), 2000) << "frame 2 not shown";
+  EXPECT_EQ(test::legend_difference(file("f0.png"), file("f2.png"), 0.88, 0.4), 0)
+      << "the colour range changed from frame 0 to frame 2";
+}
+
+TEST_F(VizExplorerMeshSeries, WithoutSharedRangesEachFrameHasItsOwn) {
+  viz::ExplorerSetup setup = mesh_series(false);
+  using A = viz::ExplorerAction;
+  setup.script = {A::screenshot(file("f0.png")), A::set_frame(2), A::screenshot(file("f2.png"))};
+  viz::run_explorer(setup);
+  EXPECT_GT(test::legend_difference(file("f0.png"), file("f2.png"), 0.88, 0.4), 100)
+      << "the legend should follow each frame's own range (else the test above proves nothing)";
+}
+
+TEST_F(VizExplorerMeshSeries, ScreenSpaceRasterisesEachFramesMesh) {
+  viz::ExplorerSetup setup = mesh_series(true);
+  std::vector<int> cast_frames;  // the frame current at each cast of a mesh
+  setup.screen.image = [&](float, const viz::Surface* mesh, const Camera&, int w, int h) {
+    if (!mesh) throw Error("a mesh series has no volume to cast");
+    cast_frames.push_back(frame);
+    viz::ScreenImage img;
+    img.width = w, img.height = h;
+    img.H.assign(img.pixels(), 1.f), img.K.assign(img.pixels(), 1.f);
+    img.valid.assign(img.pixels(), 1);
+    return img;
+  };
+  using A = viz::ExplorerAction;
+  setup.script = {A::press('x'), A::set_frame(1), A::status(file("s.txt")), A::press('x')};
+  viz::run_explorer(setup);
+  ASSERT_FALSE(cast_frames.empty()) << "'x' cast nothing";
+  EXPECT_EQ(cast_frames.front(), 0);
+  EXPECT_EQ(cast_frames.back(), 1) << "a new frame is rasterised in screen-space mode";
+  EXPECT_NE(test::read_text(file("s.txt")).find("screen space: on"), std::string::npos);
+}

@@ -4,6 +4,7 @@
 // by concern in viz/detail/explorer_*.cpp:
 //   explorer_window.cpp      the window, its layout, resizing and the timer that drives the rest
 //   explorer_surface.cpp     asking the callback for a surface, showing it, titles and options
+//   explorer_range.cpp       colour ranges held across the frames of a series
 //   explorer_isovalue.cpp    the isovalue slider
 //   explorer_time.cpp        the time slider and play / pause of a series
 //   explorer_keys.cpp        the keys, and typing an isovalue or a path
@@ -14,6 +15,7 @@
 //   explorer_screenshot.cpp  screenshots ('s' and scripts)
 //   explorer_script.cpp      scripted runs (ExplorerSetup::script)
 #include <cstddef>
+#include <map>
 #include <string>
 
 #include <vtkCallbackCommand.h>
@@ -90,11 +92,28 @@ class Explorer {
   void note_update(const Surface& s);
   void retitle();
   bool try_options(RenderOptions o);
-  /// Shows `s`; when it lacks the array coloured now (an extra of an opened mesh, say) the colour
-  /// goes back to H first, and the status line says so.
-  std::string show_surface(const Surface& s);
+  /// Shows `s` (a frame of the series, or the volume's surface, when `frame`; else an opened
+  /// mesh file); when it lacks the array coloured now (an extra of an opened mesh, say) the
+  /// colour goes back to H first, and the status line says so.
+  std::string show_surface(const Surface& s, bool frame);
   /// Shows `s`, the volume's surface (`file` empty) or that mesh file's, and notes its update.
   void present(const Surface& s, const std::string& file);
+
+  /// True when the surface shown is a mesh rather than a volume's isosurface: a mesh file opened
+  /// with 'o', or a frame of a mesh series. Screen-space mode rasterises it then.
+  bool shows_mesh() const { return !shown_.empty() || !setup_.has_isovalue; }
+
+  // explorer_range.cpp
+  /// True when held ranges apply to the surface shown now (`frame`: a frame, not an opened file).
+  bool holds_ranges(bool frame) const;
+  /// `o` with the range it should colour with: the held range of its colour when holds_ranges,
+  /// else view.range (--range, or automatic).
+  RenderOptions ranged(RenderOptions o, bool frame) const;
+  /// After options or a surface were applied: holds the scene's range for the colour shown when
+  /// holds_ranges and none is held for it yet.
+  void hold_range(bool frame);
+  /// Holds the range of every array of the first frame (shown now), as the scene computes it.
+  void hold_first_frame_ranges();
 
   // explorer_isovalue.cpp
   void make_slider();
@@ -117,6 +136,9 @@ class Explorer {
   static std::string format(double v);
   static std::string format_ms(double ms);
   void refresh_status();
+  /// Writes the status line's text to `path` (a script's Status action); an error goes to the
+  /// status line.
+  void write_status(const std::string& path);
 
   // explorer_screen.cpp
   /// The colour screen-space mode starts with: `color` when it is H or K, else H.
@@ -199,6 +221,7 @@ class Explorer {
   std::size_t vertices_ = 0, triangles_ = 0;
   double last_ms_ = 0;
   std::string detail_, message_;
+  std::map<std::string, ColorRange> held_ranges_;  // by array: setup.shared_color_range
   std::size_t next_action_ = 0;
   int screenshots_ = 0;
 };

@@ -60,7 +60,10 @@ bool Explorer::on_key(char key) {
       reset_camera();
       break;
     case 'r': reset_camera(); break;
-    case 'i': start_entry(Entry::isovalue, ""); break;
+    case 'i':
+      if (setup_.has_isovalue) start_entry(Entry::isovalue, "");
+      else message_ = "no isovalue here: the frames are meshes";
+      break;
     case 'o':
       if (setup_.open_mesh) start_entry(Entry::open, "");
       else message_ = "opening meshes is not available here";

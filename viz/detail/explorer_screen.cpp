@@ -22,6 +22,7 @@ void Explorer::enter_screen() {
   RenderOptions o = scene_.options();
   o.color = screen_quantity(o.color);
   o.title = title(iso_, o.color, true);
+  o.range = setup_.view.range;  // an image's own range, not one held for the frames' meshes
   try {
     scene_.set_options(o);
     scene_.set_image_mode(true);
@@ -56,7 +57,7 @@ void Explorer::leave_screen() {
   }
   overlay_.set_visible(lines_on_);
   lines_surface_stale_ = true;
-  retitle();
+  try_options(scene_.options());  // the title, and the range a frame holds
 }
 
 bool Explorer::same_camera(const Camera& a, const Camera& b) {
@@ -115,7 +116,7 @@ void Explorer::on_overlay_start(vtkObject*, unsigned long, void* self, void*) {
   if (!e->image_stale_ && same_camera(e->scene_.current_camera(), e->cast_camera_) &&
       box.x1 - box.x0 == e->cast_w_ && box.y1 - box.y0 == e->cast_h_ && scale == e->cast_scale_)
     return;
-  e->cast(e->iso_, !e->shown_.empty(), scale);
+  e->cast(e->iso_, e->shows_mesh(), scale);
   e->refresh_status();
 }
 

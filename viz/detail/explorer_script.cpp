@@ -14,6 +14,7 @@ void Explorer::step() {
   const ExplorerAction& a = setup_.script[next_action_++];
   switch (a.kind) {
     case ExplorerAction::Kind::SetIsovalue:
+      if (!setup_.has_isovalue) break;  // no slider
       // as a user would: move the slider, then release it
       static_cast<vtkSliderRepresentation2D*>(slider_->GetRepresentation())->SetValue(a.isovalue);
       slider_->InvokeEvent(vtkCommand::InteractionEvent);
@@ -42,6 +43,11 @@ void Explorer::step() {
       static_cast<vtkSliderRepresentation2D*>(time_slider_->GetRepresentation())->SetValue(a.frame);
       time_slider_->InvokeEvent(vtkCommand::InteractionEvent);
       time_slider_->InvokeEvent(vtkCommand::EndInteractionEvent);
+      break;
+    case ExplorerAction::Kind::Status:
+      write_status(a.path);
+      break;
+    case ExplorerAction::Kind::Wait:
       break;
   }
 }

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <fstream>
+#include <iostream>
 #include <vector>
 
 #include "viz/quantity.h"
@@ -24,7 +26,9 @@ std::string Explorer::format_ms(double ms) {
 
 void Explorer::refresh_status() {
   const RenderOptions& o = scene_.options();
-  std::string line = shown_.empty() ? "isovalue " + format(iso_) : "mesh " + shown_;
+  std::string line = !shown_.empty()        ? "mesh " + shown_
+                     : setup_.has_isovalue ? "isovalue " + format(iso_)
+                                           : "mesh of frame " + std::to_string(frame_);
   if (screen_on_)
     line +=
         "   screen space: " + std::to_string(pixels_) + " of " + std::to_string(image_pixels_) +
@@ -53,7 +57,8 @@ void Explorer::refresh_status() {
   line += "  [v] view: " + to_string(view_);
   if (setup_.screen.image)
     line += std::string("  [x] screen space: ") + (screen_on_ ? "on" : "off");
-  line += "\n[r] reset view  [i] isovalue  [o] open  [w] save  [k] camera  [s] screenshot";
+  line += std::string("\n[r] reset view") + (setup_.has_isovalue ? "  [i] isovalue" : "") +
+          "  [o] open  [w] save  [k] camera  [s] screenshot";
   if (setup_.lines && !screen_on_)
     line += std::string("  [l] lines: ") + (lines_on_ ? "on" : "off");
   if (has_time())
@@ -66,6 +71,16 @@ void Explorer::refresh_status() {
   else if (!message_.empty())
     line += "\n" + message_;
   status_->SetInput(line.c_str());
+}
+
+void Explorer::write_status(const std::string& path) {
+  std::ofstream out(path);
+  const char* text = status_->GetInput();
+  out << (text ? text : "") << '\n';
+  if (!out) {
+    message_ = "cannot write the status line to " + path;
+    std::cerr << message_ << std::endl;
+  }
 }
 
 }  // namespace isocurv::viz::detail

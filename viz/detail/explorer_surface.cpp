@@ -43,8 +43,10 @@ void Explorer::retitle() {
 
 bool Explorer::try_options(RenderOptions o) {
   o.title = title(iso_, o.color, screen_on_);
+  o = ranged(std::move(o), shown_.empty());
   try {
     scene_.set_options(o);
+    hold_range(shown_.empty());
     return true;
   } catch (const Error& e) {
     message_ = e.what();
@@ -52,23 +54,29 @@ bool Explorer::try_options(RenderOptions o) {
   }
 }
 
-std::string Explorer::show_surface(const Surface& s) {
+std::string Explorer::show_surface(const Surface& s, bool frame) {
   RenderOptions o = scene_.options();
   const std::vector<std::string> q = field_quantities(s.field);
+  std::string note;
   if (!q.empty() && std::find(q.begin(), q.end(), canonical_quantity(o.color)) == q.end()) {
     const std::string was = o.color;
     o.color = std::find(q.begin(), q.end(), "H") != q.end() ? "H" : q.front();
     o.title = title(iso_, o.color, screen_on_);
-    scene_.set_options(o);  // the old surface has H too (every estimate gives it)
-    scene_.set_surface(s.mesh, s.field);
-    return "colour " + was + " is not on this surface: showing " + o.color;
+    note = "colour " + was + " is not on this surface: showing " + o.color;
   }
+  o = ranged(std::move(o), frame);
+  const RenderOptions& now = scene_.options();
+  const bool same_range = o.range.has_value() == now.range.has_value() &&
+                          (!o.range || (o.range->lo == now.range->lo && o.range->hi == now.range->hi));
+  if (!note.empty() || !same_range)
+    scene_.set_options(o);  // the old surface has H too (every estimate gives it)
   scene_.set_surface(s.mesh, s.field);
-  return "";
+  hold_range(frame);
+  return note;
 }
 
 void Explorer::present(const Surface& s, const std::string& file) {
-  const std::string note = show_surface(s);
+  const std::string note = show_surface(s, file.empty());
   note_update(s);
   message_ = note;
   shown_ = file;

@@ -24,11 +24,12 @@ void Explorer::go_to_frame(int k) {
   if (k == frame_) return;
   try {
     setup_.set_frame(k);
-    if (screen_on_) {
+    if (screen_on_ && setup_.has_isovalue) {
       if (!cast(iso_, false)) throw Error(message_);
       note_cast();
     } else {
-      present(call(iso_), "");
+      present(call(iso_), "");  // a mesh series in screen-space mode: rasterised before drawing
+      image_stale_ = true;
     }
     frame_ = k;
     retitle();

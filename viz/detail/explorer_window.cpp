@@ -14,7 +14,9 @@
 namespace isocurv::viz::detail {
 
 void Explorer::run() {
-  const bool start_screen = setup_.screen.start_on && setup_.screen.image;
+  // A mesh series has no volume to cast before the first mesh: it starts on that mesh, then
+  // switches to screen space below.
+  const bool start_screen = setup_.screen.start_on && setup_.screen.image && setup_.has_isovalue;
   iso_ = attempted_ = setup_.isovalue;
   RenderOptions first_options = setup_.view;
   if (start_screen) {
@@ -26,9 +28,10 @@ void Explorer::run() {
     screen_on_ = true;
   } else {
     Surface first = call(setup_.isovalue);  // throws: no window without a first surface
-    scene_.set_options(first_options);
+    scene_.set_options(ranged(first_options, true));
     scene_.set_surface(first.mesh, first.field);
     note_update(first);
+    hold_first_frame_ranges();
   }
   view_ = setup_.view.view.view;
 
@@ -46,7 +49,7 @@ void Explorer::run() {
   status_->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
   status_->GetPositionCoordinate()->SetValue(0.01, 0.01);  // bottom left, under the slider
   scene_.overlay()->AddViewProp(status_);
-  make_slider();
+  if (setup_.has_isovalue) make_slider();
   if (has_time()) make_time_slider();
   relayout(setup_.view.width, setup_.view.height);
   if (setup_.screen.image) {
@@ -68,13 +71,14 @@ void Explorer::run() {
     scene_.renderer()->AddObserver(vtkCommand::StartEvent, render_start_);
   }
   frame_camera();
+  if (setup_.screen.start_on && setup_.screen.image && !start_screen) enter_screen();
   refresh_status();
   resize_callback_->SetCallback(&Explorer::on_resize);
   resize_callback_->SetClientData(this);
   window_->AddObserver(vtkCommand::WindowResizeEvent, resize_callback_);
 
   interactor_->Initialize();
-  slider_->EnabledOn();
+  if (setup_.has_isovalue) slider_->EnabledOn();
   if (has_time()) time_slider_->EnabledOn();
   if (!setup_.script.empty() || has_time()) {
     timer_callback_->SetCallback(&Explorer::on_timer);
@@ -87,7 +91,7 @@ void Explorer::run() {
         static_cast<unsigned long>(1000.0 / std::max(0.5, std::min(120.0, setup_.play_fps))));
   window_->Render();
   interactor_->Start();
-  slider_->EnabledOff();
+  if (setup_.has_isovalue) slider_->EnabledOff();
   if (has_time()) time_slider_->EnabledOff();
   window_->Finalize();
 }
@@ -97,16 +101,19 @@ void Explorer::relayout(int width, int height) {
   status_->GetTextProperty()->SetFontSize(font);
   const int status_px = static_cast<int>((kStatusLines + (has_time() ? 1 : 0)) * font * 1.25);
   const int slider_px = std::max(static_cast<int>(kSliderBand * height), 2 * font);
+  const int bands = (setup_.has_isovalue ? 1 : 0) + (has_time() ? 1 : 0);  // a slider each
   scene_.set_size(width, height);
-  scene_.set_bottom_reserved(status_px + slider_px * (has_time() ? 2 : 1));
-  auto* rep = static_cast<vtkSliderRepresentation2D*>(slider_->GetRepresentation());
-  const double y = (status_px + 0.5 * slider_px) / double(height);
+  scene_.set_bottom_reserved(status_px + slider_px * bands);
   const double right = scene_.layout().surface.x1 / double(width);
-  rep->GetPoint1Coordinate()->SetValue(0.08, y);
-  rep->GetPoint2Coordinate()->SetValue(std::max(0.3, right - 0.08), y);
-  if (has_time()) {  // the time slider in a band of its own above the isovalue's
+  if (setup_.has_isovalue) {
+    auto* rep = static_cast<vtkSliderRepresentation2D*>(slider_->GetRepresentation());
+    const double y = (status_px + 0.5 * slider_px) / double(height);
+    rep->GetPoint1Coordinate()->SetValue(0.08, y);
+    rep->GetPoint2Coordinate()->SetValue(std::max(0.3, right - 0.08), y);
+  }
+  if (has_time()) {  // the time slider in a band of its own above the isovalue's (if any)
     auto* t = static_cast<vtkSliderRepresentation2D*>(time_slider_->GetRepresentation());
-    const double yt = (status_px + 1.5 * slider_px) / double(height);
+    const double yt = (status_px + (bands - 0.5) * slider_px) / double(height);
     t->GetPoint1Coordinate()->SetValue(0.08, yt);
     t->GetPoint2Coordinate()->SetValue(std::max(0.3, right - 0.08), yt);
   }
