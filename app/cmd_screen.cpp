@@ -201,6 +201,9 @@ void register_screen(CLI::App& app) {
         timer.start("smooth");
         cast->smooth(smooth);
       }
+      // Framed as render frames the same volume: on its isosurface's vertices less the specks.
+      timer.start("frame");
+      frame_points = framing_points(extract_surface(v, iso, o));
       if (!cast->surface_bounds(iso, bounds)) {
         empty = true;
         bounds = cast->bounds;
@@ -218,22 +221,23 @@ void register_screen(CLI::App& app) {
     screen::GBuffer g;
     screen::ScreenCurvature c;
     // The surface box depends on the legend's labels, which depend on the values: lay out with
-    // the widest labels (%.3g of -8.88e+88) unless --range fixes them, compute once at that box,
-    // then centre the image in the final layout's box (as large or larger); recompute only when
-    // it does not fit.
+    // the widest labels (%.3g of -8.88e+88) unless --range fixes them and compute at that box;
+    // when the values' own labels give another box, compute once more at it (so the surface is
+    // framed in the box render would frame it in), and centre the image in the final box if
+    // the labels moved it again.
     viz::ColorRange range = po.range ? *po.range : viz::ColorRange{-8.88e88, 8.88e88};
     viz::PictureLayout layout = screen::screen_layout(width, height, po, range);
     const ViewSpec seen_from = resolve_view(view, anatomical, world_space, in);
     const std::optional<Camera> saved =
         camera_file.empty() ? std::nullopt : std::optional<Camera>(viz::load_camera(camera_file));
     Camera camera;
-    for (int pass = 0; pass < 2; ++pass) {
+    for (int pass = 0; pass < 3; ++pass) {
       const int sw = layout.surface.x1 - layout.surface.x0,
                 sh = layout.surface.y1 - layout.surface.y0;
       if (sw < 1 || sh < 1) throw Error(out, "the picture leaves no room for the surface");
-      camera = saved  ? *saved
-               : surf ? fit_camera_to_points(frame_points, seen_from, double(sw) / sh)
-                      : fit_camera(bounds, seen_from, double(sw) / sh);
+      camera = saved                  ? *saved
+               : !frame_points.empty() ? fit_camera_to_points(frame_points, seen_from, double(sw) / sh)
+                                       : fit_camera(bounds, seen_from, double(sw) / sh);
       const screen::ViewFrame frame = screen::view_frame(camera, sw, sh);
       timer.start(cast ? "cast" : "rasterise");
       if (cast)
@@ -245,10 +249,11 @@ void register_screen(CLI::App& app) {
       c = reference ? screen::estimate_reference(g, so) : screen::estimate(g, *device, so);
       timer.stop();
       range = screen::screen_range(c, po);
-      viz::PictureLayout next = screen::screen_layout(width, height, po, range);
+      viz::PictureLayout next =
+          screen::screen_layout(width, height, po, range, screen::has_unestimated(g, c));
       const int nw = next.surface.x1 - next.surface.x0, nh = next.surface.y1 - next.surface.y0;
       layout = next;
-      if ((nw >= sw && nh >= sh) || pass == 1) {
+      if ((nw == sw && nh == sh) || (pass >= 1 && nw >= sw && nh >= sh) || pass == 2) {
         layout.surface.x0 += std::max(0, (nw - sw) / 2),
             layout.surface.y0 += std::max(0, (nh - sh) / 2);
         layout.surface.x1 = layout.surface.x0 + sw, layout.surface.y1 = layout.surface.y0 + sh;
@@ -259,7 +264,8 @@ void register_screen(CLI::App& app) {
     AtomicFileSet files;
     files.write(
         out, [&](const std::string& tmp) { screen::write_picture(tmp, g, c, layout, po, range); });
-    if (!raw.empty()) files.write(raw, [&](const std::string& tmp) { screen::write_raw(tmp, c); });
+    if (!raw.empty())
+      files.write(raw, [&](const std::string& tmp) { screen::write_raw(tmp, c, &layout); });
     files.commit();
     timer.stop();
     std::vector<float> hv, kv;

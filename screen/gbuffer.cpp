@@ -115,7 +115,8 @@ std::vector<float> view_shading(const GBuffer& g) {
       std::array<double, 3> origin, dir;
       g.frame.ray(x + 0.5, y + 0.5, origin, dir);
       const Vec3f& n = g.normal[i];
-      shade[i] = float(0.35 + 0.65 * std::abs(n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2]));
+      // render's Lambert headlight (viz/curvature_scene.cpp: ambient 0.15, diffuse 0.85)
+      shade[i] = float(0.15 + 0.85 * std::abs(n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2]));
     }
   return shade;
 }

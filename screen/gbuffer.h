@@ -57,8 +57,8 @@ struct GBuffer {
   std::size_t valid_count() const;
 };
 
-/// Per pixel, the factor 0.35 + 0.65 |n . ray| by which pictures multiply a pixel's colour for
-/// a sense of shape (n the pixel's normal, ray its unit view direction); 1 where invalid.
+/// Per pixel, the factor 0.15 + 0.85 |n . ray| (render's Lambert headlight) by which pictures
+/// multiply a pixel's colour for a sense of shape (n the pixel's normal, ray its unit view direction); 1 where invalid.
 std::vector<float> view_shading(const GBuffer& g);
 
 /// The eye-depth range [near, far] of box `bounds` (xmin, xmax, ymin, ymax, zmin, zmax) seen by

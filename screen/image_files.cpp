@@ -42,8 +42,16 @@ std::string legend_title(const PictureOptions& o) {
 }  // namespace
 
 viz::PictureLayout screen_layout(int width, int height, const PictureOptions& o,
-                                 const viz::ColorRange& range) {
-  return viz::layout_picture(width, height, o.title, legend_title(o), range.lo, range.hi);
+                                 const viz::ColorRange& range, bool no_data) {
+  return viz::layout_picture(width, height, o.title, legend_title(o), range.lo, range.hi, 0,
+                             no_data);
+}
+
+bool has_unestimated(const GBuffer& g, const ScreenCurvature& c) {
+  if (g.valid.size() != c.valid.size()) return false;
+  for (std::size_t i = 0; i < c.valid.size(); ++i)
+    if (g.valid[i] && !c.valid[i]) return true;
+  return false;
 }
 
 viz::ColorRange screen_range(const ScreenCurvature& c, const PictureOptions& o) {
@@ -97,12 +105,18 @@ void write_picture(const std::string& path, const GBuffer& g, const ScreenCurvat
   auto colors = viz::vertex_colors(values, range, viz::make_color_map(range, cmap),
                                    o.shade ? &shade : nullptr);
   const unsigned char* col = colors->GetPointer(0);
+  const std::array<double, 3> none = viz::no_data_color(cmap);
   for (int y = 0; y < c.height; ++y)
     for (int x = 0; x < c.width; ++x) {
       const std::size_t i = std::size_t(x) + std::size_t(c.width) * y;
-      if (!c.valid[i] || !std::isfinite(values[i])) continue;
       unsigned char* px = rgb + 3 * (std::size_t(box.x0 + x) + std::size_t(w) * (box.y0 + y));
-      for (int k = 0; k < 3; ++k) px[k] = col[3 * i + k];
+      if (c.valid[i] && std::isfinite(values[i])) {
+        for (int k = 0; k < 3; ++k) px[k] = col[3 * i + k];
+      } else if (g.valid[i]) {  // the surface, without an estimate: "no data"
+        const double s = o.shade ? shade[i] : 1.0;
+        for (int k = 0; k < 3; ++k)
+          px[k] = static_cast<unsigned char>(std::clamp(255.0 * none[k] * s + 0.5, 0.0, 255.0));
+      }
     }
   img->Modified();
   write_atomically(path, [&](const std::string& tmp) {
@@ -128,17 +142,31 @@ viz::ScreenImage explorer_image(const GBuffer& g, ScreenCurvature&& c, bool with
   return img;
 }
 
-void write_raw(const std::string& path, const ScreenCurvature& c) {
+void write_raw(const std::string& path, const ScreenCurvature& c,
+               const viz::PictureLayout* layout) {
+  const int W = layout ? layout->width : c.width, Hh = layout ? layout->height : c.height;
+  const int x0 = layout ? layout->surface.x0 : 0, y0 = layout ? layout->surface.y0 : 0;
+  if (layout && (layout->surface.x1 - x0 != c.width || layout->surface.y1 - y0 != c.height))
+    throw Error(path, "the screen image does not fit the picture's surface box");
   vtkNew<vtkImageData> img;
-  img->SetDimensions(c.width, c.height, 1);
+  img->SetDimensions(W, Hh, 1);
   img->SetSpacing(1, 1, 1);
   img->SetOrigin(0, 0, 0);
-  const std::size_t n = std::size_t(c.width) * c.height;
+  const std::size_t n = std::size_t(W) * std::size_t(Hh);
+  // The index in c of the picture's point p, or -1 outside the surface box.
+  auto in_c = [&](std::size_t p) -> long {
+    const int x = int(p % std::size_t(W)) - x0, y = int(p / std::size_t(W)) - y0;
+    if (x < 0 || y < 0 || x >= c.width || y >= c.height) return -1;
+    return long(x) + long(c.width) * y;
+  };
   auto add = [&](const char* name, auto&& value) {
     vtkNew<vtkFloatArray> a;
     a->SetName(name);
     a->SetNumberOfTuples(static_cast<vtkIdType>(n));
-    for (std::size_t i = 0; i < n; ++i) a->SetValue(static_cast<vtkIdType>(i), value(i));
+    for (std::size_t p = 0; p < n; ++p) {
+      const long i = in_c(p);
+      a->SetValue(static_cast<vtkIdType>(p), i < 0 ? 0.0f : value(std::size_t(i)));
+    }
     img->GetPointData()->AddArray(a);
   };
   add("H", [&](std::size_t i) { return c.valid[i] ? c.H[i] : 0.0f; });
