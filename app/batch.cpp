@@ -170,12 +170,6 @@ void require_writable_folder(const std::string& dir) {
   fs::remove(probe, ec);
 }
 
-std::string one_line(std::string text) {
-  for (char& c : text)
-    if (c == '\n' || c == '\r' || c == '\t') c = ' ';
-  return text;
-}
-
 }  // namespace
 
 std::vector<float> parse_isovalues(const std::string& text) {

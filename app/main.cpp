@@ -16,17 +16,6 @@ namespace {
 constexpr int kUsageError = 2;
 constexpr int kFailure = 1;
 
-/// `text` on one line: newlines and runs of blanks become single spaces.
-std::string one_line(const std::string& text) {
-  std::string line;
-  for (char c : text) {
-    const char d = (c == '\n' || c == '\r' || c == '\t') ? ' ' : c;
-    if (!(d == ' ' && (line.empty() || line.back() == ' '))) line.push_back(d);
-  }
-  while (!line.empty() && line.back() == ' ') line.pop_back();
-  return line;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -66,14 +55,14 @@ int main(int argc, char** argv) {
     return app.exit(e);  // --help, --help-all, --version: printed on stdout, status 0
   } catch (const CLI::ParseError& e) {
     const std::string where = known.empty() ? "isocurv" : "isocurv " + known.front()->get_name();
-    std::fprintf(stderr, "isocurv: %s (see %s --help)\n", one_line(e.what()).c_str(),
+    std::fprintf(stderr, "isocurv: %s (see %s --help)\n", isocurv::one_line(e.what()).c_str(),
                  where.c_str());
     return kUsageError;
   } catch (const isocurv::Error& e) {
-    std::fprintf(stderr, "isocurv: %s\n", one_line(e.what()).c_str());
+    std::fprintf(stderr, "isocurv: %s\n", isocurv::one_line(e.what()).c_str());
     return kFailure;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "isocurv: error: %s\n", one_line(e.what()).c_str());
+    std::fprintf(stderr, "isocurv: error: %s\n", isocurv::one_line(e.what()).c_str());
     return kFailure;
   }
   return isocurv::app::command_exit_status();

@@ -14,4 +14,16 @@ class Error : public std::runtime_error {
       : std::runtime_error(path + ": " + problem) {}
 };
 
+/// `text` on one line, as error messages are printed: newlines, tabs and runs of blanks become
+/// single spaces, and trailing blanks go (a library's multi-line message, e.g. VTK's).
+inline std::string one_line(const std::string& text) {
+  std::string line;
+  for (char c : text) {
+    const char d = (c == '\n' || c == '\r' || c == '\t') ? ' ' : c;
+    if (!(d == ' ' && (line.empty() || line.back() == ' '))) line.push_back(d);
+  }
+  while (!line.empty() && line.back() == ' ') line.pop_back();
+  return line;
+}
+
 }  // namespace isocurv
