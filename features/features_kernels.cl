@@ -22,7 +22,7 @@ Field volume_field(__global const float* values, int4 dims, float iso, float sig
   Field f;
   f.v = values;
   f.g.nx = dims.x, f.g.ny = dims.y, f.g.nz = dims.z, f.g.bx = f.g.by = f.g.bz = 0;
-  f.g.iso = iso, f.g.sign = sign;
+  f.g.iso = iso, f.g.sign = sign, f.g.sparse = dims.w;
   f.xf = xform, f.iso = iso, f.voxel = voxel;
   return f;
 }

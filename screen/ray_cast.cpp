@@ -192,7 +192,7 @@ GBuffer ray_cast(const volume::DenseField& vol, float iso, const ViewFrame& fram
   cam[12] = float(frame.half_height), cam[13] = frame.ortho ? 1.0f : 0.0f;
   q.enqueueWriteBuffer(s.cam, CL_FALSE, 0, sizeof cam, cam);
   cl::Kernel& k = device.kernel(detail::screen_program(device), "ray_cast");
-  set_args(k, s.values, s.bricks, s.slopes, cl_int4{{vol.nx, vol.ny, vol.nz, 0}},
+  set_args(k, s.values, s.bricks, s.slopes, cl_int4{{vol.nx, vol.ny, vol.nz, vol.sparse ? 1 : 0}},
            cl_int4{{vol.bx, vol.by, vol.bz, 0}},
            cl_float4{{float(clip[0]), float(clip[2]), float(clip[4]), 0.f}},
            cl_float4{{float(clip[1]), float(clip[3]), float(clip[5]), 0.f}}, cl_float(iso),

@@ -31,7 +31,7 @@ __kernel void ray_cast(__global const float* values, __global const float2* bric
                        __global float* out_depth) {
   const int id = get_global_id(0);
   if (id >= width * height) return;
-  Grid g = {dims.x, dims.y, dims.z, bdims.x, bdims.y, bdims.z, iso, sign};
+  Grid g = {dims.x, dims.y, dims.z, bdims.x, bdims.y, bdims.z, iso, sign, dims.w};
   const int px = id % width, py = id / width;
   const float3 eye = (float3)(cam[0], cam[1], cam[2]), fwd = (float3)(cam[3], cam[4], cam[5]);
   const float3 right = (float3)(cam[6], cam[7], cam[8]), up = (float3)(cam[9], cam[10], cam[11]);

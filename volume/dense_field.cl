@@ -6,10 +6,22 @@
 typedef struct {
   int nx, ny, nz, bx, by, bz;
   float iso, sign;
+  int sparse;  // 0: dense; 1: the tiled layout of volume::DenseField (8^3 tiles, only leaves stored)
 } Grid;
 
+// The raw value of sample (i, j, k): DenseField::sample, both layouts.
+float raw_at(__global const float* v, const Grid* g, int i, int j, int k) {
+  if (!g->sparse) return v[i + g->nx * (j + g->ny * k)];
+  const int tx = (g->nx + 7) / 8, ty = (g->ny + 7) / 8, tz = (g->nz + 7) / 8;
+  const ulong tiles = (ulong)tx * ty * tz;
+  const ulong t = (ulong)(i / 8) + (ulong)tx * ((ulong)(j / 8) + (ulong)ty * (ulong)(k / 8));
+  const int slot = as_int(v[t]);
+  if (slot < 0) return v[tiles + t];
+  return v[2 * tiles + (ulong)slot * 512 + (ulong)(i % 8 + 8 * (j % 8 + 8 * (k % 8)))];
+}
+
 float signed_at(__global const float* v, const Grid* g, int i, int j, int k) {
-  const float x = v[i + g->nx * (j + g->ny * k)];
+  const float x = raw_at(v, g, i, j, k);
   return isfinite(x) ? g->sign * (x - g->iso) : -1.0f;
 }
 
@@ -60,10 +72,6 @@ __attribute__((always_inline)) float field_at(__global const float* v, const Gri
   const float x01 = k.s001 + (k.s101 - k.s001) * f.x, x11 = k.s011 + (k.s111 - k.s011) * f.x;
   const float y0 = x00 + (x10 - x00) * f.y, y1 = x01 + (x11 - x01) * f.y;
   return y0 + (y1 - y0) * f.z;
-}
-
-float raw_at(__global const float* v, const Grid* g, int i, int j, int k) {
-  return v[i + g->nx * (j + g->ny * k)];
 }
 
 // Central (one-sided at the border) difference at sample c.

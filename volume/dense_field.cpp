@@ -46,27 +46,36 @@ DenseField::DenseField(const Volume& v) : id(next_id++) {
   if (!v.dense || box.empty()) box = v.grid->evalActiveVoxelBoundingBox();
   if (box.empty()) throw Error(v.path, "the volume holds no voxels");
   if (!v.grid->transform().isLinear()) throw Error(v.path, "the volume's transform is not affine");
-  const openvdb::Coord d = box.dim();
+  openvdb::Coord d = box.dim();
   if (d.x() < 2 || d.y() < 2 || d.z() < 2)
     throw Error(v.path, "the volume is thinner than 2 voxels along an axis");
   const std::uint64_t samples = std::uint64_t(d.x()) * d.y() * d.z();
-  if (samples > kMaxFieldSamples)
+  sparse = samples > kMaxFieldSamples && !v.dense;
+  if (samples > kMaxFieldSamples && !sparse)
     throw Error(v.path, "the volume's box holds " + std::to_string(samples) +
                             " voxels, more than the dense field's limit of " +
                             std::to_string(kMaxFieldSamples) + " (2^28)");
-  nx = d.x(), ny = d.y(), nz = d.z();
   sign = v.inside == Inside::Above ? 1.0f : -1.0f;
-  values.resize(samples);
-  const openvdb::Coord lo = box.min();
+  openvdb::Coord lo = box.min();
   const openvdb::FloatGrid& grid = *v.grid;
-  tbb::parallel_for(tbb::blocked_range<int>(0, nz), [&](const tbb::blocked_range<int>& r) {
-    auto acc = grid.getConstAccessor();
-    for (int k = r.begin(); k != r.end(); ++k)
-      for (int j = 0; j < ny; ++j)
-        for (int i = 0; i < nx; ++i)
-          values[std::size_t(i) + std::size_t(nx) * (j + std::size_t(ny) * k)] =
-              acc.getValue(lo + openvdb::Coord(i, j, k));
-  });
+  if (sparse) {
+    // Tiles are the VDB's leaves: the box starts on a leaf's corner.
+    for (int c = 0; c < 3; ++c) lo[c] = lo[c] & ~(kFieldTile - 1);
+    d = box.max() - lo + openvdb::Coord(1);
+    nx = d.x(), ny = d.y(), nz = d.z();
+    fill_tiles(grid, lo, v.path);
+  } else {
+    nx = d.x(), ny = d.y(), nz = d.z();
+    values.resize(samples);
+    tbb::parallel_for(tbb::blocked_range<int>(0, nz), [&](const tbb::blocked_range<int>& r) {
+      auto acc = grid.getConstAccessor();
+      for (int k = r.begin(); k != r.end(); ++k)
+        for (int j = 0; j < ny; ++j)
+          for (int i = 0; i < nx; ++i)
+            values[std::size_t(i) + std::size_t(nx) * (j + std::size_t(ny) * k)] =
+                acc.getValue(lo + openvdb::Coord(i, j, k));
+    });
+  }
 
   bx = (nx - 1 + kFieldBrick - 1) / kFieldBrick;
   by = (ny - 1 + kFieldBrick - 1) / kFieldBrick;
@@ -126,6 +135,86 @@ double DenseField::shortest_voxel_edge() const {
   return best;
 }
 
+void DenseField::fill_tiles(const openvdb::FloatGrid& grid, const openvdb::Coord& lo,
+                            const std::string& path) {
+  tiles_x = (nx + kFieldTile - 1) / kFieldTile;
+  tiles_y = (ny + kFieldTile - 1) / kFieldTile;
+  tiles_z = (nz + kFieldTile - 1) / kFieldTile;
+  const std::size_t tiles = std::size_t(tiles_x) * tiles_y * tiles_z;
+  if (tiles > kMaxFieldTiles)
+    throw Error(path, "the volume's box (" + std::to_string(nx) + " x " + std::to_string(ny) +
+                          " x " + std::to_string(nz) + " voxels) is too large even for the " +
+                          "sparse field's tile table");
+  // Which tiles have a leaf, in tile order: their slots.
+  std::vector<std::int32_t> slot(tiles, -1);
+  std::vector<float> constant(tiles, 0.0f);
+  std::int64_t leaves = 0;
+  {
+    auto acc = grid.getConstAccessor();
+    for (int tk = 0; tk < tiles_z; ++tk)
+      for (int tj = 0; tj < tiles_y; ++tj)
+        for (int ti = 0; ti < tiles_x; ++ti) {
+          const std::size_t t = std::size_t(ti) + std::size_t(tiles_x) * (tj + std::size_t(tiles_y) * tk);
+          const openvdb::Coord c = lo + openvdb::Coord(ti * kFieldTile, tj * kFieldTile, tk * kFieldTile);
+          if (acc.probeConstLeaf(c)) {
+            slot[t] = std::int32_t(leaves++);
+          } else {
+            constant[t] = acc.getValue(c);  // a VDB tile's value or the background: all 8^3
+          }
+        }
+  }
+  if (std::uint64_t(leaves) * 512 > kMaxFieldSamples)
+    throw Error(path, "the volume's " + std::to_string(leaves) + " leaves hold " +
+                          std::to_string(leaves * 512) + " voxels, more than the field's limit of " +
+                          std::to_string(kMaxFieldSamples) + " (2^28)");
+  values.assign(2 * tiles + std::size_t(leaves) * 512, 0.0f);
+  for (std::size_t t = 0; t < tiles; ++t) {
+    std::memcpy(&values[t], &slot[t], sizeof(std::int32_t));
+    values[tiles + t] = constant[t];
+  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles), [&](const tbb::blocked_range<std::size_t>& r) {
+    auto acc = grid.getConstAccessor();
+    for (std::size_t t = r.begin(); t != r.end(); ++t) {
+      if (slot[t] < 0) continue;
+      const int ti = int(t % tiles_x), tj = int((t / tiles_x) % tiles_y), tk = int(t / (std::size_t(tiles_x) * tiles_y));
+      const openvdb::Coord c = lo + openvdb::Coord(ti * kFieldTile, tj * kFieldTile, tk * kFieldTile);
+      const auto* leaf = acc.probeConstLeaf(c);
+      float* out = &values[2 * tiles + std::size_t(slot[t]) * 512];
+      for (int k = 0; k < kFieldTile; ++k)
+        for (int j = 0; j < kFieldTile; ++j)
+          for (int i = 0; i < kFieldTile; ++i)
+            out[i + kFieldTile * (j + kFieldTile * k)] = leaf->getValue(c + openvdb::Coord(i, j, k));
+    }
+  });
+}
+
+bool DenseField::constant_brick(int a, int b, int c, int i1, int j1, int k1,
+                                std::array<float, 2>& range, float& slope) const {
+  // The tiles brick (a, b, c) reads: its samples 8a .. i1 lie in tiles a and i1 / 8.
+  static_assert(kFieldBrick == kFieldTile, "a brick reads at most 2 tiles per axis");
+  const std::size_t tiles = std::size_t(tiles_x) * tiles_y * tiles_z;
+  float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
+  bool finite = true;
+  for (int tk = c; tk <= k1 / kFieldTile; ++tk)
+    for (int tj = b; tj <= j1 / kFieldTile; ++tj)
+      for (int ti = a; ti <= i1 / kFieldTile; ++ti) {
+        const std::size_t t = std::size_t(ti) + std::size_t(tiles_x) * (tj + std::size_t(tiles_y) * tk);
+        std::int32_t slot;
+        std::memcpy(&slot, &values[t], sizeof slot);
+        if (slot >= 0) return false;  // a stored tile: scan the samples
+        const float v = values[tiles + t];
+        if (!std::isfinite(v)) {
+          finite = false;
+          continue;
+        }
+        lo = std::min(lo, v), hi = std::max(hi, v);
+      }
+  range = {lo, hi};
+  // Neighbouring samples differ by at most hi - lo (a bound, as brick_slope promises).
+  slope = finite ? (lo <= hi ? hi - lo : 0.0f) : std::numeric_limits<float>::infinity();
+  return true;
+}
+
 void DenseField::rank_bricks() {
   brick_range.assign(std::size_t(bx) * by * bz,
                      {std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest()});
@@ -140,9 +229,8 @@ void DenseField::rank_bricks() {
           const int i1 = std::min(nx - 1, (a + 1) * kFieldBrick);
           const int j1 = std::min(ny - 1, (b + 1) * kFieldBrick);
           const int k1 = std::min(nz - 1, (c + 1) * kFieldBrick);
-          auto at = [&](int i, int j, int k) {
-            return values[std::size_t(i) + std::size_t(nx) * (j + std::size_t(ny) * k)];
-          };
+          if (sparse && constant_brick(a, b, c, i1, j1, k1, range, slope)) continue;
+          auto at = [&](int i, int j, int k) { return sample(i, j, k); };
           for (int k = c * kFieldBrick; k <= k1; ++k)
             for (int j = b * kFieldBrick; j <= j1; ++j)
               for (int i = a * kFieldBrick; i <= i1; ++i) {
@@ -167,6 +255,9 @@ void DenseField::smooth(double sigma) {
     throw Error("smoothing must be 0 to " + std::to_string(int(kMaxSmoothingVoxels)) +
                 " voxels, not " + std::to_string(sigma));
   if (sigma == 0) return;
+  if (sparse)
+    throw Error("smoothing needs a dense field: this sparse volume's box holds more than 2^28 "
+                "voxels (it is read through its 8^3 leaves); leave the smoothing out");
   const PrefilterTaps taps = prefilter_taps(sigma * sigma);
   std::vector<float> out(values.size());
   const int reach = taps.radius;
@@ -308,9 +399,7 @@ double DenseField::field(const std::array<double, 3>& p, float iso,
 
 std::array<double, 3> DenseField::normal(const std::array<double, 3>& p) const {
   const int n[3] = {nx, ny, nz};
-  auto value = [&](int i, int j, int k) {
-    return double(values[std::size_t(i) + std::size_t(nx) * (j + std::size_t(ny) * k)]);
-  };
+  auto value = [&](int i, int j, int k) { return double(sample(i, j, k)); };
   auto grad_at = [&](const int c[3], double g[3]) {
     for (int a = 0; a < 3; ++a) {
       int hi[3] = {c[0], c[1], c[2]}, lo[3] = {c[0], c[1], c[2]};

@@ -111,7 +111,7 @@ std::vector<WebSums> web_on_device(Device& device, const volume::DenseField& fie
     upload_vertices(device, mesh, normals, pos, nrm);
     cl::Buffer res(device.context(), CL_MEM_WRITE_ONLY, n * 16);
     cl::Buffer flags(device.context(), CL_MEM_WRITE_ONLY, n);
-    set_args(s.web, s.values, cl_int4{{field.nx, field.ny, field.nz, 0}}, cl_float(iso),
+    set_args(s.web, s.values, cl_int4{{field.nx, field.ny, field.nz, field.sparse ? 1 : 0}}, cl_float(iso),
              cl_float(field.sign), s.xform, cl_float(field.shortest_voxel_edge()), pos, nrm,
              cl_uint(n), cl_float(r), cl_int(azimuths), cl_int(adaptive ? 1 : 0),
              cl_float(threshold), cl_uint(seed), res, flags);
@@ -155,7 +155,7 @@ BallOnDevice ball_on_device(Device& device, const volume::DenseField& field, flo
     cl::Buffer res(device.context(), CL_MEM_WRITE_ONLY, n * 8);
     std::vector<std::uint8_t> zero(n, 0);
     cl::Buffer flags(device.context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, n, zero.data());
-    set_args(s.ball, s.values, cl_int4{{field.nx, field.ny, field.nz, 0}}, cl_float(iso),
+    set_args(s.ball, s.values, cl_int4{{field.nx, field.ny, field.nz, field.sparse ? 1 : 0}}, cl_float(iso),
              cl_float(field.sign), s.xform, glb, cl_int(azimuths), cl_int(nodes.size()), pos, nrm,
              cl_uint(n), cl_float(r), res, flags);
     launch_in_parts(device, s.ball, 14, n, work_group, progress);

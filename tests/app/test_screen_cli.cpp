@@ -7,6 +7,9 @@
 #include <vtkPointData.h>
 #include <vtkXMLImageDataReader.h>
 
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/LevelSetSphere.h>
+
 #include "tests/app/cli.h"
 #include "tests/viz/png_stats.h"
 #include "viz/curvature_scene.h"
@@ -96,6 +99,29 @@ TEST(CliScreen, FramedAsRenderFramesTheSameVolume) {
   for (auto [a, b, tol] : {std::tuple{s.x0, r.x0, 4}, {s.x1, r.x1, 4}, {s.y0, r.y0, 9}, {s.y1, r.y1, 4}})
     EXPECT_NEAR(a, b, tol) << "screen " << s.x0 << " " << s.y0 << " " << s.x1 << " " << s.y1
                          << ", render " << r.x0 << " " << r.y0 << " " << r.x1 << " " << r.y1;
+}
+
+// A sparse .vdb whose active box holds over 2^28 voxels (a ball and one voxel 1100 away) is cast
+// through its leaves, not refused; --smooth, which needs the dense copy, is refused in one line.
+TEST(CliScreen, ALargeSparseVdbIsCastThroughItsLeaves) {
+  TempDir dir("screen_sparse");
+  openvdb::initialize();
+  auto grid = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(
+      20.0f, openvdb::Vec3f(30, 40, 50), 1.0f, 3.0f);
+  grid->tree().setValueOn(openvdb::Coord(1100, 1100, 1100), grid->background());
+  grid->setName("ball");
+  openvdb::io::File(dir / "big.vdb").write({grid});
+  const auto r = run_isocurv({"screen", dir / "big.vdb", "--iso", "0", "--size", "200x150",
+                              "-o", dir / "big.png", "--json", "--quiet"},
+                             120);
+  ASSERT_TRUE(r.ok()) << r.describe();
+  const json j = parse_json(r.out, "screen --json");
+  EXPECT_GT(j["estimated_pixels"].get<int>(), 2000);
+  EXPECT_NEAR(j["median_H"].get<double>(), 1 / 20.0, 0.05 / 20);
+  const auto smooth = run_isocurv({"screen", dir / "big.vdb", "--iso", "0", "--smooth", "1",
+                                   "-o", dir / "smooth.png"});
+  expect_clean_failure(smooth, "smoothing");
+  EXPECT_FALSE(fs::exists(dir / "smooth.png"));
 }
 
 TEST(CliScreen, SmoothingKeepsTheSphereAndIsReportedAndBounded) {
