@@ -72,7 +72,19 @@ struct Loaded {
   std::string error;
 };
 
-Loaded load_input(const Input& in, BatchKind kind, const CommonOptions& o, bool sweep) {
+/// The command's name, for summary.json and messages.
+std::string command_name(BatchKind kind, const BatchStep* step) {
+  switch (kind) {
+    case BatchKind::extract: return "extract";
+    case BatchKind::curvature: return "curvature";
+    case BatchKind::run: return "run";
+    case BatchKind::step: break;
+  }
+  return step ? step->command : "batch";
+}
+
+Loaded load_input(const Input& in, BatchKind kind, const BatchStep* step, const CommonOptions& o,
+                  bool sweep) {
   Loaded l;
   if (!in.error.empty()) {
     l.error = in.error;
@@ -81,9 +93,10 @@ Loaded load_input(const Input& in, BatchKind kind, const CommonOptions& o, bool 
   try {
     StageTimer timer;
     if (is_mesh_path(in.path)) {
-      if (kind != BatchKind::curvature)
-        throw Error(in.path, std::string("isocurv ") +
-                                 (kind == BatchKind::run ? "run" : "extract") +
+      const bool takes_meshes =
+          kind == BatchKind::curvature || (kind == BatchKind::step && step && step->mesh_input);
+      if (!takes_meshes)
+        throw Error(in.path, "isocurv " + command_name(kind, step) +
                                  " takes a volume, and this is a mesh file");
       if (sweep) throw Error(in.path, "--iso applies to volumes only, and this is a mesh file");
       l.mesh_file = load_surface(in.path, o, timer);  // also refuses volume options
@@ -102,16 +115,46 @@ Loaded load_input(const Input& in, BatchKind kind, const CommonOptions& o, bool 
 /// What writing one entry needs, so that it can run on the writer thread.
 struct Pending {
   Surface surface;
+  BatchStep::Output step;  ///< BatchKind::step: what the command's compute left to write
   std::string input, mesh_path, png_path, stats_path;
   nlohmann::json entry;  ///< filled in by the writer
   std::size_t tag = 0;   ///< the index its entry will have in the summary (shared pictures)
   StageTimer timer;
 };
 
+/// A BatchStep's entry: its output (at p.mesh_path) and stats.json (its report) together, and its
+/// entry completed with the output, its size, the step's counts and the timings.
+void write_step_outputs(Pending& p) {
+  AtomicFileSet outputs;
+  p.timer.start("write");
+  std::uint64_t output_bytes = 0;
+  outputs.write(p.mesh_path, [&](const std::string& tmp) {
+    p.step.write(tmp);
+    output_bytes = file_bytes(tmp);
+  });
+  p.timer.stop();
+  nlohmann::json r = std::move(p.step.report);
+  r["input"] = p.input;
+  r["output"] = p.mesh_path;
+  r["timings_ms"] = p.timer.json();
+  outputs.write(p.stats_path,
+                [&](const std::string& tmp) { write_text_file(tmp, r.dump(2) + "\n"); });
+  outputs.commit();
+  p.entry["status"] = "ok";
+  p.entry["output"] = p.mesh_path;
+  p.entry["output_bytes"] = output_bytes;
+  p.entry["stats"] = p.stats_path;
+  for (const std::string& key : p.step.summary_keys)
+    if (r.contains(key)) p.entry[key] = r[key];
+  p.entry["timings_ms"] = p.timer.json();
+  p.step = {};  // what `write` held on to
+}
+
 /// Writes an entry's outputs together (mesh, PNG for run, stats.json) and completes its entry.
 /// With `shared` (run's --range shared), the PNG is only noted, for shared->draw() at the end.
 void write_outputs(Pending& p, BatchKind kind, const BatchRequest& rq, const CommonOptions& o,
                    SharedPictures* shared) {
+  if (kind == BatchKind::step) return write_step_outputs(p);
   const Surface& s = p.surface;
   AtomicFileSet outputs;
   p.timer.start("write");
@@ -231,8 +274,11 @@ void add_batch_options(CLI::App& cmd, BatchCli& b, const std::string& input_name
         ->capture_default_str();
 }
 
-bool run_as_batch(const BatchCli& b, CommonOptions& o, BatchKind kind, const std::string& dir,
-                  const RenderCli* render, const std::string& format) {
+namespace {
+
+/// The isovalues of a batch, or nullopt for one input at one isovalue (then o.iso is set, and
+/// --format and --jobs, for batches only, are an Error).
+std::optional<std::vector<float>> batch_isovalues(const BatchCli& b, CommonOptions& o) {
   const std::vector<float> isos = b.iso.empty() ? std::vector<float>{} : parse_isovalues(b.iso);
   if (!is_batch(b.inputs, isos)) {
     if (b.format_given)
@@ -241,8 +287,19 @@ bool run_as_batch(const BatchCli& b, CommonOptions& o, BatchKind kind, const std
           "extension of -o chooses the format");
     if (b.jobs_given) throw Error("--jobs applies to batches (several inputs or isovalues)");
     if (!isos.empty()) o.iso = isos[0];
-    return false;
+    return std::nullopt;
   }
+  return isos;
+}
+
+}  // namespace
+
+bool run_as_batch(const BatchCli& b, CommonOptions& o, BatchKind kind, const std::string& dir,
+                  const RenderCli* render, const std::string& format) {
+  if (kind == BatchKind::step) throw Error("internal: a step batch without its BatchStep");
+  const std::optional<std::vector<float>> batch = batch_isovalues(b, o);
+  if (!batch) return false;
+  const std::vector<float>& isos = *batch;
   if (render && !render->dirs_out.empty())
     throw Error(render->dirs_out, "--dirs-out names one file: not with several inputs or isovalues");
   BatchRequest rq;
@@ -253,6 +310,23 @@ bool run_as_batch(const BatchCli& b, CommonOptions& o, BatchKind kind, const std
   rq.format = format.empty() ? b.format : format;
   rq.jobs = b.jobs;
   rq.render = render;
+  run_batch(rq, o);
+  return true;
+}
+
+bool run_as_batch(const BatchCli& b, CommonOptions& o, const BatchStep& step,
+                  const std::string& dir, const std::function<void()>& before) {
+  const std::optional<std::vector<float>> isos = batch_isovalues(b, o);
+  if (!isos) return false;
+  if (before) before();
+  BatchRequest rq;
+  rq.kind = BatchKind::step;
+  rq.step = &step;
+  rq.inputs = b.inputs;
+  rq.isovalues = *isos;
+  rq.dir = dir;
+  rq.format = b.format;
+  rq.jobs = b.jobs;
   run_batch(rq, o);
   return true;
 }
@@ -294,9 +368,12 @@ std::string iso_suffix(float iso) { return "_iso" + format_number(iso); }
 
 void run_batch(const BatchRequest& rq, const CommonOptions& o) {
   const auto t_start = std::chrono::steady_clock::now();
-  if (rq.kind != BatchKind::extract) require_curvature_format("x." + rq.format);
+  if (rq.kind == BatchKind::curvature || rq.kind == BatchKind::run)
+    require_curvature_format("x." + rq.format);
   if (rq.kind == BatchKind::run && !rq.render)
     throw Error("internal: run batch without render options");
+  if (rq.kind == BatchKind::step && (!rq.step || !rq.step->compute))
+    throw Error("internal: step batch without its compute");
   const std::vector<Input> inputs = expand_inputs(rq.inputs);
   // Patterns that match nothing at all: one error, and no output folder made.
   if (!inputs.empty() &&
@@ -333,7 +410,7 @@ void run_batch(const BatchRequest& rq, const CommonOptions& o) {
   const bool overlap = rq.jobs >= 2;
   std::future<Loaded> next;
   if (overlap && !inputs.empty())
-    next = std::async(std::launch::async, load_input, inputs[0], rq.kind, o, sweep);
+    next = std::async(std::launch::async, load_input, inputs[0], rq.kind, rq.step, o, sweep);
   // At most one write in flight; its entry is appended when it is collected, in order.
   std::future<void> writing;
   std::unique_ptr<Pending> in_flight;
@@ -350,9 +427,9 @@ void run_batch(const BatchRequest& rq, const CommonOptions& o) {
 
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const Input& in = inputs[i];
-    Loaded loaded = overlap ? next.get() : load_input(in, rq.kind, o, sweep);
+    Loaded loaded = overlap ? next.get() : load_input(in, rq.kind, rq.step, o, sweep);
     if (overlap && i + 1 < inputs.size())
-      next = std::async(std::launch::async, load_input, inputs[i + 1], rq.kind, o, sweep);
+      next = std::async(std::launch::async, load_input, inputs[i + 1], rq.kind, rq.step, o, sweep);
     const fs::path folder = fs::path(rq.dir) / folders[i];
     const std::string stem = stem_of(in.path);
     std::vector<std::optional<float>> isos;
@@ -377,7 +454,7 @@ void run_batch(const BatchRequest& rq, const CommonOptions& o) {
         Surface& s = p->surface;
         if (loaded.mesh_file) {
           s = *loaded.mesh_file;
-          prepare_mesh_for_curvature(s, in.path, o);
+          if (rq.kind != BatchKind::step) prepare_mesh_for_curvature(s, in.path, o);  // the step's own
         } else {
           s.volume = loaded.volume;
           s.isovalue = checked_isovalue(in.path, *s.volume, iso);
@@ -397,9 +474,13 @@ void run_batch(const BatchRequest& rq, const CommonOptions& o) {
               s, in.path, o,
               rq.kind == BatchKind::extract ? EmptySurface::warn : EmptySurface::error);
         }
-        if (rq.kind != BatchKind::extract)
+        if (rq.kind == BatchKind::step) {
+          p->step = rq.step->compute(s, in.path, p->timer);
+          p->timer.stop();  // its last stage ends here, not when the writer starts
+        } else if (rq.kind != BatchKind::extract) {
           s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, p->timer,
                                        &s.normals, &s.estimator);
+        }
         std::error_code ec;
         fs::create_directories(folder, ec);
         if (ec) throw Error(folder.string(), "cannot create the output folder: " + ec.message());
@@ -457,9 +538,7 @@ void run_batch(const BatchRequest& rq, const CommonOptions& o) {
   const double total_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_start).count();
   nlohmann::json summary = {
-      {"command", rq.kind == BatchKind::extract     ? "extract"
-                  : rq.kind == BatchKind::curvature ? "curvature"
-                                                    : "run"},
+      {"command", command_name(rq.kind, rq.step)},
       {"inputs", inputs.size()},
       {"entries", entries},
       {"ok", entries.size() - failed},

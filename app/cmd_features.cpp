@@ -1,11 +1,12 @@
 // isocurv features VOLUME|MESH --radius R[,R...] -o MESH: neighbourhood
-// features at a radius.
+// features at a radius (several inputs or isovalues: a batch, app/batch.h).
 #include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <sstream>
 
 #include "core/atomic_file.h"
+#include "app/batch.h"
 #include "app/commands.h"
 #include "app/pipeline.h"
 #include "app/series.h"
@@ -45,6 +46,94 @@ void parse_radii(const std::string &list, double diagonal,
     throw Error("--radius: no radius given");
 }
 
+/// The command line's feature options.
+struct FeaturesCli {
+  std::string radius, list = "all";
+  int samples = -1;
+  bool adaptive = false;
+};
+
+/// The features --features asks for (fo.features). @throw Error for a bad list.
+features::Options feature_selection(const FeaturesCli &c) {
+  features::Options fo;
+  if (c.list != "all")
+    fo.features = features::parse_features(c.list);
+  return fo;
+}
+
+/// Computes the features of `s` (as loaded: a volume's isosurface or a mesh file) into its
+/// field's extra arrays, readying the curvature first; returns the --json report without
+/// input, output and timings.
+nlohmann::json compute_features(Surface &s, const std::string &in, const CommonOptions &o,
+                                const FeaturesCli &c, features::Options fo, StageTimer &timer) {
+  const std::size_t nv = s.mesh.vertex_count();
+  if (s.field && s.field->normals.size() == nv && s.field->area.size() == nv && !o.flip) {
+    prepare_mesh_for_curvature(s, in, o);
+    if (!s.field)  // welded: the file's curvature and arrays no longer apply
+      s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o,
+                                   timer, &s.normals);
+  } else {
+    reestimate_keeping_extras(s, in, o, timer);  // --flip or no field: the file's arrays stay
+  }
+  parse_radii(c.radius, bounding_box_diagonal(s.mesh), fo);
+  fo.isovalue = s.isovalue;
+  fo.samples = c.samples >= 0 ? c.samples : (s.volume ? 256 : 0);
+  fo.adaptive = c.adaptive;
+  if (c.adaptive && fo.samples == 0)
+    throw Error("--adaptive applies to sampled neighbourhoods (--samples N with a volume)");
+  const volume::Volume* vol = s.volume ? &*s.volume : nullptr;
+  timer.start("features");
+  features::FeatureField f = reference_device(o)
+                                 ? features::compute(s.mesh, *s.field, vol, fo)
+                                 : features::compute(s.mesh, *s.field, vol, fo, device_for(o));
+  timer.stop();
+  std::size_t boundary = 0;
+  for (std::uint8_t b : f.boundary)
+    boundary += b;
+  nlohmann::json arrays = nlohmann::json::array();
+  auto &extra = s.field->extra; // a mesh file may carry features from an
+                                // earlier run: replace them
+  for (const auto &a : f.arrays)
+    extra.erase(
+        std::remove_if(extra.begin(), extra.end(),
+                       [&](const auto &e) { return e.name == a.name; }),
+        extra.end());
+  extra.erase(std::remove_if(
+                  extra.begin(), extra.end(),
+                  [](const auto &e) { return e.name == "FeatureBoundary"; }),
+              extra.end());
+  for (auto &a : f.arrays) {
+    arrays.push_back(a.name);
+    s.field->extra.push_back({a.name, std::move(a.values)});
+  }
+  s.field->extra.push_back(
+      {"FeatureBoundary",
+       std::vector<float>(f.boundary.begin(), f.boundary.end())});
+  nlohmann::json r = surface_report(s);
+  nlohmann::json radii = nlohmann::json::array();
+  for (std::size_t i = 0; i < fo.radii.size(); ++i)
+    radii.push_back(
+        {{"as_given", fo.radius_names[i]}, {"world", fo.radii[i]}});
+  r["features"] = {
+      {"radii", radii},
+      {"arrays", arrays},
+      {"mean_curvature_from", s.volume ? "volume integral invariant" : "surface samples"},
+      {"boundary_vertices", boundary},
+      {"neighbourhoods", fo.samples > 0 ? "sampled" : "exact"},
+      {"samples", fo.samples},
+      {"adaptive", fo.adaptive},
+      {"samples_taken", f.samples_taken},
+      {"traced_fraction", f.traced_fraction},
+      {"device", device_name(o)}};
+  return r;
+}
+
+/// The features mesh: the surface with its curvature and feature arrays (uncompressed).
+void write_features(const std::string &path, const Surface &s, const std::string &in) {
+  const io::Metadata context = context_metadata(s, in);
+  io::write_mesh(path, s.mesh, &*s.field, {}, &context);
+}
+
 } // namespace
 
 void register_features(CLI::App &app) {
@@ -58,35 +147,32 @@ void register_features(CLI::App &app) {
       "With several radii each\n"
       "array is suffixed _r<radius as written> (H_ii_r2%). Vr needs a volume.");
   static CommonOptions o;
-  static std::string out, radius, list = "all";
-  static int samples = -1;
-  static bool adaptive = false;
-  static std::vector<std::string> ins;
+  static std::string out;
+  static FeaturesCli c;
+  static BatchCli b;
   static SeriesCli series;
-  cmd->add_option("VOLUME_OR_MESH", ins,
-                  "Volume or mesh file (several, or a quoted glob, with --time-series)")
-      ->required();
+  add_batch_options(*cmd, b, "VOLUME_OR_MESH", "Volume or mesh file", {"vtp", "ply"});
   cmd->add_option("-o,--output", out,
                   "Mesh file to write (.vtp or .ply), with the curvature and "
-                  "feature arrays")
+                  "feature arrays, or the folder of a batch")
       ->required();
-  cmd->add_option("--radius", radius,
+  cmd->add_option("--radius", c.radius,
                   "Radius of support R[,R...] (world units, or N% of the "
                   "bounding-box diagonal)")
       ->required();
-  cmd->add_option("--features", list,
+  cmd->add_option("--features", c.list,
                   "Comma-separated: LBE, NSV, Vr, H_ii, K_ii, SI_ii, or all "
                   "(those the input allows)")
       ->capture_default_str();
-  cmd->add_option("--samples", samples,
+  cmd->add_option("--samples", c.samples,
                   "Samples per vertex for LBE, NSV and K_ii: N >= 32 traces N/16 curves "
                   "on the volume's isosurface (cost independent of the radius); 0 = the "
                   "exact neighbourhoods (the mesh's vertices within R, cost grows with R^2). "
                   "Default: 256 for a volume, 0 for a mesh file");
-  cmd->add_flag("--adaptive", adaptive,
+  cmd->add_flag("--adaptive", c.adaptive,
                 "Sampled path: trace the second half of the curves only where the first "
                 "half's mean curvatures disagree (two-stage adaptive sampling)");
-  add_common_options(*cmd, o);
+  add_common_options(*cmd, o, false);
   add_curvature_options(*cmd, o, true);
   add_series_options(*cmd, series);
   // One input -> `out`; prints its summary unless `quiet_summary` (a series frame). Returns the
@@ -95,74 +181,13 @@ void register_features(CLI::App &app) {
                        bool quiet_summary) -> nlohmann::json {
     require_curvature_format(out);
     require_writable_file(out);  // before any work
-    features::Options fo;
-    if (list != "all")
-      fo.features = features::parse_features(list);
+    const features::Options fo = feature_selection(c);
     StageTimer timer;
     Surface s = load_surface(in, o, timer);
-    const std::size_t nv = s.mesh.vertex_count();
-    if (s.field && s.field->normals.size() == nv && s.field->area.size() == nv && !o.flip) {
-      prepare_mesh_for_curvature(s, in, o);
-      if (!s.field)  // welded: the file's curvature and arrays no longer apply
-        s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o,
-                                     timer, &s.normals);
-    } else {
-      reestimate_keeping_extras(s, in, o, timer);  // --flip or no field: the file's arrays stay
-    }
-    parse_radii(radius, bounding_box_diagonal(s.mesh), fo);
-    fo.isovalue = s.isovalue;
-    fo.samples = samples >= 0 ? samples : (s.volume ? 256 : 0);
-    fo.adaptive = adaptive;
-    if (adaptive && fo.samples == 0)
-      throw Error("--adaptive applies to sampled neighbourhoods (--samples N with a volume)");
-    const volume::Volume* vol = s.volume ? &*s.volume : nullptr;
-    timer.start("features");
-    features::FeatureField f = reference_device(o)
-                                   ? features::compute(s.mesh, *s.field, vol, fo)
-                                   : features::compute(s.mesh, *s.field, vol, fo, device_for(o));
-    timer.stop();
-    std::size_t boundary = 0;
-    for (std::uint8_t b : f.boundary)
-      boundary += b;
-    nlohmann::json arrays = nlohmann::json::array();
-    auto &extra = s.field->extra; // a mesh file may carry features from an
-                                  // earlier run: replace them
-    for (const auto &a : f.arrays)
-      extra.erase(
-          std::remove_if(extra.begin(), extra.end(),
-                         [&](const auto &e) { return e.name == a.name; }),
-          extra.end());
-    extra.erase(std::remove_if(
-                    extra.begin(), extra.end(),
-                    [](const auto &e) { return e.name == "FeatureBoundary"; }),
-                extra.end());
-    for (auto &a : f.arrays) {
-      arrays.push_back(a.name);
-      s.field->extra.push_back({a.name, std::move(a.values)});
-    }
-    s.field->extra.push_back(
-        {"FeatureBoundary",
-         std::vector<float>(f.boundary.begin(), f.boundary.end())});
+    nlohmann::json r = compute_features(s, in, o, c, fo, timer);
     timer.start("write");
-    const io::Metadata context = context_metadata(s, in);
-    io::write_mesh(out, s.mesh, &*s.field, {}, &context);
+    write_features(out, s, in);
     timer.stop();
-    nlohmann::json r = surface_report(s);
-    nlohmann::json radii = nlohmann::json::array();
-    for (std::size_t i = 0; i < fo.radii.size(); ++i)
-      radii.push_back(
-          {{"as_given", fo.radius_names[i]}, {"world", fo.radii[i]}});
-    r["features"] = {
-        {"radii", radii},
-        {"arrays", arrays},
-        {"mean_curvature_from", s.volume ? "volume integral invariant" : "surface samples"},
-        {"boundary_vertices", boundary},
-        {"neighbourhoods", fo.samples > 0 ? "sampled" : "exact"},
-        {"samples", fo.samples},
-        {"adaptive", fo.adaptive},
-        {"samples_taken", f.samples_taken},
-        {"traced_fraction", f.traced_fraction},
-        {"device", device_name(o)}};
     r["input"] = in;
     r["output"] = out;
     r["timings_ms"] = timer.json();
@@ -171,26 +196,41 @@ void register_features(CLI::App &app) {
       std::cout << r.dump(2) << "\n";
     } else if (!o.quiet) {
       std::cout << "wrote " << out << ": " << s.mesh.vertex_count()
-                << " vertices, " << arrays.size()
+                << " vertices, " << r["features"]["arrays"].size()
                 << " feature arrays (features "
                 << format_number(timer.json().value("features", 0.0)) << " ms; "
-                << boundary
+                << r["features"]["boundary_vertices"].get<std::size_t>()
                 << " vertices whose neighbourhood left the data flagged "
                    "FeatureBoundary)\n";
     }
     return r;
   };
+  // A batch entry: the same computation and file; stats.json holds the --json report.
+  static const BatchStep step{
+      "features", true, [](Surface& s, const std::string& in, StageTimer& timer) {
+        BatchStep::Output out;
+        out.report = compute_features(s, in, o, c, feature_selection(c), timer);
+        out.write = [&s, in](const std::string& path) { write_features(path, s, in); };
+        out.summary_keys = {"vertices", "triangles", "features"};
+        return out;
+      }};
   cmd->callback([] {
     if (series.enabled) {
-      run_series(ins, series, {"features", out}, o,
+      require_series_cli(b, o);
+      run_series(b.inputs, series, {"features", out}, o,
                  [](const SeriesFrame& f, CommonOptions& fo, const std::string& path) {
                    return one(f.path, path, fo, true);
                  });
       return;
     }
-    if (ins.size() > 1)
-      throw Error("isocurv features takes one input (several are the frames of a series with --time-series)");
-    one(ins.front(), out, o, false);
+    // A batch checks first what every entry would fail on: --features, the radii as written.
+    if (run_as_batch(b, o, step, out, [] {
+          feature_selection(c);
+          features::Options probe;
+          parse_radii(c.radius, 1.0, probe);
+        }))
+      return;
+    one(b.inputs.front(), out, o, false);
   });
 }
 

@@ -1,6 +1,7 @@
 // Batches, sweeps, --compress and the program cache, end to end through the executable: several
 // inputs (and globs) in one call, per-input folders and summary.json, a bad input reported while
-// the others still run, --iso V1,V2 sweeps, --jobs 2 giving the same files as --jobs 1.
+// the others still run, --iso V1,V2 sweeps, --jobs 2 giving the same files as --jobs 1 (extract,
+// curvature, run, features, lines).
 #include <gtest/gtest.h>
 
 #include "io/mesh_file.h"
@@ -181,6 +182,131 @@ TEST(Batch, JobsTwoWritesTheSameFilesAsJobsOne) {
     EXPECT_EQ(read_file(dir / ("j1/" + std::string(name))),
               read_file(dir / ("j2/" + std::string(name))))
         << name;
+}
+
+// features and lines run as batches in the same loop: each input's output is the file a single
+// call writes, summary.json lists them with the counts their --json reports, a bad input is one
+// stderr line while the others still run, and --jobs 2 writes the same files as --jobs 1.
+TEST(Batch, FeaturesBatchWritesWhatSingleCallsWriteAndSurvivesABadInput) {
+  TempDir dir("features_batch");
+  fs::create_directories(dir / "in");
+  fs::copy_file(dataset("sphere"), dir / "in/sphere.vdb");
+  fs::copy_file(dataset("torus"), dir / "in/torus.vdb");
+  write_file(dir / "in/broken.vdb", "not a vdb file");
+  const std::vector<std::string> fast = {"--radius", "5%", "--samples", "32"};
+  for (const char* jobs : {"1", "2"}) {
+    std::vector<std::string> args = {"features", dir / "in/sphere.vdb", dir / "in/broken.vdb",
+                                     dir / "in/torus.vdb", "--jobs", jobs,
+                                     "-o", dir / ("j" + std::string(jobs))};
+    args.insert(args.end(), fast.begin(), fast.end());
+    const auto r = run_isocurv(args, 120);
+    EXPECT_EQ(r.exit_code, 1) << r.describe();
+    const auto lines = r.err_lines();
+    ASSERT_EQ(lines.size(), 2u) << r.describe();
+    EXPECT_NE(lines[0].find("broken.vdb"), std::string::npos) << r.describe();
+    EXPECT_NE(lines[1].find("1 of 3 entries failed"), std::string::npos) << r.describe();
+  }
+  const nlohmann::json s = parse_json(read_file(dir / "j1/summary.json"), "summary.json");
+  EXPECT_EQ(s["command"], "features");
+  EXPECT_EQ(s["inputs"], 3);
+  EXPECT_EQ(s["ok"], 2);
+  EXPECT_EQ(s["failed"], 1);
+  ASSERT_EQ(s["entries"].size(), 3u);
+  EXPECT_EQ(s["entries"][1]["status"], "failed");
+  EXPECT_NE(s["entries"][1].value("error", "").find("broken.vdb"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir / "j1/broken")) << "a failed input leaves no folder";
+  for (const char* name : {"sphere", "torus"}) {
+    const std::string out = dir / ("j1/" + std::string(name) + "/" + name + ".vtp");
+    const nlohmann::json& e = s["entries"][std::string(name) == "sphere" ? 0 : 2];
+    EXPECT_EQ(e["status"], "ok") << e.dump(2);
+    EXPECT_EQ(e["output"], out);
+    EXPECT_EQ(e["output_bytes"], fs::file_size(out));
+    EXPECT_GT(e["vertices"].get<int>(), 0);
+    EXPECT_EQ(e["features"]["radii"][0]["as_given"], "5%") << e.dump(2);
+    EXPECT_TRUE(e["timings_ms"].contains("features")) << e.dump(2);
+    // stats.json is the --json report of that input.
+    const nlohmann::json st = parse_json(read_file(e["stats"].get<std::string>()), "stats.json");
+    EXPECT_EQ(st["features"], e["features"]);
+    EXPECT_EQ(st["output"], out);
+    // The file a single call writes, byte for byte, and the same with --jobs 2.
+    std::vector<std::string> one = {"features", dir / ("in/" + std::string(name) + ".vdb"), "-o",
+                                    dir / (std::string(name) + ".vtp"), "--quiet"};
+    one.insert(one.end(), fast.begin(), fast.end());
+    const auto single = run_isocurv(one, 60);
+    ASSERT_TRUE(single.ok()) << single.describe();
+    EXPECT_EQ(read_file(out), read_file(dir / (std::string(name) + ".vtp"))) << name;
+    EXPECT_EQ(read_file(out), read_file(dir / ("j2/" + std::string(name) + "/" + name + ".vtp")))
+        << name;
+  }
+}
+
+TEST(Batch, LinesSweepWritesWhatSingleCallsWrite) {
+  TempDir dir("lines_sweep");
+  for (const char* jobs : {"1", "2"}) {
+    const auto r = run_isocurv({"lines", dataset("torus"), "--iso", "-0.5,0.125", "--format", "svg",
+                                "--view", "+y", "--size", "320x240", "--jobs", jobs, "-o",
+                                dir / ("j" + std::string(jobs)), "--json"},
+                               120);
+    ASSERT_TRUE(r.ok()) << r.describe();
+    const nlohmann::json s = parse_json(r.out, "lines --json");
+    EXPECT_EQ(s["command"], "lines");
+    ASSERT_EQ(s["entries"].size(), 2u);
+    EXPECT_EQ(s["entries"][0]["isovalue"], -0.5);
+    EXPECT_EQ(s["entries"][1]["isovalue"], 0.125);
+    for (const auto& e : s["entries"]) {
+      EXPECT_EQ(e["status"], "ok") << e.dump(2);
+      EXPECT_GT(e["segments"]["contours"].get<int>(), 0) << e.dump(2);
+      EXPECT_GT(e["polylines"].get<int>(), 0) << e.dump(2);
+      EXPECT_TRUE(e["timings_ms"].contains("visibility")) << e.dump(2);
+    }
+    EXPECT_EQ(parse_json(read_file(dir / ("j" + std::string(jobs) + "/summary.json")), "summary"),
+              s);
+  }
+  for (const char* iso : {"-0.5", "0.125"}) {
+    const std::string name = "torus/torus_iso" + std::string(iso) + ".svg";
+    ASSERT_TRUE(fs::exists(dir / ("j1/" + name))) << name;
+    EXPECT_TRUE(fs::exists(dir / ("j1/torus/stats_iso" + std::string(iso) + ".json")));
+    const auto one = run_isocurv({"lines", dataset("torus"), "--iso", iso, "--view", "+y", "--size",
+                                  "320x240", "-o", dir / "one.svg", "--quiet"});
+    ASSERT_TRUE(one.ok()) << one.describe();
+    EXPECT_EQ(read_file(dir / ("j1/" + name)), read_file(dir / "one.svg")) << iso;
+    EXPECT_EQ(read_file(dir / ("j1/" + name)), read_file(dir / ("j2/" + name))) << iso;
+  }
+  EXPECT_NE(read_file(dir / "j1/torus/torus_iso-0.5.svg"),
+            read_file(dir / "j1/torus/torus_iso0.125.svg"));
+  // The default format is .vtp, the polylines a single call writes.
+  const auto vtp = run_isocurv(
+      {"lines", dataset("sphere"), dataset("torus"), "-o", dir / "both", "--quiet"}, 120);
+  ASSERT_TRUE(vtp.ok()) << vtp.describe();
+  const auto one = run_isocurv({"lines", dataset("sphere"), "-o", dir / "sphere.vtp", "--quiet"});
+  ASSERT_TRUE(one.ok()) << one.describe();
+  EXPECT_EQ(read_file(dir / "both/sphere/sphere.vtp"), read_file(dir / "sphere.vtp"));
+  EXPECT_TRUE(fs::exists(dir / "both/torus/torus.vtp"));
+}
+
+TEST(Batch, FeaturesAndLinesRefuseWhatOtherBatchesRefuse) {
+  TempDir dir("step_refusals");
+  const auto features = run_isocurv({"features", dataset("sphere"), dataset("torus"), "--radius",
+                                     "5%", "-o", dir / "f.vtp"});
+  expect_clean_failure(features, "f.vtp");
+  EXPECT_NE(features.err.find("is a folder"), std::string::npos) << features.describe();
+  expect_clean_failure(run_isocurv({"lines", dataset("torus"), "--iso", "-0.5,0.125", "-o",
+                                    dir / "l.svg"}),
+                       "l.svg");
+  expect_clean_failure(run_isocurv({"lines", dataset("torus"), "--format", "svg", "-o",
+                                    dir / "a.vtp"}),
+                       "--format");
+  expect_clean_failure(run_isocurv({"features", dataset("sphere"), "--radius", "5%", "--jobs", "2",
+                                    "-o", dir / "a.vtp"}),
+                       "--jobs");
+  expect_usage_error(run_isocurv({"lines", dataset("sphere"), dataset("torus"), "--format", "ply",
+                                  "-o", dir / "l"}),
+                     "--format");
+  // Options every entry would fail on are one error before any output folder.
+  expect_clean_failure(run_isocurv({"features", dataset("sphere"), dataset("torus"), "--radius",
+                                    "-1", "-o", dir / "f"}),
+                       "--radius");
+  EXPECT_TRUE(dir.entries().empty());
 }
 
 TEST(Batch, UnwritableOutputIsCaughtBeforeAnyWork) {
