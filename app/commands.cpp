@@ -14,7 +14,7 @@ const std::pair<const char*, const char*> kDocPages[] = {
     {"curvature", "curvature.md"}, {"run", "curvature.md"},      {"compare", "curvature.md"},
     {"features", "features.md"},  {"render", "pictures.md"},    {"view", "pictures.md"},
     {"lines", "lines.md"},        {"deform", "time-series.md"}, {"screen", "screen.md"},
-    {"devices", "install.md"},
+    {"devices", "install.md"},    {"measure", "measure.md"},
 };
 
 }  // namespace
@@ -37,6 +37,7 @@ void register_commands(CLI::App& app) {
   register_view(app);
   register_check(app);
   register_compare(app);
+  register_measure(app);
   register_devices(app);
   for (const auto& [name, page] : kDocPages) {
     CLI::App* cmd = app.get_subcommand(name);  // throws for a name no command has

@@ -19,6 +19,7 @@ void register_run(CLI::App& app);       ///< isocurv run VOLUME -o DIR
 void register_view(CLI::App& app);      ///< isocurv view VOLUME
 void register_features(CLI::App& app);  ///< isocurv features VOLUME_OR_MESH --radius R -o MESH
 void register_compare(CLI::App& app);   ///< isocurv compare VOLUME_OR_MESH
+void register_measure(CLI::App& app);   ///< isocurv measure VOLUME_OR_MESH
 void register_screen(CLI::App& app);    ///< isocurv screen VOLUME_OR_MESH -o PNG
 void register_lines(CLI::App& app);     ///< isocurv lines VOLUME_OR_MESH -o VTP|SVG
 void register_deform(CLI::App& app);    ///< isocurv deform MESH --deformer D -o DIR
