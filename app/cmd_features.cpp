@@ -18,29 +18,13 @@
 namespace isocurv::app {
 namespace {
 
-/// "4,0.5,2%" -> radii in world units (a trailing % is of the bounding-box
-/// diagonal) and their names as written, for the array suffixes.
-void parse_radii(const std::string &list, double diagonal,
+/// --radius "4,0.5,2%" -> radii in world units (features::parse_radii).
+void radius_option(const std::string &list, double diagonal,
                  features::Options &o) {
-  std::stringstream in(list);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    const bool percent = !item.empty() && item.back() == '%';
-    const std::string number = percent ? item.substr(0, item.size() - 1) : item;
-    std::size_t used = 0;
-    double r = 0;
-    try {
-      r = std::stod(number, &used);
-    } catch (const std::exception &) {
-      used = 0;
-    }
-    if (number.empty() || used != number.size() || !(r > 0) ||
-        !std::isfinite(r))
-      throw Error("--radius: '" + item +
-                  "' is not a positive number (world units, or N% of the "
-                  "bounding-box diagonal)");
-    o.radii.push_back(percent ? r / 100 * diagonal : r);
-    o.radius_names.push_back(item);
+  try {
+    features::parse_radii(list, diagonal, o);
+  } catch (const Error &e) {
+    throw Error(std::string("--radius: ") + e.what());
   }
   if (o.radii.empty())
     throw Error("--radius: no radius given");
@@ -75,7 +59,7 @@ nlohmann::json compute_features(Surface &s, const std::string &in, const CommonO
   } else {
     reestimate_keeping_extras(s, in, o, timer);  // --flip or no field: the file's arrays stay
   }
-  parse_radii(c.radius, bounding_box_diagonal(s.mesh), fo);
+  radius_option(c.radius, bounding_box_diagonal(s.mesh), fo);
   fo.isovalue = s.isovalue;
   fo.samples = c.samples >= 0 ? c.samples : (s.volume ? 256 : 0);
   fo.adaptive = c.adaptive;
@@ -227,7 +211,7 @@ void register_features(CLI::App &app) {
     if (run_as_batch(b, o, step, out, [] {
           feature_selection(c);
           features::Options probe;
-          parse_radii(c.radius, 1.0, probe);
+          radius_option(c.radius, 1.0, probe);
         }))
       return;
     one(b.inputs.front(), out, o, false);

@@ -76,14 +76,10 @@ void register_screen(CLI::App& app) {
   cmd->add_option_function<std::vector<std::string>>(
          "--range",
          [](const std::vector<std::string>& v) {
-           std::string text = v[0];
-           if (v.size() == 2) text += "," + v[1];
-           double lo = 0, hi = 0;
-           char tail = 0;
-           if (std::sscanf(text.c_str(), "%lf,%lf%c", &lo, &hi, &tail) != 2 || !std::isfinite(lo) ||
-               !std::isfinite(hi) || !(lo < hi))
+           viz::ColorRange range;
+           if (!parse_min_max(v, range))
              throw CLI::ValidationError("--range", "expected MIN,MAX (or MIN MAX) with MIN < MAX");
-           po.range = viz::ColorRange{lo, hi};
+           po.range = range;
          },
          "Colour exactly this value range (MIN,MAX or MIN MAX)")
       ->expected(1, 2)

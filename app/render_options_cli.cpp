@@ -11,6 +11,19 @@
 
 namespace isocurv::app {
 
+bool parse_min_max(const std::vector<std::string>& v, viz::ColorRange& out) {
+  if (v.empty() || v.size() > 2) return false;
+  std::string text = v[0];
+  if (v.size() == 2) text += "," + v[1];
+  double lo = 0, hi = 0;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%lf,%lf%c", &lo, &hi, &tail) != 2 || !std::isfinite(lo) ||
+      !std::isfinite(hi) || !(lo < hi))
+    return false;
+  out = viz::ColorRange{lo, hi};
+  return true;
+}
+
 void add_render_options(CLI::App& cmd, RenderCli& r, bool files) {
   viz::RenderOptions& opts = r.opts;
   cmd.add_option("--color", opts.color,
@@ -36,14 +49,9 @@ void add_render_options(CLI::App& cmd, RenderCli& r, bool files) {
              r.opts.range.reset();
              return;
            }
-           std::string text = v[0];
-           if (v.size() == 2) text += "," + v[1];
-           double lo = 0, hi = 0;
-           char tail = 0;
-           if (std::sscanf(text.c_str(), "%lf,%lf%c", &lo, &hi, &tail) != 2 || !std::isfinite(lo) ||
-               !std::isfinite(hi) || !(lo < hi))
-             throw CLI::ValidationError("--range", bad);
-           r.opts.range = viz::ColorRange{lo, hi};
+           viz::ColorRange range;
+           if (!parse_min_max(v, range)) throw CLI::ValidationError("--range", bad);
+           r.opts.range = range;
          },
          "Colour range: MIN,MAX (or MIN MAX) exactly; shared (the default) gives the pictures of "
          "a sweep, batch or series one range from all their values, and one camera; each: every "

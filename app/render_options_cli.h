@@ -29,6 +29,10 @@ struct RenderCli {
   std::string range_mode = "shared";
 };
 
+/// Parses a MIN,MAX (one value) or MIN MAX (two) colour range into `out`; false unless both are
+/// finite numbers with MIN < MAX.
+bool parse_min_max(const std::vector<std::string>& values, viz::ColorRange& out);
+
 /// Adds --color, --cmap, --range, --percentile, --shading, --ao, --dirs, --dirs-count,
 /// --dirs-length, --size WxH, --title, --unit, the camera options and --camera; `files` adds
 /// --dirs-out (render and run).

@@ -29,6 +29,16 @@ double mean_edge_length(const Mesh& mesh) {
   return sum / (3.0 * static_cast<double>(mesh.triangles.size()));
 }
 
+double signed_volume_term(const Mesh& mesh, const Tri& t, const Vec3f& o) {
+  double p[3][3];
+  for (int j = 0; j < 3; ++j)
+    for (int k = 0; k < 3; ++k) p[j][k] = double(mesh.positions[t[j]][k]) - o[k];
+  return (p[0][0] * (p[1][1] * p[2][2] - p[1][2] * p[2][1]) -
+          p[0][1] * (p[1][0] * p[2][2] - p[1][2] * p[2][0]) +
+          p[0][2] * (p[1][0] * p[2][1] - p[1][1] * p[2][0])) /
+         6.0;
+}
+
 std::array<double, 3> triangle_area_vector(const Mesh& mesh, const Tri& t) {
   const Vec3f &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
   double u[3], v[3];

@@ -19,6 +19,12 @@ double bounding_box_diagonal(const Mesh& mesh);
 /// range): twice its area, along its outward normal.
 std::array<double, 3> triangle_area_vector(const Mesh& mesh, const Tri& t);
 
+/// The signed volume a . (b x c) / 6 of the tetrahedron (origin, a, b, c) for the triangle
+/// t = (a, b, c) of `mesh` (indices in range), in double precision relative to `origin`: summed
+/// over a closed, outward-facing surface, the volume it encloses, whatever the origin (one near
+/// the surface keeps far-from-origin meshes precise).
+double signed_volume_term(const Mesh& mesh, const Tri& t, const Vec3f& origin);
+
 /// Per vertex, the sum of (b - a) x (c - a) over the triangles (a, b, c) using it: the
 /// area-weighted face normal (twice the area), pointing out of the object for the winding Mesh
 /// documents. Not normalised; zero for a vertex no triangle with a non-zero area uses. Triangles

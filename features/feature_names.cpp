@@ -1,4 +1,6 @@
 // Feature names and the --features list.
+#include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "core/error.h"
@@ -27,6 +29,29 @@ const char *feature_name(Feature f) {
     return "SI_ii";
   }
   return "?";
+}
+
+void parse_radii(const std::string &list, double diagonal, Options &o) {
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    const std::string item = list.substr(start, comma - start);
+    start = comma + 1;
+    const bool percent = !item.empty() && item.back() == '%';
+    const std::string number = percent ? item.substr(0, item.size() - 1) : item;
+    std::size_t used = 0;
+    double r = 0;
+    try {
+      r = std::stod(number, &used);
+    } catch (const std::exception &) {
+      used = 0;
+    }
+    if (number.empty() || used != number.size() || !(r > 0) || !std::isfinite(r))
+      throw Error("'" + item +
+                  "' is not a positive number (world units, or N% of the bounding-box diagonal)");
+    o.radii.push_back(percent ? r / 100 * diagonal : r);
+    o.radius_names.push_back(item);
+  }
 }
 
 std::vector<Feature> parse_features(const std::string &list) {

@@ -101,6 +101,11 @@ struct Options {
   std::vector<std::uint32_t> vertices;
 };
 
+/// Appends the radii of `list` ("4,0.5,2%": world units, a trailing % of `diagonal`) to
+/// o.radii, each with its name as written (o.radius_names, the array suffixes). @throw Error
+/// "'ITEM' is not a positive number (...)" for a bad item.
+void parse_radii(const std::string &list, double diagonal, Options &o);
+
 /// One named per-vertex array.
 struct Array {
   std::string name;          ///< e.g. "H_ii", or "H_ii_r4" with several radii

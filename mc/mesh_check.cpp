@@ -142,14 +142,7 @@ MeshCheck check_mesh(const Mesh& mesh) {
     const Tri& t = mesh.triangles[f];
     ComponentCheck& c = r.component_list[component_of[uf.find(t[0])]];
     ++c.triangles;
-    const Vec3f& o = mesh.positions[c.first_vertex];
-    double p[3][3];
-    for (int j = 0; j < 3; ++j)
-      for (int k = 0; k < 3; ++k) p[j][k] = double(mesh.positions[t[j]][k]) - o[k];
-    c.signed_volume += (p[0][0] * (p[1][1] * p[2][2] - p[1][2] * p[2][1]) -
-                        p[0][1] * (p[1][0] * p[2][2] - p[1][2] * p[2][0]) +
-                        p[0][2] * (p[1][0] * p[2][1] - p[1][1] * p[2][0])) /
-                       6.0;
+    c.signed_volume += signed_volume_term(mesh, t, mesh.positions[c.first_vertex]);
   }
   r.euler = (long long)referenced - (long long)r.edges + (long long)r.triangles;
   return r;

@@ -100,14 +100,7 @@ std::vector<ObjectMeasures> object_measures(const Mesh& mesh, const curvature::C
     ++m.triangles;
     const auto n = triangle_area_vector(mesh, t);
     m.area += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    const Vec3f& o = mesh.positions[m.first_vertex];  // near the component: precise far away
-    double p[3][3];
-    for (int j = 0; j < 3; ++j)
-      for (int k = 0; k < 3; ++k) p[j][k] = double(mesh.positions[t[j]][k]) - o[k];
-    m.volume += (p[0][0] * (p[1][1] * p[2][2] - p[1][2] * p[2][1]) -
-                 p[0][1] * (p[1][0] * p[2][2] - p[1][2] * p[2][0]) +
-                 p[0][2] * (p[1][0] * p[2][1] - p[1][1] * p[2][0])) /
-                6.0;
+    m.volume += signed_volume_term(mesh, t, mesh.positions[m.first_vertex]);
   }
   std::sort(edges.begin(), edges.end());
   for (std::size_t i = 0; i < edges.size();) {

@@ -799,23 +799,10 @@ void radii_of(const py::object& radius, double diagonal, features::Options& fo) 
                            "diagonal)");
   };
   auto add_text = [&](const std::string& list) {
-    std::size_t start = 0;
-    while (start <= list.size()) {
-      const std::size_t comma = std::min(list.find(',', start), list.size());
-      const std::string item = list.substr(start, comma - start);
-      start = comma + 1;
-      const bool percent = !item.empty() && item.back() == '%';
-      const std::string number = percent ? item.substr(0, item.size() - 1) : item;
-      std::size_t used = 0;
-      double r = 0;
-      try {
-        r = std::stod(number, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (number.empty() || used != number.size() || !(r > 0) || !std::isfinite(r)) throw bad(item);
-      fo.radii.push_back(percent ? r / 100 * diagonal : r);
-      fo.radius_names.push_back(item);
+    try {
+      features::parse_radii(list, diagonal, fo);
+    } catch (const Error& e) {
+      throw py::value_error(std::string("radius: ") + e.what());
     }
   };
   auto add = [&](const py::handle& item) {
