@@ -43,6 +43,7 @@
 #include "io/compression.h"
 #include "io/field_arrays.h"
 #include "io/mesh_file.h"
+#include "measure/object_measures.h"
 #include "lines/extract.h"
 #include "lines/line_files.h"
 #include "lines/line_types.h"
@@ -825,6 +826,48 @@ void radii_of(const py::object& radius, double diagonal, features::Options& fo) 
   if (fo.radii.empty()) throw py::value_error("radius: no radius given");
 }
 
+/// isocurv.measure: measure::object_measures as a dict of numpy arrays, one entry per component.
+py::dict measure_of(const MeshArg& mesh_arg, const VolumeArg& volume_arg, const py::object& arrays,
+                    const py::object& iso, py::object device) {
+  const std::shared_ptr<PyMesh> mesh = mesh_of(mesh_arg, "mesh");
+  const volume::Volume* volume = optional_volume(volume_arg, "volume");
+  if (volume) check_mesh_in_volume(mesh->mesh, *volume);
+  const curvature::CurvatureField field = field_for(mesh, volume, arrays, iso, device, {"H", "K"});
+  const std::vector<measure::ObjectMeasures> objects = measure::object_measures(mesh->mesh, field);
+  const py::ssize_t n = py::ssize_t(objects.size());
+  std::vector<double> area, volume_, int_h, int_k, gap, box;
+  std::vector<std::int64_t> euler, genus, vertices, triangles, unmeasured;
+  std::vector<std::uint8_t> closed;
+  for (const measure::ObjectMeasures& m : objects) {
+    area.push_back(m.area);
+    volume_.push_back(m.closed ? m.volume : std::numeric_limits<double>::quiet_NaN());
+    int_h.push_back(m.integral_H);
+    int_k.push_back(m.integral_K);
+    gap.push_back(m.gauss_bonnet_gap());
+    euler.push_back(m.euler);
+    genus.push_back(m.genus());
+    vertices.push_back(std::int64_t(m.vertices));
+    triangles.push_back(std::int64_t(m.triangles));
+    unmeasured.push_back(std::int64_t(m.unmeasured));
+    closed.push_back(m.closed ? 1 : 0);
+    box.insert(box.end(), m.box.begin(), m.box.end());
+  }
+  py::dict out;
+  out["area"] = copy_array(area, {n});
+  out["volume"] = copy_array(volume_, {n});
+  out["integral_H"] = copy_array(int_h, {n});
+  out["integral_K"] = copy_array(int_k, {n});
+  out["euler_characteristic"] = copy_array(euler, {n});
+  out["genus"] = copy_array(genus, {n});
+  out["gauss_bonnet_gap"] = copy_array(gap, {n});
+  out["closed"] = copy_array(closed, {n});
+  out["vertices"] = copy_array(vertices, {n});
+  out["triangles"] = copy_array(triangles, {n});
+  out["unmeasured_vertices"] = copy_array(unmeasured, {n});
+  out["box"] = copy_array(box, {n, 6});
+  return out;
+}
+
 py::object features_of(const MeshArg& mesh_arg, const VolumeArg& volume_arg,
                        const py::object& radius, const py::object& names, const py::object& samples,
                        bool adaptive, const py::object& arrays, const py::object& iso,
@@ -1441,6 +1484,18 @@ lengths). Normals point out of the object, so a solid sphere of radius R has k1 
 A mesh that does not lie in `volume` (its bounding box more than a voxel beyond the volume's
 world bounds: a mesh of another volume, or other spacing or origin) raises ValueError.
 Wrong combinations raise ValueError naming the argument.)doc");
+
+  m.def("measure", &measure_of, py::arg("mesh"), py::arg("volume") = py::none(), py::kw_only(),
+        py::arg("arrays") = py::none(), py::arg("iso") = py::none(), py::arg("device") = py::none(),
+        R"doc(Shape measures of every connected component of `mesh` (isocurv measure; see
+docs/measure.md), largest area first, as a dict of numpy arrays with one entry per component:
+area, volume (enclosed; NaN for a component cut open), integral_H, integral_K (float64, world
+units), euler_characteristic, genus (-1 when open), vertices, triangles, unmeasured_vertices
+(int64), closed (uint8), gauss_bonnet_gap ((integral_K - 2 pi euler) / (2 pi max(1, |euler|)),
+NaN when open) and box ((n, 6): xmin, xmax, ymin, ymax, zmin, zmax). arrays: the mesh's
+curvature (a dict as curvature() returns; H and K are read, Area and Unreliable when present);
+None estimates curvature(mesh, volume) with its defaults (the volume estimator with a volume).
+iso: the isovalue, with a volume, for a mesh without mesh.isovalue.)doc");
 
   m.def("features", &features_of, py::arg("mesh"), py::arg("volume") = py::none(), py::kw_only(),
         py::arg("radius"), py::arg("features") = py::none(), py::arg("samples") = py::none(),

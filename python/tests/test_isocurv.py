@@ -521,6 +521,43 @@ class Unmeasured(unittest.TestCase):
         self.assertAlmostEqual(float(np.median(a["H"][measured])) * 6, 1, delta=0.05)
 
 
+class Measure(unittest.TestCase):
+    def test_the_ball_and_the_command_line(self):
+        v = isocurv.from_array(ball(np.float32))
+        mesh = isocurv.extract(v, 255 - 10 * RADIUS)
+        m = isocurv.measure(mesh, v)
+        self.assertEqual(m["area"].shape, (1,))
+        self.assertEqual(m["box"].shape, (1, 6))
+        self.assertEqual(int(m["euler_characteristic"][0]), 2)
+        self.assertEqual(int(m["genus"][0]), 0)
+        self.assertEqual(int(m["closed"][0]), 1)
+        # the ball of radius 12 voxels: area and volume within 1%, integral of H within 2%
+        self.assertAlmostEqual(float(m["area"][0]) / (4 * np.pi * RADIUS**2), 1, delta=0.01)
+        self.assertAlmostEqual(float(m["volume"][0]) / (4 / 3 * np.pi * RADIUS**3), 1, delta=0.01)
+        self.assertAlmostEqual(float(m["integral_H"][0]) / (4 * np.pi * RADIUS), 1, delta=0.02)
+        self.assertLess(abs(float(m["gauss_bonnet_gap"][0])), 0.02)
+        # Given arrays are used as they are: H = 1 everywhere integrates to the mesh's area.
+        arrays = isocurv.curvature(mesh, v)
+        arrays["H"] = np.ones_like(arrays["H"])
+        self.assertAlmostEqual(float(isocurv.measure(mesh, arrays=arrays)["integral_H"][0]),
+                               float(np.sum(arrays["Area"])), places=2)
+        with self.assertRaises(TypeError):
+            isocurv.measure("not a mesh")
+        with self.assertRaises(ValueError):
+            isocurv.measure(mesh, arrays={"H": arrays["H"]})
+
+    @unittest.skipUnless(HAVE_CLI, "needs the built CLI and the bundled torus")
+    def test_same_as_the_command_line(self):
+        import json
+        out = subprocess.run([EXE, "measure", TORUS, "--json", "--quiet"], capture_output=True, text=True, check=True)
+        cli = json.loads(out.stdout)["objects"][0]
+        v = isocurv.load(TORUS)
+        m = isocurv.measure(isocurv.extract(v), v)
+        for key in ("area", "volume", "integral_H", "integral_K"):
+            self.assertAlmostEqual(float(m[key][0]), cli[key], delta=1e-6 * max(1, abs(cli[key])), msg=key)
+        self.assertEqual(int(m["euler_characteristic"][0]), cli["euler_characteristic"])
+
+
 class Features(unittest.TestCase):
     def setUp(self):
         self.v = isocurv.from_array(ball(np.float32))
