@@ -36,6 +36,15 @@ struct CurvatureField {
   };
   std::vector<Named> extra;
 
+  /// The surface point each vertex stands for, world units, for measure::object_measures to
+  /// integrate over: where the volume estimator places the volume's surface (VolumePoint::surface:
+  /// the smoothed isosurface along the gradient line, moved out by the smoothing's shrinkage;
+  /// VolumePoint::vertex: the vertex moved along its cube edge by the linear interpolation's
+  /// error, curvature::edge_surface_points; the vertex itself where it is Unreliable). Empty for
+  /// the other estimators; not written to files, not carried through the stages that renumber
+  /// vertices (a user checks its size against the mesh's).
+  std::vector<Vec3f> surface_points;
+
   /// How the field was made, as (name, value) text pairs: "estimator" and its parameters
   /// (curvature::estimate_field fills them). Written as string arrays of the VTP's field data.
   std::vector<std::pair<std::string, std::string>> metadata;

@@ -56,6 +56,7 @@ enum Slot : std::size_t {
   kAo,
   kGradientNorm,
   kShift,
+  kSurface,
   kSlots
 };
 
@@ -71,9 +72,10 @@ std::string build_options() {
       buf, sizeof buf,
       "-DPIVOT_TOLERANCE=%.9g -DOPPOSITE_NORMALS=%.9g -DAO_C0=%.9g -DAO_C1=%.9g "
       "-DAO_C2=%.9g -DAO_SMIN=%.9g -DBRICK_VOXELS=512 -DBRICK_ROWS=64 "
-      "-DSPLINE_TAPS=5 -DPADDED=%d -DPAD_BEFORE=%d -DPADDED_VOXELS=%d -DNEWTON_STEPS=%d",
+      "-DSPLINE_TAPS=5 -DPADDED=%d -DPAD_BEFORE=%d -DPADDED_VOXELS=%d -DNEWTON_STEPS=%d "
+      "-DSURFACE_CUBIC=%.9ef",
       kPivotTolerance, kOppositeNormals, kAoC0, kAoC1, kAoC2, kAoSMin, kPadded, kPadBefore,
-      kPadded * kPadded * kPadded, kNewtonSteps);
+      kPadded * kPadded * kPadded, kNewtonSteps, kSurfaceCubic);
   return buf;
 }
 
@@ -221,11 +223,12 @@ detail::VolumeEvaluation evaluate(const Positions& positions, const volume::Volu
   cl::Buffer& dir2 = s.get(kDir2, nv * sizeof(Vec3f));
   cl::Buffer& dcurv = s.get(kDcurv, nv * sizeof(cl_float4));
   cl::Buffer& shift = s.get(kShift, nv * sizeof(float));
+  cl::Buffer& surface = s.get(kSurface, nv * sizeof(Vec3f));
   const float sign = volume.inside == volume::Inside::Above ? -1.0f : 1.0f;
   set_args(s.kernel, pos, cl_uint(nv), blocks, table, dims, params, cl_float(isovalue),
            cl_float(sign), cl_float(ao_scale), cl_int(setup.point == VolumePoint::surface),
            cl_float(setup.max_shift), cl_float(setup.sigma * setup.sigma), normals, *f1[0], *f1[1], dir1, dir2, *f1[2], *f1[3],
-           dcurv, *f1[4], *f1[5], *f1[6], *f1[7], shift);
+           dcurv, *f1[4], *f1[5], *f1[6], *f1[7], shift, surface);
   launch(q, s.kernel, nv, kGroup);
   CurvatureField& out = e.field;
   download(q, normals, out.normals, nv);
@@ -241,6 +244,7 @@ detail::VolumeEvaluation evaluate(const Positions& positions, const volume::Volu
   download(q, *f1[6], out.ao, nv);
   download(q, *f1[7], e.raw.gradient_norm, nv);
   download(q, shift, e.raw.shift, nv);
+  if (setup.point == VolumePoint::surface) download(q, surface, out.surface_points, nv);
   q.finish();
   e.steps.vertices = lap(t);
   e.bricks = 0;
@@ -272,6 +276,7 @@ CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalu
   Clock::time_point t = Clock::now();
   const std::size_t unreliable =
       detail::finish_volume_field(mesh, corners, e.raw, ladder, finer_scales, ao_scale, e.field);
+  if (point == VolumePoint::vertex) e.field.surface_points = edge_surface_points(mesh, volume, e.field);
   e.steps.finish = lap(t);
   if (stats)
     *stats = VolumeEstimateStats{unreliable, e.bricks, ladder.refined,

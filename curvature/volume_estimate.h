@@ -46,6 +46,7 @@
 // prefilter's three passes need for them, are gathered and filtered; a vertex then reads 5^3
 // smoothed samples, whatever the scale.
 #include <cstddef>
+#include <vector>
 
 #include "core/cl_device.h"
 #include "core/mesh.h"
@@ -60,12 +61,22 @@ enum class VolumePoint {
   /// within the noise of the surface.
   vertex,
   /// The smoothed isosurface where the vertex's gradient line meets it (kNewtonSteps Newton
-  /// steps, at most kMaxShiftVoxels), its curvatures those of the parallel surface sigma^2 H
-  /// further out (k / (1 + sigma^2 H k)), undoing the smoothing's shrinkage: for binary volumes,
+  /// steps, at most kMaxShiftVoxels), its curvatures those of the parallel surface about
+  /// sigma^2 H further out (k / (1 + e k), e as kSurfaceCubic says), undoing the smoothing's
+  /// shrinkage: for binary volumes,
   /// whose vertices sit on the voxel staircase, up to half a voxel off the surface (evaluated
-  /// there, a torus of tube radius 4 voxels would be off by 12%).
+  /// there, a torus of tube radius 4 voxels would be off by 12%). The field's surface_points
+  /// are those surface points (kSurfaceCubic), for measure::object_measures.
   surface,
 };
+/// VolumePoint::surface: the smoothing's shrinkage at a point of the smoothed isosurface of mean
+/// curvature H, to the next order: sigma^2 H (1 - kSurfaceCubic sigma^2 H^2) (the factor at
+/// least 1/2). The surface point (CurvatureField::surface_points) lies that far out along the
+/// normal, and the curvatures are that parallel surface's (k / (1 + e k)). Fitted on the exact
+/// shifts of Gaussian-smoothed balls and cylinders: within 0.005 sigma up to sigma / r = 1/3,
+/// where sigma^2 H alone overshoots a ball by 0.016 sigma (on a binary spherical cavity of
+/// radius 6 voxels at the binary scale of 2 voxels, 1.6% of its volume).
+inline constexpr double kSurfaceCubic = 1.0 / 3.0;
 /// VolumePoint::surface: Newton steps along the gradient line, and the largest move in voxels.
 inline constexpr int kNewtonSteps = 3;
 inline constexpr double kMaxShiftVoxels = 1.5;
@@ -116,6 +127,22 @@ CurvatureField volume_estimate(const Mesh& mesh, const volume::Volume& volume, f
                                double sigma, float ao_scale, Device& device,
                                VolumeEstimateStats* stats = nullptr, bool finer_scales = true,
                                VolumePoint point = VolumePoint::vertex);
+
+/// VolumePoint::vertex: the surface points (CurvatureField::surface_points) of `mesh`'s
+/// marching-cubes vertices on `volume`'s grid, from the curvature in `field` (normals, k1, k2,
+/// dir1, dir2). Marching cubes places a vertex where the linear interpolation along its cube edge
+/// (grid axis a, length h, the vertex at s in [0, 1]) crosses the isovalue; on a curved surface the
+/// field along the edge is not linear: with the surface's normal curvature kappa along the edge
+/// e (k1 (e.dir1)^2 + k2 (e.dir2)^2) and c = n.e, the crossing lies (kappa h^2 / 2 c) s (1 - s)
+/// further along e (second order; the ratio kappa h / 2 c kept within 1/2, for edges nearly
+/// along the surface). It assumes the field's second derivative across the surface vanishes at
+/// the isovalue, as for distance fields and for blurred edges cut at half height (CT at the
+/// midpoint of two materials). Vertices not on a grid edge (snapped, or with all three index
+/// coordinates whole) and Unreliable ones keep their position. A float torus of tube radius 6
+/// on a 1 x 1 x 2.5 grid: its vertices lie 0.021 units inside the surface on average, and the
+/// volume measured over them is 0.82% short, over the surface points 0.04%.
+std::vector<Vec3f> edge_surface_points(const Mesh& mesh, const volume::Volume& volume,
+                                       const CurvatureField& field);
 
 /// The specification: the same in double precision on the host (volume::smooth_reference and
 /// volume::spline_jet), parallel over vertex batches (TBB).

@@ -333,7 +333,8 @@ INLINE float4 dcurv_forms(const jet_t* j, vec3 m, float s, float len, vec3 e1, v
 // or (surface) through the point where its gradient line meets the smoothed isosurface, moved out
 // by the smoothing's shrinkage sigma2 H (evaluate_reference in curvature/volume_reference.cpp);
 // shift_out the signed distance from the vertex to the smoothed isosurface along the gradient
-// (INFINITY where the gradient vanished).
+// (INFINITY where the gradient vanished); surface_out (surface) that parallel surface's point
+// (CurvatureField::surface_points), else the vertex.
 __kernel void volume_curvature(__global const float* positions, uint count,
                                __global const float* blocks, __global const int* table, int4 dims,
                                __constant const float* frame_params, float isovalue, float sign,
@@ -344,7 +345,7 @@ __kernel void volume_curvature(__global const float* positions, uint count,
                                __global float* K_out, __global float4* dcurv_out,
                                __global float* shape_out, __global float* curved_out,
                                __global float* ao_out, __global float* gnorm_out,
-                               __global float* shift_out) {
+                               __global float* shift_out, __global float* surface_out) {
   const uint i = get_global_id(0);
   if (i >= count) return;
   const samples_t s = {0, table, dims};
@@ -375,6 +376,7 @@ __kernel void volume_curvature(__global const float* positions, uint count,
       x = add3(x0, mul3(d, t));
     }
   }
+  vec3 surface_point = x0;  // (surface) the point measure::object_measures integrates over
   const jet_t jet = spline_jet(&s, blocks, &f, x, 3);
   const vec3 g = v3(jet.g[0], jet.g[1], jet.g[2]);
   float len = sqrt(dot3(g, g));
@@ -397,8 +399,10 @@ __kernel void volume_curvature(__global const float* positions, uint count,
     e2 = cross3(n, e1);
     dc = dcurv_forms(&jet, m, sign, len, e1, e2);
     shift = (jet.value - isovalue) / len - t;
-    if (surface) {  // shrinkage_corrected: the parallel surface sigma2 H further out
-      const float e = sigma2 * 0.5f * (k1 + k2);
+    if (surface) {  // shrinkage_corrected: the parallel surface e further out (volume_estimate.h)
+      const float h = 0.5f * (k1 + k2);
+      const float e = sigma2 * h * fmax(1.0f - SURFACE_CUBIC * sigma2 * h * h, 0.5f);
+      surface_point = add3(x, mul3(n, e));  // that parallel surface's point
       k1 /= fmax(1.0f + e * k1, 0.1f);
       k2 /= fmax(1.0f + e * k2, 0.1f);
     }
@@ -418,4 +422,5 @@ __kernel void volume_curvature(__global const float* positions, uint count,
   ao_out[i] = ambient_occlusion(k1, k2, ao_scale);
   gnorm_out[i] = len;
   shift_out[i] = shift;
+  store3(surface_point, surface_out, i);
 }

@@ -18,6 +18,7 @@
 #include "curvature/input.h"
 #include "curvature/mesh_areas.h"
 #include "curvature/volume_estimate.h"
+#include "volume/gaussian_jet.h"
 #include "volume/gradient_normals.h"
 #include "volume/prefilter.h"
 #include "volume/spline_jet.h"
@@ -178,6 +179,7 @@ VolumeEvaluation evaluate_with_finer_scales(const Mesh& mesh, const VertexCorner
       f.dir1[i] = g.dir1[j], f.dir2[i] = g.dir2[j], f.H[i] = g.H[j], f.K[i] = g.K[j];
       f.dcurv[i] = g.dcurv[j], f.shape_index[i] = g.shape_index[j];
       f.curvedness[i] = g.curvedness[j], f.ao[i] = g.ao[j];
+      if (!f.surface_points.empty()) f.surface_points[i] = g.surface_points[j];
       all.raw.gradient_norm[i] = finer.raw.gradient_norm[j];
       all.raw.shift[i] = finer.raw.shift[j];
       if (record_fit(finer, j, mesh, i, faces[i], setup, cut, ladder)) next.push_back(i);
@@ -251,6 +253,7 @@ std::size_t finish_volume_field(const Mesh& mesh, const VertexCorners& corners,
     field.shape_index[i] = shape_index(0.0f, 0.0f);
     field.curvedness[i] = 0;
     field.ao[i] = ambient_occlusion(0.0f, 0.0f, ao_scale);
+    if (!field.surface_points.empty()) field.surface_points[i] = mesh.positions[i];
   }
   if (finer_scales) field.extra.push_back({"Scale", ladder.scale});
   return count;
@@ -262,11 +265,16 @@ namespace {
 
 Vec3f to_f3(const Eigen::Vector3d& v) { return {float(v.x()), float(v.y()), float(v.z())}; }
 
-/// The curvature of the parallel surface at distance e = sigma2 H outward (volume_estimate.h:
-/// smoothing moves the isosurface inward by about sigma^2 H): k_i / (1 + e k_i), each factor
-/// kept at 0.1 or more; directions and dcurv unchanged.
-void shrinkage_corrected(PointCurvature& c, double sigma2) {
-  const double e = sigma2 * 0.5 * (c.k1 + c.k2);
+/// The smoothing's shrinkage at a point of the smoothed isosurface of mean curvature h:
+/// sigma2 h (1 - kSurfaceCubic sigma2 h^2), the factor at least 1/2 (volume_estimate.h).
+double shrinkage(double h, double sigma2) {
+  return sigma2 * h * std::max(1 - kSurfaceCubic * sigma2 * h * h, 0.5);
+}
+
+/// The curvature of the parallel surface at distance e = shrinkage(H) outward
+/// (volume_estimate.h: smoothing moves the isosurface inward by about sigma^2 H): k_i / (1 + e k_i),
+/// each factor kept at 0.1 or more; directions and dcurv unchanged.
+void shrinkage_corrected(PointCurvature& c, double e) {
   c.k1 /= std::max(1 + e * c.k1, 0.1);
   c.k2 /= std::max(1 + e * c.k2, 0.1);
 }
@@ -289,6 +297,7 @@ detail::VolumeEvaluation evaluate_reference(const Positions& positions,
   out.normals.resize(nv), out.k1.resize(nv), out.k2.resize(nv), out.dir1.resize(nv);
   out.dir2.resize(nv), out.H.resize(nv), out.K.resize(nv), out.dcurv.resize(nv);
   out.shape_index.resize(nv), out.curvedness.resize(nv), out.ao.resize(nv);
+  if (s.point == VolumePoint::surface) out.surface_points.resize(nv);
   e.raw = {std::vector<float>(nv, 0.0f), std::vector<float>(nv, 0.0f)};
   detail::RawVertex& raw = e.raw;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 256), [&](const auto& r) {
@@ -318,10 +327,19 @@ detail::VolumeEvaluation evaluate_reference(const Positions& positions,
       }
       const volume::Jet jet = volume::spline_jet(smoothed, x, 3);
       PointCurvature c = implicit_curvature(jet, s.inside);
+      const double e_shrink = shrinkage(0.5 * (c.k1 + c.k2), s.sigma * s.sigma);
+      if (s.point == VolumePoint::surface) {
+        // The surface point (CurvatureField::surface_points): on the parallel surface e_shrink
+        // further out; the vertex where the gradient vanished.
+        openvdb::Vec3d surface = x0;
+        if (c.gradient_norm > 0 && std::isfinite(c.gradient_norm))
+          surface = x + e_shrink * openvdb::Vec3d(c.normal.x(), c.normal.y(), c.normal.z());
+        out.surface_points[i] = {float(surface[0]), float(surface[1]), float(surface[2])};
+      }
       raw.shift[i] = c.gradient_norm > 0 && std::isfinite(c.gradient_norm)
                          ? float((jet.value - isovalue) / c.gradient_norm - t)
                          : std::numeric_limits<float>::infinity();
-      if (s.point == VolumePoint::surface) shrinkage_corrected(c, s.sigma * s.sigma);
+      if (s.point == VolumePoint::surface) shrinkage_corrected(c, e_shrink);
       raw.gradient_norm[i] = float(c.gradient_norm);
       out.normals[i] = to_f3(c.normal);
       out.k1[i] = float(c.k1), out.k2[i] = float(c.k2);
@@ -337,6 +355,42 @@ detail::VolumeEvaluation evaluate_reference(const Positions& positions,
 }
 
 }  // namespace
+
+std::vector<Vec3f> edge_surface_points(const Mesh& mesh, const volume::Volume& volume,
+                                       const CurvatureField& field) {
+  const std::size_t nv = mesh.positions.size();
+  std::vector<Vec3f> out(mesh.positions.begin(), mesh.positions.end());
+  if (field.normals.size() != nv || field.k1.size() != nv || field.k2.size() != nv ||
+      field.dir1.size() != nv || field.dir2.size() != nv || !volume.grid)
+    return out;
+  const volume::GridFrame frame = volume::grid_frame(volume);
+  constexpr double kWhole = 1e-3;  // index units: a coordinate this near an integer is whole
+  constexpr double kMaxRatio = 0.5;
+  for (std::size_t i = 0; i < nv; ++i) {
+    if (field.unreliable.size() == nv && field.unreliable[i]) continue;
+    const Vec3f& p = mesh.positions[i];
+    const openvdb::Vec3d q = frame.to_index(openvdb::Vec3d(p[0], p[1], p[2]));
+    int axis = -1, fractional = 0;
+    double s = 0;
+    for (int a = 0; a < 3; ++a) {
+      const double f = q[a] - std::floor(q[a]);
+      if (std::min(f, 1 - f) > kWhole) ++fractional, axis = a, s = f;
+    }
+    if (fractional != 1) continue;
+    const openvdb::Vec3d col(frame.A(0, axis), frame.A(1, axis), frame.A(2, axis));
+    const double h = col.length();
+    const openvdb::Vec3d e = col / h;
+    const auto dot = [&](const Vec3f& v) { return e[0] * v[0] + e[1] * v[1] + e[2] * v[2]; };
+    const double c = dot(field.normals[i]);
+    const double d1 = dot(field.dir1[i]), d2 = dot(field.dir2[i]);
+    const double kappa = double(field.k1[i]) * d1 * d1 + double(field.k2[i]) * d2 * d2;
+    if (!std::isfinite(kappa) || !(std::abs(c) > 0)) continue;
+    const double ratio = std::clamp(kappa * h / (2 * c), -kMaxRatio, kMaxRatio);
+    const double move = ratio * h * s * (1 - s);
+    out[i] = {float(p[0] + move * e[0]), float(p[1] + move * e[1]), float(p[2] + move * e[2])};
+  }
+  return out;
+}
 
 CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume& volume,
                                          float isovalue, double sigma, float ao_scale,
@@ -357,6 +411,7 @@ CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume&
       ladder);
   const std::size_t unreliable =
       detail::finish_volume_field(mesh, corners, e.raw, ladder, finer_scales, ao_scale, e.field);
+  if (point == VolumePoint::vertex) e.field.surface_points = edge_surface_points(mesh, volume, e.field);
   if (stats)
     *stats = VolumeEstimateStats{unreliable, 0, ladder.refined, detail::count_of(ladder.outside),
                                  {}};

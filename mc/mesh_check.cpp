@@ -7,19 +7,10 @@
 #include <unordered_map>
 
 #include "core/mesh_measures.h"
+#include "core/union_find.h"
 
 namespace isocurv::mc {
 namespace {
-
-struct UnionFind {
-  std::vector<std::uint32_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) { parent[find(a)] = find(b); }
-};
 
 // Adding +0 turns -0 into +0, so equal positions have equal bits.
 Vec3f canonical(const Vec3f& p) { return {p[0] + 0.0f, p[1] + 0.0f, p[2] + 0.0f}; }

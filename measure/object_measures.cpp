@@ -2,33 +2,114 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
-#include <numeric>
 #include <string>
 
 #include "core/error.h"
 #include "core/mesh_measures.h"
+#include "core/union_find.h"
 
 namespace isocurv::measure {
 namespace {
 
 constexpr double kTwoPi = 6.283185307179586;
 
-struct UnionFind {
-  std::vector<std::uint32_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a), b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);  // the root is the lowest id
-  }
-};
-
 bool usable(const Tri& t, std::size_t nv) {
   return t[0] < nv && t[1] < nv && t[2] < nv && t[0] != t[1] && t[1] != t[2] && t[0] != t[2];
+}
+
+using V3 = std::array<double, 3>;
+
+V3 sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+V3 cross(const V3& a, const V3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+V3 to_v3(const Vec3f& p) { return {double(p[0]), double(p[1]), double(p[2])}; }
+
+/// The unit normal of a field normal, or zero when it is missing, not finite or not near unit.
+V3 unit_normal(const Vec3f& n) {
+  const V3 v = to_v3(n);
+  const double len = std::sqrt(dot(v, v));
+  if (!(len > 0.5 && len < 1.5)) return {0, 0, 0};
+  return {v[0] / len, v[1] / len, v[2] / len};
+}
+
+/// The edge curve x(t) = x0 (1 - t) + x1 t - c t (1 - t) of the quadratic patch (Nagata 2005):
+/// the c that makes the curve's tangents orthogonal to the unit normals n0, n1 (exact on a
+/// sphere). Zero where a normal is missing or the normals are nearly opposed; at most
+/// kMaxBulge |x1 - x0| long (a noisy normal cannot blow an edge up).
+constexpr double kMaxBulge = 0.5;
+V3 edge_coefficient(const V3& x0, const V3& x1, const V3& n0, const V3& n1) {
+  if (dot(n0, n0) == 0 || dot(n1, n1) == 0) return {0, 0, 0};
+  const V3 d = sub(x1, x0);
+  const V3 sum = {n0[0] + n1[0], n0[1] + n1[1], n0[2] + n1[2]};
+  const double len = std::sqrt(dot(sum, sum));
+  const double s2 = 0.5 * (1 + dot(n0, n1));  // cos^2 of half the angle between the normals
+  if (!(s2 > 0.01) || !(len > 0)) return {0, 0, 0};
+  const double k = dot(sub(n0, n1), d) / (2 * std::sqrt(s2) * len);
+  V3 c = {k * sum[0], k * sum[1], k * sum[2]};
+  const double cl = std::sqrt(dot(c, c)), limit = kMaxBulge * std::sqrt(dot(d, d));
+  if (cl > limit) c = {c[0] * limit / cl, c[1] * limit / cl, c[2] * limit / cl};
+  return c;
+}
+
+/// Dunavant's 6-point rule on the triangle (degree 4: exact for the patch's volume integrand,
+/// a polynomial of degree 4): barycentric points and weights summing to 1.
+constexpr double kA = 0.445948490915965, kB = 0.091576213509771;
+constexpr double kWa = 0.223381589678011, kWb = 0.109951743655322;
+constexpr double kRule[6][4] = {{kA, kA, 1 - 2 * kA, kWa}, {kA, 1 - 2 * kA, kA, kWa},
+                                {1 - 2 * kA, kA, kA, kWa}, {kB, kB, 1 - 2 * kB, kWb},
+                                {kB, 1 - 2 * kB, kB, kWb}, {1 - 2 * kB, kB, kB, kWb}};
+
+/// Where the interpolated normal is shorter than this (the vertex normals disagree wildly), the
+/// area element is not projected on it.
+constexpr double kMinNormalSum = 0.5;
+
+/// The integrals over one triangle's patch.
+struct PatchIntegrals {
+  double area = 0, volume = 0, H = 0, K = 0;
+};
+
+/// The quadratic patch x(b) = sum b_i x_i - sum over the edges (i, j) of b_i b_j c_ij over the
+/// triangle x0 x1 x2 (b the barycentric coordinates; c_ij from edge_coefficient, zero without
+/// normals: the flat triangle), integrated by kRule: area |(x_u x x_v).nbar| (nbar the unit
+/// interpolated normal; |x_u x x_v| where it is not defined), volume
+/// (x - origin).(x_u x x_v) / 3, and the linear interpolations of h and k times the area.
+PatchIntegrals integrate_patch(const V3 x[3], const V3 n[3], const double h[3], const double k[3],
+                               const V3& origin) {
+  const V3 c01 = edge_coefficient(x[0], x[1], n[0], n[1]);
+  const V3 c12 = edge_coefficient(x[1], x[2], n[1], n[2]);
+  const V3 c20 = edge_coefficient(x[2], x[0], n[2], n[0]);
+  const V3 e1 = sub(x[1], x[0]), e2 = sub(x[2], x[0]), r0 = sub(x[0], origin);
+  PatchIntegrals out;
+  for (const auto& q : kRule) {
+    const double b0 = q[0], u = q[1], v = q[2], w = 0.5 * q[3];  // reference triangle area 1/2
+    // b0 = 1 - u - v, b1 = u, b2 = v; derivatives of b0 b1, b1 b2, b2 b0 along u and v.
+    const double a01u = b0 - u, a01v = -u, a12u = v, a12v = u, a20u = -v, a20v = b0 - v;
+    V3 xu, xv, p;
+    for (int i = 0; i < 3; ++i) {
+      xu[i] = e1[i] - a01u * c01[i] - a12u * c12[i] - a20u * c20[i];
+      xv[i] = e2[i] - a01v * c01[i] - a12v * c12[i] - a20v * c20[i];
+      p[i] = r0[i] + u * e1[i] + v * e2[i] - b0 * u * c01[i] - u * v * c12[i] - v * b0 * c20[i];
+    }
+    const V3 nrm = cross(xu, xv);
+    // The area element projected on the field's normal there (interpolated): noise tilts the
+    // marching-cubes triangles of a noisy scan every which way, and their own area counts that
+    // roughness as surface (+0.5% on the CT-like solids, bench_measure); its projection on the
+    // smooth surface's tangent plane does not. Exact where the patch follows the normals.
+    double da = std::sqrt(dot(nrm, nrm)) * w;
+    V3 nb;
+    for (int i = 0; i < 3; ++i) nb[i] = b0 * n[0][i] + u * n[1][i] + v * n[2][i];
+    const double nl = std::sqrt(dot(nb, nb));
+    if (nl > kMinNormalSum) da = std::abs(dot(nrm, nb)) / nl * w;
+    out.area += da;
+    out.volume += dot(p, nrm) * w / 3;
+    out.H += (b0 * h[0] + u * h[1] + v * h[2]) * da;
+    out.K += (b0 * k[0] + u * k[1] + v * k[2]) * da;
+  }
+  return out;
 }
 
 }  // namespace
@@ -43,6 +124,9 @@ std::vector<ObjectMeasures> object_measures(const Mesh& mesh, const curvature::C
   if (field.H.size() != nv || field.K.size() != nv)
     throw Error("measure: the curvature field has " + std::to_string(field.H.size()) + " H and " +
                 std::to_string(field.K.size()) + " K values for " + std::to_string(nv) + " vertices");
+  // The curved path (object_measures.h) where the field has normals.
+  const bool curved = field.normals.size() == nv;
+  const bool moved = curved && field.surface_points.size() == nv;
   UnionFind uf(nv);
   std::vector<std::uint64_t> edges;  // (lo, hi) packed, one per triangle side
   edges.reserve(3 * mesh.triangles.size());
@@ -62,10 +146,19 @@ std::vector<ObjectMeasures> object_measures(const Mesh& mesh, const curvature::C
       for (std::uint32_t i : t) third_area[i] += a;
     }
   }
+  // The positions integrated over: the field's surface points where it has them (finite).
+  const auto position = [&](std::uint32_t i) -> const Vec3f& {
+    if (moved) {
+      const Vec3f& p = field.surface_points[i];
+      if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])) return p;
+    }
+    return mesh.positions[i];
+  };
   // Components in order of their lowest vertex (the union-find root), vertices that some usable
   // triangle uses.
   std::vector<std::uint32_t> index(nv, ~0u);
   std::vector<ObjectMeasures> out;
+  std::vector<PatchIntegrals> on_vertices;  // each component over the mesh's own vertices (moved)
   std::vector<char> used(nv, 0);
   for (const Tri& t : mesh.triangles)
     if (usable(t, nv))
@@ -79,13 +172,14 @@ std::vector<ObjectMeasures> object_measures(const Mesh& mesh, const curvature::C
       m.first_vertex = i;
       m.box = {1e300, -1e300, 1e300, -1e300, 1e300, -1e300};
       out.push_back(m);
+      on_vertices.push_back({});
     }
     ObjectMeasures& m = out[index[root]];
     ++m.vertices;
     const double a = have_area ? double(field.area[i]) : third_area[i];
     const bool flagged = field.unreliable.size() == nv && field.unreliable[i];
     m.unmeasured += flagged;
-    if (!flagged && std::isfinite(field.H[i]) && std::isfinite(field.K[i])) {
+    if (!curved && !flagged && std::isfinite(field.H[i]) && std::isfinite(field.K[i])) {
       m.integral_H += double(field.H[i]) * a;
       m.integral_K += double(field.K[i]) * a;
     }
@@ -98,9 +192,37 @@ std::vector<ObjectMeasures> object_measures(const Mesh& mesh, const curvature::C
     if (!usable(t, nv)) continue;
     ObjectMeasures& m = out[index[uf.find(t[0])]];
     ++m.triangles;
-    const auto n = triangle_area_vector(mesh, t);
-    m.area += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    m.volume += signed_volume_term(mesh, t, mesh.positions[m.first_vertex]);
+    if (!curved) {
+      const auto n = triangle_area_vector(mesh, t);
+      m.area += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      m.volume += signed_volume_term(mesh, t, mesh.positions[m.first_vertex]);
+      continue;
+    }
+    V3 x[3], n[3];
+    double h[3], k[3];
+    for (int c = 0; c < 3; ++c) {
+      const std::uint32_t i = t[c];
+      x[c] = to_v3(position(i));
+      n[c] = unit_normal(field.normals[i]);
+      const bool measured = !(field.unreliable.size() == nv && field.unreliable[i]) &&
+                            std::isfinite(field.H[i]) && std::isfinite(field.K[i]);
+      h[c] = measured ? double(field.H[i]) : 0.0;
+      k[c] = measured ? double(field.K[i]) : 0.0;
+    }
+    const PatchIntegrals p = integrate_patch(x, n, h, k, to_v3(position(m.first_vertex)));
+    m.area += p.area;
+    m.volume += p.volume;
+    m.integral_H += p.H;
+    m.integral_K += p.K;
+    if (moved) {
+      for (int c = 0; c < 3; ++c) x[c] = to_v3(mesh.positions[t[c]]);
+      const PatchIntegrals q = integrate_patch(x, n, h, k, to_v3(mesh.positions[m.first_vertex]));
+      PatchIntegrals& v = on_vertices[index[uf.find(t[0])]];
+      v.area += q.area;
+      v.volume += q.volume;
+      v.H += q.H;
+      v.K += q.K;
+    }
   }
   std::sort(edges.begin(), edges.end());
   for (std::size_t i = 0; i < edges.size();) {
@@ -111,9 +233,26 @@ std::vector<ObjectMeasures> object_measures(const Mesh& mesh, const curvature::C
     if (j - i == 1) ++m.boundary_edges;
     i = j;
   }
-  for (ObjectMeasures& m : out) {
+  for (std::size_t c = 0; c < out.size(); ++c) {
+    ObjectMeasures& m = out[c];
     m.closed = m.boundary_edges == 0;
     m.euler = (long long)m.vertices - (long long)m.edges + (long long)m.triangles;
+    if (!moved) continue;
+    // A component below the estimator's scale (a speck, a sheet a voxel thick) has no smoothed
+    // isosurface of its own to move to: its surface points scatter, and can turn it inside out.
+    // Where they change its area, or a closed one's volume, by more than kMaxSurfaceChange, it
+    // is measured over the mesh's own vertices instead.
+    const PatchIntegrals& v = on_vertices[c];
+    auto off = [](double moved_value, double own) {
+      return !(std::abs(moved_value - own) <= kMaxSurfaceChange * std::abs(own));
+    };
+    if (off(m.area, v.area) || (m.closed && off(m.volume, v.volume))) {
+      m.area = v.area;
+      m.volume = v.volume;
+      m.integral_H = v.H;
+      m.integral_K = v.K;
+      m.on_vertices = true;
+    }
   }
   std::stable_sort(out.begin(), out.end(),
                    [](const ObjectMeasures& a, const ObjectMeasures& b) { return a.area > b.area; });
@@ -132,6 +271,7 @@ ObjectMeasures total(const std::vector<ObjectMeasures>& objects) {
     t.integral_H += m.integral_H, t.integral_K += m.integral_K;
     t.euler += m.euler;
     t.unmeasured += m.unmeasured;
+    t.on_vertices = t.on_vertices || m.on_vertices;
     for (int c = 0; c < 3; ++c) {
       t.box[2 * c] = std::min(t.box[2 * c], m.box[2 * c]);
       t.box[2 * c + 1] = std::max(t.box[2 * c + 1], m.box[2 * c + 1]);
