@@ -4,6 +4,8 @@
 #include "core/atomic_file.h"
 #include "app/batch.h"
 #include "app/commands.h"
+#include "app/label_surfaces.h"
+#include "core/error.h"
 #include "app/pipeline.h"
 #include "app/series.h"
 #include "io/mesh_file.h"
@@ -14,6 +16,21 @@ namespace {
 /// One input -> the mesh file `out` with every curvature array; the report --json prints.
 nlohmann::json curvature_one(const std::string& in, const std::string& out,
                              const CommonOptions& o) {
+  if (o.labelled()) {
+    if (!o.split) require_curvature_format(out);
+    require_label_output(out, o);  // before any work
+    StageTimer timer;
+    const Surface s = load_label_surfaces(in, o, timer, true);
+    nlohmann::json r = surface_report(s);
+    r.update(write_label_output(s, in, out, o, timer));
+    r["input"] = in;
+    r["compression"] = io::to_string(o.compress);
+    r["programs"] = program_report();
+    r["device"] = device_name(o);
+    r["timings_ms"] = timer.json();
+    return r;
+  }
+  if (o.split) throw Error("--split needs --labels or --label");
   require_curvature_format(out);  // before any work: .obj and .stl would drop the arrays
   require_writable_file(out);
   StageTimer timer;
@@ -57,6 +74,7 @@ void register_curvature(CLI::App& app) {
   add_curvature_options(*cmd, o, true);
   add_ao_options(*cmd, o);
   add_compress_option(*cmd, o);
+  add_label_options(*cmd, o, true);
   add_series_options(*cmd, series);
   cmd->callback([] {
     if (series.enabled) {
@@ -71,6 +89,8 @@ void register_curvature(CLI::App& app) {
     const nlohmann::json r = curvature_one(b.inputs.front(), out, o);
     if (o.json) {
       std::cout << r.dump(2) << "\n";
+    } else if (!o.quiet && o.labelled()) {
+      print_label_summary(r, " with curvature");
     } else if (!o.quiet) {
       std::cout << "wrote " << out << " (" << format_bytes(r["output_bytes"]) << "): " << r["vertices"]
                 << " vertices with curvature (curvature " << r["timings_ms"].value("curvature", 0.0)

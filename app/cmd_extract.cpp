@@ -4,6 +4,8 @@
 #include "core/atomic_file.h"
 #include "app/batch.h"
 #include "app/commands.h"
+#include "app/label_surfaces.h"
+#include "core/error.h"
 #include "app/pipeline.h"
 #include "app/series.h"
 #include "io/mesh_file.h"
@@ -13,6 +15,19 @@ namespace {
 
 /// One input -> the mesh file `out`; the report --json prints.
 nlohmann::json extract_one(const std::string& in, const std::string& out, const CommonOptions& o) {
+  if (o.labelled()) {
+    require_label_output(out, o);  // before any work
+    StageTimer timer;
+    const Surface s = load_label_surfaces(in, o, timer, false);
+    nlohmann::json r = surface_report(s);
+    r.update(write_label_output(s, in, out, o, timer));
+    r["input"] = in;
+    r["compression"] = io::to_string(o.compress);
+    r["device"] = device_name(o);
+    r["timings_ms"] = timer.json();
+    return r;
+  }
+  if (o.split) throw Error("--split needs --labels or --label");
   require_writable_file(out);  // before any work
   StageTimer timer;
   Surface s = load_surface(in, o, timer, EmptySurface::warn);
@@ -49,6 +64,7 @@ void register_extract(CLI::App& app) {
                                           "), or the folder of a batch")->required();
   add_common_options(*cmd, o, false);
   add_compress_option(*cmd, o);
+  add_label_options(*cmd, o, true);
   add_series_options(*cmd, series);
   cmd->callback([] {
     if (series.enabled) {
@@ -64,6 +80,8 @@ void register_extract(CLI::App& app) {
     const nlohmann::json r = extract_one(in, out, o);
     if (o.json) {
       std::cout << r.dump(2) << "\n";
+    } else if (!o.quiet && o.labelled()) {
+      print_label_summary(r, "");
     } else if (!o.quiet) {
       std::cout << "wrote " << out << " (" << format_bytes(r["output_bytes"]) << "): " << r["vertices"] << " vertices, " << r["triangles"] << " triangles at isovalue "
                 << r.value("isovalue", 0.0f) << " (extract " << r["timings_ms"].value("extract", 0.0) << " ms)\n";

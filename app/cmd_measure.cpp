@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "app/commands.h"
+#include "app/label_surfaces.h"
 #include "app/pipeline.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -28,6 +29,7 @@ nlohmann::json measures_json(const measure::ObjectMeasures& m, bool with_genus) 
                       {"euler_characteristic", m.euler},
                       {"gauss_bonnet_gap", number_or_null(m.gauss_bonnet_gap())},
                       {"unmeasured_vertices", m.unmeasured},
+                      {"on_vertices", m.on_vertices},
                       {"box", m.box}};
   if (with_genus) j["genus"] = m.closed ? nlohmann::json(m.genus()) : nlohmann::json(nullptr);
   return j;
@@ -51,6 +53,32 @@ std::string csv_row(const std::string& id, const measure::ObjectMeasures& m, lon
   return s.str();
 }
 
+/// One label's measures: the sum of its components, and how many there are.
+struct LabelRow {
+  std::int64_t label = 0;
+  std::size_t components = 0;
+  measure::ObjectMeasures m;
+  long long genus = 0;  ///< the sum of its closed components' genera; -1 when one is cut
+};
+
+/// The objects grouped by the label part holding their first vertex, in the parts' order.
+std::vector<LabelRow> label_rows(const std::vector<measure::ObjectMeasures>& objects,
+                                 const std::vector<labels::LabelPart>& parts) {
+  std::vector<LabelRow> rows;
+  for (const labels::LabelPart& p : parts) {
+    std::vector<measure::ObjectMeasures> mine;
+    for (const auto& m : objects)
+      if (m.first_vertex >= p.first_vertex && m.first_vertex < p.first_vertex + p.vertices) mine.push_back(m);
+    LabelRow r;
+    r.label = p.value;
+    r.components = mine.size();
+    r.m = measure::total(mine);
+    for (const auto& m : mine) r.genus = (r.genus < 0 || !m.closed) ? -1 : r.genus + m.genus();
+    rows.push_back(r);
+  }
+  return rows;
+}
+
 }  // namespace
 
 void register_measure(CLI::App& app) {
@@ -70,30 +98,44 @@ void register_measure(CLI::App& app) {
       ->check(CLI::Range(0, 1000000));
   add_common_options(*cmd, o);
   add_curvature_options(*cmd, o, true);
+  add_label_options(*cmd, o, false);
   cmd->callback([] {
     if (!csv.empty()) require_writable_file(csv);  // before any work
     StageTimer timer;
-    Surface s = load_surface(in, o, timer);
-    prepare_mesh_for_curvature(s, in, o);
-    const std::size_t nv = s.mesh.positions.size();
-    const bool from_file = !s.volume && s.field && s.field->H.size() == nv && s.field->K.size() == nv;
-    if (!from_file)
-      s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer,
-                                   &s.normals, &s.estimator);
+    Surface s;
+    bool from_file = false;
+    if (o.labelled()) {
+      s = load_label_surfaces(in, o, timer, true);
+    } else {
+      s = load_surface(in, o, timer);
+      prepare_mesh_for_curvature(s, in, o);
+      const std::size_t nv = s.mesh.positions.size();
+      from_file = !s.volume && s.field && s.field->H.size() == nv && s.field->K.size() == nv;
+      if (!from_file)
+        s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer,
+                                     &s.normals, &s.estimator);
+    }
     timer.start("measure");
     const std::vector<measure::ObjectMeasures> objects = measure::object_measures(s.mesh, *s.field);
     const measure::ObjectMeasures all = measure::total(objects);
+    const std::vector<LabelRow> by_label = label_rows(objects, s.label_parts);
     timer.stop();
     long long genus_sum = 0;
     for (const auto& m : objects) genus_sum += m.closed ? m.genus() : 0;
     const std::string estimator = from_file ? "from the file" : s.estimator.estimator;
+    const bool labelled = !s.label_parts.empty();
     if (!csv.empty()) {
-      std::string text =
-          "object,vertices,triangles,closed,area,volume,integral_H,integral_K,euler,genus,"
+      std::string text = std::string(labelled ? "label,components," : "object,") +
+          "vertices,triangles,closed,area,volume,integral_H,integral_K,euler,genus,"
           "gauss_bonnet_gap,unmeasured_vertices,xmin,xmax,ymin,ymax,zmin,zmax\n";
-      for (std::size_t i = 0; i < objects.size(); ++i)
-        text += csv_row(std::to_string(i + 1), objects[i], objects[i].closed ? objects[i].genus() : -1);
-      text += csv_row("total", all, all.closed ? genus_sum : -1);
+      if (labelled)
+        for (const LabelRow& r : by_label)
+          text += csv_row(std::to_string(r.label) + "," + std::to_string(r.components), r.m, r.genus);
+      else
+        for (std::size_t i = 0; i < objects.size(); ++i)
+          text += csv_row(std::to_string(i + 1), objects[i], objects[i].closed ? objects[i].genus() : -1);
+      text += csv_row(labelled ? "total," + std::to_string(objects.size()) : "total", all,
+                      all.closed ? genus_sum : -1);
       write_text_file(csv, text);
     }
     if (o.json) {
@@ -103,6 +145,23 @@ void register_measure(CLI::App& app) {
       r["estimator"] = estimator;
       r["objects"] = nlohmann::json::array();
       for (const auto& m : objects) r["objects"].push_back(measures_json(m, true));
+      if (labelled) {
+        r["labels"] = nlohmann::json::array();
+        for (const LabelRow& l : by_label) {
+          nlohmann::json j = measures_json(l.m, false);
+          j["label"] = l.label;
+          j["components"] = l.components;
+          j["genus"] = l.genus >= 0 ? nlohmann::json(l.genus) : nlohmann::json(nullptr);
+          r["labels"].push_back(j);
+        }
+        std::size_t k = 0;  // each component's label
+        for (const auto& m : objects) {
+          for (const labels::LabelPart& p : s.label_parts)
+            if (m.first_vertex >= p.first_vertex && m.first_vertex < p.first_vertex + p.vertices)
+              r["objects"][k]["label"] = p.value;
+          ++k;
+        }
+      }
       r["total"] = measures_json(all, false);
       r["total"]["components"] = objects.size();
       r["total"]["genus"] = all.closed ? nlohmann::json(genus_sum) : nlohmann::json(nullptr);
@@ -112,11 +171,16 @@ void register_measure(CLI::App& app) {
       return;
     }
     if (o.quiet) return;
-    std::printf("%zu component%s%s; curvature: %s\n", objects.size(), objects.size() == 1 ? "" : "s",
-                s.volume ? (" at isovalue " + format_number(s.isovalue)).c_str() : "",
-                estimator.c_str());
-    std::printf("%6s %12s %12s %12s %12s %6s %6s %9s %s\n", "object", "area", "volume",
-                "int H dA", "int K dA", "euler", "genus", "GB gap", "");
+    if (labelled)
+      std::printf("%zu label%s, %zu component%s; curvature: %s (each label's own indicator)\n",
+                  by_label.size(), by_label.size() == 1 ? "" : "s", objects.size(),
+                  objects.size() == 1 ? "" : "s", estimator.c_str());
+    else
+      std::printf("%zu component%s%s; curvature: %s\n", objects.size(), objects.size() == 1 ? "" : "s",
+                  s.volume ? (" at isovalue " + format_number(s.isovalue)).c_str() : "",
+                  estimator.c_str());
+    std::printf("%6s %12s %12s %12s %12s %6s %6s %9s %s\n", labelled ? "label" : "object", "area",
+                "volume", "int H dA", "int K dA", "euler", "genus", "GB gap", "");
     auto line = [](const std::string& id, const measure::ObjectMeasures& m, long long genus) {
       char vol[32] = "", gap[32] = "", g[24] = "";
       if (m.closed) std::snprintf(vol, sizeof vol, "%.6g", m.volume);
@@ -126,12 +190,21 @@ void register_measure(CLI::App& app) {
                   m.integral_H, m.integral_K, m.euler, g, gap,
                   m.closed ? "" : "cut by the box (open: no volume, no genus)");
     };
-    for (std::size_t i = 0; i < objects.size() && i < std::size_t(rows); ++i)
-      line(std::to_string(i + 1), objects[i], objects[i].closed ? objects[i].genus() : -1);
-    if (objects.size() > std::size_t(rows))
-      std::printf("%6s (%zu smaller components not listed; --rows, --csv or --json list them)\n", "...",
-                  objects.size() - std::size_t(rows));
+    const std::size_t listed = labelled ? by_label.size() : objects.size();
+    for (std::size_t i = 0; i < listed && i < std::size_t(rows); ++i) {
+      if (labelled) line(std::to_string(by_label[i].label), by_label[i].m, by_label[i].genus);
+      else line(std::to_string(i + 1), objects[i], objects[i].closed ? objects[i].genus() : -1);
+    }
+    if (listed > std::size_t(rows))
+      std::printf("%6s (%zu more %s not listed; --rows, --csv or --json list them)\n", "...",
+                  listed - std::size_t(rows), labelled ? "labels" : "smaller components");
     line("total", all, all.closed ? genus_sum : -1);
+    std::size_t specks = 0;
+    for (const auto& m : objects) specks += m.on_vertices;
+    if (specks > 0)
+      std::printf("%zu component%s below the curvature scale measured over the mesh's own vertices "
+                  "(the estimator's surface points would move %s by more than half)\n",
+                  specks, specks == 1 ? "" : "s", specks == 1 ? "it" : "them");
     if (all.unmeasured > 0)
       std::printf("%zu unmeasured vertices (flagged Unreliable) count as H = K = 0 in the integrals\n",
                   all.unmeasured);

@@ -3,6 +3,7 @@
 #include <optional>
 
 #include "app/commands.h"
+#include "app/label_surfaces.h"
 #include "app/line_options_cli.h"
 #include "app/picture_title.h"
 #include "app/pipeline.h"
@@ -29,6 +30,7 @@ void register_render(CLI::App& app) {
   add_common_options(*cmd, o);
   add_curvature_options(*cmd, o, true);
   add_ao_options(*cmd, o);
+  add_label_options(*cmd, o, false);
   add_render_options(*cmd, ro);
   static LineCli lc;
   add_line_options(*cmd, lc, "");
@@ -44,10 +46,12 @@ void register_render(CLI::App& app) {
     if (!ro.dirs_out.empty() && !ro.opts.dirs) throw Error(ro.dirs_out, "--dirs-out needs --dirs");
     if (!ro.dirs_out.empty()) viz::check_glyphs_path(ro.dirs_out);
     require_writable_file(out);  // before any work
-    Surface s = load_surface(in, o, timer);
-    bool estimated = false;
+    Surface s = o.labelled() ? load_label_surfaces(in, o, timer, true) : load_surface(in, o, timer);
+    bool estimated = o.labelled();
     const std::size_t nv = s.mesh.positions.size();
-    if (o.flip || !s.field || s.field->H.size() != nv ||
+    if (o.labelled()) {
+      // each label's curvature came from its own indicator
+    } else if (o.flip || !s.field || s.field->H.size() != nv ||
         (lo.lines.any() && (s.field->dir1.size() != nv || s.field->dcurv.size() != nv))) {
       reestimate_keeping_extras(s, in, o, timer);  // --flip or no H: the file's extras stay
       estimated = true;

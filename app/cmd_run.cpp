@@ -5,6 +5,7 @@
 
 #include "app/batch.h"
 #include "app/commands.h"
+#include "app/label_surfaces.h"
 #include "app/line_options_cli.h"
 #include "app/pipeline.h"
 #include "app/series.h"
@@ -32,10 +33,11 @@ nlohmann::json run_one(const std::string& in, const std::string& dir, const Comm
                        SharedPictures* shared = nullptr) {
   namespace fs = std::filesystem;
   StageTimer timer;
-  Surface s =
-      load_surface(in, o, timer);  // fails (no surface, ...) before any output folder is made
-  s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer,
-                               &s.normals, &s.estimator);
+  // Fails (no surface, ...) before any output folder is made.
+  Surface s = o.labelled() ? load_label_surfaces(in, o, timer, true) : load_surface(in, o, timer);
+  if (!o.labelled())
+    s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer,
+                                 &s.normals, &s.estimator);
   std::optional<lines::Polylines> poly;  // drawn on the PNG and written as <name>-lines.vtp
   // The folder is made now, and removed again if it was new and the outputs fail; the outputs
   // appear together or not at all.
@@ -62,7 +64,8 @@ nlohmann::json run_one(const std::string& in, const std::string& dir, const Comm
   std::uint64_t mesh_bytes = 0;
   outputs.write(mesh_path, [&](const std::string& tmp) {
     const io::Metadata context = context_metadata(s, in, ro.opts.length_unit);
-    io::write_mesh(tmp, s.mesh, &*s.field, o.compress, &context);
+    const io::CellArrays cells = label_cells(s);
+    io::write_mesh(tmp, s.mesh, &*s.field, o.compress, &context, &cells);
     mesh_bytes = file_bytes(tmp);
   });
   timer.start("render");
@@ -135,6 +138,7 @@ void register_run(CLI::App& app) {
   add_curvature_options(*cmd, o);
   add_ao_options(*cmd, o);
   add_compress_option(*cmd, o);
+  add_label_options(*cmd, o, false);
   add_render_options(*cmd, ro);
   static LineCli lc;
   add_line_options(*cmd, lc, "");
@@ -200,7 +204,11 @@ void register_run(CLI::App& app) {
     if (o.json) {
       std::cout << r.dump(2) << "\n";
     } else if (!o.quiet) {
-      std::cout << "isosurface at " << r.value("isovalue", 0.0f) << ": " << r["vertices"] << " vertices, " << r["triangles"]
+      if (r.contains("labels"))
+        std::cout << r["labels"].size() << " label surfaces";
+      else
+        std::cout << "isosurface at " << r.value("isovalue", 0.0f);
+      std::cout << ": " << r["vertices"] << " vertices, " << r["triangles"]
                 << " triangles\n  mesh with curvature: " << r["mesh"].get<std::string>()
                 << "\n  picture:             " << r["png"].get<std::string>()
                 << "\n  statistics:          " << (fs::path(dir) / "stats.json").string() << "\n";

@@ -318,6 +318,7 @@ void handle_empty_surface(const Surface& s, const std::string& path, const Commo
 
 Surface load_surface(const std::string& path, const CommonOptions& o, StageTimer& timer,
                      EmptySurface empty) {
+  if (o.labelled()) throw Error(path, "--labels: this command reads no label maps");
   Surface s;
   if (is_mesh_path(path)) {
     reject_volume_options(path, o);
@@ -499,7 +500,12 @@ nlohmann::json surface_report(const Surface& s) {
                       {"euler_characteristic", c.euler}, {"components", c.components},
                       {"boundary_edges", c.boundary_edges}, {"watertight", c.watertight()}};
   if (c.genus() >= 0) r["genus"] = c.genus();
-  if (s.volume) r["isovalue"] = s.isovalue;
+  if (s.volume && s.label_parts.empty()) r["isovalue"] = s.isovalue;
+  if (!s.label_parts.empty()) {
+    r["labels"] = nlohmann::json::array();
+    for (const labels::LabelPart& p : s.label_parts)
+      r["labels"].push_back({{"label", p.value}, {"vertices", p.vertices}, {"triangles", p.triangles}});
+  }
   if (!s.volume) {
     r["welded_vertices"] = s.welded;
     r["flipped"] = s.flipped;
@@ -571,7 +577,7 @@ nlohmann::json surface_report(const Surface& s) {
 SurfaceContext surface_context(const Surface& s) {
   SurfaceContext c;
   if (s.volume) {
-    c.isovalue = s.isovalue;
+    if (s.label_parts.empty()) c.isovalue = s.isovalue;  // labels: each at its indicator's half
     c.length_unit = s.volume->length_unit;
     c.world_space = s.volume->world_space;
     return c;
@@ -611,6 +617,18 @@ io::Metadata context_metadata(const Surface& s, const std::string& input,
   const std::string unit = length_unit.empty() ? c.length_unit : length_unit;
   if (!unit.empty()) m.emplace_back("length_unit", unit);
   if (!c.world_space.empty()) m.emplace_back("world_space", c.world_space);
+  if (!s.label_parts.empty()) {  // which labels the mesh holds, as "1,2,5" (at most 1,000 bytes)
+    std::string list;
+    for (const labels::LabelPart& p : s.label_parts) {
+      const std::string item = std::to_string(p.value);
+      if (list.size() + item.size() + 5 > 1000) {
+        list += ",...";
+        break;
+      }
+      list += (list.empty() ? "" : ",") + item;
+    }
+    m.emplace_back("labels", list);
+  }
   std::string source = s.volume ? input : "";
   for (const auto& [key, value] : s.file_metadata)
     if (key == "source") source = value;  // a mesh file keeps the volume it came from

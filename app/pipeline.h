@@ -18,6 +18,7 @@
 #include "curvature/options.h"
 #include "io/compression.h"
 #include "io/mesh_file.h"
+#include "labels/label_merge.h"
 #include "mc/options.h"
 #include "volume/volume.h"
 
@@ -41,6 +42,11 @@ struct CommonOptions {
   std::string batagelo_weights;   ///< --batagelo-weights uniform|inverse-square; empty: uniform
   std::string ao;                 ///< --ao-method (ao::method_names); empty: griffin, the estimators' own
   bool hattori_half = false;      ///< --hattori-half
+  bool labels = false;            ///< --labels: one surface per label of a label map
+  std::string label_list;         ///< --label 3,7: those labels only (implies --labels)
+  bool split = false;             ///< --split: one mesh file per label, in the -o folder
+  /// True when the input is to be read as a label map (--labels or --label).
+  bool labelled() const { return labels || !label_list.empty(); }
 };
 
 /// The scales of a --scale value, as written: {"auto"}, {"1.5"} or {"1", "2", "4"}. Throws Error
@@ -111,6 +117,10 @@ struct Surface {
   std::size_t welded = 0;    ///< duplicate vertices merged by prepare_mesh_for_curvature
   bool flipped = false;      ///< triangles reversed by --flip
   io::Metadata file_metadata;  ///< a mesh file's field data (io::MeshFile::metadata)
+  /// A label map's surfaces (app/label_surfaces.h): each triangle's label, and where each
+  /// label's vertices and triangles lie; empty otherwise.
+  std::vector<std::int32_t> triangle_labels;
+  std::vector<labels::LabelPart> label_parts;
 };
 
 /// Where a surface came from, for titles, legends and anatomical views: from its volume, or from
@@ -131,7 +141,8 @@ SurfaceContext surface_context(const Surface& s);
 
 /// The context of `s` as the field-data pairs io::write_mesh adds to a .vtp: "isovalue" (%.9g),
 /// "length_unit" (`length_unit` when given, e.g. --unit, else the context's), "world_space" and
-/// "source" (the input's file name); empty values are left out.
+/// "source" (the input's file name), and for a label map's surfaces "labels" ("1,2,5") instead of
+/// the isovalue; empty values are left out.
 io::Metadata context_metadata(const Surface& s, const std::string& input,
                               const std::string& length_unit = "");
 

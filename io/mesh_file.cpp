@@ -40,15 +40,20 @@ void check_mesh(const Mesh& mesh, const std::string& path) {
 const char* mesh_extensions() { return ".vtp, .ply, .obj, .stl"; }
 
 void write_mesh(const std::string& path, const Mesh& mesh, const curvature::CurvatureField* field,
-                const Compression& compression, const Metadata* context) {
+                const Compression& compression, const Metadata* context, const CellArrays* cells) {
   const Format format = format_of(path);
   check_mesh(mesh, path);
   if (field) check_field_sizes(*field, mesh.positions.size(), path);
+  if (cells)
+    for (const CellArray& c : *cells)
+      if (c.values.size() != mesh.triangles.size())
+        throw Error(path, "cell array '" + c.name + "' has " + std::to_string(c.values.size()) +
+                              " values for " + std::to_string(mesh.triangles.size()) + " triangles");
   write_atomically(path, [&](const std::string& tmp) {
     try {
       switch (format) {
-        case Format::Vtp: detail::write_vtp(tmp, mesh, field, compression, context); break;
-        case Format::Ply: detail::write_ply(tmp, mesh, field); break;
+        case Format::Vtp: detail::write_vtp(tmp, mesh, field, compression, context, cells); break;
+        case Format::Ply: detail::write_ply(tmp, mesh, field, cells); break;
         case Format::Obj: detail::write_obj(tmp, mesh, field); break;
         case Format::Stl: detail::write_stl(tmp, mesh); break;
       }

@@ -13,6 +13,7 @@
 //
 // Float arrays read back from .vtp and .ply are bit-for-bit what was written; .obj writes floats
 // with 9 significant digits, which also round-trips exactly. Mesh::edge_keys are not stored.
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -29,6 +30,13 @@ namespace isocurv::io {
 /// "world_space", "source": app/pipeline.h's context_metadata).
 using Metadata = std::vector<std::pair<std::string, std::string>>;
 
+/// An integer array with one value per triangle (the "Label" of label maps), written as cell data.
+struct CellArray {
+  std::string name;
+  std::vector<std::int32_t> values;
+};
+using CellArrays = std::vector<CellArray>;
+
 /// A mesh read from a file, with whatever curvature arrays the file carried.
 struct MeshFile {
   Mesh mesh;
@@ -39,6 +47,9 @@ struct MeshFile {
   /// The field data's one-value string arrays (.vtp only; at most 64, values up to 1,024 bytes:
   /// longer ones are left out).
   Metadata metadata;
+  /// The one-component integer cell arrays of a .vtp (one value per triangle; polygons that were
+  /// fan-triangulated repeat their value). Empty for the other formats.
+  CellArrays cells;
 };
 
 /// Writes `mesh` (and the non-empty arrays of `field`, when given) to `path`, the format chosen by
@@ -47,10 +58,13 @@ struct MeshFile {
 /// whose arrays do not match the vertex count, or any write failure. `compression` applies to
 /// .vtp only (the other formats are uncompressed). `context`, when given, joins the field's
 /// metadata in the .vtp's field data (keys the field's metadata already has are not repeated);
-/// the other formats have no place for either.
+/// the other formats have no place for either. `cells`, when given, are per-triangle arrays: cell
+/// data of a .vtp, face properties of a .ply (int), left out of .obj and .stl; each must have one
+/// value per triangle (else Error).
 void write_mesh(const std::string& path, const Mesh& mesh,
                 const curvature::CurvatureField* field = nullptr,
-                const Compression& compression = {}, const Metadata* context = nullptr);
+                const Compression& compression = {}, const Metadata* context = nullptr,
+                const CellArrays* cells = nullptr);
 
 /// Reads a mesh file written by write_mesh (or any reasonable .vtp/.ply/.obj/.stl). Throws Error
 /// naming the file for a missing, unreadable, truncated or malformed file, an unknown extension or

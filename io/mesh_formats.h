@@ -11,10 +11,12 @@
 namespace isocurv::io::detail {
 
 void write_vtp(const std::string& path, const Mesh& mesh, const curvature::CurvatureField* field,
-               const Compression& compression, const Metadata* context = nullptr);
+               const Compression& compression, const Metadata* context = nullptr,
+               const CellArrays* cells = nullptr);
 MeshFile read_vtp(const std::string& path);
 
-void write_ply(const std::string& path, const Mesh& mesh, const curvature::CurvatureField* field);
+void write_ply(const std::string& path, const Mesh& mesh, const curvature::CurvatureField* field,
+               const CellArrays* cells = nullptr);
 MeshFile read_ply(const std::string& path);
 
 void write_obj(const std::string& path, const Mesh& mesh, const curvature::CurvatureField* field);

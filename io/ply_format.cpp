@@ -54,7 +54,10 @@ std::vector<std::string> property_names(const std::string& name, int components)
 
 }  // namespace
 
-void write_ply(const std::string& path, const Mesh& mesh, const curvature::CurvatureField* field) {
+void write_ply(const std::string& path, const Mesh& mesh, const curvature::CurvatureField* field,
+               const CellArrays* cells) {
+  const CellArrays no_cells;
+  const CellArrays& faces = cells ? *cells : no_cells;
   const curvature::CurvatureField empty;
   const curvature::CurvatureField& f = field ? *field : empty;
   const std::size_t n = mesh.positions.size();
@@ -73,7 +76,9 @@ void write_ply(const std::string& path, const Mesh& mesh, const curvature::Curva
       header << "property " << type << " " << p << "\n";
   });
   header << "element face " << mesh.triangles.size() << "\n"
-         << "property list uchar int vertex_indices\nend_header\n";
+         << "property list uchar int vertex_indices\n";
+  for (const CellArray& c : faces) header << "property int " << c.name << "\n";
+  header << "end_header\n";
 
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (!out) throw std::runtime_error(std::string("cannot open for writing: ") + std::strerror(errno));
@@ -94,9 +99,10 @@ void write_ply(const std::string& path, const Mesh& mesh, const curvature::Curva
     });
     flush(false);
   }
-  for (const Tri& t : mesh.triangles) {
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
     put_le(buffer, std::uint8_t{3});
-    for (std::uint32_t v : t) put_le(buffer, static_cast<std::int32_t>(v));
+    for (std::uint32_t v : mesh.triangles[i]) put_le(buffer, static_cast<std::int32_t>(v));
+    for (const CellArray& c : faces) put_le(buffer, c.values[i]);
     flush(false);
   }
   flush(true);

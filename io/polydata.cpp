@@ -6,6 +6,7 @@
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
+#include <vtkCellData.h>
 #include <vtkFloatArray.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -84,7 +85,7 @@ void read_array(vtkDataArray* array, const char* name, vtkIdType n, std::vector<
 }  // namespace
 
 vtkSmartPointer<vtkPolyData> to_polydata(const Mesh& mesh, const curvature::CurvatureField* field,
-                                         const Metadata* context) {
+                                         const Metadata* context, const CellArrays* cells) {
   auto poly = vtkSmartPointer<vtkPolyData>::New();
   auto points = vtkSmartPointer<vtkPoints>::New();
   points->SetData(make_array("Points", mesh.positions));
@@ -101,6 +102,14 @@ vtkSmartPointer<vtkPolyData> to_polydata(const Mesh& mesh, const curvature::Curv
       else pd->AddArray(array);
     });
   }
+  if (cells)
+    for (const CellArray& c : *cells) {
+      auto array = vtkSmartPointer<vtkTypeInt32Array>::New();
+      array->SetName(c.name.c_str());
+      array->SetNumberOfTuples(static_cast<vtkIdType>(c.values.size()));
+      std::copy(c.values.begin(), c.values.end(), array->GetPointer(0));
+      poly->GetCellData()->AddArray(array);
+    }
   auto add_text = [&](const std::string& key, const std::string& value) {
     if (poly->GetFieldData()->GetAbstractArray(key.c_str())) return;  // the field's wins
     auto text = vtkSmartPointer<vtkStringArray>::New();
@@ -141,19 +150,42 @@ MeshFile from_polydata(vtkPolyData* poly, const std::string& source) {
   };
   vtkIdType count = 0;
   const vtkIdType* ids = nullptr;
+  // The cell each triangle came from (cells are numbered verts, lines, polys, strips).
+  std::vector<vtkIdType> cell_of;
+  vtkIdType cell = poly->GetNumberOfVerts() + poly->GetNumberOfLines();
   auto polys = vtk::TakeSmartPointer(poly->GetPolys()->NewIterator());
-  for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell()) {
+  for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell(), ++cell) {
     polys->GetCurrentCell(count, ids);
-    for (vtkIdType k = 2; k < count; ++k) out.mesh.triangles.push_back({idx(ids[0]), idx(ids[k - 1]), idx(ids[k])});
+    for (vtkIdType k = 2; k < count; ++k) {
+      out.mesh.triangles.push_back({idx(ids[0]), idx(ids[k - 1]), idx(ids[k])});
+      cell_of.push_back(cell);
+    }
   }
   auto strips = vtk::TakeSmartPointer(poly->GetStrips()->NewIterator());
-  for (strips->GoToFirstCell(); !strips->IsDoneWithTraversal(); strips->GoToNextCell()) {
+  for (strips->GoToFirstCell(); !strips->IsDoneWithTraversal(); strips->GoToNextCell(), ++cell) {
     strips->GetCurrentCell(count, ids);
     for (vtkIdType k = 2; k < count; ++k) {
       if (k % 2 == 0) out.mesh.triangles.push_back({idx(ids[k - 2]), idx(ids[k - 1]), idx(ids[k])});
       else out.mesh.triangles.push_back({idx(ids[k - 1]), idx(ids[k - 2]), idx(ids[k])});
+      cell_of.push_back(cell);
     }
   }
+  // One-component integer cell arrays (the Label of label maps), one value per triangle.
+  if (vtkCellData* cd = poly->GetCellData())
+    for (int i = 0; i < cd->GetNumberOfArrays(); ++i) {
+      vtkDataArray* array = cd->GetArray(i);
+      if (!array || !array->GetName() || array->GetNumberOfComponents() != 1 ||
+          array->GetDataType() == VTK_FLOAT || array->GetDataType() == VTK_DOUBLE)
+        continue;
+      if (array->GetNumberOfTuples() != cell)
+        throw Error(source, std::string("cell array '") + array->GetName() + "' has " +
+                                std::to_string(array->GetNumberOfTuples()) + " values for " +
+                                std::to_string(cell) + " cells");
+      CellArray c{array->GetName(), std::vector<std::int32_t>(cell_of.size())};
+      for (std::size_t t = 0; t < cell_of.size(); ++t)
+        c.values[t] = static_cast<std::int32_t>(array->GetComponent(cell_of[t], 0));
+      out.cells.push_back(std::move(c));
+    }
 
   vtkPointData* pd = poly->GetPointData();
   curvature::CurvatureField field;

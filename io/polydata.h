@@ -15,16 +15,18 @@ namespace isocurv::io {
 /// array per non-empty field array, named as in DESIGN.md (float, Boundary as unsigned char);
 /// "Normals" is also the active point normals. Copies the data. `field` sizes must match (see
 /// check_field_sizes; unchecked here). The field's metadata, then the `context` pairs whose keys
-/// it lacks, become one-value string arrays of the field data.
+/// it lacks, become one-value string arrays of the field data. `cells` become Int32 cell data.
 vtkSmartPointer<vtkPolyData> to_polydata(const Mesh& mesh,
                                          const curvature::CurvatureField* field = nullptr,
-                                         const Metadata* context = nullptr);
+                                         const Metadata* context = nullptr,
+                                         const CellArrays* cells = nullptr);
 
 /// The mesh and named arrays of `poly` (the inverse of to_polydata). Polygons are fan-triangulated,
 /// triangle strips split, vertices and lines ignored; float data is copied bit-for-bit, other types
 /// converted. "Normals" falls back to the active point normals. `source` names the file in errors:
 /// an array with the wrong component count or length, or too many points, throws Error(source, ...).
-/// The field data's one-value string arrays come back as MeshFile::metadata (and the field's).
+/// The field data's one-value string arrays come back as MeshFile::metadata (and the field's);
+/// one-component integer cell arrays as MeshFile::cells.
 MeshFile from_polydata(vtkPolyData* poly, const std::string& source);
 
 }  // namespace isocurv::io

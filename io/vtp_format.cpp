@@ -26,10 +26,10 @@
 namespace isocurv::io::detail {
 
 void write_vtp(const std::string& path, const Mesh& mesh, const curvature::CurvatureField* field,
-               const Compression& compression, const Metadata* context) {
+               const Compression& compression, const Metadata* context, const CellArrays* cells) {
   vtkNew<vtkXMLPolyDataWriter> writer;
   VtkErrorCapture errors(writer);
-  writer->SetInputData(to_polydata(mesh, field, context));
+  writer->SetInputData(to_polydata(mesh, field, context, cells));
   writer->SetFileName(path.c_str());
   writer->SetDataModeToAppended();
   writer->EncodeAppendedDataOff();  // raw binary, not base64

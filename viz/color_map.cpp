@@ -87,7 +87,10 @@ ColorRange color_range(const std::vector<float>& values, const std::string& name
   for (float v : values)
     if (std::isfinite(v)) finite.push_back(v);
   ColorRange range{0, 0};
-  if (kind == QuantityKind::curvature) {
+  if (kind == QuantityKind::label && !finite.empty()) {
+    const auto [lo, hi] = std::minmax_element(finite.begin(), finite.end());
+    range = {*lo, *hi};
+  } else if (kind == QuantityKind::curvature) {
     const double lo = percentile(finite, c), hi = percentile(finite, 100.0 - c);
     if (lo < 0 && hi > 0) {
       for (double& v : finite) v = std::fabs(v);
@@ -104,7 +107,7 @@ ColorRange color_range(const std::vector<float>& values, const std::string& name
     range = {percentile(finite, c), percentile(finite, 100.0 - c)};
   }
   if (!(range.hi > range.lo)) {  // all equal (or nothing finite): a small range around them
-    if (kind == QuantityKind::other) {
+    if (kind == QuantityKind::other || kind == QuantityKind::label) {
       const double v = range.lo, half = std::max(1e-6, 1e-3 * std::fabs(v));
       return {v - half, v + half};
     }

@@ -44,6 +44,7 @@ bool is_centred_map(const std::string& cmap);
 ///    |value|; one-signed: [0, the (100-p)-th percentile] or [the p-th percentile, 0];
 ///  - shape index (ShapeIndex, SI_ii): [-1, 1]; AO and the 0/1 flags: [0, 1];
 ///  - magnitude (Curvedness, never negative): [0, the (100-p)-th percentile];
+///  - Label: [lowest, highest] (every label gets its colour);
 ///  - other arrays (LBE, NSV, Vr, ...): [the p-th, the (100-p)-th percentile].
 /// A degenerate range (all values equal, or nothing finite) is widened so it is never empty
 /// (other arrays: by 0.1% of the value each side, at least 1e-6).

@@ -94,6 +94,7 @@ QuantityKind quantity_kind(const std::string& name) {
   if (named_after(b, "AO")) return QuantityKind::occlusion;
   if (b == "Unreliable" || b == "Boundary" || b == "FeatureBoundary") return QuantityKind::flag;
   if (named_after(b, "Curvedness")) return QuantityKind::magnitude;
+  if (b == "Label") return QuantityKind::label;
   return QuantityKind::other;
 }
 
@@ -171,6 +172,7 @@ std::string quantity_unit(const std::string& name, const std::string& length_uni
     case QuantityKind::shape_index:
     case QuantityKind::occlusion:
     case QuantityKind::flag:
+    case QuantityKind::label:
       return "";
     case QuantityKind::other:
       break;

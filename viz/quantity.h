@@ -23,6 +23,7 @@ enum class QuantityKind {
   occlusion,    ///< AO and "AO_...": grey over [0, 1]
   flag,         ///< Unreliable, Boundary, FeatureBoundary (and suffixed): 0/1, viridis over [0, 1]
   magnitude,    ///< Curvedness and "Curvedness_...": never negative, viridis over [0, high]
+  label,        ///< Label (of label maps): viridis over [lowest, highest], no percentile clamp
   other,        ///< anything else (LBE, NSV, Vr, ...): viridis over the percentile range
 };
 

@@ -11,6 +11,7 @@ import subprocess
 import tempfile
 import threading
 import unittest
+import warnings
 
 import numpy as np
 
@@ -536,11 +537,13 @@ class Measure(unittest.TestCase):
         self.assertAlmostEqual(float(m["volume"][0]) / (4 / 3 * np.pi * RADIUS**3), 1, delta=0.01)
         self.assertAlmostEqual(float(m["integral_H"][0]) / (4 * np.pi * RADIUS), 1, delta=0.02)
         self.assertLess(abs(float(m["gauss_bonnet_gap"][0])), 0.02)
-        # Given arrays are used as they are: H = 1 everywhere integrates to the mesh's area.
+        # Given arrays are used as they are: H = 1 everywhere integrates to the measured area
+        # (the same patches carry both), and that is what the estimated arrays give too.
         arrays = isocurv.curvature(mesh, v)
         arrays["H"] = np.ones_like(arrays["H"])
-        self.assertAlmostEqual(float(isocurv.measure(mesh, arrays=arrays)["integral_H"][0]),
-                               float(np.sum(arrays["Area"])), places=2)
+        given = isocurv.measure(mesh, arrays=arrays)
+        self.assertAlmostEqual(float(given["integral_H"][0]), float(given["area"][0]), places=6)
+        self.assertAlmostEqual(float(given["area"][0]) / float(m["area"][0]), 1, delta=1e-3)
         with self.assertRaises(TypeError):
             isocurv.measure("not a mesh")
         with self.assertRaises(ValueError):
@@ -556,6 +559,34 @@ class Measure(unittest.TestCase):
         for key in ("area", "volume", "integral_H", "integral_K"):
             self.assertAlmostEqual(float(m[key][0]), cli[key], delta=1e-6 * max(1, abs(cli[key])), msg=key)
         self.assertEqual(int(m["euler_characteristic"][0]), cli["euler_characteristic"])
+
+    def test_labels_each_measure_as_the_object_alone(self):
+        n = 40
+        z, y, x = np.mgrid[0:n, 0:n, 0:n]
+        labels = np.zeros((n, n, n), np.uint8)
+        labels[(x - 14) ** 2 + (y - 20) ** 2 + (z - 20) ** 2 < 81] = 4
+        labels[((x - 27) ** 2 + (y - 20) ** 2 + (z - 20) ** 2 < 81) & (labels == 0)] = 9  # touching
+        v = isocurv.from_array(labels)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            m = isocurv.measure_labels(v, [9, 4, 77])
+        self.assertTrue(any("77" in str(w.message) for w in caught))
+        self.assertEqual(list(m["label"]), [9, 4])
+        self.assertEqual(list(m["euler_characteristic"]), [2, 2])
+        self.assertEqual(list(m["closed"]), [1, 1])
+        for k, value in enumerate([9, 4]):
+            alone = isocurv.from_array((labels == value).astype(np.uint8))
+            a = isocurv.measure(isocurv.extract(alone, 0.5), alone)
+            for key in ("area", "volume", "integral_H", "integral_K"):
+                self.assertAlmostEqual(float(m[key][k]), float(a[key][0]),
+                                       delta=1e-4 * abs(float(a[key][0])) + 1e-9, msg=key)
+        self.assertEqual(list(isocurv.measure_labels(v)["label"]), [4, 9])
+        with self.assertRaises(isocurv.Error):
+            isocurv.measure_labels(isocurv.from_array(labels.astype(np.float32)))
+        with self.assertRaises(ValueError):
+            isocurv.measure_labels(v, [5])
+        with self.assertRaises(TypeError):
+            isocurv.measure_labels(v, "4")
 
 
 class Features(unittest.TestCase):

@@ -1,0 +1,181 @@
+#include "app/label_surfaces.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "app/batch.h"
+#include "core/error.h"
+#include "curvature/auto_scale.h"
+#include "labels/label_map.h"
+#include "volume/load.h"
+
+namespace isocurv::app {
+namespace {
+
+/// The indicator's margin (labels::indicator_margin) for the binary scale or --scale's largest
+/// value, in voxels of the smallest spacing.
+int indicator_margin(const volume::Volume& v, const CommonOptions& o) {
+  const auto s = v.spacing();
+  const double smallest = std::min({s[0], s[1], s[2]});
+  double sigma_voxels = curvature::kBinaryScaleVoxels;
+  for (const std::string& scale : parse_scales(o.scale))
+    if (scale != "auto") sigma_voxels = std::max(sigma_voxels, std::stod(scale) / smallest);
+  return labels::indicator_margin(sigma_voxels);
+}
+
+std::string join(const std::vector<std::int64_t>& values) {
+  std::string s;
+  for (std::int64_t v : values) s += (s.empty() ? "" : ", ") + std::to_string(v);
+  return s;
+}
+
+}  // namespace
+
+void add_label_options(CLI::App& cmd, CommonOptions& o, bool with_split) {
+  cmd.add_flag("--labels", o.labels,
+               "The volume is a label map (an integer segmentation): one surface per label, at the "
+               "half level of its indicator, with a Label array on points and cells");
+  cmd.add_option("--label", o.label_list, "Only these labels, e.g. 3,7 (implies --labels)");
+  if (with_split)
+    cmd.add_flag("--split", o.split,
+                 "With --labels: -o is a folder that gets one mesh file per label (label_<value>.vtp)");
+}
+
+Surface load_label_surfaces(const std::string& path, const CommonOptions& o, StageTimer& timer,
+                            bool curvature) {
+  if (is_mesh_path(path))
+    throw Error(path, "--labels needs a volume (a label map), and this is a mesh file");
+  if (o.iso)
+    throw Error(path, "--iso does not apply with --labels: each label's surface is at the half "
+                      "level of its own indicator");
+  const std::vector<std::int64_t> wanted =
+      o.label_list.empty() ? std::vector<std::int64_t>{} : labels::parse_label_list(o.label_list);
+  Surface s;
+  timer.start("load");
+  s.volume = volume::load(path, to_load_options(o.volume));
+  timer.start("labels");
+  const std::vector<labels::Label> all = labels::label_map_labels(*s.volume);
+  std::vector<std::int64_t> missing;
+  const std::vector<labels::Label> picked = labels::pick_labels(all, wanted, missing);
+  timer.stop();
+  if (!missing.empty() && !picked.empty() && !o.quiet)
+    std::fprintf(stderr, "isocurv: warning: %s: no voxel holds label%s %s; left out\n", path.c_str(),
+                 missing.size() == 1 ? "" : "s", join(missing).c_str());
+  if (picked.empty())
+    throw Error(path, all.empty() ? std::string("--labels: the volume holds no label (every voxel is 0)")
+                                  : "--label: none of the labels given is in the volume (it holds " +
+                                        std::to_string(all.size()) + " labels, from " +
+                                        std::to_string(all.front().value) + " to " +
+                                        std::to_string(all.back().value) + ")");
+  if (!reference_device(o)) device_for(o);  // open the device (and fail on it) before timing
+  s.isovalue = 0.5f;
+  const int margin = indicator_margin(*s.volume, o);
+  labels::LabelledMesh merged;
+  std::vector<std::int64_t> empty;
+  for (const labels::Label& l : picked) {
+    timer.start("labels");
+    const volume::Volume indicator = labels::label_indicator(*s.volume, l, margin);
+    timer.start("extract");
+    Mesh mesh = extract_surface(indicator, 0.5f, o);
+    timer.stop();
+    if (mesh.triangles.empty()) {
+      empty.push_back(l.value);
+      continue;
+    }
+    std::optional<curvature::CurvatureField> field;
+    if (curvature) {
+      NormalsUsed used;
+      curvature::EstimatorReport report;
+      field = estimate_curvature(mesh, &indicator, 0.5f, o, timer, &used, &report);
+      s.normals.opposed += used.opposed;
+      s.normals.weak += used.weak;
+      s.normals.caps += used.caps;
+      s.normals.source = used.source;
+      if (s.estimator.estimator.empty()) s.estimator = report;
+    }
+    timer.start("labels");
+    labels::append_label(merged, l.value, mesh, field ? &*field : nullptr);
+    timer.stop();
+  }
+  if (!empty.empty() && !o.quiet)
+    std::fprintf(stderr, "isocurv: warning: %s: label%s %s %s no surface (%s the box); left out\n",
+                 path.c_str(), empty.size() == 1 ? "" : "s", join(empty).c_str(),
+                 empty.size() == 1 ? "has" : "have", empty.size() == 1 ? "it fills" : "they fill");
+  if (merged.parts.empty()) throw Error(path, "--labels: no label has a surface");
+  s.mesh = std::move(merged.mesh);
+  s.field = std::move(merged.field);
+  s.triangle_labels = std::move(merged.triangle_labels);
+  s.label_parts = std::move(merged.parts);
+  return s;
+}
+
+io::CellArrays label_cells(const Surface& s) {
+  if (s.label_parts.empty()) return {};
+  return {io::CellArray{"Label", s.triangle_labels}};
+}
+
+std::vector<std::string> write_split_labels(const Surface& s, const std::string& dir,
+                                            const std::string& format,
+                                            const CommonOptions& o, const io::Metadata& context,
+                                            AtomicFileSet& outputs) {
+  labels::LabelledMesh m;
+  m.mesh = s.mesh;
+  if (s.field) m.field = *s.field;
+  m.triangle_labels = s.triangle_labels;
+  m.parts = s.label_parts;
+  std::vector<std::string> paths;
+  for (const labels::LabelPart& p : s.label_parts) {
+    Mesh mesh;
+    curvature::CurvatureField field;
+    labels::extract_label(m, p.value, mesh, field);
+    const std::string path =
+        (std::filesystem::path(dir) / ("label_" + std::to_string(p.value) + "." + format)).string();
+    const io::CellArrays cells = {io::CellArray{"Label", std::vector<std::int32_t>(mesh.triangles.size(),
+                                                                                   static_cast<std::int32_t>(p.value))}};
+    outputs.write(path, [&](const std::string& tmp) {
+      io::write_mesh(tmp, mesh, &field, o.compress, &context, &cells);
+    });
+    paths.push_back(path);
+  }
+  return paths;
+}
+
+void print_label_summary(const nlohmann::json& r, const std::string& what) {
+  const std::size_t n = r.contains("labels") ? r["labels"].size() : 0;
+  if (r.contains("outputs"))
+    std::printf("wrote %zu mesh files (one per label)%s: %s ... %s\n", r["outputs"].size(), what.c_str(),
+                r["outputs"].front().get<std::string>().c_str(), r["outputs"].back().get<std::string>().c_str());
+  else
+    std::printf("wrote %s (%s): %zu label%s, %s vertices%s, %s triangles\n",
+                r["output"].get<std::string>().c_str(), format_bytes(r["output_bytes"]).c_str(), n,
+                n == 1 ? "" : "s", r["vertices"].dump().c_str(), what.c_str(), r["triangles"].dump().c_str());
+}
+
+void require_label_output(const std::string& out, const CommonOptions& o) {
+  if (o.split) require_folder_name(out, "--split output folder");
+  else require_writable_file(out);
+}
+
+nlohmann::json write_label_output(const Surface& s, const std::string& in, const std::string& out,
+                                  const CommonOptions& o, StageTimer& timer) {
+  timer.start("write");
+  const io::Metadata context = context_metadata(s, in);
+  nlohmann::json r;
+  if (o.split) {
+    make_output_folder(out, "--split output folder");
+    AtomicFileSet outputs;
+    r["outputs"] = write_split_labels(s, out, "vtp", o, context, outputs);
+    outputs.commit();
+  } else {
+    const io::CellArrays cells = label_cells(s);
+    io::write_mesh(out, s.mesh, s.field ? &*s.field : nullptr, o.compress, &context, &cells);
+    r["output"] = out;
+    r["output_bytes"] = file_bytes(out);
+  }
+  timer.stop();
+  return r;
+}
+
+}  // namespace isocurv::app

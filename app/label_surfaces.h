@@ -1,0 +1,54 @@
+#pragma once
+// --labels, --label and --split: a label map's surfaces, one per label, for extract, curvature,
+// run, render and measure (docs/labels.md).
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+#include "app/pipeline.h"
+#include "core/atomic_file.h"
+
+namespace isocurv::app {
+
+/// Adds --labels and --label LIST, and --split when the command writes mesh files.
+void add_label_options(CLI::App& cmd, CommonOptions& o, bool with_split);
+
+/// The surfaces of the labels of the label map `path` (all of them, or --label's), as one
+/// Surface: `volume` the label map, `mesh` the labels' surfaces one after another, each the
+/// marching-cubes surface at 0.5 of its indicator (labels::label_indicator: touching labels each
+/// get a closed surface), `triangle_labels` and `label_parts` saying which is which. With
+/// `curvature`, each label's curvature is estimated on its own indicator (estimate_curvature:
+/// the volume estimator by default, at the binary scale) and `field` holds them all; without it,
+/// `field` holds only the per-vertex "Label". isovalue is 0.5. A --label value the map lacks,
+/// or a label whose surface is empty, is named in a warning line (unless --quiet).
+/// @throw Error naming `path` for a mesh file, --iso (each label has its own level), a float
+///        volume, more than labels::kMaxLabels labels, or when no picked label has a surface.
+Surface load_label_surfaces(const std::string& path, const CommonOptions& o, StageTimer& timer,
+                            bool curvature);
+
+/// The cell arrays of `s` for io::write_mesh: {"Label"} for a label map's surfaces, else none.
+io::CellArrays label_cells(const Surface& s);
+
+/// Checks, before any work, that `out` can take a label map's surfaces: a writable file, or with
+/// --split a folder name (not an existing file). @throw Error naming `out`.
+void require_label_output(const std::string& out, const CommonOptions& o);
+
+/// Writes a label map's surfaces `s` (from `in`) to `out`: one mesh file with the Label arrays
+/// (and the field), or with --split the folder `out` with one .vtp per label; all written or none.
+/// Returns what --json reports about it: "output" and "output_bytes", or "outputs" (a list).
+nlohmann::json write_label_output(const Surface& s, const std::string& in, const std::string& out,
+                                  const CommonOptions& o, StageTimer& timer);
+
+/// The normal (non --json) summary of extract/curvature --labels: "wrote out.vtp (1.2 MB): 3
+/// labels, 12345 vertices<what>, 24680 triangles", or the --split folder's file count.
+void print_label_summary(const nlohmann::json& report, const std::string& what);
+
+/// --split: one mesh file per label of `s`, `dir`/label_<value>.<format>, each with its arrays
+/// (the field's slice, the Label arrays) and `context`, added to `outputs` (written together or
+/// not at all by the caller's commit). Returns the paths in the labels' order.
+std::vector<std::string> write_split_labels(const Surface& s, const std::string& dir,
+                                            const std::string& format,
+                                            const CommonOptions& o, const io::Metadata& context,
+                                            AtomicFileSet& outputs);
+
+}  // namespace isocurv::app

@@ -1,0 +1,54 @@
+#pragma once
+// Label maps: integer volumes where each value is an object (segmentations from 3D Slicer,
+// TotalSegmentator, ITK-SNAP). Each label becomes its own surface, extracted at the half level of
+// its indicator (1 on the label's voxels, 0 elsewhere), so touching labels each get a closed
+// surface of their own.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "volume/volume.h"
+
+namespace isocurv::labels {
+
+/// The most labels a label map may hold (the distinct non-zero values), as uint16 segmentations.
+inline constexpr std::size_t kMaxLabels = 65535;
+
+/// One label of a label map: its value, how many voxels hold it, and their box (index space,
+/// inclusive).
+struct Label {
+  std::int64_t value = 0;
+  std::uint64_t voxels = 0;
+  openvdb::CoordBBox box;
+};
+
+/// The labels of `v`: every distinct non-zero value of its data domain, ascending, with its voxel
+/// count and box. One pass over the domain (OpenVDB's value iterator; tiles count as their voxels).
+/// Label 0 is the background.
+/// @throw Error naming v.path when the volume is not an integer one (its voxel_type is float,
+///        double or half: labels must be exact), or when it holds more than kMaxLabels labels.
+std::vector<Label> label_map_labels(const volume::Volume& v);
+
+/// Parses a --label list ("3,7" or "3, 7"): distinct integers. @throw Error for anything else.
+std::vector<std::int64_t> parse_label_list(const std::string& text);
+
+/// The labels of `all` named in `wanted` (all of them when `wanted` is empty), in `wanted`'s order.
+/// Values in `wanted` that `all` lacks are appended to `missing` (the caller warns about them).
+std::vector<Label> pick_labels(const std::vector<Label>& all, const std::vector<std::int64_t>& wanted,
+                               std::vector<std::int64_t>& missing);
+
+/// The margin label_indicator needs for a volume-estimator scale of `scale_voxels` (the largest
+/// deviation, in voxels): one marching-cubes cell beyond the label plus 4 deviations, so that the
+/// bricks the estimator gathers lie in the indicator's domain (capped at 64 deviations).
+int indicator_margin(double scale_voxels);
+
+/// The indicator volume of `label` in `v`: 1 on its voxels, 0 elsewhere, as a "uint8" volume whose
+/// domain is the label's box grown by `margin` voxels on every side, clipped to v's domain, in
+/// v's index space and transform (so world positions agree). Outside that domain the grid's
+/// background, 0, is the indicator's true value there. Its isosurface at 0.5 is the label's
+/// surface: closed, unless the label reaches the side of v's domain. A binary volume
+/// (curvature::is_binary) when the grown box holds voxels of both kinds.
+/// @param margin  at least 1 (a marching-cubes cell beyond the label's last voxel).
+volume::Volume label_indicator(const volume::Volume& v, const Label& label, int margin = 2);
+
+}  // namespace isocurv::labels

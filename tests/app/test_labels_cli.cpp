@@ -1,0 +1,149 @@
+// --labels, --label and --split on extract, curvature, run, render and measure: one closed
+// surface per label of a label map, Label arrays on points and cells, and the refusals.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <set>
+
+#include "io/mesh_file.h"
+#include "tests/app/cli.h"
+
+namespace isocurv::test {
+namespace {
+
+using json = nlohmann::json;
+constexpr int kN = 48;
+
+/// Writes a kN^3 NRRD of `type` ("uint8", "float") to dir/name.nrrd holding f(x, y, z).
+std::string write_nrrd(const TempDir& dir, const std::string& name, const std::string& type,
+                       const std::function<double(int, int, int)>& f) {
+  std::string data;
+  for (int z = 0; z < kN; ++z)
+    for (int y = 0; y < kN; ++y)
+      for (int x = 0; x < kN; ++x) {
+        const double v = f(x, y, z);
+        if (type == "uint8") {
+          data.push_back(static_cast<char>(static_cast<std::uint8_t>(v)));
+        } else {
+          const float g = static_cast<float>(v);
+          data.append(reinterpret_cast<const char*>(&g), sizeof g);
+        }
+      }
+  const std::string path = dir / (name + ".nrrd");
+  write_file(path, "NRRD0004\ntype: " + type + "\ndimension: 3\nsizes: " + std::to_string(kN) + " " +
+                       std::to_string(kN) + " " + std::to_string(kN) + "\nencoding: raw\nendian: little\n\n" + data);
+  return path;
+}
+
+/// Three touching labels: two balls of radius 10 side by side (the overlap goes to label 1) and a
+/// ball below them (label 5 where neither is).
+int three_labels(int x, int y, int z) {
+  auto in = [&](double cx, double cy, double cz, double r) {
+    return (x - cx) * (x - cx) + (y - cy) * (y - cy) + (z - cz) * (z - cz) < r * r;
+  };
+  if (in(16, 24, 26, 10)) return 1;
+  if (in(32, 24, 26, 10)) return 2;
+  if (in(24, 24, 11, 8)) return 5;
+  return 0;
+}
+
+json run_json(const std::vector<std::string>& args) {
+  const auto r = run_isocurv(args, 120);
+  EXPECT_TRUE(r.ok()) << r.describe();
+  return parse_json(r.out, args.front() + " --json");
+}
+
+TEST(CliLabels, EachLabelIsClosedAndMeasuresAsTheSameObjectAlone) {
+  TempDir dir("labels");
+  const std::string map = write_nrrd(dir, "map", "uint8", [](int x, int y, int z) { return three_labels(x, y, z); });
+  const json m = run_json({"measure", map, "--labels", "--json"});
+  ASSERT_EQ(m["labels"].size(), 3u) << m.dump();
+  const int values[] = {1, 2, 5};
+  for (int k = 0; k < 3; ++k) {
+    const json& l = m["labels"][k];
+    EXPECT_EQ(l["label"], values[k]);
+    EXPECT_EQ(l["components"], 1);
+    EXPECT_TRUE(l["closed"].get<bool>()) << l.dump();
+    EXPECT_EQ(l["euler_characteristic"], 2);
+    // The same object alone, as a 0/1 mask measured without --labels: the indicator is that
+    // mask (cropped, which changes no value the mesher or the estimator reads).
+    const int value = values[k];
+    const std::string alone = write_nrrd(dir, "alone" + std::to_string(value), "uint8",
+                                         [&](int x, int y, int z) { return three_labels(x, y, z) == value ? 1 : 0; });
+    const json a = run_json({"measure", alone, "--json"});
+    ASSERT_EQ(a["objects"].size(), 1u) << a.dump();
+    const json& o = a["objects"][0];
+    for (const char* q : {"area", "volume", "integral_H", "integral_K"})
+      EXPECT_NEAR(l[q].get<double>(), o[q].get<double>(), 1e-4 * std::abs(o[q].get<double>()) + 1e-9)
+          << "label " << value << ": " << q;
+  }
+  // Labels 1 and 2 touch along a plane: both surfaces pass through it, so together they are
+  // larger than the union's single surface.
+  const std::string union_ = write_nrrd(dir, "union", "uint8", [](int x, int y, int z) { return three_labels(x, y, z) ? 1 : 0; });
+  const json u = run_json({"measure", union_, "--json"});
+  EXPECT_GT(m["total"]["area"].get<double>(), 1.1 * u["total"]["area"].get<double>());
+  EXPECT_NEAR(m["total"]["volume"].get<double>(), u["total"]["volume"].get<double>(),
+              0.01 * u["total"]["volume"].get<double>());
+}
+
+TEST(CliLabels, MeshesCarryLabelOnPointsAndCellsAndSplitWritesOneFilePerLabel) {
+  TempDir dir("labels");
+  const std::string map = write_nrrd(dir, "map", "uint8", [](int x, int y, int z) { return three_labels(x, y, z); });
+  const json e = run_json({"extract", map, "--labels", "-o", dir / "all.vtp", "--json"});
+  EXPECT_EQ(e["labels"].size(), 3u) << e.dump();
+  const io::MeshFile f = io::read_mesh(dir / "all.vtp");
+  ASSERT_TRUE(f.field.has_value());
+  const auto label = std::find_if(f.field->extra.begin(), f.field->extra.end(),
+                                  [](const auto& x) { return x.name == "Label"; });
+  ASSERT_NE(label, f.field->extra.end());
+  ASSERT_EQ(f.cells.size(), 1u);
+  EXPECT_EQ(f.cells[0].name, "Label");
+  ASSERT_EQ(f.cells[0].values.size(), f.mesh.triangles.size());
+  std::set<int> seen;
+  for (std::size_t t = 0; t < f.mesh.triangles.size(); ++t) {
+    const int l = f.cells[0].values[t];
+    seen.insert(l);
+    for (std::uint32_t v : f.mesh.triangles[t]) ASSERT_EQ(label->values[v], float(l)) << "triangle " << t;
+  }
+  EXPECT_EQ(seen, (std::set<int>{1, 2, 5}));
+
+  // curvature --split with a label the map lacks: a warning naming it, one file per other label.
+  const auto r = run_isocurv({"curvature", map, "--label", "5,1,9", "--split", "-o", dir / "split"}, 120);
+  ASSERT_TRUE(r.ok()) << r.describe();
+  EXPECT_NE(r.err.find("label 9"), std::string::npos) << r.describe();
+  for (const char* name : {"label_5.vtp", "label_1.vtp"}) {
+    const io::MeshFile one = io::read_mesh(dir / (std::string("split/") + name));
+    ASSERT_TRUE(one.field.has_value()) << name;
+    EXPECT_EQ(one.field->H.size(), one.mesh.positions.size()) << name;
+  }
+  EXPECT_FALSE(fs::exists(dir / "split/label_2.vtp"));
+
+  // run and render take --labels too; render colours by the Label array.
+  const json run = run_json({"run", map, "--labels", "-o", dir / "run", "--json"});
+  EXPECT_EQ(run["labels"].size(), 3u);
+  EXPECT_EQ(io::read_mesh(dir / "run/map.vtp").cells.size(), 1u);
+  const auto p = run_isocurv({"render", map, "--labels", "--color", "Label", "-o", dir / "l.png"}, 120);
+  ASSERT_TRUE(p.ok()) << p.describe();
+  EXPECT_GT(png_size(dir / "l.png")[0], 0u);
+}
+
+TEST(CliLabels, RefusesWhatIsNotALabelMap) {
+  TempDir dir("labels");
+  const std::string map = write_nrrd(dir, "map", "uint8", [](int x, int y, int z) { return three_labels(x, y, z); });
+  const std::string floats = write_nrrd(dir, "floats", "float", [](int x, int y, int z) { return three_labels(x, y, z); });
+  expect_clean_failure(run_isocurv({"measure", floats, "--labels"}), "integer label map");
+  expect_clean_failure(run_isocurv({"measure", dataset("torus"), "--labels"}), "integer label map");
+  expect_clean_failure(run_isocurv({"extract", map, "--labels", "--iso", "1", "-o", dir / "x.vtp"}), "--iso");
+  expect_clean_failure(run_isocurv({"measure", map, "--label", "7"}), "none of the labels");
+  expect_clean_failure(run_isocurv({"measure", map, "--label", "1,x"}), "--label");
+  expect_clean_failure(run_isocurv({"extract", map, "--split", "-o", dir / "s"}), "--split needs --labels");
+  ASSERT_TRUE(run_isocurv({"extract", map, "-o", dir / "plain.vtp", "--quiet"}).ok());
+  expect_clean_failure(run_isocurv({"measure", dir / "plain.vtp", "--labels"}), "needs a volume");
+  EXPECT_FALSE(fs::exists(dir / "x.vtp"));
+  EXPECT_FALSE(fs::exists(dir / "s"));
+}
+
+}  // namespace
+}  // namespace isocurv::test
