@@ -29,6 +29,10 @@ std::vector<Label> label_map_labels(const volume::Volume& v) {
     visited += n;
     const std::int64_t value = std::llround(static_cast<double>(*it));
     if (value == 0) continue;
+    if (std::llabs(value) > kMaxLabelValue)
+      throw Error(v.path, "--labels: label " + std::to_string(value) + " is beyond +-" +
+                              std::to_string(kMaxLabelValue) +
+                              " (2^24: volumes hold 32-bit floats, exact only up to there)");
     auto [entry, fresh] = found.try_emplace(value);
     Label& l = entry->second;
     if (fresh) {

@@ -14,6 +14,10 @@ namespace isocurv::labels {
 /// The most labels a label map may hold (the distinct non-zero values), as uint16 segmentations.
 inline constexpr std::size_t kMaxLabels = 65535;
 
+/// The largest label value (in magnitude): volumes hold their voxels as 32-bit floats, exact
+/// integers up to 2^24.
+inline constexpr std::int64_t kMaxLabelValue = 16777216;
+
 /// One label of a label map: its value, how many voxels hold it, and their box (index space,
 /// inclusive).
 struct Label {
@@ -26,7 +30,8 @@ struct Label {
 /// count and box. One pass over the domain (OpenVDB's value iterator; tiles count as their voxels).
 /// Label 0 is the background.
 /// @throw Error naming v.path when the volume is not an integer one (its voxel_type is float,
-///        double or half: labels must be exact), or when it holds more than kMaxLabels labels.
+///        double or half: labels must be exact), when it holds more than kMaxLabels labels, or a
+///        value beyond kMaxLabelValue.
 std::vector<Label> label_map_labels(const volume::Volume& v);
 
 /// Parses a --label list ("3,7" or "3, 7"): distinct integers. @throw Error for anything else.
