@@ -17,18 +17,8 @@ namespace {
 nlohmann::json curvature_one(const std::string& in, const std::string& out,
                              const CommonOptions& o) {
   if (o.labelled()) {
-    if (!o.split) require_curvature_format(out);
-    require_label_output(out, o);  // before any work
-    StageTimer timer;
-    const Surface s = load_label_surfaces(in, o, timer, true);
-    nlohmann::json r = surface_report(s);
-    r.update(write_label_output(s, in, out, o, timer));
-    r["input"] = in;
-    r["compression"] = io::to_string(o.compress);
-    r["programs"] = program_report();
-    r["device"] = device_name(o);
-    r["timings_ms"] = timer.json();
-    return r;
+    if (!o.split) require_curvature_format(out);  // .obj and .stl would drop the arrays
+    return label_surfaces_to_files(in, out, o, true);
   }
   if (o.split) throw Error("--split needs --labels or --label");
   require_curvature_format(out);  // before any work: .obj and .stl would drop the arrays

@@ -15,18 +15,7 @@ namespace {
 
 /// One input -> the mesh file `out`; the report --json prints.
 nlohmann::json extract_one(const std::string& in, const std::string& out, const CommonOptions& o) {
-  if (o.labelled()) {
-    require_label_output(out, o);  // before any work
-    StageTimer timer;
-    const Surface s = load_label_surfaces(in, o, timer, false);
-    nlohmann::json r = surface_report(s);
-    r.update(write_label_output(s, in, out, o, timer));
-    r["input"] = in;
-    r["compression"] = io::to_string(o.compress);
-    r["device"] = device_name(o);
-    r["timings_ms"] = timer.json();
-    return r;
-  }
+  if (o.labelled()) return label_surfaces_to_files(in, out, o, false);
   if (o.split) throw Error("--split needs --labels or --label");
   require_writable_file(out);  // before any work
   StageTimer timer;

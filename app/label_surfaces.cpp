@@ -153,6 +153,21 @@ void print_label_summary(const nlohmann::json& r, const std::string& what) {
                 n == 1 ? "" : "s", r["vertices"].dump().c_str(), what.c_str(), r["triangles"].dump().c_str());
 }
 
+nlohmann::json label_surfaces_to_files(const std::string& in, const std::string& out,
+                                       const CommonOptions& o, bool curvature) {
+  require_label_output(out, o);  // before any work
+  StageTimer timer;
+  const Surface s = load_label_surfaces(in, o, timer, curvature);
+  nlohmann::json r = surface_report(s);
+  r.update(write_label_output(s, in, out, o, timer));
+  r["input"] = in;
+  r["compression"] = io::to_string(o.compress);
+  r["programs"] = program_report();
+  r["device"] = device_name(o);
+  r["timings_ms"] = timer.json();
+  return r;
+}
+
 void require_label_output(const std::string& out, const CommonOptions& o) {
   if (o.split) require_folder_name(out, "--split output folder");
   else require_writable_file(out);

@@ -39,6 +39,12 @@ void require_label_output(const std::string& out, const CommonOptions& o);
 nlohmann::json write_label_output(const Surface& s, const std::string& in, const std::string& out,
                                   const CommonOptions& o, StageTimer& timer);
 
+/// extract and curvature with --labels: require_label_output, load_label_surfaces (with
+/// `curvature` or not), write_label_output; returns the --json report (surface_report, the
+/// outputs, compression, device, programs, timings_ms).
+nlohmann::json label_surfaces_to_files(const std::string& in, const std::string& out,
+                                       const CommonOptions& o, bool curvature);
+
 /// The normal (non --json) summary of extract/curvature --labels: "wrote out.vtp (1.2 MB): 3
 /// labels, 12345 vertices<what>, 24680 triangles", or the --split folder's file count.
 void print_label_summary(const nlohmann::json& report, const std::string& what);

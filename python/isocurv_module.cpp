@@ -828,21 +828,15 @@ void radii_of(const py::object& radius, double diagonal, features::Options& fo) 
   if (fo.radii.empty()) throw py::value_error("radius: no radius given");
 }
 
-/// isocurv.measure: measure::object_measures as a dict of numpy arrays, one entry per component.
-py::dict measure_of(const MeshArg& mesh_arg, const VolumeArg& volume_arg, const py::object& arrays,
-                    const py::object& iso, py::object device) {
-  const std::shared_ptr<PyMesh> mesh = mesh_of(mesh_arg, "mesh");
-  const volume::Volume* volume = optional_volume(volume_arg, "volume");
-  if (volume) check_mesh_in_volume(mesh->mesh, *volume);
-  const curvature::CurvatureField field = field_for(mesh, volume, arrays, iso, device, {"H", "K"});
-  const std::vector<measure::ObjectMeasures> objects = measure::object_measures(mesh->mesh, field);
-  const py::ssize_t n = py::ssize_t(objects.size());
-  std::vector<double> area, volume_, int_h, int_k, gap, box;
+/// measure() and measure_labels()'s dict: one numpy array per measure, one entry per object.
+struct MeasureColumns {
+  std::vector<double> area, volume, int_h, int_k, gap, box;
   std::vector<std::int64_t> euler, genus, vertices, triangles, unmeasured;
   std::vector<std::uint8_t> closed;
-  for (const measure::ObjectMeasures& m : objects) {
+
+  void add(const measure::ObjectMeasures& m) {
     area.push_back(m.area);
-    volume_.push_back(m.closed ? m.volume : std::numeric_limits<double>::quiet_NaN());
+    volume.push_back(m.closed ? m.volume : std::numeric_limits<double>::quiet_NaN());
     int_h.push_back(m.integral_H);
     int_k.push_back(m.integral_K);
     gap.push_back(m.gauss_bonnet_gap());
@@ -854,20 +848,35 @@ py::dict measure_of(const MeshArg& mesh_arg, const VolumeArg& volume_arg, const 
     closed.push_back(m.closed ? 1 : 0);
     box.insert(box.end(), m.box.begin(), m.box.end());
   }
-  py::dict out;
-  out["area"] = copy_array(area, {n});
-  out["volume"] = copy_array(volume_, {n});
-  out["integral_H"] = copy_array(int_h, {n});
-  out["integral_K"] = copy_array(int_k, {n});
-  out["euler_characteristic"] = copy_array(euler, {n});
-  out["genus"] = copy_array(genus, {n});
-  out["gauss_bonnet_gap"] = copy_array(gap, {n});
-  out["closed"] = copy_array(closed, {n});
-  out["vertices"] = copy_array(vertices, {n});
-  out["triangles"] = copy_array(triangles, {n});
-  out["unmeasured_vertices"] = copy_array(unmeasured, {n});
-  out["box"] = copy_array(box, {n, 6});
-  return out;
+  py::dict dict() const {
+    const py::ssize_t n = py::ssize_t(area.size());
+    py::dict out;
+    out["area"] = copy_array(area, {n});
+    out["volume"] = copy_array(volume, {n});
+    out["integral_H"] = copy_array(int_h, {n});
+    out["integral_K"] = copy_array(int_k, {n});
+    out["euler_characteristic"] = copy_array(euler, {n});
+    out["genus"] = copy_array(genus, {n});
+    out["gauss_bonnet_gap"] = copy_array(gap, {n});
+    out["closed"] = copy_array(closed, {n});
+    out["vertices"] = copy_array(vertices, {n});
+    out["triangles"] = copy_array(triangles, {n});
+    out["unmeasured_vertices"] = copy_array(unmeasured, {n});
+    out["box"] = copy_array(box, {n, 6});
+    return out;
+  }
+};
+
+/// isocurv.measure: measure::object_measures as a dict of numpy arrays, one entry per component.
+py::dict measure_of(const MeshArg& mesh_arg, const VolumeArg& volume_arg, const py::object& arrays,
+                    const py::object& iso, py::object device) {
+  const std::shared_ptr<PyMesh> mesh = mesh_of(mesh_arg, "mesh");
+  const volume::Volume* volume = optional_volume(volume_arg, "volume");
+  if (volume) check_mesh_in_volume(mesh->mesh, *volume);
+  const curvature::CurvatureField field = field_for(mesh, volume, arrays, iso, device, {"H", "K"});
+  MeasureColumns columns;
+  for (const measure::ObjectMeasures& m : measure::object_measures(mesh->mesh, field)) columns.add(m);
+  return columns.dict();
 }
 
 /// measure_labels(): the CLI's measure --labels, one entry per label.
@@ -902,9 +911,8 @@ py::dict measure_labels_of(const VolumeArg& volume_arg, const py::object& labels
   }
   const DeviceChoice dc = device_choice(device);
   const int margin = labels::indicator_margin(curvature::kBinaryScaleVoxels);
-  std::vector<std::int64_t> label, components, euler, vertices, triangles, unmeasured;
-  std::vector<double> area, volume_, int_h, int_k, gap, box;
-  std::vector<std::uint8_t> closed;
+  std::vector<std::int64_t> label, components;
+  MeasureColumns columns;
   for (const labels::Label& l : picked) {
     const volume::Volume ind = labels::label_indicator(v, l, margin);
     auto mesh = std::make_shared<PyMesh>();
@@ -919,36 +927,17 @@ py::dict measure_labels_of(const VolumeArg& volume_arg, const py::object& labels
     const curvature::CurvatureField field =
         estimate_of(mesh, &ind, py::none(), py::none(), py::none(), py::float_(0.5), py::none(), false, device).field;
     const std::vector<measure::ObjectMeasures> objects = measure::object_measures(mesh->mesh, field);
-    const measure::ObjectMeasures m = measure::total(objects);
     label.push_back(l.value);
     components.push_back(std::int64_t(objects.size()));
-    area.push_back(m.area);
-    volume_.push_back(m.closed ? m.volume : std::numeric_limits<double>::quiet_NaN());
-    int_h.push_back(m.integral_H);
-    int_k.push_back(m.integral_K);
-    gap.push_back(m.gauss_bonnet_gap());
-    euler.push_back(m.euler);
-    vertices.push_back(std::int64_t(m.vertices));
-    triangles.push_back(std::int64_t(m.triangles));
-    unmeasured.push_back(std::int64_t(m.unmeasured));
-    closed.push_back(m.closed ? 1 : 0);
-    box.insert(box.end(), m.box.begin(), m.box.end());
+    columns.add(measure::total(objects));
+    long long genus = 0;  // the sum of its components' genera (-1 when one is cut)
+    for (const auto& m : objects) genus = (genus < 0 || !m.closed) ? -1 : genus + m.genus();
+    columns.genus.back() = genus;
   }
   const py::ssize_t n = py::ssize_t(label.size());
-  py::dict out;
+  py::dict out = columns.dict();
   out["label"] = copy_array(label, {n});
   out["components"] = copy_array(components, {n});
-  out["area"] = copy_array(area, {n});
-  out["volume"] = copy_array(volume_, {n});
-  out["integral_H"] = copy_array(int_h, {n});
-  out["integral_K"] = copy_array(int_k, {n});
-  out["euler_characteristic"] = copy_array(euler, {n});
-  out["gauss_bonnet_gap"] = copy_array(gap, {n});
-  out["closed"] = copy_array(closed, {n});
-  out["vertices"] = copy_array(vertices, {n});
-  out["triangles"] = copy_array(triangles, {n});
-  out["unmeasured_vertices"] = copy_array(unmeasured, {n});
-  out["box"] = copy_array(box, {n, 6});
   return out;
 }
 
