@@ -289,6 +289,7 @@ std::optional<std::vector<float>> batch_isovalues(const BatchCli& b, CommonOptio
     if (!isos.empty()) o.iso = isos[0];
     return std::nullopt;
   }
+  if (o.labelled()) throw Error("--labels takes one label map at a time, not a batch or a sweep");
   return isos;
 }
 
@@ -337,6 +338,7 @@ void require_series_cli(const BatchCli& b, CommonOptions& o) {
     throw Error("--iso: one isovalue with --time-series (every frame is cut at the same value)");
   if (b.format_given) throw Error("--format: a time series writes .vtp frames (ParaView's .pvd)");
   if (b.jobs_given) throw Error("--jobs applies to batches, not to --time-series");
+  if (o.labelled()) throw Error("--labels takes one label map at a time, not a time series");
   if (!isos.empty()) o.iso = isos[0];
 }
 

@@ -318,7 +318,8 @@ void handle_empty_surface(const Surface& s, const std::string& path, const Commo
 
 Surface load_surface(const std::string& path, const CommonOptions& o, StageTimer& timer,
                      EmptySurface empty) {
-  if (o.labelled()) throw Error(path, "--labels: this command reads no label maps");
+  if (o.labelled())  // the commands take labels one map at a time (app/label_surfaces.h)
+    throw Error(path, "--labels takes one label map at a time, not a batch, a sweep or a time series");
   Surface s;
   if (is_mesh_path(path)) {
     reject_volume_options(path, o);

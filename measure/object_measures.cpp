@@ -1,5 +1,9 @@
 #include "measure/object_measures.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -188,9 +192,45 @@ std::vector<ObjectMeasures> object_measures(const Mesh& mesh, const curvature::C
       m.box[2 * c + 1] = std::max(m.box[2 * c + 1], double(mesh.positions[i][c]));
     }
   }
-  for (const Tri& t : mesh.triangles) {
+  // Each vertex's component, so that the patches can be integrated in parallel (find() compresses
+  // paths: not from several threads).
+  std::vector<std::uint32_t> component(nv, ~0u);
+  for (std::uint32_t i = 0; i < nv; ++i)
+    if (used[i]) component[i] = index[uf.find(i)];
+  // The patches' integrals, one per triangle (over the surface points and, when they are used,
+  // over the vertices), computed in parallel and summed below in triangle order: deterministic.
+  std::vector<PatchIntegrals> patch, own;
+  if (curved) {
+    patch.resize(mesh.triangles.size());
+    if (moved) own.resize(mesh.triangles.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.triangles.size(), 4096), [&](const auto& r) {
+      for (std::size_t ti = r.begin(); ti != r.end(); ++ti) {
+        const Tri& t = mesh.triangles[ti];
+        if (!usable(t, nv)) continue;
+        const std::uint32_t first = out[component[t[0]]].first_vertex;
+        V3 x[3], n[3];
+        double h[3], k[3];
+        for (int c = 0; c < 3; ++c) {
+          const std::uint32_t i = t[c];
+          x[c] = to_v3(position(i));
+          n[c] = unit_normal(field.normals[i]);
+          const bool measured = !(field.unreliable.size() == nv && field.unreliable[i]) &&
+                                std::isfinite(field.H[i]) && std::isfinite(field.K[i]);
+          h[c] = measured ? double(field.H[i]) : 0.0;
+          k[c] = measured ? double(field.K[i]) : 0.0;
+        }
+        patch[ti] = integrate_patch(x, n, h, k, to_v3(position(first)));
+        if (moved) {
+          for (int c = 0; c < 3; ++c) x[c] = to_v3(mesh.positions[t[c]]);
+          own[ti] = integrate_patch(x, n, h, k, to_v3(mesh.positions[first]));
+        }
+      }
+    });
+  }
+  for (std::size_t ti = 0; ti < mesh.triangles.size(); ++ti) {
+    const Tri& t = mesh.triangles[ti];
     if (!usable(t, nv)) continue;
-    ObjectMeasures& m = out[index[uf.find(t[0])]];
+    ObjectMeasures& m = out[component[t[0]]];
     ++m.triangles;
     if (!curved) {
       const auto n = triangle_area_vector(mesh, t);
@@ -198,37 +238,25 @@ std::vector<ObjectMeasures> object_measures(const Mesh& mesh, const curvature::C
       m.volume += signed_volume_term(mesh, t, mesh.positions[m.first_vertex]);
       continue;
     }
-    V3 x[3], n[3];
-    double h[3], k[3];
-    for (int c = 0; c < 3; ++c) {
-      const std::uint32_t i = t[c];
-      x[c] = to_v3(position(i));
-      n[c] = unit_normal(field.normals[i]);
-      const bool measured = !(field.unreliable.size() == nv && field.unreliable[i]) &&
-                            std::isfinite(field.H[i]) && std::isfinite(field.K[i]);
-      h[c] = measured ? double(field.H[i]) : 0.0;
-      k[c] = measured ? double(field.K[i]) : 0.0;
-    }
-    const PatchIntegrals p = integrate_patch(x, n, h, k, to_v3(position(m.first_vertex)));
+    const PatchIntegrals& p = patch[ti];
     m.area += p.area;
     m.volume += p.volume;
     m.integral_H += p.H;
     m.integral_K += p.K;
     if (moved) {
-      for (int c = 0; c < 3; ++c) x[c] = to_v3(mesh.positions[t[c]]);
-      const PatchIntegrals q = integrate_patch(x, n, h, k, to_v3(mesh.positions[m.first_vertex]));
-      PatchIntegrals& v = on_vertices[index[uf.find(t[0])]];
+      const PatchIntegrals& q = own[ti];
+      PatchIntegrals& v = on_vertices[component[t[0]]];
       v.area += q.area;
       v.volume += q.volume;
       v.H += q.H;
       v.K += q.K;
     }
   }
-  std::sort(edges.begin(), edges.end());
+  tbb::parallel_sort(edges.begin(), edges.end());  // keys are distinct or equal: deterministic
   for (std::size_t i = 0; i < edges.size();) {
     std::size_t j = i;
     while (j < edges.size() && edges[j] == edges[i]) ++j;
-    ObjectMeasures& m = out[index[uf.find(std::uint32_t(edges[i] >> 32))]];
+    ObjectMeasures& m = out[component[std::uint32_t(edges[i] >> 32)]];
     ++m.edges;
     if (j - i == 1) ++m.boundary_edges;
     i = j;

@@ -63,7 +63,8 @@ inline constexpr double kMaxSurfaceChange = 0.5;
 /// mixed area ("Area"; when it is absent, a third of each adjacent triangle's area). Unreliable
 /// vertices' H and K count as 0 either way. The Euler characteristic, the components and the box
 /// always come from the mesh (its connectivity and vertices). H and K must have one value per
-/// vertex. Triangles with a repeated or out-of-range index are skipped. Deterministic.
+/// vertex. Triangles with a repeated or out-of-range index are skipped. The patches are
+/// integrated in parallel (TBB) and summed in triangle order: deterministic, whatever the threads.
 /// @throw Error when H or K does not have one value per vertex.
 std::vector<ObjectMeasures> object_measures(const Mesh& mesh, const curvature::CurvatureField& field);
 

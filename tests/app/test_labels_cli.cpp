@@ -141,6 +141,8 @@ TEST(CliLabels, RefusesWhatIsNotALabelMap) {
   expect_clean_failure(run_isocurv({"extract", map, "--split", "-o", dir / "s"}), "--split needs --labels");
   ASSERT_TRUE(run_isocurv({"extract", map, "-o", dir / "plain.vtp", "--quiet"}).ok());
   expect_clean_failure(run_isocurv({"measure", dir / "plain.vtp", "--labels"}), "needs a volume");
+  expect_clean_failure(run_isocurv({"curvature", map, map, "--labels", "-o", dir / "batch"}),
+                       "one label map at a time");
   EXPECT_FALSE(fs::exists(dir / "x.vtp"));
   EXPECT_FALSE(fs::exists(dir / "s"));
 }
