@@ -18,6 +18,7 @@
 #include "app/shared_pictures.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "dist/world.h"
 #include "io/mesh_file.h"
 #include "mc/extract.h"
 #include "mc/extract_reference.h"
@@ -295,6 +296,20 @@ std::optional<std::vector<float>> batch_isovalues(const BatchCli& b, CommonOptio
 
 }  // namespace
 
+namespace {
+
+// Several ranks on one input: extract and curvature divide it, run, check and features divide
+// the extraction and finish on rank 0 (app/distributed.h); lines would run once per rank, every
+// rank writing the same files.
+void refuse_one_input_on_ranks(const std::string& command) {
+  const int ranks = dist::World::get().size();
+  if (ranks > 1)
+    throw Error(command + " with one input does not run on " + std::to_string(ranks) +
+                " ranks: under mpirun it takes several inputs (a batch); docs/distributed.md");
+}
+
+}  // namespace
+
 bool run_as_batch(const BatchCli& b, CommonOptions& o, BatchKind kind, const std::string& dir,
                   const RenderCli* render, const std::string& format) {
   if (kind == BatchKind::step) throw Error("internal: a step batch without its BatchStep");
@@ -318,7 +333,10 @@ bool run_as_batch(const BatchCli& b, CommonOptions& o, BatchKind kind, const std
 bool run_as_batch(const BatchCli& b, CommonOptions& o, const BatchStep& step,
                   const std::string& dir, const std::function<void()>& before) {
   const std::optional<std::vector<float>> isos = batch_isovalues(b, o);
-  if (!isos) return false;
+  if (!isos) {
+    if (step.command == "lines") refuse_one_input_on_ranks(step.command);  // run, features: rank 0 finishes
+    return false;
+  }
   if (before) before();
   BatchRequest rq;
   rq.kind = BatchKind::step;
@@ -368,6 +386,31 @@ void make_output_folder(const std::string& dir, const std::string& what) {
 
 std::string iso_suffix(float iso) { return "_iso" + format_number(iso); }
 
+namespace {
+
+// Every rank's batch entries at rank 0, in input order (a sweep's isovalues in theirs), each
+// tagged with the rank that made it when there are several; an empty list on the other ranks.
+nlohmann::json gather_entries(const dist::World& world, const nlohmann::json& entries) {
+  const std::string text = entries.dump();
+  const std::vector<std::vector<char>> all = world.gather(std::vector<char>(text.begin(), text.end()));
+  nlohmann::json out = nlohmann::json::array();
+  if (world.rank() != 0) return out;
+  std::vector<std::pair<std::size_t, nlohmann::json>> tagged;
+  for (std::size_t r = 0; r < all.size(); ++r)
+    for (nlohmann::json e : nlohmann::json::parse(all[r].begin(), all[r].end())) {
+      const std::size_t index = e.value("input_index", std::size_t(0));
+      e.erase("input_index");
+      if (world.size() > 1) e["rank"] = r;
+      tagged.emplace_back(index, std::move(e));
+    }
+  std::stable_sort(tagged.begin(), tagged.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (auto& t : tagged) out.push_back(std::move(t.second));
+  return out;
+}
+
+}  // namespace
+
 void run_batch(const BatchRequest& rq, const CommonOptions& o) {
   const auto t_start = std::chrono::steady_clock::now();
   if (rq.kind == BatchKind::curvature || rq.kind == BatchKind::run)
@@ -381,7 +424,13 @@ void run_batch(const BatchRequest& rq, const CommonOptions& o) {
   if (!inputs.empty() &&
       std::all_of(inputs.begin(), inputs.end(), [](const Input& in) { return !in.error.empty(); }))
     throw Error(inputs.front().error);
-  require_writable_folder(rq.dir);  // before any work
+  // Under mpirun every rank runs this: the inputs go to the ranks as they become free (a shared
+  // counter), and rank 0 writes summary.json from every rank's entries.
+  const dist::World& world = dist::World::get();
+  const bool ranks = world.size() > 1;
+  dist::together(world, [&] {
+    if (world.rank() == 0) require_writable_folder(rq.dir);  // before any work
+  });
   const bool sweep = rq.isovalues.size() > 1;
   if (!reference_device(o)) device_for(o);  // no OpenCL: one error before any input
 
@@ -408,11 +457,18 @@ void run_batch(const BatchRequest& rq, const CommonOptions& o) {
   std::optional<SharedPictures> shared;
   if (rq.kind == BatchKind::run) shared.emplace(*rq.render);
   SharedPictures* pictures = shared && shared->active() ? &*shared : nullptr;
+  if (pictures && ranks)
+    throw Error("--range shared needs every picture on one process; under mpirun give each picture its own "
+                "range (--range auto) or run the batch without mpirun");
 
   const bool overlap = rq.jobs >= 2;
+  // The inputs in the order the counter hands them out: 0, 1, 2, ... on one process.
+  dist::SharedCounter tickets(world);
+  auto take = [&] { return std::size_t(tickets.draw()); };
   std::future<Loaded> next;
-  if (overlap && !inputs.empty())
-    next = std::async(std::launch::async, load_input, inputs[0], rq.kind, rq.step, o, sweep);
+  std::size_t first = take();
+  if (overlap && first < inputs.size())
+    next = std::async(std::launch::async, load_input, inputs[first], rq.kind, rq.step, o, sweep);
   // At most one write in flight; its entry is appended when it is collected, in order.
   std::future<void> writing;
   std::unique_ptr<Pending> in_flight;
@@ -427,11 +483,12 @@ void run_batch(const BatchRequest& rq, const CommonOptions& o) {
     in_flight.reset();
   };
 
-  for (std::size_t i = 0; i < inputs.size(); ++i) {
+  for (std::size_t i = first, following = 0; i < inputs.size(); i = following) {
     const Input& in = inputs[i];
     Loaded loaded = overlap ? next.get() : load_input(in, rq.kind, rq.step, o, sweep);
-    if (overlap && i + 1 < inputs.size())
-      next = std::async(std::launch::async, load_input, inputs[i + 1], rq.kind, rq.step, o, sweep);
+    following = take();
+    if (overlap && following < inputs.size())
+      next = std::async(std::launch::async, load_input, inputs[following], rq.kind, rq.step, o, sweep);
     const fs::path folder = fs::path(rq.dir) / folders[i];
     const std::string stem = stem_of(in.path);
     std::vector<std::optional<float>> isos;
@@ -440,7 +497,7 @@ void run_batch(const BatchRequest& rq, const CommonOptions& o) {
       if (!loaded.mesh_file) isos.push_back(v);
     if (!loaded.error.empty()) {
       for (const auto& iso : isos) {
-        nlohmann::json entry = {{"input", in.path}};
+        nlohmann::json entry = {{"input", in.path}, {"input_index", i}};
         if (iso) entry["isovalue"] = *iso;
         fail(entry, loaded.error);
       }
@@ -448,7 +505,7 @@ void run_batch(const BatchRequest& rq, const CommonOptions& o) {
     }
     std::unique_ptr<mc::Mesher> mesher;  // one block index per volume, shared by its isovalues
     for (const auto& iso : isos) {
-      nlohmann::json entry = {{"input", in.path}};
+      nlohmann::json entry = {{"input", in.path}, {"input_index", i}};
       if (iso) entry["isovalue"] = *iso;
       auto p = std::make_unique<Pending>();
       p->input = in.path;
@@ -531,11 +588,15 @@ void run_batch(const BatchRequest& rq, const CommonOptions& o) {
       ++failed;
     }
   }
-  // Folders of inputs that wrote nothing are removed again (only when empty).
-  for (const std::string& f : folders) {
-    std::error_code ec;
-    fs::remove(fs::path(rq.dir) / f, ec);
-  }
+  entries = gather_entries(world, entries);  // every rank's, in input order (rank 0; empty elsewhere)
+  const std::vector<std::int64_t> counts = world.sum(std::vector<std::int64_t>{std::int64_t(failed), std::int64_t(entries.size())});
+  failed = std::size_t(counts[0]);
+  const std::size_t total_entries = std::size_t(counts[1]);
+  if (world.rank() == 0)  // folders of inputs that wrote nothing are removed again (only when empty)
+    for (const std::string& f : folders) {
+      std::error_code ec;
+      fs::remove(fs::path(rq.dir) / f, ec);
+    }
 
   const double total_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_start).count();
@@ -543,7 +604,7 @@ void run_batch(const BatchRequest& rq, const CommonOptions& o) {
       {"command", command_name(rq.kind, rq.step)},
       {"inputs", inputs.size()},
       {"entries", entries},
-      {"ok", entries.size() - failed},
+      {"ok", total_entries - failed},
       {"failed", failed},
       {"compression", io::to_string(o.compress)},
       {"jobs", rq.jobs},
@@ -551,17 +612,20 @@ void run_batch(const BatchRequest& rq, const CommonOptions& o) {
       {"programs", program_report()},
       {"wall_ms", std::round(total_ms * 1000) / 1000}};
   if (!picture_report.is_null()) summary["pictures"] = picture_report;
+  if (ranks) summary["ranks"] = world.size();
   const std::string summary_path = (fs::path(rq.dir) / "summary.json").string();
-  write_text_file(summary_path, summary.dump(2) + "\n");
-  if (o.json) {
+  dist::together(world, [&] {
+    if (world.rank() == 0) write_text_file(summary_path, summary.dump(2) + "\n");
+  });
+  if (world.rank() == 0 && o.json) {
     std::cout << summary.dump(2) << "\n";
-  } else if (!o.quiet) {
-    std::cout << entries.size() - failed << " of " << entries.size() << " written under " << rq.dir
+  } else if (world.rank() == 0 && !o.quiet) {
+    std::cout << total_entries - failed << " of " << total_entries << " written under " << rq.dir
               << " (" << inputs.size() << " input" << (inputs.size() == 1 ? "" : "s") << ", "
               << format_number(std::round(total_ms)) << " ms); summary: " << summary_path << "\n";
   }
-  if (failed > 0)
-    throw Error(std::to_string(failed) + " of " + std::to_string(entries.size()) +
+  if (failed > 0)  // on every rank (rank 0 prints it), so that every rank exits with status 1
+    throw Error(std::to_string(failed) + " of " + std::to_string(total_entries) +
                 " entries failed (listed above and in " + summary_path + ")");
 }
 

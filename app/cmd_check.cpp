@@ -5,6 +5,8 @@
 #include <vector>
 
 #include "app/commands.h"
+#include "app/distributed.h"
+#include "dist/world.h"
 #include "app/pipeline.h"
 #include "core/mesh_measures.h"
 #include "mc/mesh_check.h"
@@ -51,7 +53,10 @@ void register_check(CLI::App& app) {
   add_common_options(*cmd, o);
   cmd->callback([] {
     StageTimer timer;
-    Surface s = load_surface(in, o, timer);
+    // Under mpirun: the ranks extract the surface together, rank 0 checks it (app/distributed.h).
+    Surface s = finishes_on_rank_zero() ? gathered_surface(in, o, timer, DistributedWork::extract)
+                                        : load_surface(in, o, timer);
+    if (dist::World::get().rank() != 0) return;
     timer.start("check");
     const mc::MeshCheck c = mc::check_mesh(s.mesh);
     const double edge = mean_edge_length(s.mesh);

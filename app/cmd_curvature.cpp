@@ -4,6 +4,7 @@
 #include "core/atomic_file.h"
 #include "app/batch.h"
 #include "app/commands.h"
+#include "app/distributed.h"
 #include "app/label_surfaces.h"
 #include "core/error.h"
 #include "app/pipeline.h"
@@ -55,10 +56,11 @@ void register_curvature(CLI::App& app) {
   static BatchCli b;
   static SeriesCli series;
   static std::string out;
+  static bool gather = false;
   add_batch_options(*cmd, b, "VOLUME_OR_MESH", "Volume or mesh file", {"vtp", "ply"});
   cmd->add_option("-o,--output", out,
                   "Mesh file to write (.vtp or .ply: the formats that carry the curvature arrays), "
-                  "or the folder of a batch")
+                  "or the folder of a batch; under mpirun a .pvtp, one piece per rank (docs/distributed.md)")
       ->required();
   add_common_options(*cmd, o, false);
   add_curvature_options(*cmd, o, true);
@@ -66,6 +68,7 @@ void register_curvature(CLI::App& app) {
   add_compress_option(*cmd, o);
   add_label_options(*cmd, o, true);
   add_series_options(*cmd, series);
+  add_distributed_options(*cmd, gather);
   cmd->callback([] {
     if (series.enabled) {
       require_series_cli(b, o);
@@ -76,6 +79,10 @@ void register_curvature(CLI::App& app) {
       return;
     }
     if (run_as_batch(b, o, BatchKind::curvature, out)) return;
+    if (runs_distributed(out, gather)) {
+      print_distributed(run_distributed(b.inputs.front(), out, gather, o, DistributedWork::curvature), o);
+      return;
+    }
     const nlohmann::json r = curvature_one(b.inputs.front(), out, o);
     if (o.json) {
       std::cout << r.dump(2) << "\n";

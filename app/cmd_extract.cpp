@@ -4,6 +4,7 @@
 #include "core/atomic_file.h"
 #include "app/batch.h"
 #include "app/commands.h"
+#include "app/distributed.h"
 #include "app/label_surfaces.h"
 #include "core/error.h"
 #include "app/pipeline.h"
@@ -48,13 +49,15 @@ void register_extract(CLI::App& app) {
   static BatchCli b;
   static SeriesCli series;
   static std::string out;
+  static bool gather = false;
   add_batch_options(*cmd, b, "VOLUME", "Volume file", {"vtp", "ply", "obj", "stl"});
   cmd->add_option("-o,--output", out, std::string("Mesh file to write (") + io::mesh_extensions() +
-                                          "), or the folder of a batch")->required();
+                                          "), or the folder of a batch; under mpirun a .pvtp, one piece per rank (docs/distributed.md)")->required();
   add_common_options(*cmd, o, false);
   add_compress_option(*cmd, o);
   add_label_options(*cmd, o, true);
   add_series_options(*cmd, series);
+  add_distributed_options(*cmd, gather);
   cmd->callback([] {
     if (series.enabled) {
       require_series_cli(b, o);
@@ -65,6 +68,10 @@ void register_extract(CLI::App& app) {
       return;
     }
     if (run_as_batch(b, o, BatchKind::extract, out)) return;
+    if (runs_distributed(out, gather)) {
+      print_distributed(run_distributed(b.inputs.front(), out, gather, o, DistributedWork::extract), o);
+      return;
+    }
     const std::string& in = b.inputs.front();
     const nlohmann::json r = extract_one(in, out, o);
     if (o.json) {

@@ -8,6 +8,8 @@
 #include "core/atomic_file.h"
 #include "app/batch.h"
 #include "app/commands.h"
+#include "app/distributed.h"
+#include "dist/world.h"
 #include "app/pipeline.h"
 #include "app/series.h"
 #include "core/error.h"
@@ -167,7 +169,10 @@ void register_features(CLI::App &app) {
     require_writable_file(out);  // before any work
     const features::Options fo = feature_selection(c);
     StageTimer timer;
-    Surface s = load_surface(in, o, timer);
+    // Under mpirun: the ranks extract the surface together, rank 0 computes the features.
+    Surface s = finishes_on_rank_zero() ? gathered_surface(in, o, timer, DistributedWork::extract)
+                                        : load_surface(in, o, timer);
+    if (dist::World::get().rank() != 0) return nlohmann::json::object();
     nlohmann::json r = compute_features(s, in, o, c, fo, timer);
     timer.start("write");
     write_features(out, s, in);

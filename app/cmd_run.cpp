@@ -5,6 +5,8 @@
 
 #include "app/batch.h"
 #include "app/commands.h"
+#include "app/distributed.h"
+#include "dist/world.h"
 #include "app/label_surfaces.h"
 #include "app/line_options_cli.h"
 #include "app/pipeline.h"
@@ -34,8 +36,12 @@ nlohmann::json run_one(const std::string& in, const std::string& dir, const Comm
   namespace fs = std::filesystem;
   StageTimer timer;
   // Fails (no surface, ...) before any output folder is made.
-  Surface s = o.labelled() ? load_label_surfaces(in, o, timer, true) : load_surface(in, o, timer);
-  if (!o.labelled())
+  // Under mpirun: the ranks extract the surface and its curvature together, rank 0 goes on alone.
+  Surface s = o.labelled()              ? load_label_surfaces(in, o, timer, true)
+              : finishes_on_rank_zero() ? gathered_surface(in, o, timer, DistributedWork::curvature)
+                                        : load_surface(in, o, timer);
+  if (dist::World::get().rank() != 0) return nlohmann::json::object();
+  if (!o.labelled() && !s.field)
     s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer,
                                  &s.normals, &s.estimator);
   std::optional<lines::Polylines> poly;  // drawn on the PNG and written as <name>-lines.vtp
@@ -201,7 +207,8 @@ void register_run(CLI::App& app) {
     const std::string& in = b.inputs.front();
     require_folder_name(dir, "run");  // before any work
     const nlohmann::json r = run_one(in, dir, o, ro, lo, format);
-    if (o.json) {
+    if (dist::World::get().rank() != 0) {
+    } else if (o.json) {
       std::cout << r.dump(2) << "\n";
     } else if (!o.quiet) {
       if (r.contains("labels"))

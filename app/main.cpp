@@ -9,6 +9,7 @@
 #include "app/commands.h"
 #include "core/error.h"
 #include "core/huge_pages.h"
+#include "dist/world.h"
 #include "io/vtk_errors.h"
 
 namespace {
@@ -18,7 +19,30 @@ constexpr int kFailure = 1;
 
 }  // namespace
 
+namespace {
+
+// Under mpirun every rank runs main(): only rank 0 prints errors (they agree on them, dist/world.h).
+bool prints_errors() { return isocurv::dist::World::get().rank() == 0; }
+
+int run(int argc, char** argv);
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  try {
+    isocurv::dist::World::init(argc, argv);
+  } catch (const isocurv::Error& e) {
+    std::fprintf(stderr, "isocurv: %s\n", isocurv::one_line(e.what()).c_str());
+    return kFailure;
+  }
+  const int status = run(argc, argv);
+  isocurv::dist::World::finalize();
+  return status;
+}
+
+namespace {
+
+int run(int argc, char** argv) {
   isocurv::retain_freed_memory();  // the explorer re-extracts on every slider move
   isocurv::io::silence_vtk_output();  // VTK's messages reach the user only as our one-line errors
   // Named, so that usage lines say "isocurv", not the path it was started by (build/app/isocurv).
@@ -37,11 +61,27 @@ int main(int argc, char** argv) {
   }
   // Name a mistyped command (CLI11 would only say that a subcommand is required).
   const auto known = app.get_subcommands([&](const CLI::App* c) { return c->check_name(argv[1]); });
+  // Under mpirun with several ranks only the commands that share out their work run: extract and
+  // curvature (one volume divided, or a batch), run and features (one volume's extraction
+  // divided, finished on rank 0; or a batch), check (likewise) and lines (batches); any other
+  // would run once per rank, every rank writing the same files.
+  const isocurv::dist::World& world = isocurv::dist::World::get();
+  if (world.size() > 1 && !known.empty()) {
+    const std::string name = known.front()->get_name();
+    if (name != "extract" && name != "curvature" && name != "run" && name != "features" && name != "lines" &&
+        name != "check") {
+      if (prints_errors())
+        std::fprintf(stderr, "isocurv: %s does not run under mpirun with several ranks (docs/distributed.md)\n",
+                     name.c_str());
+      return kFailure;
+    }
+  }
   if (argv[1][0] != '-' && known.empty()) {
     std::string names;  // every registered command, so the list cannot fall behind
     for (const CLI::App* c : app.get_subcommands([](const CLI::App*) { return true; }))
       names += (names.empty() ? "" : " ") + c->get_name();
-    std::fprintf(stderr, "isocurv: unknown command '%s' (commands: %s; see isocurv --help)\n", argv[1],
+    if (prints_errors())
+      std::fprintf(stderr, "isocurv: unknown command '%s' (commands: %s; see isocurv --help)\n", argv[1],
                  names.c_str());
     return kUsageError;
   }
@@ -55,15 +95,18 @@ int main(int argc, char** argv) {
     return app.exit(e);  // --help, --help-all, --version: printed on stdout, status 0
   } catch (const CLI::ParseError& e) {
     const std::string where = known.empty() ? "isocurv" : "isocurv " + known.front()->get_name();
-    std::fprintf(stderr, "isocurv: %s (see %s --help)\n", isocurv::one_line(e.what()).c_str(),
-                 where.c_str());
+    if (prints_errors())
+      std::fprintf(stderr, "isocurv: %s (see %s --help)\n", isocurv::one_line(e.what()).c_str(),
+                   where.c_str());
     return kUsageError;
   } catch (const isocurv::Error& e) {
-    std::fprintf(stderr, "isocurv: %s\n", isocurv::one_line(e.what()).c_str());
+    if (prints_errors()) std::fprintf(stderr, "isocurv: %s\n", isocurv::one_line(e.what()).c_str());
     return kFailure;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "isocurv: error: %s\n", isocurv::one_line(e.what()).c_str());
+    if (prints_errors()) std::fprintf(stderr, "isocurv: error: %s\n", isocurv::one_line(e.what()).c_str());
     return kFailure;
   }
   return isocurv::app::command_exit_status();
 }
+
+}  // namespace

@@ -1,4 +1,5 @@
 #include "app/series.h"
+#include "dist/world.h"
 
 #include "app/batch.h"
 
@@ -114,6 +115,8 @@ std::vector<SeriesFrame> series_frames(const std::vector<std::string>& inputs,
 
 void run_series(const std::vector<std::string>& inputs, const SeriesCli& cli,
                 const SeriesLayout& layout, CommonOptions o, const FrameFunction& frame_fn) {
+  if (dist::World::get().size() > 1)
+    throw Error("a time series does not run under mpirun with several ranks; run it without mpirun");
   const auto t_start = std::chrono::steady_clock::now();
   require_folder_name(layout.dir, "a time series");
   const std::vector<SeriesFrame> frames = series_frames(inputs, o.volume.grid, cli.time_step);

@@ -27,7 +27,7 @@ isocurv_require(Eigen3_FOUND "Eigen" libeigen3-dev)
 
 find_package(VTK QUIET COMPONENTS
   CommonCore CommonDataModel CommonExecutionModel FiltersCore FiltersGeneral FiltersSources
-  IOXML IOLegacy IOImage IOPLY IOGeometry ImagingCore
+  IOXML IOParallelXML IOLegacy IOImage IOPLY IOGeometry ImagingCore
   RenderingCore RenderingOpenGL2 RenderingAnnotation InteractionStyle InteractionWidgets IOExport)
 isocurv_require(VTK_FOUND "VTK 9" libvtk9-dev)
 

@@ -27,4 +27,18 @@ bool field_is_empty(const curvature::CurvatureField& field) {
   return empty;
 }
 
+curvature::CurvatureField select_vertices(const curvature::CurvatureField& field,
+                                          const std::vector<std::uint32_t>& index) {
+  curvature::CurvatureField out = field;
+  auto pick = [&](auto& v) {
+    if (v.empty()) return;
+    const auto src = v;
+    v.resize(index.size());
+    for (std::size_t i = 0; i < index.size(); ++i) v[i] = src[index[i]];
+  };
+  for_each_array(out, [&](const char*, auto& v) { pick(v); });
+  pick(out.surface_points);
+  return out;
+}
+
 }  // namespace isocurv::io

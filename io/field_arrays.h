@@ -53,4 +53,10 @@ bool is_curvature_array(const std::string& name);
 /// True when no array of the field holds any entries.
 bool field_is_empty(const curvature::CurvatureField& field);
 
+/// The field at the vertices `index` (each below the field's vertex count): every non-empty array,
+/// surface_points included, holds `index.size()` entries, entry i that of vertex index[i]; empty
+/// arrays stay empty, metadata is copied.
+curvature::CurvatureField select_vertices(const curvature::CurvatureField& field,
+                                          const std::vector<std::uint32_t>& index);
+
 }  // namespace isocurv::io

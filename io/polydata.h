@@ -21,6 +21,11 @@ vtkSmartPointer<vtkPolyData> to_polydata(const Mesh& mesh,
                                          const Metadata* context = nullptr,
                                          const CellArrays* cells = nullptr);
 
+/// Writes `poly` as a .vtp at `path` (binary appended, `compression`, 64-bit headers), not
+/// atomically: write_mesh's .vtp writer, for callers that add arrays of their own (dist/ pieces).
+/// @throw std::runtime_error with VTK's message on failure.
+void write_polydata(const std::string& path, vtkPolyData* poly, const Compression& compression);
+
 /// The mesh and named arrays of `poly` (the inverse of to_polydata). Polygons are fan-triangulated,
 /// triangle strips split, vertices and lines ignored; float data is copied bit-for-bit, other types
 /// converted. "Normals" falls back to the active point normals. `source` names the file in errors:

@@ -27,9 +27,17 @@ namespace isocurv::io::detail {
 
 void write_vtp(const std::string& path, const Mesh& mesh, const curvature::CurvatureField* field,
                const Compression& compression, const Metadata* context, const CellArrays* cells) {
+  write_polydata(path, to_polydata(mesh, field, context, cells), compression);
+}
+
+}  // namespace isocurv::io::detail
+
+namespace isocurv::io {
+
+void write_polydata(const std::string& path, vtkPolyData* poly, const Compression& compression) {
   vtkNew<vtkXMLPolyDataWriter> writer;
   VtkErrorCapture errors(writer);
-  writer->SetInputData(to_polydata(mesh, field, context, cells));
+  writer->SetInputData(poly);
   writer->SetFileName(path.c_str());
   writer->SetDataModeToAppended();
   writer->EncodeAppendedDataOff();  // raw binary, not base64
@@ -46,6 +54,10 @@ void write_vtp(const std::string& path, const Mesh& mesh, const curvature::Curva
     throw std::runtime_error(errors.failed() ? errors.message()
                                              : vtkErrorCode::GetStringFromErrorCode(writer->GetErrorCode()));
 }
+
+}  // namespace isocurv::io
+
+namespace isocurv::io::detail {
 
 namespace {
 

@@ -303,6 +303,10 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
   return mesh;
 }
 
+std::vector<openvdb::Coord> Mesher::surface_bricks(float isovalue, const Options& options) const {
+  return state_->index.candidates(make_frame(state_->volume, isovalue, options));
+}
+
 Mesh extract(const volume::Volume& v, float isovalue, Device& device, const Options& options, ExtractTimings* timings) {
   const auto t0 = Clock::now();
   Mesher mesher(v, device);

@@ -1,6 +1,7 @@
 #pragma once
 // mc::extract: a volume's isosurface as a fused, indexed triangle mesh, computed on the device.
 #include <memory>
+#include <vector>
 
 #include "core/cl_device.h"
 #include "core/mesh.h"
@@ -40,6 +41,10 @@ class Mesher {
   /// the object, no duplicate or unreferenced vertices. An isovalue outside the value range gives
   /// an empty mesh. Deterministic. `timings` (optional) receives the step times.
   Mesh extract(float isovalue, const Options& options = {}, ExtractTimings* timings = nullptr);
+  /// Index-space origins (multiples of 8) of the 8^3-cell bricks that may hold surface at
+  /// `isovalue` within the options' cells, in x, y, z order (z fastest): the work an extraction
+  /// will do, for balancing the pieces of a distributed one (dist/slabs.h). Host only; cheap.
+  std::vector<openvdb::Coord> surface_bricks(float isovalue, const Options& options = {}) const;
 
  private:
   struct State;

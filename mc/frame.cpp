@@ -36,6 +36,10 @@ Frame make_frame(const volume::Volume& v, float iso, const Options& options) {
     openvdb::Coord ext = f.cells.max() - f.key_origin;
     if (ext.x() > kMaxKeySpan || ext.y() > kMaxKeySpan || ext.z() > kMaxKeySpan)
       throw Error(v.path, "volume spans more than 2^20 voxels along an axis; cannot mesh it");
+    // A piece (Options::cells_min/max): fewer cells, the same keys.
+    const openvdb::CoordBBox piece(openvdb::Coord(options.cells_min[0], options.cells_min[1], options.cells_min[2]),
+                                   openvdb::Coord(options.cells_max[0], options.cells_max[1], options.cells_max[2]));
+    f.cells.intersect(piece);
   }
   const openvdb::math::Transform& xf = v.grid->transform();
   if (!xf.isLinear()) throw Error(v.path, "grid transform is not affine (frustum grids are not supported)");

@@ -21,7 +21,7 @@ struct Frame {
   /// between a domain voxel and one outside lies on the domain voxel (kMinEdgeFraction off it at
   /// most), so capped surfaces close on the volume's box.
   float clipped = -1e30f;
-  openvdb::Coord key_origin;  ///< edge keys count from here (cells.min() - 1)
+  openvdb::Coord key_origin;  ///< edge keys count from here (the whole volume's cells.min() - 1)
   std::array<float, 12> world;  ///< row-major 3x4 affine map: world = A * index + b
 
   /// Signed insideness of a raw voxel value at `ijk`: > 0 inside the object, <= 0 outside.

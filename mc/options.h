@@ -1,5 +1,7 @@
 #pragma once
 // Options of the marching-cubes mesher.
+#include <array>
+#include <climits>
 
 namespace isocurv::mc {
 
@@ -24,6 +26,14 @@ struct Options {
   /// vertices move out along their edges to this distance from the voxel instead. 0 turns
   /// snapping off; at most 0.5.
   float snap = kDefaultSnap;
+  /// Visit only the cells whose lower corner (index space) lies in [cells_min, cells_max] on every
+  /// axis, inclusive; the default visits every cell. For a piece of a distributed extraction
+  /// (dist/): edge keys still count from the whole volume's key origin, and vertices are placed
+  /// exactly as in the whole extraction, so pieces agree on the vertices they share. The cut
+  /// leaves the piece open there, and snapping near the cut sees only the piece's side: callers
+  /// keep a few cells of margin (dist::kExtractGhostCells) and drop what lies in it.
+  std::array<int, 3> cells_min{{INT_MIN, INT_MIN, INT_MIN}};
+  std::array<int, 3> cells_max{{INT_MAX, INT_MAX, INT_MAX}};
 };
 
 /// Vertices never sit closer than this fraction of a voxel edge to a voxel, so voxels exactly at

@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(build-essential cmake pkg-config zlib1g-dev libopenvdb-dev libboost-iostreams-dev libtbb-dev
           pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
           libeigen3-dev libvtk9-dev libgtest-dev libcli11-dev nlohmann-json3-dev xvfb xauth
-          pybind11-dev python3-dev python3-numpy)
+          pybind11-dev python3-dev python3-numpy openmpi-bin libopenmpi-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -63,17 +63,16 @@ inline std::string isocurv_exe() {
 /// A bundled dataset generated at build time (64^3 by default).
 inline std::string dataset(const std::string& name) { return build_dir() + "/datasets/" + name + ".vdb"; }
 
-/// Runs `isocurv args...` with DISPLAY unset and stdin from /dev/null, plus `env` ("NAME=VALUE"
-/// entries set in the child; "NAME=" sets it empty); kills its process group after timeout_s
-/// seconds.
-inline CliResult run_isocurv(const std::vector<std::string>& args, double timeout_s = 60,
+/// Runs `exe args...` (an absolute path: isocurv, or mpirun running it) with DISPLAY unset and
+/// stdin from /dev/null, plus `env` ("NAME=VALUE" entries set in the child; "NAME=" sets it
+/// empty); kills its process group after timeout_s seconds.
+inline CliResult run_program(const std::string& exe, const std::vector<std::string>& args, double timeout_s = 60,
                              const std::vector<std::string>& env = {}) {
   CliResult r;
-  r.command = "isocurv";
+  r.command = fs::path(exe).filename().string();
   for (const auto& a : args) r.command += " " + a;
-  const std::string exe = isocurv_exe();
   if (access(exe.c_str(), X_OK) != 0) {
-    r.err = "the isocurv executable is missing: " + exe + " (build the isocurv target)";
+    r.err = "the executable is missing: " + exe + " (build the isocurv target)";
     return r;
   }
   std::vector<char*> argv;
@@ -152,6 +151,12 @@ inline CliResult run_isocurv(const std::vector<std::string>& args, double timeou
     r.signal = WTERMSIG(status);
   }
   return r;
+}
+
+/// run_program on this build's isocurv.
+inline CliResult run_isocurv(const std::vector<std::string>& args, double timeout_s = 60,
+                             const std::vector<std::string>& env = {}) {
+  return run_program(isocurv_exe(), args, timeout_s, env);
 }
 
 /// A fresh, empty temporary folder per test, removed at the end when the test passed.

@@ -1,0 +1,97 @@
+#include "dist/piece.h"
+
+#include <algorithm>
+#include <climits>
+#include <numeric>
+
+#include "core/error.h"
+
+namespace isocurv::dist {
+namespace {
+
+constexpr std::uint32_t kNone = 0xffffffffu;
+
+std::uint32_t key_z(std::uint64_t key) { return std::uint32_t((key >> 2) & 0xfffffu); }
+
+}  // namespace
+
+Piece cut_piece(const Mesh& local, const Slabs& slabs, int rank) {
+  const std::size_t nv = local.positions.size(), nt = local.triangles.size();
+  if (local.edge_keys.size() != nv) throw Error("cut_piece: the local extraction has no edge keys");
+  const auto& keys = local.edge_keys;
+
+  // Owners: triangles by their lowest key z; vertices by the lowest owner around them.
+  std::vector<int> tri_owner(nt);
+  std::vector<int> vert_owner(nv, INT_MAX);
+  for (std::size_t t = 0; t < nt; ++t) {
+    const Tri& tri = local.triangles[t];
+    const std::uint32_t z = std::min({key_z(keys[tri[0]]), key_z(keys[tri[1]]), key_z(keys[tri[2]])});
+    tri_owner[t] = slabs.owner_of_cell(int(z) + slabs.key_origin_z);
+    for (std::uint32_t v : tri) vert_owner[v] = std::min(vert_owner[v], tri_owner[t]);
+  }
+  // The owned triangles' vertices, then the ghost ring: the other triangles using one of them.
+  std::vector<char> near(nv, 0);
+  for (std::size_t t = 0; t < nt; ++t)
+    if (tri_owner[t] == rank)
+      for (std::uint32_t v : local.triangles[t]) near[v] = 1;
+  std::vector<std::uint32_t> owned, ring;
+  for (std::size_t t = 0; t < nt; ++t) {
+    const Tri& tri = local.triangles[t];
+    if (tri_owner[t] == rank)
+      owned.push_back(std::uint32_t(t));
+    else if (near[tri[0]] || near[tri[1]] || near[tri[2]])
+      ring.push_back(std::uint32_t(t));
+  }
+  // Vertices in increasing global id, so that a piece's order does not depend on the local
+  // extraction's (which depends on how far the slab reaches).
+  std::vector<char> used(nv, 0);
+  for (const auto* list : {&owned, &ring})
+    for (std::uint32_t t : *list)
+      for (std::uint32_t v : local.triangles[t]) used[v] = 1;
+  Piece p;
+  p.rank = rank;
+  for (std::uint32_t v = 0; v < nv; ++v)
+    if (used[v]) p.local_vertex.push_back(v);
+  std::sort(p.local_vertex.begin(), p.local_vertex.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return keys[a] < keys[b]; });
+  std::vector<std::uint32_t> index(nv, kNone);
+  const std::size_t n = p.local_vertex.size();
+  p.mesh.positions.resize(n);
+  p.global_ids.resize(n);
+  p.point_ghost.resize(n);
+  p.vertex_owner.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t v = p.local_vertex[i];
+    index[v] = std::uint32_t(i);
+    p.mesh.positions[i] = local.positions[v];
+    p.global_ids[i] = std::int64_t(keys[v]);
+    p.vertex_owner[i] = vert_owner[v];
+    p.point_ghost[i] = vert_owner[v] == rank ? 0 : kDuplicate;
+  }
+  // Triangles renumbered, each list in the order of its (rotated to start at the lowest id)
+  // global-id triple: the same order on every rank count.
+  auto renumbered = [&](std::vector<std::uint32_t>& list) {
+    std::vector<std::pair<std::array<std::int64_t, 3>, std::uint32_t>> order;
+    order.reserve(list.size());
+    for (std::uint32_t t : list) {
+      Tri tri = local.triangles[t];
+      for (auto& v : tri) v = index[v];
+      const int k = tri[0] < tri[1] ? (tri[0] < tri[2] ? 0 : 2) : (tri[1] < tri[2] ? 1 : 2);
+      order.push_back({{p.global_ids[tri[k]], p.global_ids[tri[(k + 1) % 3]], p.global_ids[tri[(k + 2) % 3]]}, t});
+    }
+    std::sort(order.begin(), order.end());
+    for (const auto& [ids, t] : order) {
+      Tri tri = local.triangles[t];
+      for (auto& v : tri) v = index[v];
+      p.mesh.triangles.push_back(tri);
+      p.triangle_owner.push_back(tri_owner[t]);
+      p.cell_ghost.push_back(tri_owner[t] == rank ? 0 : kDuplicate);
+    }
+  };
+  renumbered(owned);
+  renumbered(ring);
+  p.owned_triangles = owned.size();
+  return p;
+}
+
+}  // namespace isocurv::dist

@@ -1,0 +1,41 @@
+#pragma once
+// How a distributed extraction divides the volume: slabs along index z (the slowest axis of raw,
+// NRRD, NIfTI and MetaImage files, so a slab is one contiguous run of the file), cut between
+// 8-cell brick layers and balanced by the bricks that carry surface, not by volume: a CT with
+// much air, or a sparse .vdb, gives each rank the same share of the real work.
+#include <cstdint>
+#include <vector>
+
+namespace isocurv::dist {
+
+/// Cells (index z) a piece extracts beyond its slab on each side, so that snapping (mc/snap_vertices.h)
+/// and the ring of ghost triangles see what the whole extraction sees there: a snapped vertex
+/// depends on the cells around its voxel and their neighbours' (two cells), the ghost ring on one
+/// more.
+constexpr int kExtractGhostCells = 4;
+
+/// Which rank owns which cells: slab r holds the cells whose index z lies in
+/// [cuts[r], cuts[r+1]); cuts[0] and cuts.back() are open (INT_MIN, INT_MAX).
+struct Slabs {
+  std::vector<int> cuts;     ///< ranks + 1 entries, non-decreasing
+  int key_origin_z = 0;      ///< the whole extraction's key origin (mc::Frame::key_origin.z)
+
+  int ranks() const { return int(cuts.size()) - 1; }
+  /// The rank whose slab holds cell z `z`.
+  int owner_of_cell(int z) const;
+  /// The rank owning the edge with key `key` (mc/edge_key.h): the slab of its lower end's z.
+  int owner_of_key(std::uint64_t key) const;
+  /// The cells rank `r` extracts: its slab grown by `margin` on both sides, as an inclusive
+  /// [first, last] pair of index z (clamped to the int range).
+  std::pair<int, int> extract_range(int r, int margin) const;
+};
+
+/// Splits the brick layers `first_layer_z`, +8, ... (index z of each layer's lowest cell) among
+/// `ranks` so that the surface bricks `layer_bricks[i]` of each layer add up as evenly as
+/// whole layers allow (each cut where the running total first reaches r/ranks of the whole).
+/// Ranks may get no layer when there are fewer layers with surface than ranks.
+/// Deterministic: every rank computes the same slabs from the same counts.
+Slabs balance_slabs(const std::vector<std::uint64_t>& layer_bricks, int first_layer_z, int ranks,
+                    int key_origin_z);
+
+}  // namespace isocurv::dist

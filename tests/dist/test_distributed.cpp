@@ -1,0 +1,446 @@
+// Distributed extraction and curvature (dist/, app/distributed.cpp): the slabs; the pieces cut
+// in-process, which must fit together into exactly the whole extraction; and `mpirun -np 1..4
+// isocurv extract|curvature` on analytic and real volumes, read back through VTK's
+// vtkXMLPPolyDataReader and matched by global id against the single process.
+#include <gtest/gtest.h>
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkIdTypeArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkXMLPPolyDataReader.h>
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <numeric>
+#include <set>
+
+#include "core/cl_device.h"
+#include "datasets/ct_like.h"
+#include "dist/piece.h"
+#include "io/mesh_file.h"
+#include "dist/slabs.h"
+#include "mc/bricks.h"
+#include "mc/extract.h"
+#include "mc/extract_reference.h"
+#include "mc/frame.h"
+#include "tests/app/cli.h"
+#include "volume/load.h"
+
+namespace isocurv {
+namespace {
+
+using test::CliResult;
+using test::TempDir;
+namespace fs = std::filesystem;
+using IdTri = std::array<std::int64_t, 3>;
+
+// A triangle as its vertices' ids, rotated to start at the lowest (its orientation kept).
+IdTri canonical(std::int64_t a, std::int64_t b, std::int64_t c) {
+  if (b < a && b < c) return {b, c, a};
+  if (c < a && c < b) return {c, a, b};
+  return {a, b, c};
+}
+
+bool same_bits(const Vec3f& a, const Vec3f& b) { return std::memcmp(a.data(), b.data(), sizeof a) == 0; }
+
+// The whole extraction, by edge key: positions and triangles.
+struct ById {
+  std::map<std::int64_t, Vec3f> points;
+  std::multiset<IdTri> triangles;
+};
+
+ById by_id(const Mesh& m) {
+  ById r;
+  for (std::size_t v = 0; v < m.positions.size(); ++v) r.points[std::int64_t(m.edge_keys[v])] = m.positions[v];
+  for (const Tri& t : m.triangles)
+    r.triangles.insert(canonical(std::int64_t(m.edge_keys[t[0]]), std::int64_t(m.edge_keys[t[1]]),
+                                 std::int64_t(m.edge_keys[t[2]])));
+  return r;
+}
+
+// Expects the owned parts of `pieces` to be `whole` exactly: each vertex owned once at the same
+// bits, each triangle owned once; ghost triangles are whole triangles too.
+void expect_fit(const ById& whole, const std::vector<ById>& owned, const std::vector<ById>& ghosts,
+                const std::string& what) {
+  std::map<std::int64_t, Vec3f> points;
+  std::multiset<IdTri> triangles;
+  std::size_t twice = 0, moved = 0;
+  for (const ById& p : owned) {
+    for (const auto& [id, x] : p.points) {
+      const auto [it, fresh] = points.emplace(id, x);
+      twice += !fresh;
+    }
+    triangles.insert(p.triangles.begin(), p.triangles.end());
+  }
+  EXPECT_EQ(twice, 0u) << what << ": vertices owned by two pieces";
+  ASSERT_EQ(points.size(), whole.points.size()) << what;
+  for (const auto& [id, x] : whole.points) {
+    const auto it = points.find(id);
+    if (it == points.end() || !same_bits(it->second, x)) ++moved;
+  }
+  EXPECT_EQ(moved, 0u) << what << ": vertices missing or not bit-identical";
+  EXPECT_EQ(triangles.size(), whole.triangles.size()) << what;
+  EXPECT_TRUE(triangles == whole.triangles) << what << ": triangles missing, doubled or different at the seams";
+  for (const ById& g : ghosts)
+    for (const IdTri& t : g.triangles) ASSERT_TRUE(whole.triangles.count(t)) << what << ": a ghost triangle the whole lacks";
+}
+
+std::vector<std::uint64_t> bricks_per_layer(const volume::Volume& v, float iso, const mc::Options& mo, int* first) {
+  const mc::Frame f = mc::make_frame(v, iso, mo);
+  *first = f.cells.min().z() & ~7;
+  std::vector<std::uint64_t> layers(std::size_t((f.cells.max().z() - *first) / 8 + 1), 0);
+  for (const openvdb::Coord& b : mc::BrickIndex(v).candidates(f)) ++layers[std::size_t((b.z() - *first) / 8)];
+  return layers;
+}
+
+TEST(Slabs, BalancedByTheBricksThatCarrySurface) {
+  const std::vector<std::uint64_t> layers = {0, 0, 10, 10, 0, 0, 10, 10, 0};
+  auto bricks_of = [&](const dist::Slabs& s, int r) {
+    std::uint64_t n = 0;
+    for (std::size_t i = 0; i < layers.size(); ++i) n += s.owner_of_cell(16 + 8 * int(i)) == r ? layers[i] : 0;
+    return n;
+  };
+  const dist::Slabs two = dist::balance_slabs(layers, 16, 2, 15);
+  EXPECT_EQ(bricks_of(two, 0), 20u);
+  EXPECT_EQ(bricks_of(two, 1), 20u);
+  const dist::Slabs four = dist::balance_slabs(layers, 16, 4, 15);
+  for (int r = 0; r < 4; ++r) EXPECT_EQ(bricks_of(four, r), 10u) << r;
+  // Cuts between brick layers, ordered; each cell in exactly one slab, the open ends included.
+  for (int r = 1; r < 4; ++r) {
+    EXPECT_EQ((four.cuts[r] - 16) % 8, 0);
+    EXPECT_LE(four.cuts[r - 1], four.cuts[r]);
+  }
+  EXPECT_EQ(four.owner_of_cell(INT_MIN), 0);
+  EXPECT_EQ(four.owner_of_cell(INT_MAX - 1), 3);
+  // A key's owner is its lower end's cell: key z counts from the key origin.
+  EXPECT_EQ(four.owner_of_key(std::uint64_t(four.cuts[2] - 15) << 2), 2);
+  EXPECT_EQ(four.owner_of_key(std::uint64_t(four.cuts[2] - 16) << 2), 1);
+  // More ranks than layers with surface: every layer still has one owner, some slabs stay empty.
+  const dist::Slabs many = dist::balance_slabs({5, 5, 5}, 0, 8, -1);
+  std::set<int> owners;
+  for (int z = 0; z < 24; ++z) owners.insert(many.owner_of_cell(z));
+  EXPECT_EQ(owners.size(), 3u);
+  // No surface at all: one slab holds everything.
+  const dist::Slabs none = dist::balance_slabs({0, 0, 0}, 0, 3, -1);
+  EXPECT_EQ(none.owner_of_cell(0), none.owner_of_cell(23));
+  // The cells a rank extracts: its slab and the margin, clamped at the open ends.
+  const auto [lo, hi] = four.extract_range(1, 4);
+  EXPECT_EQ(lo, four.cuts[1] - 4);
+  EXPECT_EQ(hi, four.cuts[2] + 3);
+  EXPECT_EQ(four.extract_range(0, 4).first, INT_MIN);
+  EXPECT_EQ(four.extract_range(3, 4).second, INT_MAX);
+}
+
+// The pieces of 1..4 ranks, each cut from its own margin-limited extraction, are the whole
+// extraction: on CT-like volumes (8-bit, voxels at the isovalue: snapping merges vertices at the
+// seams), a thick-slice one, and on the device's mesher as well as the reference.
+TEST(Pieces, FitTogetherIntoTheWholeExtraction) {
+  for (const std::string name : {"torus_u8", "ellipsoid_u16_thick", "sphere_binary"}) {
+    const datasets::CtCase c = datasets::ct_like_case(name, true);
+    for (const bool device : {false, true}) {
+      mc::Options mo;
+      mo.keep_edge_keys = true;
+      auto extract = [&](const mc::Options& o) {
+        return device ? mc::extract(c.volume, c.iso, Device::default_device(), o)
+                      : mc::extract_reference(c.volume, c.iso, o);
+      };
+      const Mesh whole_mesh = extract(mo);
+      ASSERT_GT(whole_mesh.triangles.size(), 1000u) << name;
+      const ById whole = by_id(whole_mesh);
+      int first = 0;
+      const std::vector<std::uint64_t> layers = bricks_per_layer(c.volume, c.iso, mo, &first);
+      const int key_z = mc::make_frame(c.volume, c.iso, mo).key_origin.z();
+      for (int n = 1; n <= 4; ++n) {
+        const dist::Slabs slabs = dist::balance_slabs(layers, first, n, key_z);
+        std::vector<ById> owned(n), ghosts(n);
+        for (int r = 0; r < n; ++r) {
+          mc::Options local = mo;
+          std::tie(local.cells_min[2], local.cells_max[2]) = slabs.extract_range(r, dist::kExtractGhostCells);
+          const dist::Piece p = dist::cut_piece(extract(local), slabs, r);
+          ASSERT_TRUE(std::is_sorted(p.global_ids.begin(), p.global_ids.end()));
+          for (std::size_t v = 0; v < p.global_ids.size(); ++v) {
+            if (!p.point_ghost[v]) owned[r].points[p.global_ids[v]] = p.mesh.positions[v];
+          }
+          for (std::size_t t = 0; t < p.mesh.triangles.size(); ++t) {
+            const Tri& tri = p.mesh.triangles[t];
+            const IdTri id = canonical(p.global_ids[tri[0]], p.global_ids[tri[1]], p.global_ids[tri[2]]);
+            EXPECT_EQ(p.cell_ghost[t] == 0, t < p.owned_triangles);
+            (p.cell_ghost[t] ? ghosts[r] : owned[r]).triangles.insert(id);
+          }
+        }
+        expect_fit(whole, owned, ghosts, name + (device ? " device" : " reference") + " at " + std::to_string(n) + " ranks");
+      }
+    }
+  }
+}
+
+// ---- mpirun ----
+
+const char* kMpirun = "/usr/bin/mpirun";
+// OpenMPI refuses root (CI runs as root) unless told, and needs --oversubscribe for more ranks
+// than this machine's cores.
+const std::vector<std::string> kMpiEnv = {"OMPI_ALLOW_RUN_AS_ROOT=1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1",
+                                          "OMPI_MCA_rmaps_base_oversubscribe=1"};
+
+CliResult mpirun(int ranks, std::vector<std::string> args) {
+  // -q: mpirun's own notices (a rank exited non-zero, ...) stay out of stderr.
+  std::vector<std::string> all = {"-q", "-np", std::to_string(ranks), test::isocurv_exe()};
+  all.insert(all.end(), args.begin(), args.end());
+  return test::run_program(kMpirun, all, 240, kMpiEnv);
+}
+
+#define REQUIRE_MPIRUN()                                                             \
+  if (access(kMpirun, X_OK) != 0) GTEST_SKIP() << "no mpirun (openmpi-bin) on this machine"
+
+// A .pvtp read back through VTK: every piece's points and triangles with their arrays.
+struct ReadBack {
+  ById owned, ghost;
+  std::map<std::int64_t, std::map<std::string, float>> values;  // owned vertices' scalar arrays
+  std::size_t pieces = 0;
+};
+
+ReadBack read_pvtp(const std::string& path, const std::vector<std::string>& arrays = {}) {
+  ReadBack r;
+  vtkNew<vtkXMLPPolyDataReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->UpdatePiece(0, 1, 1);  // the whole surface, ghost ring included (else VTK drops it)
+  r.pieces = std::size_t(reader->GetNumberOfPieces());
+  vtkPolyData* poly = reader->GetOutput();
+  EXPECT_TRUE(poly) << path;
+  if (!poly) return r;
+  auto* ids = vtkIdTypeArray::SafeDownCast(poly->GetPointData()->GetArray("vtkGlobalPointIds"));
+  vtkDataArray* point_ghost = poly->GetPointData()->GetArray("vtkGhostType");
+  vtkDataArray* cell_ghost = poly->GetCellData()->GetArray("vtkGhostType");
+  EXPECT_TRUE(ids && point_ghost && cell_ghost)
+      << path << ": global ids or ghost arrays missing (" << poly->GetPointData()->GetNumberOfArrays()
+      << " point arrays, " << poly->GetNumberOfPoints() << " points)";
+  if (!ids || !point_ghost || !cell_ghost) return r;
+  EXPECT_EQ(poly->GetPointData()->GetGlobalIds(), ids) << "vtkGlobalPointIds is not the global ids attribute";
+  std::multiset<std::int64_t> owned_ids;
+  for (vtkIdType i = 0; i < poly->GetNumberOfPoints(); ++i) {
+    if (point_ghost->GetTuple1(i) != 0) continue;
+    double x[3];
+    poly->GetPoint(i, x);
+    const std::int64_t id = ids->GetValue(i);
+    owned_ids.insert(id);
+    r.owned.points[id] = {float(x[0]), float(x[1]), float(x[2])};
+    for (const std::string& a : arrays)
+      if (vtkDataArray* d = poly->GetPointData()->GetArray(a.c_str())) r.values[id][a] = float(d->GetTuple1(i));
+  }
+  EXPECT_EQ(owned_ids.size(), r.owned.points.size()) << path << ": a vertex owned by two pieces";
+  vtkCellArray* polys = poly->GetPolys();
+  polys->InitTraversal();
+  vtkIdType n = 0;
+  const vtkIdType* p = nullptr;
+  for (vtkIdType c = 0; polys->GetNextCell(n, p); ++c) {
+    EXPECT_EQ(n, 3);
+    const IdTri t = canonical(ids->GetValue(p[0]), ids->GetValue(p[1]), ids->GetValue(p[2]));
+    (cell_ghost->GetTuple1(c) != 0 ? r.ghost : r.owned).triangles.insert(t);
+  }
+  return r;
+}
+
+// The single process's surface of `path`, by edge key (the device mesher, as the CLI runs it).
+ById single_process(const std::string& path, float iso) {
+  const volume::Volume v = volume::load(path);
+  mc::Options mo;
+  mo.keep_edge_keys = true;
+  return by_id(mc::extract(v, iso, Device::default_device(), mo));
+}
+
+void expect_distributed_extract(const std::string& volume, const std::string& tag) {
+  TempDir dir(tag);
+  ById whole;
+  for (int n = 1; n <= 4; ++n) {
+    const std::string out = (dir.path() / ("p" + std::to_string(n) + ".pvtp")).string();
+    const CliResult r = mpirun(n, {"extract", volume, "-o", out, "--json"});
+    ASSERT_TRUE(r.ok()) << r.describe();
+    const nlohmann::json j = test::parse_json(r.out, "extract --json");
+    if (n == 1) whole = single_process(volume, j["isovalue"].get<float>());
+    EXPECT_EQ(j["ranks"].size(), std::size_t(n));
+    const ReadBack back = read_pvtp(out);
+    EXPECT_EQ(back.pieces, std::size_t(n));
+    expect_fit(whole, {back.owned}, {back.ghost}, tag + " at " + std::to_string(n) + " ranks");
+    // The totals count each vertex, edge and triangle once.
+    EXPECT_EQ(j["vertices"].get<std::size_t>(), whole.points.size());
+    EXPECT_EQ(j["triangles"].get<std::size_t>(), whole.triangles.size());
+    if (n == 1) continue;
+    const CliResult one = mpirun(1, {"extract", volume, "-o", (dir.path() / "again.pvtp").string(), "--json"});
+    ASSERT_TRUE(one.ok()) << one.describe();
+    const nlohmann::json j1 = test::parse_json(one.out, "extract --json");
+    for (const char* key : {"components", "euler_characteristic", "boundary_edges", "watertight"})
+      EXPECT_EQ(j[key], j1[key]) << tag << " at " << n << " ranks: " << key;
+    EXPECT_NEAR(j["area"].get<double>(), j1["area"].get<double>(), 1e-9 * j1["area"].get<double>());
+    EXPECT_NEAR(j["enclosed_volume"].get<double>(), j1["enclosed_volume"].get<double>(),
+                1e-9 * std::abs(j1["enclosed_volume"].get<double>()) + 1e-9);
+  }
+}
+
+TEST(Mpirun, ExtractAnalyticVolumeAtOneToFourRanks) {
+  REQUIRE_MPIRUN();
+  expect_distributed_extract(test::dataset("gyroid"), "gyroid");
+}
+
+TEST(Mpirun, ExtractRealVolumesAtOneToFourRanks) {
+  REQUIRE_MPIRUN();
+  expect_distributed_extract(std::string(test_paths::shared_datasets()) + "/lobster/lobster.vol", "lobster");
+  expect_distributed_extract(std::string(test_paths::shared_datasets()) + "/headmr/HeadMRVolume.mhd", "headmr");
+}
+
+// Curvature per piece: a mesh estimator's within 1e-6 of the single process's at every rank count
+// (its neighbourhood lies inside the margin). The volume estimator is refused for now.
+TEST(Mpirun, CurvatureMatchesAcrossRankCounts) {
+  REQUIRE_MPIRUN();
+  TempDir dir("curvature");
+  const std::string volume = std::string(test_paths::shared_datasets()) + "/lobster/lobster.vol";
+  test::expect_clean_failure(mpirun(2, {"curvature", volume, "-o", (dir.path() / "v.pvtp").string()}),
+                             "--estimator rusinkiewicz");
+  for (const std::string estimator : {"rusinkiewicz", "quadric"}) {
+    std::map<std::int64_t, std::map<std::string, float>> one;
+    for (int n : {1, 2, 4}) {
+      const std::string out = (dir.path() / (estimator + std::to_string(n) + ".pvtp")).string();
+      const CliResult r = mpirun(n, {"curvature", volume, "-o", out, "--estimator", estimator, "--quiet"});
+      ASSERT_TRUE(r.ok()) << r.describe();
+      const ReadBack back = read_pvtp(out, {"H", "K", "k1"});
+      ASSERT_FALSE(back.values.empty());
+      if (n == 1) {
+        one = back.values;
+        continue;
+      }
+      ASSERT_EQ(back.values.size(), one.size());
+      std::size_t off = 0;
+      double worst = 0;
+      for (const auto& [id, arrays] : back.values) {
+        for (const auto& [name, value] : arrays) {
+          const float ref = one.at(id).at(name);
+          worst = std::max(worst, std::abs(double(value) - ref) / std::max(1e-3, std::abs(double(ref))));
+          off += !std::isfinite(value);
+        }
+      }
+      EXPECT_EQ(off, 0u) << estimator << " at " << n << " ranks: values not finite";
+      EXPECT_LE(worst, 1e-6) << estimator << " at " << n << " ranks";
+    }
+  }
+}
+
+TEST(Mpirun, GatherWritesOneMeshLikeTheSingleProcess) {
+  REQUIRE_MPIRUN();
+  TempDir dir("gather");
+  const std::string volume = test::dataset("gyroid");
+  const std::string single = (dir.path() / "single.vtp").string(), gathered = (dir.path() / "gathered.vtp").string();
+  ASSERT_TRUE(test::run_isocurv({"curvature", volume, "-o", single, "--estimator", "rusinkiewicz", "--quiet"}).ok());
+  const CliResult r = mpirun(3, {"curvature", volume, "-o", gathered, "--gather", "--estimator", "rusinkiewicz", "--quiet"});
+  ASSERT_TRUE(r.ok()) << r.describe();
+  const io::MeshFile a = io::read_mesh(single), b = io::read_mesh(gathered);
+  ASSERT_EQ(a.mesh.positions.size(), b.mesh.positions.size());
+  ASSERT_EQ(a.mesh.triangles.size(), b.mesh.triangles.size());
+  // The same vertices (the gathered ones ordered by global id) with the same curvature.
+  std::map<std::array<float, 3>, float> h;
+  for (std::size_t v = 0; v < a.mesh.positions.size(); ++v) h[a.mesh.positions[v]] = a.field->H[v];
+  std::size_t off = 0;
+  for (std::size_t v = 0; v < b.mesh.positions.size(); ++v) {
+    const auto it = h.find(b.mesh.positions[v]);
+    off += it == h.end() || std::abs(it->second - b.field->H[v]) > 1e-6f * std::max(1.0f, std::abs(it->second));
+  }
+  EXPECT_EQ(off, 0u);
+  // Without --gather or a .pvtp, several ranks would write one file: refused.
+  const CliResult refused = mpirun(2, {"extract", volume, "-o", (dir.path() / "x.vtp").string()});
+  test::expect_clean_failure(refused, ".pvtp");
+}
+
+// Many files: the inputs go to the ranks as they become free, one summary.json lists every entry
+// in input order with the rank that made it, and the counts are the single process's.
+TEST(Mpirun, BatchHandsInputsToRanksWithOneSummary) {
+  REQUIRE_MPIRUN();
+  TempDir dir("batch");
+  const std::string bad = (dir.path() / "bad.nrrd").string();
+  test::write_file(bad, "NRRD0004\ntype: float\n");  // no sizes: fails to load
+  std::vector<std::string> inputs = {test::dataset("gyroid"), test::dataset("sphere"), bad,
+                                     test::dataset("torus"), test::dataset("ellipsoid")};
+  std::vector<std::string> one = {"extract"}, many = {"extract"};
+  one.insert(one.end(), inputs.begin(), inputs.end());
+  many.insert(many.end(), inputs.begin(), inputs.end());
+  for (const std::string& a : std::vector<std::string>{"-o", (dir.path() / "one").string(), "--quiet"}) one.push_back(a);
+  for (const std::string& a : std::vector<std::string>{"-o", (dir.path() / "many").string(), "--quiet"}) many.push_back(a);
+  const CliResult single = test::run_isocurv(one, 240);
+  const CliResult ranks = mpirun(3, many);
+  EXPECT_EQ(single.exit_code, 1) << single.describe();  // the bad input fails, the others are written
+  EXPECT_EQ(ranks.exit_code, 1) << ranks.describe();
+  const nlohmann::json a = test::parse_json(test::read_file((dir.path() / "one" / "summary.json").string()), "summary");
+  const nlohmann::json b = test::parse_json(test::read_file((dir.path() / "many" / "summary.json").string()), "summary");
+  ASSERT_EQ(b["entries"].size(), inputs.size());
+  EXPECT_EQ(b["ranks"], 3);
+  EXPECT_EQ(b["ok"], 4);
+  EXPECT_EQ(b["failed"], 1);
+  std::set<int> used;
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const nlohmann::json& e = b["entries"][i];
+    EXPECT_EQ(e["input"], inputs[i]) << "entries out of input order";
+    EXPECT_EQ(e["status"], a["entries"][i]["status"]);
+    EXPECT_EQ(e.value("vertices", -1), a["entries"][i].value("vertices", -1)) << inputs[i];
+    EXPECT_EQ(e.value("triangles", -1), a["entries"][i].value("triangles", -1)) << inputs[i];
+    used.insert(e["rank"].get<int>());
+  }
+  EXPECT_EQ(used.size(), 3u) << "every rank draws an input before working on any";
+  for (const char* stem : {"gyroid", "sphere", "torus", "ellipsoid"})
+    EXPECT_TRUE(fs::exists(dir.path() / "many" / stem / (std::string(stem) + ".vtp"))) << stem;
+  EXPECT_FALSE(fs::exists(dir.path() / "many" / "bad")) << "a failed input's empty folder is removed";
+  // One input under several ranks: lines would run once per rank; refused.
+  test::expect_clean_failure(mpirun(2, {"lines", test::dataset("sphere"), "-o", (dir.path() / "l.svg").string()}),
+                             "several inputs");
+  test::expect_clean_failure(mpirun(2, {"info", test::dataset("sphere")}), "mpirun");
+}
+
+// One volume, finished on rank 0: check reports what the single process reports, run writes its
+// mesh, picture and stats.json from rank 0 with the single process's counts.
+TEST(Mpirun, CheckAndRunFinishOnRankZero) {
+  REQUIRE_MPIRUN();
+  TempDir dir("finish");
+  const std::string volume = std::string(test_paths::shared_datasets()) + "/lobster/lobster.vol";
+  const CliResult single = test::run_isocurv({"check", volume, "--json"}, 120);
+  const CliResult ranks = mpirun(3, {"check", volume, "--json"});
+  ASSERT_TRUE(single.ok()) << single.describe();
+  ASSERT_TRUE(ranks.ok()) << ranks.describe();
+  const nlohmann::json a = test::parse_json(single.out, "check"), b = test::parse_json(ranks.out, "check under mpirun");
+  for (const char* key : {"vertices", "triangles", "edges", "boundary_edges", "non_manifold_edges", "misoriented_edges",
+                          "duplicate_vertices", "unreferenced_vertices", "degenerate_triangles", "components",
+                          "euler_characteristic", "genus", "closed_components", "problems_found"})
+    EXPECT_EQ(a[key], b[key]) << key;
+  EXPECT_NEAR(a["area"].get<double>(), b["area"].get<double>(), 1e-9 * a["area"].get<double>());
+
+  const std::string gyroid = test::dataset("gyroid");
+  const std::string one = (dir.path() / "one").string(), many = (dir.path() / "many").string();
+  ASSERT_TRUE(test::run_isocurv({"run", gyroid, "-o", one, "--estimator", "rusinkiewicz", "--quiet"}, 120).ok());
+  const CliResult run = mpirun(2, {"run", gyroid, "-o", many, "--estimator", "rusinkiewicz", "--quiet"});
+  ASSERT_TRUE(run.ok()) << run.describe();
+  for (const char* file : {"gyroid.vtp", "gyroid.png", "stats.json"})
+    EXPECT_TRUE(fs::exists(fs::path(many) / file)) << file;
+  const nlohmann::json sa = test::parse_json(test::read_file(one + "/stats.json"), "stats");
+  const nlohmann::json sb = test::parse_json(test::read_file(many + "/stats.json"), "stats");
+  EXPECT_EQ(sa["vertices"], sb["vertices"]);
+  EXPECT_EQ(sa["triangles"], sb["triangles"]);
+}
+
+// A rank that cannot write its piece stops every rank: one line (from rank 0, naming the rank),
+// status 1, no .pvtp and no new piece.
+TEST(Mpirun, AFailingRankStopsAllWithOneLineAndNoPvtp) {
+  REQUIRE_MPIRUN();
+  TempDir dir("failure");
+  const std::string out = (dir.path() / "out.pvtp").string();
+  fs::create_directories(dir.path() / "out" / "out_2.vtp");  // rank 2's piece cannot be written
+  const CliResult r = mpirun(4, {"extract", test::dataset("gyroid"), "-o", out});
+  EXPECT_EQ(r.exit_code, 1) << r.describe();
+  ASSERT_EQ(r.err_lines().size(), 1u) << r.describe();
+  EXPECT_NE(r.err.find("rank 2"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  for (int k : {0, 1, 3}) EXPECT_FALSE(fs::exists(dir.path() / "out" / ("out_" + std::to_string(k) + ".vtp")));
+}
+
+}  // namespace
+}  // namespace isocurv
