@@ -170,7 +170,7 @@ void register_features(CLI::App &app) {
     const features::Options fo = feature_selection(c);
     StageTimer timer;
     // Under mpirun: the ranks extract the surface together, rank 0 computes the features.
-    Surface s = finishes_on_rank_zero() ? gathered_surface(in, o, timer, DistributedWork::extract)
+    Surface s = finishes_on_rank_zero() ? gathered_surface(in, o, timer, DistributedWork::extract, WholeVolume::on_rank_zero)
                                         : load_surface(in, o, timer);
     if (dist::World::get().rank() != 0) return nlohmann::json::object();
     nlohmann::json r = compute_features(s, in, o, c, fo, timer);

@@ -1,6 +1,10 @@
 #include "app/distributed.h"
 
+#include <malloc.h>
+
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -10,6 +14,7 @@
 #include "dist/gather.h"
 #include "dist/piece.h"
 #include "dist/piece_file.h"
+#include "dist/volume_stats.h"
 #include "dist/slabs.h"
 #include "dist/totals.h"
 #include "dist/world.h"
@@ -18,6 +23,7 @@
 #include "mc/extract.h"
 #include "mc/extract_reference.h"
 #include "mc/frame.h"
+#include "volume/load.h"
 
 namespace isocurv::app {
 namespace {
@@ -85,38 +91,134 @@ void refuse_undistributed(const std::string& in, const CommonOptions& o, Distrib
                 "whole surface); choose a mesh estimator, e.g. --estimator rusinkiewicz, or run without mpirun");
 }
 
-// Loads, divides, extracts this rank's slab and cuts its piece; estimates its curvature for
-// `work` curvature; reduces the totals. Collective; throws on every rank when one failed.
-void make_rank_surface(RankSurface& r, const std::string& in, const CommonOptions& o, DistributedWork work,
-                       EmptySurface empty) {
-  const dist::World& world = dist::World::get();
-  StageTimer& timer = r.timer;
+// Voxels a rank reads past the cells it extracts: the upper sample of its last cells, and the
+// gradient normals' stencil (central differences, interpolated) around its vertices.
+constexpr int kReadApron = 4;
+
+// What a rank needs before extracting: its part of the volume, the isovalue, the slabs.
+struct RankVolume {
   volume::Volume v;
   float iso = 0;
-  dist::together(world, [&] { v = load_volume(in, o, timer, &iso); });
+  dist::Slabs slabs;
+  std::unique_ptr<mc::Mesher> mesher;  // on v (device runs)
+};
 
-  // Slabs balanced by the bricks that carry surface (every rank computes the same).
-  mc::Options mo;
-  mo.cap = o.cap;
-  mo.snap = o.snap;
-  const bool reference = reference_device(o);
-  std::unique_ptr<mc::Mesher> mesher;
+// The whole volume on every rank (formats that cannot be read in part, and features, which
+// integrate over the whole volume on rank 0): slabs from the mesher's own surface bricks.
+void load_whole(RankVolume& rv, const std::string& in, const CommonOptions& o, const mc::Options& mo,
+                StageTimer& timer) {
+  const dist::World& world = dist::World::get();
+  dist::together(world, [&] { rv.v = load_volume(in, o, timer, &rv.iso); });
   timer.start("extract");
   dist::together(world, [&] {
-    const mc::Frame whole = mc::make_frame(v, iso, mo);
+    const mc::Frame whole = mc::make_frame(rv.v, rv.iso, mo);
     std::vector<openvdb::Coord> bricks;
-    if (reference) {
-      bricks = mc::BrickIndex(v).candidates(whole);
+    if (reference_device(o)) {
+      bricks = mc::BrickIndex(rv.v).candidates(whole);
     } else {
-      mesher = std::make_unique<mc::Mesher>(v, device_for(o));
-      bricks = mesher->surface_bricks(iso, mo);
+      rv.mesher = std::make_unique<mc::Mesher>(rv.v, device_for(o));
+      bricks = rv.mesher->surface_bricks(rv.iso, mo);
     }
     const int first = whole.cells.empty() ? 0 : (whole.cells.min().z() & ~7);
     const int layers = whole.cells.empty() ? 0 : (whole.cells.max().z() - first) / 8 + 1;
     std::vector<std::uint64_t> per_layer(std::size_t(std::max(layers, 0)), 0);
     for (const openvdb::Coord& b : bricks) ++per_layer[std::size_t((b.z() - first) / 8)];
-    r.slabs = dist::balance_slabs(per_layer, first, world.size(), whole.key_origin.z());
+    rv.slabs = dist::balance_slabs(per_layer, first, world.size(), whole.key_origin.z());
   });
+}
+
+// Raw and NRRD (raw encoding) files, read in part (volume::LoadOptions::z_slab): first an even
+// share of the slices, from which the whole volume's statistics (so the single process's default
+// isovalue) and its surface bricks per layer are reduced over the ranks; then only the slab this
+// rank extracts, with its margin, its non-finite voxels given the whole volume's outside value.
+// `probe` (the file's first block of slices) gives the depth and which side is inside.
+void load_in_part(RankVolume& rv, const std::string& in, const CommonOptions& o, const mc::Options& mo, int margin,
+                  volume::Volume probe, StageTimer& timer) {
+  const dist::World& world = dist::World::get();
+  const volume::LoadOptions lo = to_load_options(o.volume);
+  const int depth = probe.domain.max().z() + 1, blocks = (depth + 7) / 8;
+  const int b0 = int((long long)blocks * world.rank() / world.size());
+  const int b1 = int((long long)blocks * (world.rank() + 1) / world.size());
+  timer.start("load");
+  std::optional<volume::Volume> share;  // none when there are more ranks than 8-slice blocks
+  dist::together(world, [&] {
+    if (b1 == b0) return;
+    volume::LoadOptions so = lo;
+    so.z_slab = {{8 * b0, 8 * b1 - 1}};
+    share = volume::load(in, so);
+  });
+  probe.stats = dist::reduce_stats(world, share ? &*share : nullptr, in);
+  dist::together(world, [&] { rv.iso = checked_isovalue(in, probe, o.iso); });
+  timer.start("extract");
+  // The surface bricks of this rank's share, per brick layer of the whole frame.
+  const mc::Frame whole = mc::make_frame(probe, rv.iso, mo);
+  const int first = whole.cells.empty() ? 0 : (whole.cells.min().z() & ~7);
+  const int layers = whole.cells.empty() ? 0 : (whole.cells.max().z() - first) / 8 + 1;
+  std::vector<std::int64_t> per_layer(std::size_t(std::max(layers, 0)), 0);
+  dist::together(world, [&] {
+    if (!share) return;
+    share->stats = probe.stats;
+    for (const openvdb::Coord& b : mc::BrickIndex(*share).candidates(mc::make_frame(*share, rv.iso, mo)))
+      if (b.z() >= 8 * b0 && b.z() < 8 * b1) ++per_layer[std::size_t((b.z() - first) / 8)];
+  });
+  share.reset();
+#ifdef __GLIBC__
+  malloc_trim(0);  // the share's pages back to the system before the slab is read (retain_freed_memory keeps them)
+#endif
+  const std::vector<std::int64_t> counts = world.sum(per_layer);
+  rv.slabs = dist::balance_slabs(std::vector<std::uint64_t>(counts.begin(), counts.end()), first, world.size(),
+                                 whole.key_origin.z());
+  // This rank's slab, its margin and the apron.
+  timer.start("load");
+  const auto [z0, z1] = rv.slabs.extract_range(world.rank(), margin);
+  dist::together(world, [&] {
+    volume::LoadOptions so = lo;
+    so.z_slab = {{int(std::max<long long>((long long)z0 - kReadApron, 0)),
+                  int(std::min<long long>((long long)z1 + 1 + kReadApron, depth - 1))}};
+    so.outside = float(probe.inside == volume::Inside::Above ? probe.stats.min : probe.stats.max);
+    rv.v = volume::load(in, so);
+    rv.v.stats = probe.stats;
+  });
+  timer.start("extract");
+  dist::together(world, [&] {
+    if (!reference_device(o)) rv.mesher = std::make_unique<mc::Mesher>(rv.v, device_for(o));
+  });
+}
+
+// Loads, divides, extracts this rank's slab and cuts its piece; estimates its curvature for
+// `work` curvature; reduces the totals. Collective; throws on every rank when one failed.
+// `in_part`: raw and NRRD files may be read in part (not for features, which need the whole
+// volume on rank 0).
+void make_rank_surface(RankSurface& r, const std::string& in, const CommonOptions& o, DistributedWork work,
+                       EmptySurface empty, bool in_part = true) {
+  const dist::World& world = dist::World::get();
+  StageTimer& timer = r.timer;
+  mc::Options mo;
+  mo.cap = o.cap;
+  mo.snap = o.snap;
+  RankVolume rv;
+  // Can this file be read in part? Its first block of slices says (and gives its depth).
+  std::optional<volume::Volume> probe;
+  if (in_part && world.size() > 1)
+    dist::together(world, [&] {
+      volume::LoadOptions po = to_load_options(o.volume);
+      po.z_slab = {{0, 0}};
+      timer.start("load");
+      volume::Volume p = volume::load(in, po);
+      if (p.slab) probe = std::move(p);
+    });
+  // The probe's reading: the same file on every rank, so every rank takes the same branch.
+  if (probe) {
+    const int margin = margin_cells(*probe, o, work);
+    load_in_part(rv, in, o, mo, margin, std::move(*probe), timer);
+  } else {
+    load_whole(rv, in, o, mo, timer);
+  }
+  volume::Volume& v = rv.v;
+  const float iso = rv.iso;
+  r.slabs = rv.slabs;
+  std::unique_ptr<mc::Mesher>& mesher = rv.mesher;
+  const bool reference = reference_device(o);
 
   // This rank's cells with their margin, and its piece.
   const auto [z0, z1] = r.slabs.extract_range(world.rank(), margin_cells(v, o, work));
@@ -147,6 +249,14 @@ void make_rank_surface(RankSurface& r, const std::string& in, const CommonOption
           estimate_curvature(local, &*r.s.volume, iso, o, timer, &r.s.normals, &r.s.estimator);
       r.field = io::select_vertices(f, r.piece.local_vertex);
     });
+}
+
+// This process's peak resident memory (Linux's VmHWM), bytes; 0 where /proc does not say.
+std::uint64_t peak_memory_bytes() {
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind("VmHWM:", 0) == 0) return std::strtoull(line.c_str() + 6, nullptr, 10) * 1024;
+  return 0;
 }
 
 // Quiet on every rank but 0: one set of progress bars and warnings.
@@ -200,24 +310,31 @@ nlohmann::json run_distributed(const std::string& in, const std::string& out, bo
     if (single.contains("estimator")) r["estimator"] = single["estimator"];
     if (single.contains("normals")) r["normals"] = single["normals"];
   }
+  constexpr std::size_t kPer = 4;  // per rank: triangles, ghost triangles, vertices, peak memory
   const std::vector<std::int64_t> piece_counts = [&] {
-    std::vector<std::int64_t> mine(std::size_t(world.size()) * 3, 0);
-    mine[std::size_t(world.rank()) * 3] = std::int64_t(piece.owned_triangles);
-    mine[std::size_t(world.rank()) * 3 + 1] = std::int64_t(piece.mesh.triangles.size() - piece.owned_triangles);
-    mine[std::size_t(world.rank()) * 3 + 2] = std::int64_t(std::count(piece.point_ghost.begin(), piece.point_ghost.end(), 0));
+    std::vector<std::int64_t> mine(std::size_t(world.size()) * kPer, 0);
+    std::int64_t* at = &mine[std::size_t(world.rank()) * kPer];
+    at[0] = std::int64_t(piece.owned_triangles);
+    at[1] = std::int64_t(piece.mesh.triangles.size() - piece.owned_triangles);
+    at[2] = std::int64_t(std::count(piece.point_ghost.begin(), piece.point_ghost.end(), 0));
+    at[3] = std::int64_t(peak_memory_bytes());
     return world.sum(mine);
   }();
   nlohmann::json ranks = nlohmann::json::array();
   for (int k = 0; k < world.size(); ++k) {
     const auto& c = rs.slabs.cuts;
-    nlohmann::json slab = {{"rank", k}, {"triangles", piece_counts[std::size_t(k) * 3]},
-                           {"ghost_triangles", piece_counts[std::size_t(k) * 3 + 1]},
-                           {"vertices", piece_counts[std::size_t(k) * 3 + 2]}};
+    const std::int64_t* at = &piece_counts[std::size_t(k) * kPer];
+    nlohmann::json slab = {{"rank", k}, {"triangles", at[0]}, {"ghost_triangles", at[1]}, {"vertices", at[2]},
+                           {"peak_memory_bytes", at[3]}};
     if (k > 0) slab["z_from"] = c[std::size_t(k)];
     if (k + 1 < world.size()) slab["z_to"] = c[std::size_t(k) + 1] - 1;
     ranks.push_back(slab);
   }
   r["ranks"] = ranks;
+  if (rs.s.volume && rs.s.volume->slab)  // read in part (raw, NRRD): this rank's slices
+    r["read"] = "in part: each rank its slab, margin and apron";
+  else
+    r["read"] = world.size() > 1 ? "whole, by every rank" : "whole";
   r["input"] = in;
   r["output"] = out;
   if (!gather) {
@@ -235,12 +352,13 @@ nlohmann::json run_distributed(const std::string& in, const std::string& out, bo
 bool finishes_on_rank_zero() { return dist::World::get().size() > 1; }
 
 Surface gathered_surface(const std::string& in, const CommonOptions& options, StageTimer& timer,
-                         DistributedWork work) {
+                         DistributedWork work, WholeVolume whole_volume) {
   const dist::World& world = dist::World::get();
   const CommonOptions o = rank_options(options);
   refuse_undistributed(in, o, work);
   RankSurface rs;
-  make_rank_surface(rs, in, o, work, EmptySurface::error);
+  // features integrates over the whole volume on rank 0: every rank reads it whole.
+  make_rank_surface(rs, in, o, work, EmptySurface::error, whole_volume == WholeVolume::not_needed);
   Surface s = std::move(rs.s);
   curvature::CurvatureField whole;
   rs.timer.start("gather");

@@ -80,20 +80,26 @@ std::string World::agree(const std::string& error) const {
   return failing < size_ ? "rank " + std::to_string(first) + ": " + message : message;
 }
 
-std::vector<double> World::sum(const std::vector<double>& values) const {
-  if (!initialised_ || values.empty()) return values;
-  std::vector<double> out(values.size());
-  check(MPI_Allreduce(values.data(), out.data(), int(values.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD),
-        "allreduce");
+namespace {
+// Element-wise MPI_Allreduce of `values` (one length on every rank).
+template <class T>
+std::vector<T> all_reduce(const std::vector<T>& values, MPI_Datatype type, MPI_Op op) {
+  std::vector<T> out(values.size());
+  check(MPI_Allreduce(values.data(), out.data(), int(values.size()), type, op, MPI_COMM_WORLD), "allreduce");
   return out;
+}
+}  // namespace
+
+std::vector<double> World::sum(const std::vector<double>& values) const {
+  return !initialised_ || values.empty() ? values : all_reduce(values, MPI_DOUBLE, MPI_SUM);
 }
 
 std::vector<std::int64_t> World::sum(const std::vector<std::int64_t>& values) const {
-  if (!initialised_ || values.empty()) return values;
-  std::vector<std::int64_t> out(values.size());
-  check(MPI_Allreduce(values.data(), out.data(), int(values.size()), MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD),
-        "allreduce");
-  return out;
+  return !initialised_ || values.empty() ? values : all_reduce(values, MPI_INT64_T, MPI_SUM);
+}
+
+std::vector<double> World::max(const std::vector<double>& values) const {
+  return !initialised_ || values.empty() ? values : all_reduce(values, MPI_DOUBLE, MPI_MAX);
 }
 
 std::vector<std::vector<char>> World::gather(const std::vector<char>& bytes, int root) const {
@@ -188,6 +194,7 @@ void World::finalize() {}
 std::string World::agree(const std::string& error) const { return error; }
 std::vector<double> World::sum(const std::vector<double>& values) const { return values; }
 std::vector<std::int64_t> World::sum(const std::vector<std::int64_t>& values) const { return values; }
+std::vector<double> World::max(const std::vector<double>& values) const { return values; }
 std::vector<std::vector<char>> World::gather(const std::vector<char>& bytes, int) const { return {bytes}; }
 std::vector<char> World::broadcast(std::vector<char> bytes, int) const { return bytes; }
 void World::barrier() const {}

@@ -37,6 +37,8 @@ class World {
   /// Collective element-wise sums (the vectors have one length on every rank).
   std::vector<double> sum(const std::vector<double>& values) const;
   std::vector<std::int64_t> sum(const std::vector<std::int64_t>& values) const;
+  /// Collective element-wise maxima.
+  std::vector<double> max(const std::vector<double>& values) const;
   /// Collective: every rank's bytes at `root`, one vector per rank in rank order (an empty list
   /// on the other ranks).
   std::vector<std::vector<char>> gather(const std::vector<char>& bytes, int root = 0) const;

@@ -131,7 +131,7 @@ Volume finish_dense(DenseImage&& image, const std::string& path, const std::stri
   for (std::size_t j = 0; j < 3; ++j) {
     double coord = std::fabs(image.origin[j]);
     for (std::size_t i = 0; i < 3; ++i)
-      coord += double(image.dims[i] - 1) * image.spacing[i] * std::fabs(a[i][j]);
+      coord += double((i == 2 && image.full_z ? image.full_z : image.dims[i]) - 1) * image.spacing[i] * std::fabs(a[i][j]);
     largest = std::max(largest, coord);
   }
   if (!std::isfinite(largest)) throw Error(path, "the volume's world box is not finite");
@@ -166,14 +166,39 @@ Volume finish_dense(DenseImage&& image, const std::string& path, const std::stri
   source.voxel_type = image.voxel_type;
   source.grid_name = image.array_name;
   source.inside = options.inside.value_or(Inside::Above);
+  DensePart part;
+  part.first_z = image.first_z;
+  part.full_z = image.full_z;
+  part.outside = options.outside;
   auto xform = make_transform(image.spacing, image.origin, image.axes);
-  Volume v = !image.u8.empty() ? from_dense_u8(image.u8.data(), image.dims, xform, source)
-                               : from_dense(image.values.data(), image.dims, xform, source);
+  Volume v = !image.u8.empty() ? from_dense_u8(image.u8.data(), image.dims, xform, source, part)
+                               : from_dense(image.values.data(), image.dims, xform, source, part);
   if (options.spacing)
     v.file_spacing = openvdb::Vec3d(file_spacing[0], file_spacing[1], file_spacing[2]);
   if (options.origin)
     v.file_origin = openvdb::Vec3d(file_origin[0], file_origin[1], file_origin[2]);
   return v;
+}
+
+void read_uncompressed(DenseImage& image, const std::string& data_path, std::uint64_t offset, VoxelType type,
+                       bool big_endian, const LoadOptions& options) {
+  const std::uint64_t slice = std::uint64_t(image.dims[0]) * std::uint64_t(image.dims[1]);
+  const int depth = image.dims[2];
+  int first = 0, last = depth - 1;
+  if (options.z_slab) {
+    first = std::clamp((*options.z_slab)[0], 0, depth - 1) & ~7;
+    last = std::clamp((*options.z_slab)[1], first, depth - 1);
+    last = std::min(depth - 1, last | 7);
+  }
+  const std::uint64_t count = slice * std::uint64_t(last - first + 1);
+  const std::uint64_t bytes = count * voxel_size(type);
+  decode_into(image, read_bytes(data_path, offset + slice * std::uint64_t(first) * voxel_size(type), bytes), 0,
+              count, type, big_endian);
+  if (options.z_slab) {
+    image.first_z = first;
+    image.full_z = depth;
+    image.dims[2] = last - first + 1;
+  }
 }
 
 }  // namespace isocurv::volume

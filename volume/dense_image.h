@@ -22,6 +22,9 @@ struct DenseImage {
   std::array<std::array<double, 3>, 3> axes{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};  ///< unit axis directions
   std::string voxel_type;
   std::string array_name;
+  /// A slab (LoadOptions::z_slab): the voxels are index-z slices [first_z, first_z + dims[2]) of
+  /// an image `full_z` slices deep; 0: the whole image.
+  int first_z = 0, full_z = 0;
 };
 
 /// Checks a header's dimensions (positive, at most 2^31-1 per axis and 2^40 voxels in all) and
@@ -51,6 +54,13 @@ std::string bytes_text(long double bytes);
 /// is decoded into image.values.
 void decode_into(DenseImage& image, Bytes&& bytes, std::uint64_t offset, std::uint64_t count, VoxelType type,
                  bool big_endian);
+
+/// The voxels of an image stored uncompressed at byte `offset` of `data_path` (image.dims set to
+/// the whole image's), decoded into `image`: every voxel, or with options.z_slab only those
+/// slices, rounded out to whole 8-voxel blocks and clamped (image.dims[2], first_z and full_z
+/// then describe the slab). The caller has checked that the file holds the whole payload.
+void read_uncompressed(DenseImage& image, const std::string& data_path, std::uint64_t offset, VoxelType type,
+                       bool big_endian, const LoadOptions& options);
 
 /// Converts image.u8 (if used) to image.values, for loaders that rescale voxels.
 void ensure_float(DenseImage& image);

@@ -89,6 +89,7 @@ struct BuildBody {
   std::array<int, 3> dims;
   std::array<int, 3> nblocks;
   float outside;  ///< background, and the replacement for non-finite voxels
+  int first_z = 0;  ///< index z of the data's first slice (DenseSource::first_z)
   double lo, scale;
   std::vector<std::unique_ptr<Leaf>>* leaves;
   StageCounter* progress;  ///< blocks built, for the load stage's bar
@@ -96,8 +97,8 @@ struct BuildBody {
   double sum = 0;
 
   BuildBody(const BuildBody& o, tbb::split)
-      : data(o.data), dims(o.dims), nblocks(o.nblocks), outside(o.outside), lo(o.lo), scale(o.scale),
-        leaves(o.leaves), progress(o.progress) {}
+      : data(o.data), dims(o.dims), nblocks(o.nblocks), outside(o.outside), first_z(o.first_z), lo(o.lo),
+        scale(o.scale), leaves(o.leaves), progress(o.progress) {}
   BuildBody(const T* d, std::array<int, 3> dm, std::array<int, 3> nb, float out, double l, double s,
             std::vector<std::unique_ptr<Leaf>>* lv, StageCounter* p)
       : data(d), dims(dm), nblocks(nb), outside(out), lo(l), scale(s), leaves(lv), progress(p) {}
@@ -129,7 +130,7 @@ struct BuildBody {
         }
       sum += block_sum;
       if (all_outside) continue;
-      auto leaf = std::make_unique<Leaf>(openvdb::Coord(x0, y0, z0), outside, false);
+      auto leaf = std::make_unique<Leaf>(openvdb::Coord(x0, y0, z0 + first_z), outside, false);
       float* buf = leaf->buffer().data();
       for (openvdb::Index n = 0; n < Leaf::SIZE; ++n) {
         buf[n] = block[n];
@@ -147,7 +148,7 @@ struct BuildBody {
 
 template <class T>
 Volume build_dense(const T* data, const std::array<int, 3>& dims, openvdb::math::Transform::Ptr xform,
-                   const DenseSource& source) {
+                   const DenseSource& source, const DensePart& part) {
   for (int d : dims)
     if (d <= 0)
       throw Error(source.path, "dimensions " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" +
@@ -157,7 +158,7 @@ Volume build_dense(const T* data, const std::array<int, 3>& dims, openvdb::math:
 
   const Scan s = scan(data, n);
   if (s.nan + s.inf == n) throw Error(source.path, "all " + std::to_string(n) + " voxels are NaN or Inf");
-  const float outside = source.inside == Inside::Above ? s.min : s.max;
+  const float outside = part.outside ? *part.outside : source.inside == Inside::Above ? s.min : s.max;
 
   const std::array<int, 3> nblocks{(dims[0] + 7) / 8, (dims[1] + 7) / 8, (dims[2] + 7) / 8};
   const std::size_t block_count = std::size_t(nblocks[0]) * std::size_t(nblocks[1]) * std::size_t(nblocks[2]);
@@ -165,6 +166,7 @@ Volume build_dense(const T* data, const std::array<int, 3>& dims, openvdb::math:
   const double scale = s.max > s.min ? kBins / (double(s.max) - double(s.min)) : 0.0;
   StageCounter progress(block_count);
   BuildBody<T> body(data, dims, nblocks, outside, s.min, scale, &leaves, &progress);
+  body.first_z = part.first_z;
   tbb::parallel_deterministic_reduce(tbb::blocked_range<std::size_t>(0, block_count, 8), body);
 
   openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(outside);
@@ -181,7 +183,11 @@ Volume build_dense(const T* data, const std::array<int, 3>& dims, openvdb::math:
   v.grid_class = "unknown";
   v.grid_name = source.grid_name;
   v.dense = true;
-  v.domain = openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(dims[0] - 1, dims[1] - 1, dims[2] - 1));
+  v.domain = openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(dims[0] - 1, dims[1] - 1,
+                                                                  (part.full_z ? part.full_z : dims[2]) - 1));
+  if (part.full_z)
+    v.slab = openvdb::CoordBBox(openvdb::Coord(0, 0, part.first_z),
+                                openvdb::Coord(dims[0] - 1, dims[1] - 1, part.first_z + dims[2] - 1));
   v.inside = source.inside;
 
   ValueStats& st = v.stats;
@@ -203,13 +209,13 @@ Volume build_dense(const T* data, const std::array<int, 3>& dims, openvdb::math:
 }  // namespace
 
 Volume from_dense(const float* data, const std::array<int, 3>& dims, openvdb::math::Transform::Ptr xform,
-                  const DenseSource& source) {
-  return build_dense(data, dims, std::move(xform), source);
+                  const DenseSource& source, const DensePart& part) {
+  return build_dense(data, dims, std::move(xform), source, part);
 }
 
 Volume from_dense_u8(const std::uint8_t* data, const std::array<int, 3>& dims, openvdb::math::Transform::Ptr xform,
-                     const DenseSource& source) {
-  return build_dense(data, dims, std::move(xform), source);
+                     const DenseSource& source, const DensePart& part) {
+  return build_dense(data, dims, std::move(xform), source, part);
 }
 
 }  // namespace isocurv::volume

@@ -8,6 +8,6 @@ namespace isocurv::volume {
 
 /// Same as from_dense, reading uint8 voxels (X fastest) directly.
 Volume from_dense_u8(const std::uint8_t* data, const std::array<int, 3>& dims, openvdb::math::Transform::Ptr xform,
-                     const DenseSource& source);
+                     const DenseSource& source, const DensePart& part = {});
 
 }  // namespace isocurv::volume

@@ -29,6 +29,14 @@ struct LoadOptions {
   /// first voxel (index 0 0 0 for .vdb). The file's values are kept in Volume::file_spacing /
   /// file_origin. Spacing must be positive and finite, the origin finite.
   std::optional<std::array<double, 3>> spacing, origin;
+  /// Read only the index-z slices [first, last] (rounded out to whole 8-voxel blocks, clamped to
+  /// the file) where the format stores its voxels uncompressed (raw, NRRD raw encoding): the
+  /// Volume's `slab` says what was read. Other formats and encodings read everything (no `slab`).
+  /// For a rank of a distributed run (app/distributed.cpp).
+  std::optional<std::array<int, 2>> z_slab;
+  /// The value non-finite voxels and the grid's background take, instead of the finite minimum
+  /// (maximum when the object is below): a slab's ranks use the whole volume's.
+  std::optional<float> outside;
 };
 
 /// Loads `path`, chosen by extension: .vdb, .nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, .vti, .vtk,

@@ -231,8 +231,8 @@ Volume load_nrrd(const std::string& path, const LoadOptions& options) {
                                  " bytes, the header's " + std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" +
                                  std::to_string(d[2]) + " " + voxel_type_name(*type) + " needs " +
                                  std::to_string(bytes_needed) + " (sizes or type do not match the data)");
-    decode_into(image, read_bytes(data_path, data_offset + std::uint64_t(byte_skip), bytes_needed), 0, count, *type,
-                big_endian);
+    read_uncompressed(image, data_path, data_offset + std::uint64_t(byte_skip), *type, big_endian,
+                      options);  // all, or LoadOptions::z_slab
   }
   Volume v = finish_dense(std::move(image), path, "nrrd", options);
   v.world_space = world_space;

@@ -60,23 +60,20 @@ Volume load_raw(const std::string& path, const LoadOptions& options) {
   const std::uint64_t count = checked_payload(path, {dims[0], dims[1], dims[2]}, *type, path, file_size(path),
                                               gz ? Payload::Compressed : Payload::Raw, "layout");
   const std::uint64_t bytes_needed = count * voxel_size(*type);
-  Bytes bytes;
+  DenseImage image;
+  image.dims = dims;
+  image.spacing = raw.spacing;
+  image.origin = raw.origin;
   if (gz) {
-    bytes = read_gzip_exact(path, bytes_needed, "voxel data");
+    decode_into(image, read_gzip_exact(path, bytes_needed, "voxel data"), 0, count, *type, big_endian);
   } else {
     const std::uint64_t size = file_size(path);
     if (size != bytes_needed)
       throw Error(path, "file size " + std::to_string(size) + " does not match " + std::to_string(dims[0]) + "x" +
                             std::to_string(dims[1]) + "x" + std::to_string(dims[2]) + " " + type_name + " (" +
                             std::to_string(bytes_needed) + " bytes)");
-    bytes = read_bytes(path, 0, bytes_needed);
+    read_uncompressed(image, path, 0, *type, big_endian, options);  // all, or LoadOptions::z_slab
   }
-
-  DenseImage image;
-  image.dims = dims;
-  image.spacing = raw.spacing;
-  image.origin = raw.origin;
-  decode_into(image, std::move(bytes), 0, count, *type, big_endian);
   return finish_dense(std::move(image), path, "raw", options);
 }
 

@@ -46,6 +46,10 @@ struct Volume {
   openvdb::CoordBBox domain;      ///< index-space data domain (inclusive)
   Inside inside = Inside::Above;  ///< which side is the object
   ValueStats stats;
+  /// Set when only part of the file was read (LoadOptions::z_slab, a rank of a distributed run):
+  /// the voxels the grid holds. `domain` stays the whole file's; the rest of it reads as the
+  /// background, and `stats` describe the part read until the caller replaces them.
+  std::optional<openvdb::CoordBBox> slab;
   /// What the file said, kept when LoadOptions::spacing / origin overrode it (else unset).
   std::optional<openvdb::Vec3d> file_spacing, file_origin;
 

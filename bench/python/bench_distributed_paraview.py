@@ -20,6 +20,9 @@ import tempfile
 import time
 
 import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from dgtal_raw import dgtal_to_raw  # noqa: E402
 from paraview.simple import *  # noqa: F401,F403  (loads ParaView's VTK modules)
 import vtkmodules.all as vtk
 from vtkmodules.util.numpy_support import vtk_to_numpy
@@ -42,22 +45,6 @@ SaveData(out, proxy=c)
 
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
            OMPI_MCA_rmaps_base_oversubscribe="1")
-
-
-def dgtal_to_raw(vol, out_dir):
-    """A DGtal .vol's voxels as a headerless raw file named with its layout."""
-    data = open(vol, "rb").read()
-    end = data.index(b"\n.\n") + 3
-    header = data[:end].decode("ascii", "replace")
-    dims = [int(re.search(r"^%s:\s*(\d+)" % a, header, re.M).group(1)) for a in "XYZ"]
-    raw = os.path.join(out_dir, "%s_%dx%dx%d_uint8.raw" % (os.path.basename(vol).split(".")[0], *dims))
-    payload = data[end:]
-    if re.search(r"^Version:\s*3", header, re.M):  # version 3: the voxels are zlib-compressed
-        import zlib
-        payload = zlib.decompress(payload)
-    with open(raw, "wb") as f:
-        f.write(payload[:dims[0] * dims[1] * dims[2]])
-    return raw, dims
 
 
 def wall(cmd):
