@@ -1,10 +1,9 @@
 #include "app/distributed.h"
+#include "app/series.h"
 
 #include <malloc.h>
 
 #include <cmath>
-#include <cstdlib>
-#include <fstream>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -251,14 +250,6 @@ void make_rank_surface(RankSurface& r, const std::string& in, const CommonOption
     });
 }
 
-// This process's peak resident memory (Linux's VmHWM), bytes; 0 where /proc does not say.
-std::uint64_t peak_memory_bytes() {
-  std::ifstream status("/proc/self/status");
-  for (std::string line; std::getline(status, line);)
-    if (line.rfind("VmHWM:", 0) == 0) return std::strtoull(line.c_str() + 6, nullptr, 10) * 1024;
-  return 0;
-}
-
 // Quiet on every rank but 0: one set of progress bars and warnings.
 CommonOptions rank_options(const CommonOptions& options) {
   CommonOptions o = options;
@@ -317,7 +308,7 @@ nlohmann::json run_distributed(const std::string& in, const std::string& out, bo
     at[0] = std::int64_t(piece.owned_triangles);
     at[1] = std::int64_t(piece.mesh.triangles.size() - piece.owned_triangles);
     at[2] = std::int64_t(std::count(piece.point_ghost.begin(), piece.point_ghost.end(), 0));
-    at[3] = std::int64_t(peak_memory_bytes());
+    at[3] = std::int64_t(std::max(peak_rss_kb(), 0L)) * 1024;  // VmHWM (app/series.h); 0 if unknown
     return world.sum(mine);
   }();
   nlohmann::json ranks = nlohmann::json::array();
