@@ -30,7 +30,8 @@ struct LoadOptions {
   /// file_origin. Spacing must be positive and finite, the origin finite.
   std::optional<std::array<double, 3>> spacing, origin;
   /// Read only the index-z slices [first, last] (rounded out to whole 8-voxel blocks, clamped to
-  /// the file) where the format stores its voxels uncompressed (raw, NRRD raw encoding): the
+  /// the file) where the format stores its voxels uncompressed (raw, NRRD raw encoding,
+  /// MetaImage binary data, .nii): the
   /// Volume's `slab` says what was read. Other formats and encodings read everything (no `slab`).
   /// For a rank of a distributed run (app/distributed.cpp).
   std::optional<std::array<int, 2>> z_slab;

@@ -1,5 +1,7 @@
 // MetaImage (.mhd header + data file, or .mha with the data after the header): `Key = Value`
 // lines ending with ElementDataFile; raw, zlib-compressed (CompressedData = True) or ASCII data.
+// Raw binary data honour LoadOptions::z_slab (index z is the file's slice order: nothing here
+// permutes or flips the voxels); compressed and ASCII data are read whole.
 #include <algorithm>
 #include <cstring>
 #include <fstream>
@@ -137,7 +139,7 @@ Volume load_metaimage(const std::string& path, const LoadOptions& options) {
     if (data_path != path && data_offset == 0 && available > bytes_needed)
       throw Error(data_path, "data file has " + std::to_string(available) + " bytes, the header's dimensions need " +
                                  std::to_string(bytes_needed));
-    decode_into(image, read_bytes(data_path, data_offset, bytes_needed), 0, count, *type, msb);
+    read_uncompressed(image, data_path, data_offset, *type, msb, options);  // all, or LoadOptions::z_slab
   }
   Volume v = finish_dense(std::move(image), path, "metaimage", options);
   v.world_space = "LPS";

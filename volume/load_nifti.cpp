@@ -1,5 +1,8 @@
 // NIfTI-1 single files (.nii, .nii.gz), either byte order. Geometry: the sform when its code is
 // set, else the qform, else pixdim spacing at the origin; scl_slope/scl_inter are applied.
+// A plain .nii honours LoadOptions::z_slab: file slice k is always index z k (orientation lives
+// in the transform only, and finish_dense's flip of a left-handed frame reverses X alone), and
+// the scaling is per voxel. A .nii.gz is read whole.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -123,21 +126,24 @@ Volume load_nifti(const std::string& path, const LoadOptions& options) {
     image.origin = {h.f32(268), h.f32(272), h.f32(276)};
   }
 
-  in.skip(std::size_t(vox_offset - kHeaderSize), "NIfTI extension");
-  Bytes bytes(bytes_needed);
-  in.read_exact(bytes.data(), bytes.size(), "voxel data");
-  // Read a .nii.gz to its end, so that zlib checks the gzip trailer (CRC-32 and length): a stream
-  // cut before it, or corrupt after the voxels, is refused. Bytes after the voxels are allowed.
-  if (gz) {
-    std::vector<char> rest(1 << 16);
-    while (in.read(rest.data(), rest.size()) == rest.size()) {
-    }
-  }
   const std::uint16_t one = 1;
   std::uint8_t low_byte;
   std::memcpy(&low_byte, &one, 1);
   const bool file_big_endian = swap != (low_byte == 0);  // swapped relative to the host's order
-  decode_into(image, std::move(bytes), 0, count, *type, file_big_endian);
+  if (gz) {
+    in.skip(std::size_t(vox_offset - kHeaderSize), "NIfTI extension");
+    Bytes bytes(bytes_needed);
+    in.read_exact(bytes.data(), bytes.size(), "voxel data");
+    // Read a .nii.gz to its end, so that zlib checks the gzip trailer (CRC-32 and length): a stream
+    // cut before it, or corrupt after the voxels, is refused. Bytes after the voxels are allowed.
+    std::vector<char> rest(1 << 16);
+    while (in.read(rest.data(), rest.size()) == rest.size()) {
+    }
+    decode_into(image, std::move(bytes), 0, count, *type, file_big_endian);
+  } else {
+    // checked_payload saw the whole payload after vox_offset; bytes after the voxels are allowed.
+    read_uncompressed(image, path, vox_offset, *type, file_big_endian, options);  // all, or LoadOptions::z_slab
+  }
 
   const float slope = h.f32(112), inter = h.f32(116);
   if (std::isfinite(slope) && slope != 0 && std::isfinite(inter) && !(slope == 1 && inter == 0)) {
