@@ -328,8 +328,11 @@ class TileFaces {
 }  // namespace
 
 BrickIndex::BrickIndex(const volume::Volume& v, Layout layout) {
-  // Blocks covering every cell any frame may visit (cap adds one layer) plus their apron.
+  // Blocks covering every cell any frame may visit (cap adds one layer) plus their apron; of a
+  // volume read in part (a rank's slab), only those of the part, so that each rank's index
+  // follows its share of the volume, not the whole box.
   openvdb::CoordBBox box = v.domain;
+  if (v.slab) box.intersect(*v.slab);
   if (box.empty()) return;
   box.expand(2);
   first_ = openvdb::Coord(floor_div8(box.min().x()) * 8, floor_div8(box.min().y()) * 8,
@@ -491,12 +494,13 @@ const BrickIndex::Block* BrickIndex::find(int bx, int by, int bz) const {
 std::vector<openvdb::Coord> BrickIndex::candidates(const Frame& f) const {
   std::vector<openvdb::Coord> out;
   if (f.cells.empty() || blocks_.empty()) return out;
-  const int bx0 = floor_div8(f.cells.min().x()) - first_.x() / 8;
-  const int by0 = floor_div8(f.cells.min().y()) - first_.y() / 8;
-  const int bz0 = floor_div8(f.cells.min().z()) - first_.z() / 8;
-  const int bx1 = floor_div8(f.cells.max().x()) - first_.x() / 8;
-  const int by1 = floor_div8(f.cells.max().y()) - first_.y() / 8;
-  const int bz1 = floor_div8(f.cells.max().z()) - first_.z() / 8;
+  // The frame's bricks, within the index (a volume read in part indexes only its part).
+  const int bx0 = std::max(floor_div8(f.cells.min().x()) - first_.x() / 8, 0);
+  const int by0 = std::max(floor_div8(f.cells.min().y()) - first_.y() / 8, 0);
+  const int bz0 = std::max(floor_div8(f.cells.min().z()) - first_.z() / 8, 0);
+  const int bx1 = std::min(floor_div8(f.cells.max().x()) - first_.x() / 8, nx_ - 1);
+  const int by1 = std::min(floor_div8(f.cells.max().y()) - first_.y() / 8, ny_ - 1);
+  const int bz1 = std::min(floor_div8(f.cells.max().z()) - first_.z() / 8, nz_ - 1);
   const bool above = f.sign > 0;
   const float iso = f.isovalue;
   // The brick's samples lie in its own block and in a lower face, line or corner of each block
@@ -506,7 +510,7 @@ std::vector<openvdb::Coord> BrickIndex::candidates(const Frame& f) const {
     for (int d = 0; d < 8; ++d) blk[d] = find(bx + (d & 1), by + ((d >> 1) & 1), bz + (d >> 2));
     return may_straddle(blk, above, iso);
   };
-  auto dense_test = [&](int bx, int by, int bz) {  // bx, by, bz >= 0: the frame lies in the index
+  auto dense_test = [&](int bx, int by, int bz) {  // bx, by, bz >= 0: the range lies in the index
     const Block* blk[8];
     for (int d = 0; d < 8; ++d) {
       const int x = bx + (d & 1), y = by + ((d >> 1) & 1), z = bz + (d >> 2);

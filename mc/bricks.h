@@ -41,7 +41,8 @@ class BrickIndex {
   /// bytes a possible brick).
   std::size_t blocks() const { return blocks_.size(); }
 
-  /// Origins (index space, multiples of 8) of the bricks of `f` that may hold surface, in a fixed
+  /// Origins (index space, multiples of 8) of the bricks of `f` that may hold surface (of a
+  /// volume read in part, volume::Volume::slab, only those of its part), in a fixed
   /// order (x, y, z; z fastest). A superset of the straddling bricks, nearly exact: a brick's
   /// apron is judged by the ranges of just the neighbour blocks' samples it uses.
   std::vector<openvdb::Coord> candidates(const Frame& f) const;
