@@ -1,4 +1,5 @@
 #include "app/batch.h"
+#include "app/commands.h"
 
 #include <glob.h>
 #include <unistd.h>
@@ -298,12 +299,11 @@ std::optional<std::vector<float>> batch_isovalues(const BatchCli& b, CommonOptio
 
 namespace {
 
-// Several ranks on one input: extract and curvature divide it, run, check and features divide
-// the extraction and finish on rank 0 (app/distributed.h); lines would run once per rank, every
-// rank writing the same files.
+// Several ranks on one input of a command that only hands out batches (on_ranks: lines) would
+// run it once per rank, every rank writing the same files.
 void refuse_one_input_on_ranks(const std::string& command) {
   const int ranks = dist::World::get().size();
-  if (ranks > 1)
+  if (ranks > 1 && on_ranks(command) == OnRanks::batches)
     throw Error(command + " with one input does not run on " + std::to_string(ranks) +
                 " ranks: under mpirun it takes several inputs (a batch); docs/distributed.md");
 }
@@ -334,7 +334,7 @@ bool run_as_batch(const BatchCli& b, CommonOptions& o, const BatchStep& step,
                   const std::string& dir, const std::function<void()>& before) {
   const std::optional<std::vector<float>> isos = batch_isovalues(b, o);
   if (!isos) {
-    if (step.command == "lines") refuse_one_input_on_ranks(step.command);  // run, features: rank 0 finishes
+    refuse_one_input_on_ranks(step.command);
     return false;
   }
   if (before) before();

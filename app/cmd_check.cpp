@@ -6,7 +6,6 @@
 
 #include "app/commands.h"
 #include "app/distributed.h"
-#include "dist/world.h"
 #include "app/pipeline.h"
 #include "core/mesh_measures.h"
 #include "mc/mesh_check.h"
@@ -54,9 +53,9 @@ void register_check(CLI::App& app) {
   cmd->callback([] {
     StageTimer timer;
     // Under mpirun: the ranks extract the surface together, rank 0 checks it (app/distributed.h).
-    Surface s = finishes_on_rank_zero() ? gathered_surface(in, o, timer, DistributedWork::extract)
-                                        : load_surface(in, o, timer);
-    if (dist::World::get().rank() != 0) return;
+    std::optional<Surface> on_zero = surface_for_rank_zero(in, o, timer, DistributedWork::extract);
+    if (!on_zero) return;
+    Surface& s = *on_zero;
     timer.start("check");
     const mc::MeshCheck c = mc::check_mesh(s.mesh);
     const double edge = mean_edge_length(s.mesh);

@@ -9,7 +9,6 @@
 #include "app/batch.h"
 #include "app/commands.h"
 #include "app/distributed.h"
-#include "dist/world.h"
 #include "app/pipeline.h"
 #include "app/series.h"
 #include "core/error.h"
@@ -170,9 +169,10 @@ void register_features(CLI::App &app) {
     const features::Options fo = feature_selection(c);
     StageTimer timer;
     // Under mpirun: the ranks extract the surface together, rank 0 computes the features.
-    Surface s = finishes_on_rank_zero() ? gathered_surface(in, o, timer, DistributedWork::extract, WholeVolume::on_rank_zero)
-                                        : load_surface(in, o, timer);
-    if (dist::World::get().rank() != 0) return nlohmann::json::object();
+    std::optional<Surface> on_zero =
+        surface_for_rank_zero(in, o, timer, DistributedWork::extract, WholeVolume::on_rank_zero);
+    if (!on_zero) return nlohmann::json::object();
+    Surface& s = *on_zero;
     nlohmann::json r = compute_features(s, in, o, c, fo, timer);
     timer.start("write");
     write_features(out, s, in);

@@ -37,10 +37,10 @@ nlohmann::json run_one(const std::string& in, const std::string& dir, const Comm
   StageTimer timer;
   // Fails (no surface, ...) before any output folder is made.
   // Under mpirun: the ranks extract the surface and its curvature together, rank 0 goes on alone.
-  Surface s = o.labelled()              ? load_label_surfaces(in, o, timer, true)
-              : finishes_on_rank_zero() ? gathered_surface(in, o, timer, DistributedWork::curvature)
-                                        : load_surface(in, o, timer);
-  if (dist::World::get().rank() != 0) return nlohmann::json::object();
+  std::optional<Surface> on_zero = o.labelled() ? load_label_surfaces(in, o, timer, true)
+                                                : surface_for_rank_zero(in, o, timer, DistributedWork::curvature);
+  if (!on_zero) return nlohmann::json::object();
+  Surface& s = *on_zero;
   if (!o.labelled() && !s.field)
     s.field = estimate_curvature(s.mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer,
                                  &s.normals, &s.estimator);

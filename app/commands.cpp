@@ -24,6 +24,15 @@ int& command_exit_status() {
   return status;
 }
 
+OnRanks on_ranks(const std::string& command) {
+  // extract and curvature divide one volume (a .pvtp or --gather); run, check and features divide
+  // its extraction and finish on rank 0; lines on one input would run once per rank.
+  for (const char* divided : {"extract", "curvature", "run", "check", "features"})
+    if (command == divided) return OnRanks::divided;
+  if (command == "lines") return OnRanks::batches;
+  return OnRanks::refused;
+}
+
 void register_commands(CLI::App& app) {
   register_info(app);
   register_extract(app);

@@ -2,9 +2,20 @@
 // Registration of the isocurv subcommands; each register_* is defined in its cmd_*.cpp.
 #include <CLI/CLI.hpp>
 
+#include <string>
+
 namespace isocurv::app {
 
 void register_commands(CLI::App& app);  ///< all subcommands below
+
+/// How a command runs under mpirun with several ranks (docs/distributed.md), the one place that
+/// says so (main() and the batches ask here).
+enum class OnRanks {
+  refused,  ///< every rank would write the same files: refused in one line
+  divided,  ///< one volume divided among the ranks, or a batch handed out (extract, curvature, run, check, features)
+  batches,  ///< only a batch of inputs handed out; one input is refused (lines)
+};
+OnRanks on_ranks(const std::string& command);
 
 /// The exit status a command that ran to its end asks for (0 unless set): `check` sets 1 when it
 /// reports problems. main() returns it after a successful run.

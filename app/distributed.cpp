@@ -10,11 +10,14 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "curvature/auto_scale.h"
+#include "curvature/volume_estimate.h"
 #include "dist/gather.h"
 #include "dist/piece.h"
 #include "dist/piece_file.h"
 #include "dist/volume_stats.h"
 #include "dist/slabs.h"
+#include "dist/surface_piece.h"
 #include "dist/totals.h"
 #include "dist/world.h"
 #include "io/field_arrays.h"
@@ -23,24 +26,37 @@
 #include "mc/extract_reference.h"
 #include "mc/frame.h"
 #include "volume/load.h"
+#include "volume/prefilter.h"
 
 namespace isocurv::app {
 namespace {
 
 // Cells past the slab a rank extracts: snapping's and the ghost ring's (dist::kExtractGhostCells),
-// plus, for curvature, the mesh estimator's neighbourhood: the scale's 3 sigma when given, else 8
-// cells (the estimators' k-rings and automatic scales reach a few edges).
+// plus, for curvature, the estimator's reach around the piece's vertices:
+//  - the volume estimator's smoothing at its largest scale (the one given, else the automatic
+//    scale's cap, curvature::kAutoMaxVoxels): the prefilter's volume::kPrefilterRadius
+//    deviations, the B-spline's reach, and for binary volumes the move to the smoothed surface
+//    (curvature::kMaxShiftVoxels); the box test's kSupportDeviations lie inside that;
+//  - a mesh estimator's neighbourhood: the scale's 3 sigma when given, else 8 cells (the
+//    estimators' k-rings and automatic scales reach a few edges).
 int margin_cells(const volume::Volume& v, const CommonOptions& o, DistributedWork work) {
   int margin = dist::kExtractGhostCells;
-  if (work == DistributedWork::curvature) {
-    double sigma = 0;
-    for (const std::string& s : parse_scales(o.scale))
-      if (s != "auto") sigma = std::max(sigma, std::stod(s));
-    const openvdb::Vec3d h = v.spacing();
-    const double step = std::min({h[0], h[1], h[2]});
-    margin += sigma > 0 ? int(std::ceil(3 * sigma / step)) + 2 : 8;
+  if (work != DistributedWork::curvature) return margin;
+  double sigma = 0;
+  for (const std::string& s : parse_scales(o.scale))
+    if (s != "auto") sigma = std::max(sigma, std::stod(s));
+  const openvdb::Vec3d h = v.spacing();
+  const double step = h[2];  // the slabs are cut along index z
+  if (curvature::needs_volume(default_estimator(o, true))) {
+    if (sigma == 0 || o.scale.find("auto") != std::string::npos)
+      sigma = std::max(sigma, curvature::kAutoMaxVoxels * std::cbrt(h[0] * h[1] * h[2]));
+    const double largest = std::max({h[0], h[1], h[2]});
+    sigma = std::max(sigma, 1.01 * volume::kMinScaleVoxels * largest);  // auto_scale's floor
+    const double reach = volume::kPrefilterRadius * sigma + (volume::kSplineReach + 0.5) * step +
+                         curvature::kMaxShiftVoxels * largest;
+    return margin + int(std::ceil(reach / step)) + 1;
   }
-  return margin;
+  return margin + (sigma > 0 ? int(std::ceil(3 * sigma / std::min({h[0], h[1], h[2]}))) + 2 : 8);
 }
 
 }  // namespace
@@ -82,12 +98,6 @@ void refuse_undistributed(const std::string& in, const CommonOptions& o, Distrib
   if (work != DistributedWork::curvature) return;
   if (!o.ao.empty() && o.ao != "griffin")
     throw Error("--ao-method " + o.ao + " does not run distributed (it casts rays across the whole surface)");
-  // The volume estimator picks its automatic scale from the whole surface's noise and edges, and
-  // treats a mesh's open edge as the volume's box: per piece it would differ from the single
-  // process near the seams. The mesh estimators see their whole neighbourhood in the margin.
-  if (curvature::estimator_name(default_estimator(o, true)) == std::string("volume"))
-    throw Error("the volume estimator does not run distributed yet (its automatic scale is chosen over the "
-                "whole surface); choose a mesh estimator, e.g. --estimator rusinkiewicz, or run without mpirun");
 }
 
 // Voxels a rank reads past the cells it extracts: the upper sample of its last cells, and the
@@ -101,6 +111,17 @@ struct RankVolume {
   dist::Slabs slabs;
   std::unique_ptr<mc::Mesher> mesher;  // on v (device runs)
 };
+
+// The surface bricks `bricks` (origins) per brick layer of the whole frame `whole`, those with
+// index z in [from, to] only.
+dist::LayerBricks count_layers(const mc::Frame& whole, const std::vector<openvdb::Coord>& bricks, int from = INT_MIN,
+                               int to = INT_MAX) {
+  std::vector<int> z;
+  z.reserve(bricks.size());
+  for (const openvdb::Coord& b : bricks) z.push_back(b.z());
+  return whole.cells.empty() ? dist::LayerBricks{}
+                             : dist::count_layer_bricks(whole.cells.min().z(), whole.cells.max().z(), z, from, to);
+}
 
 // The whole volume on every rank (formats that cannot be read in part, and features, which
 // integrate over the whole volume on rank 0): slabs from the mesher's own surface bricks.
@@ -118,15 +139,12 @@ void load_whole(RankVolume& rv, const std::string& in, const CommonOptions& o, c
       rv.mesher = std::make_unique<mc::Mesher>(rv.v, device_for(o));
       bricks = rv.mesher->surface_bricks(rv.iso, mo);
     }
-    const int first = whole.cells.empty() ? 0 : (whole.cells.min().z() & ~7);
-    const int layers = whole.cells.empty() ? 0 : (whole.cells.max().z() - first) / 8 + 1;
-    std::vector<std::uint64_t> per_layer(std::size_t(std::max(layers, 0)), 0);
-    for (const openvdb::Coord& b : bricks) ++per_layer[std::size_t((b.z() - first) / 8)];
-    rv.slabs = dist::balance_slabs(per_layer, first, world.size(), whole.key_origin.z());
+    const dist::LayerBricks layers = count_layers(whole, bricks);
+    rv.slabs = dist::balance_slabs(layers.counts, layers.first_layer_z, world.size(), whole.key_origin.z());
   });
 }
 
-// Raw and NRRD (raw encoding) files, read in part (volume::LoadOptions::z_slab): first an even
+// Raw, NRRD (raw encoding), MetaImage (binary) and .nii files, read in part (volume::LoadOptions::z_slab): first an even
 // share of the slices, from which the whole volume's statistics (so the single process's default
 // isovalue) and its surface bricks per layer are reduced over the ranks; then only the slab this
 // rank extracts, with its margin, its non-finite voxels given the whole volume's outside value.
@@ -151,22 +169,21 @@ void load_in_part(RankVolume& rv, const std::string& in, const CommonOptions& o,
   timer.start("extract");
   // The surface bricks of this rank's share, per brick layer of the whole frame.
   const mc::Frame whole = mc::make_frame(probe, rv.iso, mo);
-  const int first = whole.cells.empty() ? 0 : (whole.cells.min().z() & ~7);
-  const int layers = whole.cells.empty() ? 0 : (whole.cells.max().z() - first) / 8 + 1;
-  std::vector<std::int64_t> per_layer(std::size_t(std::max(layers, 0)), 0);
+  dist::LayerBricks layers = count_layers(whole, {});
   dist::together(world, [&] {
     if (!share) return;
     share->stats = probe.stats;
-    for (const openvdb::Coord& b : mc::BrickIndex(*share).candidates(mc::make_frame(*share, rv.iso, mo)))
-      if (b.z() >= 8 * b0 && b.z() < 8 * b1) ++per_layer[std::size_t((b.z() - first) / 8)];
+    layers = count_layers(whole, mc::BrickIndex(*share).candidates(mc::make_frame(*share, rv.iso, mo)), 8 * b0,
+                          8 * b1 - 1);
   });
   share.reset();
 #ifdef __GLIBC__
   malloc_trim(0);  // the share's pages back to the system before the slab is read (retain_freed_memory keeps them)
 #endif
-  const std::vector<std::int64_t> counts = world.sum(per_layer);
-  rv.slabs = dist::balance_slabs(std::vector<std::uint64_t>(counts.begin(), counts.end()), first, world.size(),
-                                 whole.key_origin.z());
+  const std::vector<std::int64_t> counts =
+      world.sum(std::vector<std::int64_t>(layers.counts.begin(), layers.counts.end()));
+  rv.slabs = dist::balance_slabs(std::vector<std::uint64_t>(counts.begin(), counts.end()), layers.first_layer_z,
+                                 world.size(), whole.key_origin.z());
   // This rank's slab, its margin and the apron.
   timer.start("load");
   const auto [z0, z1] = rv.slabs.extract_range(world.rank(), margin);
@@ -184,9 +201,36 @@ void load_in_part(RankVolume& rv, const std::string& in, const CommonOptions& o,
   });
 }
 
+// The estimator's counts over the whole surface (each rank's own vertices), in place of this
+// rank's, which count its extraction's margin too. A volume estimate flags every vertex whose
+// smoothing reaches the box's cut Boundary (the cut's own vertices among them), so on a dense
+// volume those are its Boundary vertices. Collective.
+void reduce_estimator_counts(RankSurface& r, const dist::World& world) {
+  const curvature::CurvatureField& f = *r.field;
+  curvature::EstimatorReport& e = r.s.estimator;
+  const std::vector<float>* scale = nullptr;
+  for (const auto& [name, values] : f.extra)
+    if (name == "Scale") scale = &values;
+  double asked = 0;
+  for (const auto& [name, value] : e.parameters)
+    if (name == "scale") asked = value;
+  const bool box = e.estimator == "volume" && r.s.volume->dense && !r.s.volume->domain.empty();
+  std::vector<std::int64_t> counts(3, 0);
+  for (std::size_t i = 0; i < r.piece.point_ghost.size(); ++i) {
+    if (r.piece.point_ghost[i]) continue;
+    counts[0] += !f.unreliable.empty() && f.unreliable[i];
+    counts[1] += scale && (*scale)[i] < float(asked);
+    counts[2] += box && !f.boundary.empty() && f.boundary[i];
+  }
+  counts = world.sum(counts);
+  e.unreliable = std::size_t(counts[0]);
+  e.finer_scale = std::size_t(counts[1]);
+  e.outside = std::size_t(counts[2]);
+}
+
 // Loads, divides, extracts this rank's slab and cuts its piece; estimates its curvature for
 // `work` curvature; reduces the totals. Collective; throws on every rank when one failed.
-// `in_part`: raw and NRRD files may be read in part (not for features, which need the whole
+// `in_part`: uncompressed files (volume::LoadOptions::z_slab) may be read in part (not for features, which need the whole
 // volume on rank 0).
 void make_rank_surface(RankSurface& r, const std::string& in, const CommonOptions& o, DistributedWork work,
                        EmptySurface empty, bool in_part = true) {
@@ -244,10 +288,14 @@ void make_rank_surface(RankSurface& r, const std::string& in, const CommonOption
     });
   if (work == DistributedWork::curvature)
     dist::together(world, [&] {
+      // The whole-surface quantities (the volume estimator's scale, the AO scale) reduced over
+      // the ranks' own vertices and triangles.
+      const dist::RankPiece own(world, local, r.slabs, r.piece);
       const curvature::CurvatureField f =
-          estimate_curvature(local, &*r.s.volume, iso, o, timer, &r.s.normals, &r.s.estimator);
+          estimate_curvature(local, &*r.s.volume, iso, o, timer, &r.s.normals, &r.s.estimator, &own);
       r.field = io::select_vertices(f, r.piece.local_vertex);
     });
+  if (work == DistributedWork::curvature) reduce_estimator_counts(r, world);
 }
 
 // Quiet on every rank but 0: one set of progress bars and warnings.
@@ -360,6 +408,14 @@ Surface gathered_surface(const std::string& in, const CommonOptions& options, St
     s.field = std::move(whole);
   }
   timer = std::move(rs.timer);
+  return s;
+}
+
+std::optional<Surface> surface_for_rank_zero(const std::string& in, const CommonOptions& o, StageTimer& timer,
+                                             DistributedWork work, WholeVolume whole_volume) {
+  if (!finishes_on_rank_zero()) return load_surface(in, o, timer);
+  Surface s = gathered_surface(in, o, timer, work, whole_volume);
+  if (dist::World::get().rank() != 0) return std::nullopt;
   return s;
 }
 

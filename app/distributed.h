@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <optional>
 #include <string>
 
 #include "app/pipeline.h"
@@ -37,12 +38,19 @@ bool finishes_on_rank_zero();
 /// `work` curvature, each piece's curvature by a mesh estimator), gathered on rank 0: there, the
 /// whole mesh (vertices in increasing global id), its field, the volume and isovalue, as
 /// load_surface (and estimate_curvature) would give on one process; on the other ranks the same
-/// without a mesh. Raw and NRRD files are read in part, so rank 0's volume holds only its slab
+/// without a mesh. Uncompressed raw, NRRD, MetaImage and NIfTI files are read in part, so rank 0's volume holds only its slab
 /// (Volume::slab) unless `whole_volume` asks for all of it (features integrates over it).
 /// `timer` receives the stages. @throw Error on every rank when one failed.
 enum class WholeVolume { not_needed, on_rank_zero };
 Surface gathered_surface(const std::string& in, const CommonOptions& o, StageTimer& timer,
                          DistributedWork work, WholeVolume whole_volume = WholeVolume::not_needed);
+
+/// The surface of a command that finishes on one process (run, check, features): under mpirun
+/// with several ranks, gathered_surface's on rank 0 and nothing on the others (which are done);
+/// otherwise load_surface's. Collective under mpirun.
+std::optional<Surface> surface_for_rank_zero(const std::string& in, const CommonOptions& o, StageTimer& timer,
+                                             DistributedWork work,
+                                             WholeVolume whole_volume = WholeVolume::not_needed);
 
 /// Prints `r` as extract and curvature print a single run's result (rank 0 only).
 void print_distributed(const nlohmann::json& r, const CommonOptions& o);

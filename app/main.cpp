@@ -61,15 +61,11 @@ int run(int argc, char** argv) {
   }
   // Name a mistyped command (CLI11 would only say that a subcommand is required).
   const auto known = app.get_subcommands([&](const CLI::App* c) { return c->check_name(argv[1]); });
-  // Under mpirun with several ranks only the commands that share out their work run: extract and
-  // curvature (one volume divided, or a batch), run and features (one volume's extraction
-  // divided, finished on rank 0; or a batch), check (likewise) and lines (batches); any other
-  // would run once per rank, every rank writing the same files.
+  // Under mpirun with several ranks only the commands that share out their work run (on_ranks).
   const isocurv::dist::World& world = isocurv::dist::World::get();
   if (world.size() > 1 && !known.empty()) {
     const std::string name = known.front()->get_name();
-    if (name != "extract" && name != "curvature" && name != "run" && name != "features" && name != "lines" &&
-        name != "check") {
+    if (isocurv::app::on_ranks(name) == isocurv::app::OnRanks::refused) {
       if (prints_errors())
         std::fprintf(stderr, "isocurv: %s does not run under mpirun with several ranks (docs/distributed.md)\n",
                      name.c_str());

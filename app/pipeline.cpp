@@ -397,8 +397,10 @@ void reestimate_keeping_extras(Surface& s, const std::string& path, const Common
 curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Volume* volume,
                                              float isovalue, const CommonOptions& o,
                                              StageTimer& timer, NormalsUsed* used,
-                                             curvature::EstimatorReport* report) {
+                                             curvature::EstimatorReport* report,
+                                             const SurfacePiece* piece) {
   curvature::Options co;
+  co.piece = piece;
   co.estimator = default_estimator(o, volume != nullptr);
   const bool mesh_estimator = !curvature::needs_volume(co.estimator);
   if (!mesh_estimator && !volume)
@@ -437,7 +439,7 @@ curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Vol
   if (o.ao_scale > 0) {
     co.ao_scale = o.ao_scale;
   } else {
-    co.ao_scale = curvature::default_ao_scale(mesh);
+    co.ao_scale = curvature::default_ao_scale(mesh, piece);
   }
   if (!reference_device(o)) device_for(o);  // open the device (and fail on it) before timing
   timer.start("curvature");

@@ -212,11 +212,13 @@ curvature::Estimator default_estimator(const CommonOptions& o, bool volume_input
 /// is given, else mesh; volume normals come from volume::gradient_normals_for_mesh (face normals
 /// where the gradient disagrees or vanishes). --normals volume without a volume (a mesh file) is an
 /// Error. The volume estimator (at --scale, from `volume` at `isovalue`) takes no --normals and
-/// needs a volume. `used` and `report`, when given, receive what was used.
+/// needs a volume. `used` and `report`, when given, receive what was used. `piece`: `mesh` is one
+/// piece of a distributed surface (curvature::Options::piece; collective).
 curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Volume* volume,
                                              float isovalue, const CommonOptions& o,
                                              StageTimer& timer, NormalsUsed* used = nullptr,
-                                             curvature::EstimatorReport* report = nullptr);
+                                             curvature::EstimatorReport* report = nullptr,
+                                             const SurfacePiece* piece = nullptr);
 
 /// Mesh and curvature statistics for --json and stats.json: counts, area, Euler characteristic,
 /// genus, the normals used and their fallbacks, and, when a field is present, the area-weighted

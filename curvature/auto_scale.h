@@ -3,6 +3,7 @@
 #include <string>
 
 #include "core/mesh.h"
+#include "core/surface_piece.h"
 #include "volume/volume.h"
 
 namespace isocurv::curvature {
@@ -51,13 +52,22 @@ struct ScaleChoice {
 /// kAutoMaxVoxels), with noise_level the voxel noise (measured near the surface by
 /// volume::estimate_noise, at least the quantisation noise of an integer voxel type) over the
 /// step the field makes per voxel across the surface (the median world gradient times the voxel,
-/// Gaussian at one voxel, over up to 1024 vertices taken evenly). On an anisotropic grid the voxel
+/// Gaussian at one voxel, over kEdgeSamples vertices: those whose positions hash lowest, a
+/// choice that does not depend on the vertices' order, so a surface divided among processes
+/// samples the same ones). On an anisotropic grid the voxel
 /// is the geometric mean spacing: a Gaussian of world deviation sigma averages sigma^3 /
 /// (sx sy sz) samples whatever their shape, so that is the length the noise scales with; no axis
 /// gets under volume::kMinScaleVoxels of its spacing. A binary volume gets kBinaryScaleVoxels.
 /// A smooth float field thus gets 0.8 voxel, noisy 8-bit data about 2. This is the largest scale
 /// of the per-vertex choice (curvature/volume_estimate.h). Deterministic. Throws what
 /// volume::grid_frame throws.
-ScaleChoice auto_scale(const volume::Volume& volume, const Mesh& mesh, float isovalue);
+/// With a `piece` (core/surface_piece.h), collective: `mesh` is the piece's, and every piece
+/// gets the scale the single process gets on the whole surface (the noise blocks and the edge
+/// samples chosen over every piece's own vertices, each measured by the piece that has it).
+ScaleChoice auto_scale(const volume::Volume& volume, const Mesh& mesh, float isovalue,
+                       const SurfacePiece* piece = nullptr);
+
+/// The vertices the edge step is measured at (at most this many).
+inline constexpr std::size_t kEdgeSamples = 1024;
 
 }  // namespace isocurv::curvature

@@ -110,7 +110,7 @@ CurvatureField estimate_field(const Mesh& mesh, const VolumeSource& source, Devi
       double scale = options.scale, auto_ms = -1;
       if (scale == 0) {
         StepClock::time_point t = StepClock::now();
-        const ScaleChoice c = auto_scale(*source.volume, mesh, source.isovalue);
+        const ScaleChoice c = auto_scale(*source.volume, mesh, source.isovalue, options.piece);
         auto_ms = lap(t);
         scale = c.scale;
         r.notes.emplace_back("scale", c.binary ? "auto (binary volume)" : "auto");
@@ -133,10 +133,11 @@ CurvatureField estimate_field(const Mesh& mesh, const VolumeSource& source, Devi
       r.notes.emplace_back("point", point == VolumePoint::surface ? "surface" : "vertex");
       VolumeEstimateStats st;
       field = device ? volume_estimate(mesh, *source.volume, source.isovalue, scale,
-                                       options.ao_scale, *device, &st, options.finer_scales, point)
+                                       options.ao_scale, *device, &st, options.finer_scales, point,
+                                       options.piece)
                      : volume_estimate_reference(mesh, *source.volume, source.isovalue, scale,
                                                  options.ao_scale, &st, options.finer_scales,
-                                                 point);
+                                                 point, options.piece);
       r.unreliable = st.unreliable;
       r.finer_scale = st.finer_scale;
       r.outside = st.outside;

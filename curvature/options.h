@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "core/mesh.h"
+#include "core/surface_piece.h"
 
 namespace isocurv::curvature {
 
@@ -73,6 +74,11 @@ struct Options {
   /// al. section 3.7): curvatures are multiplied by it before the polynomial is evaluated, so a
   /// larger value darkens concave regions more.
   float ao_scale = 1.0f;
+  /// One piece of a surface divided among processes (core/surface_piece.h; dist/), or nullptr
+  /// (the default): the whole surface. Only the volume estimator needs it (its automatic scale
+  /// and weak-gradient threshold are the whole surface's); the mesh estimators see everything
+  /// they need in the piece's margin. The pointee must outlive the call; collective.
+  const SurfacePiece* piece = nullptr;
 };
 
 }  // namespace isocurv::curvature

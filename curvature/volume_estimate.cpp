@@ -166,13 +166,20 @@ detail::VolumeEvaluation evaluate(const Positions& positions, const volume::Volu
   const volume::SmoothingPlan plan =
       volume::plan_smoothing(fr, positions, detail::spline_reach(setup), setup.sigma);
   e.steps.plan = lap(t);
+  // The kernel measures positions from a fixed anchor, the brick holding the volume's first
+  // voxel, not from the plan's first brick: the float rounding of a vertex's index position then
+  // does not depend on which vertices share the plan, so a piece of a distributed surface
+  // (core/surface_piece.h) gets the single process's values to the bit. The region's first
+  // voxel less the anchor is a whole number, subtracted exactly.
   const openvdb::Coord first(plan.origin[0] * 8, plan.origin[1] * 8, plan.origin[2] * 8);
-  const openvdb::Vec3d region = fr.to_world(openvdb::Vec3d(first.asVec3d()));
+  const openvdb::Coord anchor(fr.lo[0] & ~7, fr.lo[1] & ~7, fr.lo[2] & ~7);
+  const openvdb::Vec3d at = fr.to_world(openvdb::Vec3d(anchor.asVec3d()));
   std::vector<float> frame(12);
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) frame[3 * r + c] = float(fr.B(r, c));
-  for (int a = 0; a < 3; ++a) frame[9 + a] = float(region[a]);
+  for (int a = 0; a < 3; ++a) frame[9 + a] = float(at[a]);
   append_world_maps(fr.B, frame);
+  for (int a = 0; a < 3; ++a) frame.push_back(float(first[a] - anchor[a]));
   const cl_int4 dims = {{plan.dims[0], plan.dims[1], plan.dims[2], 0}};
   const cl_float background = volume.grid->background();
 
@@ -254,12 +261,17 @@ detail::VolumeEvaluation evaluate(const Positions& positions, const volume::Volu
 
 CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalue, double sigma,
                    float ao_scale, Device& device, VolumeEstimateStats* stats, bool finer_scales,
-                   VolumePoint point) {
+                   VolumePoint point, const SurfacePiece* piece) {
   detail::VolumeSetup setup = detail::volume_setup(mesh, volume, sigma);
   setup.point = point;
   if (!std::isfinite(ao_scale)) throw Error("curvature: ao_scale must be finite");
   if (mesh.positions.empty()) {
     if (stats) *stats = {};
+    if (piece) {  // an empty piece still takes part in the pieces' reduction
+      CurvatureField none;
+      detail::finish_volume_field(mesh, VertexCorners{}, detail::RawVertex{}, detail::ScaleLadder{}, finer_scales,
+                                  ao_scale, none, piece);
+    }
     return {};
   }
   VolumeSession& s = session_for(device);
@@ -275,7 +287,7 @@ CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalu
       ladder);
   Clock::time_point t = Clock::now();
   const std::size_t unreliable =
-      detail::finish_volume_field(mesh, corners, e.raw, ladder, finer_scales, ao_scale, e.field);
+      detail::finish_volume_field(mesh, corners, e.raw, ladder, finer_scales, ao_scale, e.field, piece);
   if (point == VolumePoint::vertex) e.field.surface_points = edge_surface_points(mesh, volume, e.field);
   e.steps.finish = lap(t);
   if (stats)
@@ -288,9 +300,10 @@ CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalu
 
 CurvatureField volume_estimate(const Mesh& mesh, const volume::Volume& volume, float isovalue,
                                double sigma, float ao_scale, Device& device,
-                               VolumeEstimateStats* stats, bool finer_scales, VolumePoint point) {
+                               VolumeEstimateStats* stats, bool finer_scales, VolumePoint point,
+                               const SurfacePiece* piece) {
   try {
-    return run(mesh, volume, isovalue, sigma, ao_scale, device, stats, finer_scales, point);
+    return run(mesh, volume, isovalue, sigma, ao_scale, device, stats, finer_scales, point, piece);
   } catch (const cl::Error& e) {
     try {
       device.queue().finish();

@@ -50,6 +50,7 @@
 
 #include "core/cl_device.h"
 #include "core/mesh.h"
+#include "core/surface_piece.h"
 #include "curvature/curvature_field.h"
 #include "volume/volume.h"
 
@@ -123,10 +124,16 @@ struct VolumeEstimateStats {
 /// sigma and those the scale does not fit (eroded or opposed) are Unreliable (the multi-scale
 /// arrays use that, so that each scale shows only what it resolves); the Scale array is then
 /// absent.
+/// `piece` (core/surface_piece.h): `mesh` is one piece of a surface divided among processes,
+/// extracted with a margin wide enough for the smoothing of its own vertices (the scale's
+/// kPrefilterRadius deviations plus the B-spline's reach) and for the box test; the call is
+/// collective, and the piece's own vertices get bit-identical values to the single process's
+/// on the whole surface (the one whole-surface quantity, the median gradient, is reduced).
 CurvatureField volume_estimate(const Mesh& mesh, const volume::Volume& volume, float isovalue,
                                double sigma, float ao_scale, Device& device,
                                VolumeEstimateStats* stats = nullptr, bool finer_scales = true,
-                               VolumePoint point = VolumePoint::vertex);
+                               VolumePoint point = VolumePoint::vertex,
+                               const SurfacePiece* piece = nullptr);
 
 /// VolumePoint::vertex: the surface points (CurvatureField::surface_points) of `mesh`'s
 /// marching-cubes vertices on `volume`'s grid, from the curvature in `field` (normals, k1, k2,
@@ -150,6 +157,7 @@ CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume&
                                          float isovalue, double sigma, float ao_scale,
                                          VolumeEstimateStats* stats = nullptr,
                                          bool finer_scales = true,
-                                         VolumePoint point = VolumePoint::vertex);
+                                         VolumePoint point = VolumePoint::vertex,
+                                         const SurfacePiece* piece = nullptr);
 
 }  // namespace isocurv::curvature

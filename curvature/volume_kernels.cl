@@ -6,8 +6,9 @@
 // Appended to curvature_math.cl; built with -DBRICK_VOXELS, -DBRICK_ROWS, -DSPLINE_TAPS,
 // -DPADDED, -DPAD_BEFORE, -DPADDED_VOXELS, -DNEWTON_STEPS and curvature_math.cl's constants.
 
-// Index-space frame: the world -> index matrix B (row-major), the world position of the
-// region's first voxel, and the maps of index-space derivatives to world space by order
+// Index-space frame: the world -> index matrix B (row-major), the world position of a fixed
+// anchor voxel (the brick holding the volume's first voxel: positions measured from it round the
+// same whatever vertices share the call) and the region's first voxel less the anchor, and the maps of index-space derivatives to world space by order
 // (volume_estimate.cpp, world_maps): h[e] = sum_f m2[e][f] d_f over the 6 distinct second
 // derivatives f (in PAIR_ORDERS order), t[e] = sum_f m3[e][f] d_f over the 10 third (TRIPLE_ORDERS).
 typedef struct {
@@ -15,6 +16,7 @@ typedef struct {
   float origin[3];
   float m2[6][6];
   float m3[10][10];
+  float first[3];
 } frame_t;
 
 // The orders (nx, ny, nz) of the distinct second and third index-space derivatives, in the order
@@ -207,16 +209,20 @@ typedef struct {
 INLINE jet_t spline_jet(const samples_t* s, __global const float* blocks, const frame_t* f, vec3 p,
                         int order) {
   const vec3 rel = sub3(p, v3(f->origin[0], f->origin[1], f->origin[2]));
+  // Index positions from the anchor: the weights come from these (their rounding the same
+  // whatever region the call covers), the taps then shift to the region by whole numbers.
   const float q[3] = {f->b[0] * rel.x + f->b[1] * rel.y + f->b[2] * rel.z,
                       f->b[3] * rel.x + f->b[4] * rel.y + f->b[5] * rel.z,
                       f->b[6] * rel.x + f->b[7] * rel.y + f->b[8] * rel.z};
+  const int fx = (int)f->first[0], fy = (int)f->first[1], fz = (int)f->first[2];
   axis_t ax, ay, az;
   spline_weights(q[0], &ax);
   spline_weights(q[1], &ay);
   spline_weights(q[2], &az);
+  ax.first -= fx, ay.first -= fy, az.first -= fz;
   // The block of the brick holding the evaluation's cell floor(q): it holds all 5^3 taps, the
   // tap (tx, ty, tz) at a constant offset from the first.
-  const int cx = (int)floor(q[0]), cy = (int)floor(q[1]), cz = (int)floor(q[2]);
+  const int cx = (int)floor(q[0]) - fx, cy = (int)floor(q[1]) - fy, cz = (int)floor(q[2]) - fz;
   const int block = brick_number(s, cx >> 3, cy >> 3, cz >> 3);
   if (block < 0) {  // outside the smoothed bricks (a plan never lets that happen)
     jet_t none = {0};
@@ -356,6 +362,8 @@ __kernel void volume_curvature(__global const float* positions, uint count,
   for (int k = 0; k < 100; ++k) ((float*)f.m3)[k] = frame_params[48 + k];
   #pragma unroll
   for (int k = 0; k < 3; ++k) f.origin[k] = frame_params[9 + k];
+  #pragma unroll
+  for (int k = 0; k < 3; ++k) f.first[k] = frame_params[148 + k];
 
   const vec3 x0 = load3(positions, i);
   vec3 x = x0;

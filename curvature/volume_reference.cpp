@@ -211,23 +211,21 @@ void flip_orientation(std::size_t i, float ao_scale, CurvatureField& f) {
 
 std::size_t finish_volume_field(const Mesh& mesh, const VertexCorners& corners,
                                 const RawVertex& raw, const ScaleLadder& ladder,
-                                bool finer_scales, float ao_scale, CurvatureField& field) {
+                                bool finer_scales, float ao_scale, CurvatureField& field,
+                                const SurfacePiece* piece) {
   const std::size_t nv = mesh.positions.size();
   field.area = mixed_vertex_areas(mesh, corners);
   field.boundary = boundary_vertices(mesh, corners);
   for (std::size_t i = 0; i < nv; ++i)
     if (ladder.outside[i]) field.boundary[i] = 1;
   field.unreliable.assign(nv, 0);
-  std::vector<float> lengths;
+  std::vector<float> lengths;  // the vertices' gradients (the whole surface's with a piece)
   lengths.reserve(nv);
-  for (float g : raw.gradient_norm)
-    if (g > 0) lengths.push_back(g);
+  for (std::size_t i = 0; i < nv; ++i)
+    if (raw.gradient_norm[i] > 0 && owns_vertex(piece, i)) lengths.push_back(raw.gradient_norm[i]);
   float weak_below = 0;
-  if (!lengths.empty()) {
-    auto mid = lengths.begin() + lengths.size() / 2;
-    std::nth_element(lengths.begin(), mid, lengths.end());
-    weak_below = float(volume::kWeakGradientFraction) * *mid;
-  }
+  if (const std::uint64_t n = total_count(piece, lengths.size()); n > 0)
+    weak_below = float(volume::kWeakGradientFraction) * kth_smallest_positive(piece, std::move(lengths), n / 2);
   std::vector<Vec3f> faces;
   std::size_t count = 0;
   for (std::size_t i = 0; i < nv; ++i) {
@@ -395,7 +393,7 @@ std::vector<Vec3f> edge_surface_points(const Mesh& mesh, const volume::Volume& v
 CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume& volume,
                                          float isovalue, double sigma, float ao_scale,
                                          VolumeEstimateStats* stats, bool finer_scales,
-                                         VolumePoint point) {
+                                         VolumePoint point, const SurfacePiece* piece) {
   detail::VolumeSetup setup = detail::volume_setup(mesh, volume, sigma);
   setup.point = point;
   if (!std::isfinite(ao_scale)) throw Error("curvature: ao_scale must be finite");
@@ -410,7 +408,7 @@ CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume&
       },
       ladder);
   const std::size_t unreliable =
-      detail::finish_volume_field(mesh, corners, e.raw, ladder, finer_scales, ao_scale, e.field);
+      detail::finish_volume_field(mesh, corners, e.raw, ladder, finer_scales, ao_scale, e.field, piece);
   if (point == VolumePoint::vertex) e.field.surface_points = edge_surface_points(mesh, volume, e.field);
   if (stats)
     *stats = VolumeEstimateStats{unreliable, 0, ladder.refined, detail::count_of(ladder.outside),

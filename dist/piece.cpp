@@ -15,20 +15,27 @@ std::uint32_t key_z(std::uint64_t key) { return std::uint32_t((key >> 2) & 0xfff
 
 }  // namespace
 
+std::vector<int> triangle_owners(const Mesh& local, const Slabs& slabs) {
+  const auto& keys = local.edge_keys;
+  if (keys.size() != local.positions.size()) throw Error("cut_piece: the local extraction has no edge keys");
+  std::vector<int> owner(local.triangles.size());
+  for (std::size_t t = 0; t < owner.size(); ++t) {
+    const Tri& tri = local.triangles[t];
+    const std::uint32_t z = std::min({key_z(keys[tri[0]]), key_z(keys[tri[1]]), key_z(keys[tri[2]])});
+    owner[t] = slabs.owner_of_cell(int(z) + slabs.key_origin_z);
+  }
+  return owner;
+}
+
 Piece cut_piece(const Mesh& local, const Slabs& slabs, int rank) {
   const std::size_t nv = local.positions.size(), nt = local.triangles.size();
-  if (local.edge_keys.size() != nv) throw Error("cut_piece: the local extraction has no edge keys");
   const auto& keys = local.edge_keys;
 
   // Owners: triangles by their lowest key z; vertices by the lowest owner around them.
-  std::vector<int> tri_owner(nt);
+  const std::vector<int> tri_owner = triangle_owners(local, slabs);
   std::vector<int> vert_owner(nv, INT_MAX);
-  for (std::size_t t = 0; t < nt; ++t) {
-    const Tri& tri = local.triangles[t];
-    const std::uint32_t z = std::min({key_z(keys[tri[0]]), key_z(keys[tri[1]]), key_z(keys[tri[2]])});
-    tri_owner[t] = slabs.owner_of_cell(int(z) + slabs.key_origin_z);
-    for (std::uint32_t v : tri) vert_owner[v] = std::min(vert_owner[v], tri_owner[t]);
-  }
+  for (std::size_t t = 0; t < nt; ++t)
+    for (std::uint32_t v : local.triangles[t]) vert_owner[v] = std::min(vert_owner[v], tri_owner[t]);
   // The owned triangles' vertices, then the ghost ring: the other triangles using one of them.
   std::vector<char> near(nv, 0);
   for (std::size_t t = 0; t < nt; ++t)

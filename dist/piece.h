@@ -35,6 +35,10 @@ struct Piece {
   std::size_t owned_triangles = 0;         ///< the first triangles, owned by this rank
 };
 
+/// Per triangle of the local extraction `local` (edge keys filled): the rank owning it, the slab
+/// of the lowest z among its vertices' edge keys. @throw Error when `local` has no edge keys.
+std::vector<int> triangle_owners(const Mesh& local, const Slabs& slabs);
+
 /// Cuts rank `rank`'s piece out of its local extraction `local` (whose edge_keys are filled:
 /// mc::Options::keep_edge_keys, and which covers Slabs::extract_range(rank, kExtractGhostCells)).
 /// @throw Error when `local` has no edge keys.

@@ -47,6 +47,37 @@ vtkSmartPointer<vtkPolyData> piece_polydata(const Piece& p, const curvature::Cur
   return poly;
 }
 
+// Gives an empty piece (a rank whose slab holds no surface) the point arrays the others carry,
+// with no tuples: VTK's reader wants each piece to hold the arrays the .pvtp lists, and rank 0,
+// which writes the .pvtp, may be the empty one. Collective.
+void declare_arrays_of_others(const World& world, vtkPolyData* poly) {
+  vtkPointData* pd = poly->GetPointData();
+  std::string mine;  // "name type components" lines, from a piece with points
+  if (poly->GetNumberOfPoints() > 0)
+    for (int i = 0; i < pd->GetNumberOfArrays(); ++i)
+      if (vtkDataArray* a = pd->GetArray(i); a && a->GetName())
+        mine += std::string(a->GetName()) + " " + std::to_string(a->GetDataType()) + " " +
+                std::to_string(a->GetNumberOfComponents()) + "\n";
+  std::vector<char> chosen;
+  for (const std::vector<char>& part : world.gather(std::vector<char>(mine.begin(), mine.end())))
+    if (chosen.empty()) chosen = part;
+  chosen = world.broadcast(std::move(chosen));
+  if (poly->GetNumberOfPoints() > 0) return;
+  std::istringstream in(std::string(chosen.begin(), chosen.end()));
+  std::string name;
+  int type = 0, components = 0;
+  while (in >> name >> type >> components) {
+    if (pd->GetArray(name.c_str())) continue;
+    vtkSmartPointer<vtkDataArray> a = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(type));
+    a->SetName(name.c_str());
+    a->SetNumberOfComponents(components);
+    if (name == "Normals")
+      pd->SetNormals(a);
+    else
+      pd->AddArray(a);
+  }
+}
+
 // The VTK XML type name of an array.
 std::string xml_type(vtkDataArray* a) {
   switch (a->GetDataType()) {
@@ -132,8 +163,9 @@ void write_pieces(const World& world, const std::string& pvtp, const Piece& piec
   vtkSmartPointer<vtkPolyData> poly;
   AtomicFileSet files;
   const std::string mine = piece_path(pvtp, world.rank());
+  together(world, [&] { poly = piece_polydata(piece, field, context); });
+  declare_arrays_of_others(world, poly);
   together(world, [&] {
-    poly = piece_polydata(piece, field, context);
     files.write(mine, [&](const std::string& tmp) { io::write_polydata(tmp, poly, compression); });
   });
   // Every piece is ready: into place, then the index. A rank whose rename failed, or rank 0's

@@ -25,6 +25,18 @@ std::pair<int, int> Slabs::extract_range(int r, int margin) const {
   return {int(std::max<long long>(lo, INT_MIN)), int(std::min<long long>(hi, INT_MAX))};
 }
 
+LayerBricks count_layer_bricks(int cells_min_z, int cells_max_z, const std::vector<int>& brick_z, int count_from,
+                               int count_to) {
+  LayerBricks r;
+  if (cells_min_z > cells_max_z) return r;
+  r.first_layer_z = cells_min_z & ~7;
+  r.counts.assign(std::size_t((cells_max_z - r.first_layer_z) / 8 + 1), 0);
+  for (int z : brick_z)
+    if (z >= count_from && z <= count_to && z >= r.first_layer_z && (z - r.first_layer_z) / 8 < int(r.counts.size()))
+      ++r.counts[std::size_t((z - r.first_layer_z) / 8)];
+  return r;
+}
+
 Slabs balance_slabs(const std::vector<std::uint64_t>& layer_bricks, int first_layer_z, int ranks,
                     int key_origin_z) {
   if (ranks < 1) throw Error("balance_slabs: at least one rank");

@@ -3,6 +3,7 @@
 // NRRD, NIfTI and MetaImage files, so a slab is one contiguous run of the file), cut between
 // 8-cell brick layers and balanced by the bricks that carry surface, not by volume: a CT with
 // much air, or a sparse .vdb, gives each rank the same share of the real work.
+#include <climits>
 #include <cstdint>
 #include <vector>
 
@@ -29,6 +30,18 @@ struct Slabs {
   /// [first, last] pair of index z (clamped to the int range).
   std::pair<int, int> extract_range(int r, int margin) const;
 };
+
+/// The bricks that carry surface, per brick layer: what balance_slabs divides.
+struct LayerBricks {
+  int first_layer_z = 0;              ///< index z of the first layer's lowest cell (a multiple of 8)
+  std::vector<std::uint64_t> counts;  ///< bricks per layer, from first_layer_z up
+};
+
+/// Counts the brick origins' index z `brick_z` by brick layer of the cells [cells_min_z,
+/// cells_max_z] (index z; no layers when cells_min_z > cells_max_z), keeping only those within
+/// [count_from, count_to] (a rank's even share of the file, when each counts its own).
+LayerBricks count_layer_bricks(int cells_min_z, int cells_max_z, const std::vector<int>& brick_z,
+                               int count_from = INT_MIN, int count_to = INT_MAX);
 
 /// Splits the brick layers `first_layer_z`, +8, ... (index z of each layer's lowest cell) among
 /// `ranks` so that the surface bricks `layer_bricks[i]` of each layer add up as evenly as

@@ -216,8 +216,22 @@ std::string guarded(const std::function<void()>& work) {
 }
 
 void together(const World& world, const std::function<void()>& work) {
-  const std::string error = world.agree(guarded(work));
+  std::string agreed;  // set when a collective inside `work` learnt of another rank's failure
+  const std::string mine = guarded([&] {
+    try {
+      work();
+    } catch (const AgreedFailure& e) {
+      agreed = e.what();
+    }
+  });
+  if (!agreed.empty()) throw Error(agreed);
+  const std::string error = world.agree(mine);
   if (!error.empty()) throw Error(error);
+}
+
+void check_peers(const World& world) {
+  const std::string error = world.agree("");
+  if (!error.empty()) throw AgreedFailure(error);
 }
 
 }  // namespace isocurv::dist

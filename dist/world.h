@@ -9,6 +9,7 @@
 // leave the others waiting for ever.
 #include <cstdint>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -76,6 +77,18 @@ std::string guarded(const std::function<void()>& work);
 
 /// agree(guarded(work)): throws Error with the agreed message on every rank when any rank's
 /// `work` failed (main() prints errors on rank 0 only; every rank exits with status 1).
+/// `work` may itself call collectives (the estimators' reductions, core/surface_piece.h) when
+/// each starts with check_peers: a rank that failed before one meets the others there.
 void together(const World& world, const std::function<void()>& work);
+
+/// Thrown by check_peers: another rank's work failed, and every rank already knows (together()
+/// passes it on as an Error without agreeing again).
+struct AgreedFailure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Collective, for collectives inside together()'s work: agree("") with the other ranks, whose
+/// failed work's agree() this meets; throws AgreedFailure with the failing rank's message.
+void check_peers(const World& world);
 
 }  // namespace isocurv::dist

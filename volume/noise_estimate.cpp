@@ -8,13 +8,21 @@
 namespace isocurv::volume {
 
 NoiseEstimate estimate_noise(const openvdb::FloatGrid& grid, const GridFrame& frame,
-                             const Positions& points, float isovalue, std::size_t max_blocks) {
+                             const Positions& points, float isovalue, std::size_t max_blocks,
+                             const SurfacePiece* piece) {
   NoiseEstimate out;
   std::set<openvdb::Coord> blocks;  // ordered: deterministic
   for (const Vec3f& p : points) {
     const openvdb::Vec3d q = frame.to_index(openvdb::Vec3d(p[0], p[1], p[2]));
     const openvdb::Coord c = openvdb::Coord::floor(q);
     blocks.insert(openvdb::Coord(c[0] & ~7, c[1] & ~7, c[2] & ~7));
+  }
+  if (piece) {  // every piece's blocks (coordinates are exact in doubles)
+    std::vector<double> mine;
+    for (const openvdb::Coord& b : blocks) mine.insert(mine.end(), {double(b[0]), double(b[1]), double(b[2])});
+    const std::vector<double> every = piece->all(mine);
+    for (std::size_t i = 0; i + 2 < every.size(); i += 3)
+      blocks.insert(openvdb::Coord(int(every[i]), int(every[i + 1]), int(every[i + 2])));
   }
   std::vector<openvdb::Coord> chosen(blocks.begin(), blocks.end());
   if (chosen.size() > max_blocks) {
@@ -26,7 +34,8 @@ NoiseEstimate estimate_noise(const openvdb::FloatGrid& grid, const GridFrame& fr
   const int m = kNoiseEdgeDistance;
   openvdb::FloatGrid::ConstAccessor acc = grid.getConstAccessor();
   std::vector<double> residuals;
-  for (const openvdb::Coord& base : chosen)
+  for (const openvdb::Coord& base : chosen) {
+    if (piece && !piece->holds_cells_at(base[2])) continue;  // another piece measures it
     for (int z = 0; z < 8; ++z)
       for (int y = 0; y < 8; ++y)
         for (int x = 0; x < 8; ++x) {
@@ -57,6 +66,8 @@ NoiseEstimate estimate_noise(const openvdb::FloatGrid& grid, const GridFrame& fr
           if (near_edge || !finite) continue;
           residuals.push_back(residual);
         }
+  }
+  if (piece) residuals = piece->all(residuals);  // the median is the same in any order
   out.voxels = residuals.size();
   if (residuals.empty()) return out;
   auto median = [](std::vector<double>& r) {

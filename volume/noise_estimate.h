@@ -3,6 +3,7 @@
 #include <cstddef>
 
 #include "core/mesh.h"
+#include "core/surface_piece.h"
 #include "volume/gaussian_jet.h"
 #include "volume/volume.h"
 
@@ -31,7 +32,11 @@ inline constexpr double kFourthDifferenceVariance = 18.0 * 18.0 + 6 * 16 + 6;
 /// dominates). Fourth differences vanish on cubics, so a smooth field's own shape is not taken
 /// for noise (a six-neighbour residual read a 128^3 torus distance field as noise 0.0038 of its
 /// step). sigma = 0 when no voxel qualifies. Deterministic.
+/// With a `piece` (core/surface_piece.h), collective: `points` are the piece's own, the blocks
+/// are chosen from every piece's together, each is measured by the piece that holds its cells,
+/// and the residuals are pooled, so every piece gets the single process's estimate.
 NoiseEstimate estimate_noise(const openvdb::FloatGrid& grid, const GridFrame& frame,
-                             const Positions& points, float isovalue, std::size_t max_blocks = 256);
+                             const Positions& points, float isovalue, std::size_t max_blocks = 256,
+                             const SurfacePiece* piece = nullptr);
 
 }  // namespace isocurv::volume

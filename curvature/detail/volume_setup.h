@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/mesh.h"
+#include "core/surface_piece.h"
 #include "curvature/curvature_field.h"
 #include "curvature/vertex_corners.h"
 #include "curvature/volume_estimate.h"
@@ -101,9 +102,11 @@ inline std::size_t count_of(const std::vector<std::uint8_t>& flags) {
 
 /// Fills Area, Boundary (the mesh's open boundary, or a smoothing that reaches the cut), Unreliable
 /// and the "Scale" array, and resets the unreliable vertices (see volume_estimate.h). Returns the
-/// number of unreliable vertices.
+/// number of unreliable vertices. With a `piece`, collective: the median gradient is the whole
+/// surface's (over every piece's own vertices).
 std::size_t finish_volume_field(const Mesh& mesh, const VertexCorners& corners,
                                 const RawVertex& raw, const ScaleLadder& ladder,
-                                bool finer_scales, float ao_scale, CurvatureField& field);
+                                bool finer_scales, float ao_scale, CurvatureField& field,
+                                const SurfacePiece* piece);
 
 }  // namespace isocurv::curvature::detail
