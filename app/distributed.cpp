@@ -169,21 +169,33 @@ void load_in_part(RankVolume& rv, const std::string& in, const CommonOptions& o,
   timer.start("extract");
   // The surface bricks of this rank's share, per brick layer of the whole frame.
   const mc::Frame whole = mc::make_frame(probe, rv.iso, mo);
-  dist::LayerBricks layers = count_layers(whole, {});
+  dist::LayerBricks layers = count_layers(whole, {}), leaves = layers;
   dist::together(world, [&] {
     if (!share) return;
     share->stats = probe.stats;
     layers = count_layers(whole, mc::BrickIndex(*share).candidates(mc::make_frame(*share, rv.iso, mo)), 8 * b0,
                           8 * b1 - 1);
+    std::vector<openvdb::Coord> leaf_origins;  // the share's blocks that are not constant
+    for (auto leaf = share->grid->tree().cbeginLeaf(); leaf; ++leaf) leaf_origins.push_back(leaf->origin());
+    leaves = count_layers(whole, leaf_origins, 8 * b0, 8 * b1 - 1);
   });
   share.reset();
 #ifdef __GLIBC__
   malloc_trim(0);  // the share's pages back to the system before the slab is read (retain_freed_memory keeps them)
 #endif
-  const std::vector<std::int64_t> counts =
-      world.sum(std::vector<std::int64_t>(layers.counts.begin(), layers.counts.end()));
-  rv.slabs = dist::balance_slabs(std::vector<std::uint64_t>(counts.begin(), counts.end()), layers.first_layer_z,
-                                 world.size(), whole.key_origin.z());
+  // Surface bricks and leaves per layer, summed over the shares (one reduction).
+  std::vector<std::int64_t> mine(layers.counts.begin(), layers.counts.end());
+  mine.insert(mine.end(), leaves.counts.begin(), leaves.counts.end());
+  const std::vector<std::int64_t> counts = world.sum(mine);
+  const std::size_t n = layers.counts.size();
+  // Each rank reads its slab: the layers' blocks weigh in beside their surface (dist/slabs.h).
+  const openvdb::Coord dim = probe.domain.dim();
+  const std::uint64_t blocks_per_layer = std::uint64_t((dim.x() + 7) / 8) * std::uint64_t((dim.y() + 7) / 8);
+  rv.slabs = dist::balance_slabs(
+      dist::read_in_part_costs(std::vector<std::uint64_t>(counts.begin(), counts.begin() + std::ptrdiff_t(n)),
+                               std::vector<std::uint64_t>(counts.begin() + std::ptrdiff_t(n), counts.end()),
+                               blocks_per_layer),
+      layers.first_layer_z, world.size(), whole.key_origin.z());
   // This rank's slab, its margin and the apron.
   timer.start("load");
   const auto [z0, z1] = rv.slabs.extract_range(world.rank(), margin);

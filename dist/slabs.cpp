@@ -37,6 +37,16 @@ LayerBricks count_layer_bricks(int cells_min_z, int cells_max_z, const std::vect
   return r;
 }
 
+std::vector<std::uint64_t> read_in_part_costs(const std::vector<std::uint64_t>& surface_bricks,
+                                              const std::vector<std::uint64_t>& leaves,
+                                              std::uint64_t blocks_per_layer) {
+  std::vector<std::uint64_t> cost(surface_bricks.size());
+  for (std::size_t i = 0; i < cost.size(); ++i)
+    cost[i] = surface_bricks[i] * kSurfaceBrickCost + blocks_per_layer * kBlockReadCost +
+              (i < leaves.size() ? leaves[i] : 0) * kLeafBuildCost;
+  return cost;
+}
+
 Slabs balance_slabs(const std::vector<std::uint64_t>& layer_bricks, int first_layer_z, int ranks,
                     int key_origin_z) {
   if (ranks < 1) throw Error("balance_slabs: at least one rank");

@@ -137,6 +137,25 @@ TEST(Slabs, BalancedByTheBricksThatCarrySurface) {
   EXPECT_EQ(four.extract_range(3, 4).second, INT_MAX);
 }
 
+// Read in part, each rank also reads and builds its slab: a layer's blocks weigh in beside its
+// surface, so the air above an object no longer all falls to the last rank.
+TEST(Slabs, ReadInPartWeighsEachLayersBlocks) {
+  const std::vector<std::uint64_t> surface = {50, 50, 0, 0, 0, 0, 0, 0}, leaves(8, 100);
+  const std::vector<std::uint64_t> cost = dist::read_in_part_costs(surface, leaves, 100);
+  EXPECT_EQ(cost[0], 50 * dist::kSurfaceBrickCost + 100 * dist::kBlockReadCost + 100 * dist::kLeafBuildCost);
+  EXPECT_EQ(cost[7], 100 * dist::kBlockReadCost + 100 * dist::kLeafBuildCost);
+  auto layers_of = [](const dist::Slabs& s, int r) {
+    int n = 0;
+    for (int i = 0; i < 8; ++i) n += s.owner_of_cell(8 * i) == r;
+    return n;
+  };
+  const dist::Slabs by_surface = dist::balance_slabs(surface, 0, 2, -1);
+  EXPECT_EQ(layers_of(by_surface, 0), 1);  // the surface split: rank 1 reads 7 layers of air
+  const dist::Slabs by_cost = dist::balance_slabs(cost, 0, 2, -1);
+  EXPECT_GE(layers_of(by_cost, 0), 3);
+  EXPECT_LE(layers_of(by_cost, 0), 4);
+}
+
 // The pieces of 1..4 ranks, each cut from its own margin-limited extraction, are the whole
 // extraction: on CT-like volumes (8-bit, voxels at the isovalue: snapping merges vertices at the
 // seams), a thick-slice one, and on the device's mesher as well as the reference.
