@@ -283,15 +283,17 @@ void make_rank_surface(RankSurface& r, const std::string& in, const CommonOption
   Mesh local;
   dist::together(world, [&] {
     local = reference ? mc::extract_reference(v, iso, mo) : mesher->extract(iso, mo);
+    timer.start("piece");
     r.piece = dist::cut_piece(local, r.slabs, world.rank());
   });
-  timer.stop();
+  timer.start("totals");
   // The whole surface's counts; the empty surface is refused (curvature) or warned about (extract).
   const Vec3f origin = [&] {
     const openvdb::Vec3d c = v.grid->transform().indexToWorld(v.domain.getCenter());
     return Vec3f{float(c[0]), float(c[1]), float(c[2])};
   }();
   r.totals = dist::reduce_totals(world, r.piece, origin);
+  timer.stop();
   r.s.volume = std::move(v);
   r.s.isovalue = iso;
   if (r.totals.triangles == 0)

@@ -5,6 +5,8 @@
 #include <numeric>
 
 #include "core/error.h"
+#include "core/huge_pages.h"
+#include "dist/detail/bucket_sort.h"
 
 namespace isocurv::dist {
 namespace {
@@ -57,10 +59,15 @@ Piece cut_piece(const Mesh& local, const Slabs& slabs, int rank) {
       for (std::uint32_t v : local.triangles[t]) used[v] = 1;
   Piece p;
   p.rank = rank;
-  for (std::uint32_t v = 0; v < nv; ++v)
-    if (used[v]) p.local_vertex.push_back(v);
-  std::sort(p.local_vertex.begin(), p.local_vertex.end(),
-            [&](std::uint32_t a, std::uint32_t b) { return keys[a] < keys[b]; });
+  {
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> by_key;  // sorted without indirection
+    by_key.reserve(nv);
+    for (std::uint32_t v = 0; v < nv; ++v)
+      if (used[v]) by_key.emplace_back(keys[v], v);
+    std::sort(by_key.begin(), by_key.end());
+    p.local_vertex.reserve(by_key.size());
+    for (const auto& [key, v] : by_key) p.local_vertex.push_back(v);
+  }
   std::vector<std::uint32_t> index(nv, kNone);
   const std::size_t n = p.local_vertex.size();
   p.mesh.positions.resize(n);
@@ -77,17 +84,24 @@ Piece cut_piece(const Mesh& local, const Slabs& slabs, int rank) {
   }
   // Triangles renumbered, each list in the order of its (rotated to start at the lowest id)
   // global-id triple: the same order on every rank count.
+  // (Piece vertex numbers increase with the global ids, so they order the triples alike.)
   auto renumbered = [&](std::vector<std::uint32_t>& list) {
-    std::vector<std::pair<std::array<std::int64_t, 3>, std::uint32_t>> order;
+    struct Rotated {
+      std::uint32_t v[3], t;
+    };
+    std::vector<Rotated> order;
     order.reserve(list.size());
     for (std::uint32_t t : list) {
       Tri tri = local.triangles[t];
       for (auto& v : tri) v = index[v];
       const int k = tri[0] < tri[1] ? (tri[0] < tri[2] ? 0 : 2) : (tri[1] < tri[2] ? 1 : 2);
-      order.push_back({{p.global_ids[tri[k]], p.global_ids[tri[(k + 1) % 3]], p.global_ids[tri[(k + 2) % 3]]}, t});
+      order.push_back({{tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]}, t});
     }
-    std::sort(order.begin(), order.end());
-    for (const auto& [ids, t] : order) {
+    detail::bucket_sort(order, n, [](const Rotated& r) { return r.v[0]; }, [](const Rotated& a, const Rotated& b) {
+      return a.v[1] != b.v[1] ? a.v[1] < b.v[1] : a.v[2] < b.v[2];
+    });
+    for (const Rotated& r : order) {
+      const std::uint32_t t = r.t;
       Tri tri = local.triangles[t];
       for (auto& v : tri) v = index[v];
       p.mesh.triangles.push_back(tri);
@@ -95,6 +109,12 @@ Piece cut_piece(const Mesh& local, const Slabs& slabs, int rank) {
       p.cell_ghost.push_back(tri_owner[t] == rank ? 0 : kDuplicate);
     }
   };
+  const std::size_t kept = owned.size() + ring.size();
+  resize_in_huge_pages(p.mesh.triangles, 0);
+  p.mesh.triangles.reserve(kept);
+  advise_huge_pages(p.mesh.triangles.data(), kept * sizeof(Tri));
+  p.triangle_owner.reserve(kept);
+  p.cell_ghost.reserve(kept);
   renumbered(owned);
   renumbered(ring);
   p.owned_triangles = owned.size();

@@ -5,8 +5,10 @@
 #include <cstring>
 #include <unordered_map>
 
+#include "core/huge_pages.h"
 #include "core/mesh_measures.h"
 #include "core/union_find.h"
+#include "dist/detail/bucket_sort.h"
 
 namespace isocurv::dist {
 namespace {
@@ -41,6 +43,7 @@ Share piece_share(const Piece& p, const Vec3f& origin) {
   };
   std::vector<Use> uses;
   uses.reserve(nt * 3);
+  advise_huge_pages(uses.data(), nt * 3 * sizeof(Use));  // first touches of small pages are slow on VMs
   UnionFind uf(nv);
   for (std::size_t t = 0; t < nt; ++t) {
     const Tri& tri = m.triangles[t];
@@ -50,7 +53,9 @@ Share piece_share(const Piece& p, const Vec3f& origin) {
       uf.unite(a, b);
     }
   }
-  std::sort(uses.begin(), uses.end());
+  // Grouped by edge: by lower vertex, then by higher.
+  detail::bucket_sort(uses, nv, [](const Use& u) { return std::uint32_t(u.edge >> 32); },
+                      [](const Use& a, const Use& b) { return a.edge < b.edge; });
   for (std::size_t i = 0; i < uses.size();) {
     std::size_t j = i;
     int sum = 0, owner = uses[i].owner;

@@ -4,10 +4,13 @@
 isovalue, and the seams each leaves: duplicate points and extra triangles against the single
 process. Not a test: prints a table (docs/distributed.md).
 
-Needs ParaView (Debian: paraview, python3-paraview). On Debian 12 these replace libvtk9-dev, so
-run it with an isocurv built beforehand (the runtime libraries stay), then reinstall libvtk9-dev.
+Needs ParaView (Debian: paraview, python3-paraview). Installed, on Debian 12 these remove
+libvtk9-dev and python3-vtk9; unpacked beside them instead, nothing is replaced:
 
-    /usr/bin/python3 bench/python/bench_distributed_paraview.py --isocurv build/app/isocurv [--runs 3]
+    apt-get download paraview python3-paraview && for f in *paraview*.deb; do dpkg -x $f /opt/pv; done
+    PATH=/opt/pv/usr/bin:$PATH LD_LIBRARY_PATH=/opt/pv/usr/lib/x86_64-linux-gnu \
+      PYTHONPATH=/opt/pv/usr/lib/python3/dist-packages \
+      /usr/bin/python3 bench/python/bench_distributed_paraview.py --isocurv build/app/isocurv [--runs 3]
 """
 import argparse
 import datetime
