@@ -384,7 +384,7 @@ nlohmann::json run_distributed(const std::string& in, const std::string& out, bo
     ranks.push_back(slab);
   }
   r["ranks"] = ranks;
-  if (rs.s.volume && rs.s.volume->slab)  // read in part (raw, NRRD): this rank's slices
+  if (rs.s.volume && rs.s.volume->slab)  // read in part (volume::LoadOptions::z_slab): this rank's slices
     r["read"] = "in part: each rank its slab, margin and apron";
   else
     r["read"] = world.size() > 1 ? "whole, by every rank" : "whole";
