@@ -58,14 +58,6 @@ std::vector<Input> expand_inputs(const std::vector<std::string>& given) {
   return out;
 }
 
-/// The file name without its extensions ("head.nii.gz" -> "head").
-std::string stem_of(const std::string& path) {
-  std::string stem = fs::path(path).filename().string();
-  const auto dot = stem.find('.');
-  if (dot != std::string::npos && dot > 0) stem = stem.substr(0, dot);
-  return stem.empty() ? "input" : stem;
-}
-
 /// A loaded input, or why it could not be loaded.
 struct Loaded {
   std::optional<volume::Volume> volume;
@@ -384,6 +376,13 @@ void make_output_folder(const std::string& dir, const std::string& what) {
     throw Error(dir, "cannot create the output folder: " + ec.message());
 }
 
+std::string file_stem(const std::string& path, const std::string& fallback) {
+  std::string stem = fs::path(path).filename().string();
+  const auto dot = stem.find('.');
+  if (dot != std::string::npos && dot > 0) stem = stem.substr(0, dot);
+  return stem.empty() ? fallback : stem;
+}
+
 std::string iso_suffix(float iso) { return "_iso" + format_number(iso); }
 
 namespace {
@@ -438,7 +437,7 @@ void run_batch(const BatchRequest& rq, const CommonOptions& o) {
   std::vector<std::string> folders;
   std::map<std::string, int> seen;
   for (const Input& in : inputs) {
-    const std::string stem = stem_of(in.path);
+    const std::string stem = file_stem(in.path, "input");
     const int n = ++seen[stem];
     folders.push_back(stem + (n > 1 ? "_" + std::to_string(n) : ""));
   }
@@ -490,7 +489,7 @@ void run_batch(const BatchRequest& rq, const CommonOptions& o) {
     if (overlap && following < inputs.size())
       next = std::async(std::launch::async, load_input, inputs[following], rq.kind, rq.step, o, sweep);
     const fs::path folder = fs::path(rq.dir) / folders[i];
-    const std::string stem = stem_of(in.path);
+    const std::string stem = file_stem(in.path, "input");
     std::vector<std::optional<float>> isos;
     if (rq.isovalues.empty() || loaded.mesh_file) isos.push_back(std::nullopt);
     for (float v : rq.isovalues)

@@ -108,6 +108,10 @@ void make_output_folder(const std::string& dir, const std::string& what);
 /// The output name's suffix for isovalue `iso` in a sweep: "_iso40", "_iso0.5", "_iso-1e-05".
 std::string iso_suffix(float iso);
 
+/// The file name up to its first dot, naming outputs ("head.nii.gz" -> "head"); `fallback` when
+/// that is empty.
+std::string file_stem(const std::string& path, const std::string& fallback);
+
 /// Runs the batch. Before any work, DIR is created (if missing) and must be writable (else an
 /// Error). Each input gets DIR/<stem>/ (a stem met twice gets _2, _3, ...): the mesh (a step's
 /// output) <stem>[_iso<V>].<format>, for run the PNG, and stats[_iso<V>].json; DIR/summary.json holds one

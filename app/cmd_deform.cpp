@@ -38,13 +38,6 @@ struct DeformCli {
   double waves = 4;         // noise: wavelengths per bounding-box diagonal
 };
 
-// The stem of a path: its file name up to the first dot.
-std::string stem_of(const std::string& path) {
-  const std::string name = fs::path(path).filename().string();
-  const std::size_t dot = name.find('.');
-  return dot == std::string::npos || dot == 0 ? name : name.substr(0, dot);
-}
-
 std::string frame_name(const std::string& stem, int f) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "_%04d.vtp", f);
@@ -108,7 +101,7 @@ void run_deform(const DeformCli& c, const CommonOptions& o) {
   fs::create_directories(c.output, ec);
   if (ec || !fs::is_directory(c.output))
     throw Error(c.output + ": cannot create the output folder");
-  const std::string stem = stem_of(c.input);
+  const std::string stem = file_stem(c.input, "mesh");
 
   Device& dev = device_for(o);
   timer.start("prepare");

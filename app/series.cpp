@@ -28,13 +28,6 @@ namespace fs = std::filesystem;
 
 bool has_glob_chars(const std::string& s) { return s.find_first_of("*?[") != std::string::npos; }
 
-std::string stem_of(const std::string& path) {
-  std::string stem = fs::path(path).filename().string();
-  const auto dot = stem.find('.');
-  if (dot != std::string::npos && dot > 0) stem = stem.substr(0, dot);
-  return stem.empty() ? "frame" : stem;
-}
-
 bool is_vdb(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -97,9 +90,9 @@ std::vector<SeriesFrame> series_frames(const std::vector<std::string>& inputs,
       }
     }
     if (grids.size() <= 1) {
-      frames.push_back({p, "", stem_of(p), 0});
+      frames.push_back({p, "", file_stem(p, "frame"), 0});
     } else {
-      for (const std::string& g : grids) frames.push_back({p, g, stem_of(p) + "_" + g, 0});
+      for (const std::string& g : grids) frames.push_back({p, g, file_stem(p, "frame") + "_" + g, 0});
     }
   }
   if (frames.empty()) throw Error("--time-series: no frames");

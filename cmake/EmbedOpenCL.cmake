@@ -10,4 +10,7 @@ function(isocurv_embed_cl target symbol clfile)
     DEPENDS "${abs}" "${PROJECT_SOURCE_DIR}/cmake/embed_file.cmake"
     COMMENT "Embedding OpenCL kernel ${clfile}")
   target_sources(${target} PRIVATE "${out}")
+  # Compiled alone, not in a unity batch (cmake/UnityBuild.cmake): editing a kernel then rebuilds
+  # one small file, not a batch of the stage's sources.
+  set_source_files_properties("${out}" PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)
 endfunction()

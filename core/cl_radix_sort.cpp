@@ -15,7 +15,7 @@ extern const char* const radix_sort_cl;
 }
 
 namespace {
-constexpr std::size_t kChunkGroup = 1;  // a chunk per work group: PoCL runs a group on one thread
+constexpr std::size_t kSortChunkGroup = 1;  // a chunk per work group: PoCL runs a group on one thread
 constexpr int kMaxRadixBits = 11;       // widest digit, radix_sort.cl's MAX_RADIX_BITS
 }  // namespace
 
@@ -40,10 +40,10 @@ void enqueue_radix_sort_pairs(Device& dev, cl::Buffer& keys, cl::Buffer& values,
   for (int pass = 0; pass < passes; ++pass) {
     const std::uint32_t shift = digit_bits * pass;
     set_args(kh, *src_k, n, chunk, shift, bits, p, hist);
-    launch(dev.queue(), kh, p, kChunkGroup);
+    launch(dev.queue(), kh, p, kSortChunkGroup);
     enqueue_exclusive_scan(dev, hist, hist, radix * p);
     set_args(ks, *src_k, *src_v, n, chunk, shift, bits, p, hist, *dst_k, *dst_v);
-    launch(dev.queue(), ks, p, kChunkGroup);
+    launch(dev.queue(), ks, p, kSortChunkGroup);
     std::swap(src_k, dst_k);
     std::swap(src_v, dst_v);
   }

@@ -11,7 +11,7 @@ extern const char* const scan_cl;
 }
 
 namespace {
-constexpr std::size_t kChunkGroup = 8;  // chunks per work group
+constexpr std::size_t kScanChunkGroup = 8;  // chunks per work group
 }  // namespace
 
 void enqueue_exclusive_scan(Device& dev, const cl::Buffer& in, const cl::Buffer& out, std::uint32_t n,
@@ -31,9 +31,9 @@ void enqueue_exclusive_scan(Device& dev, const cl::Buffer& in, const cl::Buffer&
   set_args(k1, in, n, chunk, p, totals);
   set_args(k2, totals, p, total ? *total : totals, total ? index : p);
   set_args(k3, in, out, n, chunk, p, totals);
-  launch(q, k1, p, kChunkGroup);
+  launch(q, k1, p, kScanChunkGroup);
   launch(q, k2, 1, 1);
-  launch(q, k3, p, kChunkGroup);
+  launch(q, k3, p, kScanChunkGroup);
 }
 
 std::uint32_t exclusive_scan(Device& dev, const cl::Buffer& in, const cl::Buffer& out, std::uint32_t n) {

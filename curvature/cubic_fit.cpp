@@ -7,7 +7,7 @@ namespace {
 
 using detail::V3;
 
-constexpr int kUnknowns = 7;              // A, B, C, D, E, F, G
+constexpr int kCubicUnknowns = 7;              // A, B, C, D, E, F, G
 constexpr std::size_t kMinNeighbours = 3;  // 9 rows for 7 unknowns
 constexpr double kMinNormalZ = 0.1;       // m_n below this: the slope rows are dropped
 
@@ -16,7 +16,7 @@ bool fit_cubic(const detail::VertexRing& r, V3& tensor) {
   // ~ edge^2 curvature) then weighs far less than a slope residual (~ edge curvature), so the
   // fit follows the normals, which is what keeps it stable under displacement noise (Batagelo
   // Fig. 3). least_squares scales the columns for conditioning only.
-  Eigen::MatrixXd A(3 * r.q.size(), kUnknowns);
+  Eigen::MatrixXd A(3 * r.q.size(), kCubicUnknowns);
   Eigen::VectorXd b(3 * r.q.size()), s;
   Eigen::Index row = 0;
   for (std::size_t i = 0; i < r.q.size(); ++i) {

@@ -9,11 +9,11 @@ namespace {
 
 using detail::V3;
 
-constexpr std::size_t kUnknowns = 3;  // e, f, g
+constexpr std::size_t kSamplingUnknowns = 3;  // e, f, g
 
 bool fit_normal_curvatures(const detail::VertexRing& r, V3& tensor) {
   const Eigen::Index m = Eigen::Index(r.q.size());
-  Eigen::MatrixXd A(m, kUnknowns);
+  Eigen::MatrixXd A(m, kSamplingUnknowns);
   Eigen::VectorXd kappa(m), s;
   for (Eigen::Index i = 0; i < m; ++i) {
     const V3 d = r.q[i] - r.p;
@@ -30,7 +30,7 @@ bool fit_normal_curvatures(const detail::VertexRing& r, V3& tensor) {
 }  // namespace
 
 CurvatureField estimate_normal_sampling_reference(const Mesh& mesh, const Options& options) {
-  return detail::fit_each_vertex(mesh, options, kUnknowns, fit_normal_curvatures);
+  return detail::fit_each_vertex(mesh, options, kSamplingUnknowns, fit_normal_curvatures);
 }
 
 }  // namespace isocurv::curvature

@@ -7,11 +7,11 @@ namespace {
 
 using detail::V3;
 
-constexpr std::size_t kUnknowns = 3;  // a, b, c
+constexpr std::size_t kQuadricUnknowns = 3;  // a, b, c
 
 bool fit_quadric(const detail::VertexRing& r, V3& tensor) {
   const Eigen::Index m = Eigen::Index(r.q.size());
-  Eigen::MatrixXd A(m, kUnknowns);
+  Eigen::MatrixXd A(m, kQuadricUnknowns);
   Eigen::VectorXd z(m), s;
   for (Eigen::Index i = 0; i < m; ++i) {
     const V3 d = r.q[i] - r.p;
@@ -27,7 +27,7 @@ bool fit_quadric(const detail::VertexRing& r, V3& tensor) {
 }  // namespace
 
 CurvatureField estimate_quadric_fit_reference(const Mesh& mesh, const Options& options) {
-  return detail::fit_each_vertex(mesh, options, kUnknowns, fit_quadric);
+  return detail::fit_each_vertex(mesh, options, kQuadricUnknowns, fit_quadric);
 }
 
 }  // namespace isocurv::curvature

@@ -1,4 +1,4 @@
-// isocurv_make_datasets OUTDIR [--res N] [--only NAME[,NAME...]] [--animated FRAMES]
+// isocurv_make_datasets OUTDIR [--res N] [--only NAME[,NAME...]] [--animated FRAMES] [--quiet]
 // Samples every catalogue field (or the named ones) at N voxels along the longest box side
 // (default 64) and writes OUTDIR/<name>.vdb. With --animated, the animated fields instead
 // (datasets/animated.h), FRAMES frames at t = i / FRAMES each: OUTDIR/<name>/<name>_<i>.vdb
@@ -25,9 +25,10 @@ namespace {
 
 void usage(std::FILE* to) {
   std::fprintf(to,
-               "usage: isocurv_make_datasets OUTDIR [--res N] [--only NAME[,NAME...]] [--animated FRAMES]\n"
+               "usage: isocurv_make_datasets OUTDIR [--res N] [--only NAME[,NAME...]] [--animated FRAMES] [--quiet]\n"
                "Writes OUTDIR/<name>.vdb for each analytic field (N voxels along the longest side, default 64);\n"
                "--animated: OUTDIR/<name>/<name>_<i>.vdb, i < FRAMES, for each animated field instead.\n"
+               "--quiet: no line per file written (the build runs it so).\n"
                "Fields:");
   for (const auto& n : isocurv::datasets::field_names()) std::fprintf(to, " %s", n.c_str());
   std::fprintf(to, "\nAnimated fields:");
@@ -41,7 +42,7 @@ int main(int argc, char** argv) {
   namespace ds = isocurv::datasets;
   std::string outdir;
   int res = 64, frames = 0;
-  bool only_given = false;
+  bool only_given = false, quiet = false;
   std::vector<std::string> names = ds::field_names();
   try {
     for (int i = 1; i < argc; ++i) {
@@ -49,6 +50,8 @@ int main(int argc, char** argv) {
       if (a == "-h" || a == "--help") {
         usage(stdout);
         return 0;
+      } else if (a == "--quiet") {
+        quiet = true;
       } else if (a == "--res" && i + 1 < argc) {
         res = std::stoi(argv[++i]);
       } else if (a == "--only" && i + 1 < argc) {
@@ -98,7 +101,8 @@ int main(int argc, char** argv) {
         }
         const double secs =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        std::printf("%s: %d frames of %d^3 (longest side), %.2f s\n", dir.string().c_str(), frames,
+        if (!quiet)
+          std::printf("%s: %d frames of %d^3 (longest side), %.2f s\n", dir.string().c_str(), frames,
                     res, secs);
       }
       return 0;
@@ -111,7 +115,8 @@ int main(int argc, char** argv) {
       ds::write_vdb(*field, volume, path);
       const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       const auto dim = volume.domain.dim();
-      std::printf("%s: %dx%dx%d, %.1f KiB, %.2f s\n", path.c_str(), dim.x(), dim.y(), dim.z(),
+      if (!quiet)
+        std::printf("%s: %dx%dx%d, %.1f KiB, %.2f s\n", path.c_str(), dim.x(), dim.y(), dim.z(),
                   std::filesystem::file_size(path) / 1024.0, secs);
     }
   } catch (const std::exception& e) {

@@ -4,5 +4,6 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
-bash scripts/build.sh
+# Only what the demo runs: the executable and the bundled datasets (scripts/test.sh builds the rest).
+bash scripts/build.sh isocurv isocurv_datasets_vdb
 exec "${BUILD_DIR:-build}/app/isocurv" run "${BUILD_DIR:-build}/datasets/torus.vdb" -o out --color K "$@"
