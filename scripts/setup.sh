@@ -21,6 +21,6 @@ fi
 export DEBIAN_FRONTEND=noninteractive
 echo "isocurv setup: updating the package lists" >&2
 $SUDO apt-get update -qq
-echo "isocurv setup: downloading and installing them (about 3 minutes on a fresh machine)" >&2
+echo "isocurv setup: downloading and installing them (about 2-3 minutes on a fresh machine)" >&2
 $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 echo "isocurv setup: installed in $(( $(date +%s) - start )) s" >&2

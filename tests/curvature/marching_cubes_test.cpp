@@ -82,7 +82,7 @@ OracleError oracle_error(const std::vector<float>& H, const std::vector<float>& 
 }
 
 // vtkCurvatures' mean and Gaussian curvature of the same mesh (same sign conventions).
-std::pair<std::vector<float>, std::vector<float>> vtk_curvatures(const Mesh& m) {
+std::pair<std::vector<float>, std::vector<float>> vtk_curvatures_float(const Mesh& m) {
   vtkNew<vtkPoints> points;
   points->SetDataTypeToFloat();
   for (const Vec3f& p : m.positions) points->InsertNextPoint(p[0], p[1], p[2]);
@@ -152,7 +152,7 @@ TEST(MarchingCubes, ConvergesToExactCurvature) {
       curvature::Options area_w;
       area_w.normal_weights = curvature::NormalWeights::area;
       const curvature::CurvatureField area_n = curvature::estimate(c.mesh, d, area_w);
-      const auto [vtk_H, vtk_K] = vtk_curvatures(c.mesh);
+      const auto [vtk_H, vtk_K] = vtk_curvatures_float(c.mesh);
       const Exact exact = exact_at_vertices(*c.field, c.mesh);
       const std::vector<bool> keep = interior(c.mesh, mesh_n.boundary);
       const OracleError em = oracle_error(mesh_n.H, mesh_n.K, exact, keep);

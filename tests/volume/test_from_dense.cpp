@@ -13,7 +13,7 @@ using namespace isocurv::volume;
 
 namespace {
 
-std::vector<float> ramp(const std::array<int, 3>& d) {
+std::vector<float> ramp_values(const std::array<int, 3>& d) {
   std::vector<float> v(std::size_t(d[0]) * d[1] * d[2]);
   for (int z = 0; z < d[2]; ++z)
     for (int y = 0; y < d[1]; ++y)
@@ -25,7 +25,7 @@ std::vector<float> ramp(const std::array<int, 3>& d) {
 
 TEST(VolumeFromDense, CopiesValuesXFastest) {
   const std::array<int, 3> d{5, 4, 3};
-  const auto data = ramp(d);
+  const auto data = ramp_values(d);
   auto xf = openvdb::math::Transform::createLinearTransform(0.5);
   Volume v = from_dense(data.data(), d, xf, {"mem", "generated", "float", "ramp", Inside::Above});
   EXPECT_EQ(v.domain, openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(4, 3, 2)));
