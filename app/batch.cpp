@@ -378,8 +378,23 @@ void make_output_folder(const std::string& dir, const std::string& what) {
 
 std::string file_stem(const std::string& path, const std::string& fallback) {
   std::string stem = fs::path(path).filename().string();
-  const auto dot = stem.find('.');
-  if (dot != std::string::npos && dot > 0) stem = stem.substr(0, dot);
+  // The last extension, and a compression suffix before it ("head.nii.gz"); a dot inside the
+  // name stays ("Al.100.vol" -> "Al.100"), and so does a leading one.
+  auto strip_last = [&stem] {
+    const auto dot = stem.rfind('.');
+    const bool stripped = dot != std::string::npos && dot > 0;
+    if (stripped) stem.resize(dot);
+    return stripped;
+  };
+  const std::string name = stem;
+  if (strip_last()) {
+    const std::string suffix = name.substr(stem.size());
+    for (const char* compressed : {".gz", ".bz2", ".xz", ".zst", ".lz4"})
+      if (suffix == compressed) {
+        strip_last();
+        break;
+      }
+  }
   return stem.empty() ? fallback : stem;
 }
 

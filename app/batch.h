@@ -108,8 +108,9 @@ void make_output_folder(const std::string& dir, const std::string& what);
 /// The output name's suffix for isovalue `iso` in a sweep: "_iso40", "_iso0.5", "_iso-1e-05".
 std::string iso_suffix(float iso);
 
-/// The file name up to its first dot, naming outputs ("head.nii.gz" -> "head"); `fallback` when
-/// that is empty.
+/// The file name without its extension, naming outputs: "Al.100.vol" -> "Al.100", and a
+/// compression suffix goes with the extension ("head.nii.gz" -> "head"); `fallback` when that is
+/// empty.
 std::string file_stem(const std::string& path, const std::string& fallback);
 
 /// Runs the batch. Before any work, DIR is created (if missing) and must be writable (else an

@@ -59,8 +59,7 @@ nlohmann::json run_one(const std::string& in, const std::string& dir, const Comm
       if (armed) std::filesystem::remove(dir, ignored);  // only when still empty
     }
   } cleanup{new_folder, dir};
-  std::string stem = fs::path(in).filename().string();
-  stem = stem.substr(0, stem.find('.'));
+  const std::string stem = file_stem(in, "input");
   const std::string mesh_path = (fs::path(dir) / (stem + "." + format)).string();
   const std::string png_path = (fs::path(dir) / (stem + ".png")).string();
   const std::string stats_path = (fs::path(dir) / "stats.json").string();

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "ao/method.h"
+#include "app/batch.h"
 #include "app/commands.h"
 #include "app/line_options_cli.h"
 #include "app/picture_title.h"
@@ -41,12 +42,11 @@ bool is_pvd_path(const std::string& path) {
 }
 
 /// The frames a .pvd collection lists (its files, resolved, and its times), labelled by file
-/// stem (the name up to its first dot).
+/// stem (app/batch.h, file_stem).
 std::vector<SeriesFrame> pvd_frames(const std::string& path) {
   std::vector<SeriesFrame> frames;
   for (const io::PvdFrame& f : io::read_pvd(path)) {
-    const std::string name = std::filesystem::path(f.file).filename().string();
-    frames.push_back({f.file, "", name.substr(0, name.find('.')), f.time});
+    frames.push_back({f.file, "", file_stem(f.file, "frame"), f.time});
   }
   if (frames.empty()) throw Error(path, "the collection lists no frame");
   return frames;

@@ -67,6 +67,26 @@ TEST(CliRun, WritesMeshPictureAndStats) {
   EXPECT_EQ(names, (std::vector<std::string>{"stats.json", "torus.png", "torus.vtp"}));
 }
 
+// Output names keep every dot of the input's name but its extension's (a compressed file's two):
+// "Al.100.vol" names "Al.100.vtp", not "Al.vtp"; two such inputs of a batch keep apart.
+TEST(CliRun, OutputNamesDropOnlyTheExtension) {
+  TempDir dir("run_dots");
+  const fs::path input = dir.path() / "torus.v2.vdb", second = dir.path() / "torus.v3.vdb";
+  fs::copy_file(dataset("torus"), input);
+  const auto r = run_isocurv({"run", input.string(), "-o", dir / "out", "--size", "160x120", "--quiet"});
+  ASSERT_TRUE(r.ok()) << r.describe();
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir.path() / "out")) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"stats.json", "torus.v2.png", "torus.v2.vtp"}));
+
+  fs::copy_file(dataset("torus"), second);
+  const auto b = run_isocurv({"extract", input.string(), second.string(), "-o", dir / "batch/", "--quiet"});
+  ASSERT_TRUE(b.ok()) << b.describe();
+  EXPECT_TRUE(fs::exists(dir.path() / "batch" / "torus.v2" / "torus.v2.vtp"));
+  EXPECT_TRUE(fs::exists(dir.path() / "batch" / "torus.v3" / "torus.v3.vtp"));
+}
+
 TEST(CliRun, PlyFormatVolumeNormalsAndNestedFolder) {
   TempDir dir("run_ply");
   const std::string out = dir / "a/b";
