@@ -377,25 +377,13 @@ void make_output_folder(const std::string& dir, const std::string& what) {
 }
 
 std::string file_stem(const std::string& path, const std::string& fallback) {
-  std::string stem = fs::path(path).filename().string();
-  // The last extension, and a compression suffix before it ("head.nii.gz"); a dot inside the
-  // name stays ("Al.100.vol" -> "Al.100"), and so does a leading one.
-  auto strip_last = [&stem] {
-    const auto dot = stem.rfind('.');
-    const bool stripped = dot != std::string::npos && dot > 0;
-    if (stripped) stem.resize(dot);
-    return stripped;
-  };
-  const std::string name = stem;
-  if (strip_last()) {
-    const std::string suffix = name.substr(stem.size());
-    for (const char* compressed : {".gz", ".bz2", ".xz", ".zst", ".lz4"})
-      if (suffix == compressed) {
-        strip_last();
-        break;
-      }
-  }
-  return stem.empty() ? fallback : stem;
+  // std::filesystem drops the last extension and keeps a leading dot ("Al.100.vol" -> "Al.100",
+  // ".hidden" stays); a compression suffix takes the extension before it too ("head.nii.gz").
+  const fs::path name = fs::path(path).filename();
+  fs::path stem = name.stem();
+  for (const char* compressed : {".gz", ".bz2", ".xz", ".zst", ".lz4"})
+    if (name.extension() == compressed) stem = stem.stem();
+  return stem.empty() ? fallback : stem.string();
 }
 
 std::string iso_suffix(float iso) { return "_iso" + format_number(iso); }

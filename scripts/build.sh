@@ -12,6 +12,7 @@ cd "$(dirname "$0")/.."
 BUILD_DIR=${BUILD_DIR:-build}
 say() { echo "isocurv build: $*" >&2; }
 start=$(date +%s)
+took() { local t=$(( $(date +%s) - start )); printf '%dm%02ds' $((t / 60)) $((t % 60)); }
 if [ ! -f "$BUILD_DIR/CMakeCache.txt" ]; then
   generator=()
   command -v ninja >/dev/null && generator=(-G Ninja)
@@ -53,9 +54,8 @@ cmake --build "$BUILD_DIR" -j2 "${targets[@]}" 2>&1 | "${awk_line[@]}" -v start=
   END { if (shown_inline) printf "\n" > "/dev/stderr" }'
 status=${PIPESTATUS[0]}
 set -e
-elapsed=$(( $(date +%s) - start ))
 if [ "$status" -ne 0 ]; then
-  say "FAILED after $((elapsed / 60))m$(printf %02d $((elapsed % 60)))s (the compiler's message is above)"
+  say "FAILED after $(took) (the compiler's message is above)"
   exit "$status"
 fi
-say "done in $((elapsed / 60))m$(printf %02d $((elapsed % 60)))s"
+say "done in $(took)"
