@@ -11,6 +11,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "curvature/auto_scale.h"
+#include "curvature/detail/volume_setup.h"
 #include "curvature/volume_estimate.h"
 #include "dist/gather.h"
 #include "dist/piece.h"
@@ -33,10 +34,11 @@ namespace {
 
 // Cells past the slab a rank extracts: snapping's and the ghost ring's (dist::kExtractGhostCells),
 // plus, for curvature, the estimator's reach around the piece's vertices:
-//  - the volume estimator's smoothing at its largest scale (the one given, else the automatic
-//    scale's cap, curvature::kAutoMaxVoxels): the prefilter's volume::kPrefilterRadius
+//  - the volume estimator's smoothing at its largest scale (the one given, else the per-vertex
+//    choice's cap, curvature::kAdaptiveMaxVoxels): the prefilter's volume::kPrefilterRadius
 //    deviations, the B-spline's reach, and for binary volumes the move to the smoothed surface
-//    (curvature::kMaxShiftVoxels); the box test's kSupportDeviations lie inside that;
+//    (kMaxShiftVoxels voxels plus kShrinkScales sigma); the box test's kSupportDeviations and
+//    the choice's regions (2 kRegionScales sigma) lie inside that;
 //  - a mesh estimator's neighbourhood: the scale's 3 sigma when given, else 8 cells (the
 //    estimators' k-rings and automatic scales reach a few edges).
 int margin_cells(const volume::Volume& v, const CommonOptions& o, DistributedWork work) {
@@ -49,11 +51,12 @@ int margin_cells(const volume::Volume& v, const CommonOptions& o, DistributedWor
   const double step = h[2];  // the slabs are cut along index z
   if (curvature::needs_volume(default_estimator(o, true))) {
     if (sigma == 0 || o.scale.find("auto") != std::string::npos)
-      sigma = std::max(sigma, curvature::kAutoMaxVoxels * std::cbrt(h[0] * h[1] * h[2]));
+      sigma = std::max(sigma, curvature::kAdaptiveMaxVoxels * std::cbrt(h[0] * h[1] * h[2]));
     const double largest = std::max({h[0], h[1], h[2]});
     sigma = std::max(sigma, 1.01 * volume::kMinScaleVoxels * largest);  // auto_scale's floor
     const double reach = volume::kPrefilterRadius * sigma + (volume::kSplineReach + 0.5) * step +
-                         curvature::kMaxShiftVoxels * largest;
+                         curvature::kMaxShiftVoxels * largest +
+                         curvature::detail::kShrinkScales * sigma;
     return margin + int(std::ceil(reach / step)) + 1;
   }
   return margin + (sigma > 0 ? int(std::ceil(3 * sigma / std::min({h[0], h[1], h[2]}))) + 2 : 8);

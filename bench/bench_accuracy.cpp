@@ -7,6 +7,11 @@
 // binary classes (the figures published for them are absolute). Not a test.
 //
 //   bench_accuracy [--quick] [--only NAME]
+//   bench_accuracy --refine [--quick] [--only NAME]
+//
+// --refine: the finer-is-better table instead: each class at 1x and 2x resolution (the binary
+// torus also at 4x: grid steps 0.5, 0.25, 0.125), the same object, blur and noise per voxel
+// (datasets::ct_like_case's refine), the default volume estimator beside fixed world scales.
 #include <openvdb/math/Stencils.h>
 #include <vtkCurvatures.h>
 #include <vtkDataArray.h>
@@ -22,6 +27,7 @@
 #include <string>
 
 #include "core/cl_device.h"
+#include "core/error.h"
 #include "curvature/ao_scale.h"
 #include "curvature/estimator.h"
 #include "datasets/ct_like.h"
@@ -248,19 +254,83 @@ Summary run(const Case& c, bool quick) {
   return sum;
 }
 
+// One row of the --refine table: the default and fixed world scales on one class at one refine.
+void refine_row(const std::string& name, int refine, bool quick) {
+  const Case c = datasets::ct_like_case(name, quick, refine);
+  Device& dev = Device::default_device();
+  const Mesh mesh = mc::extract(c.volume, c.iso, dev);
+  std::vector<double> eH, eK;
+  for (const Vec3f& p : mesh.positions) {
+    double h, k;
+    c.exact(Eigen::Vector3d(p[0], p[1], p[2]), h, k);
+    eH.push_back(h), eK.push_back(k);
+  }
+  const curvature::VolumeSource source{&c.volume, c.iso};
+  curvature::Options vo;
+  vo.estimator = curvature::Estimator::volume;
+  vo.ao_scale = curvature::default_ao_scale(mesh);
+  curvature::estimate_field(mesh, source, &dev, vo);  // warm-up
+  auto t0 = Clock::now();
+  const curvature::CurvatureField vf = curvature::estimate_field(mesh, source, &dev, vo);
+  const double ms = ms_since(t0);
+  std::vector<bool> keep(mesh.vertex_count());
+  for (std::size_t i = 0; i < keep.size(); ++i) keep[i] = !vf.boundary[i];
+  const openvdb::Vec3d sp = c.volume.spacing();
+  const double voxel = std::cbrt(sp[0] * sp[1] * sp[2]);
+  std::vector<float> scales;
+  for (const auto& x : vf.extra)
+    if (x.name == "Scale") scales = x.values;
+  std::sort(scales.begin(), scales.end());
+  auto at = [&](double q) { return scales.empty() ? 0.0 : double(scales[std::size_t(q * (scales.size() - 1))]); };
+  char what[96], note[160];
+  std::snprintf(what, sizeof what, "%s x%d (h %.3g, %zu vertices) default", name.c_str(), refine,
+                voxel, mesh.vertex_count());
+  std::snprintf(note, sizeof note, "(scale p5/p50/p95 %.3g/%.3g/%.3g world, %.2f/%.2f/%.2f voxels)",
+                at(0.05), at(0.5), at(0.95), at(0.05) / voxel, at(0.5) / voxel, at(0.95) / voxel);
+  print(what, errors(as_double(vf.H), as_double(vf.K), eH, eK, keep, ms), true, note);
+  for (double world : {0.35, 0.5, 0.7, 1.0, 1.4, 2.0, 2.8, 4.0, 5.6}) {
+    curvature::Options o = vo;
+    o.scale = world;
+    try {
+      t0 = Clock::now();
+      const auto f = curvature::estimate_field(mesh, source, &dev, o);
+      std::snprintf(what, sizeof what, "  fixed %.2f world (%.2f voxels)", world, world / voxel);
+      print(what, errors(as_double(f.H), as_double(f.K), eH, eK, keep, ms_since(t0)), true);
+    } catch (const Error&) {
+      // outside the estimator's range at this grid
+    }
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   openvdb::initialize();
-  bool quick = false;
+  bool quick = false, refine = false;
   std::string only;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--quick")) quick = true;
+    else if (!std::strcmp(argv[i], "--refine")) refine = true;
     else if (!std::strcmp(argv[i], "--only") && i + 1 < argc) only = argv[++i];
     else {
-      std::fprintf(stderr, "usage: bench_accuracy [--quick] [--only NAME]\n");
+      std::fprintf(stderr, "usage: bench_accuracy [--quick] [--refine] [--only NAME]\n");
       return 2;
     }
+  }
+  if (refine) {
+    std::printf("finer is better: each class at 1x and 2x (the same object, blur and noise per "
+                "voxel); errors over the vertices not flagged Boundary, relative RMS and absolute "
+                "RMS\n\n");
+    for (const std::string name :
+         {"sphere_u8", "torus_u8", "tube_u8", "torus_binary", "sphere_binary", "part_binary"}) {
+      if (!only.empty() && name != only) continue;
+      for (int r : {1, 2, 4}) {
+        if (r == 4 && name != "torus_binary") continue;
+        refine_row(name, r, quick);
+      }
+      std::printf("\n");
+    }
+    return 0;
   }
   const int n = quick ? 64 : 128;
   const double R = quick ? 20 : 40;  // sphere radius, voxels

@@ -65,13 +65,18 @@ ScaleChoice auto_scale(const volume::Volume& volume, const Mesh& mesh, float iso
   c.voxel = std::cbrt(frame.spacing[0] * frame.spacing[1] * frame.spacing[2]);
   // No axis under the reconstruction's floor (a little above it, for rounding).
   const double floor = 1.01 * volume::kMinScaleVoxels * largest;
+  c.model.cell_volume = frame.spacing[0] * frame.spacing[1] * frame.spacing[2];
   auto finish = [&](double voxels) {
     c.scale = std::max(c.voxel * voxels, floor);
+    c.model.noise = c.noise;
     return c;
   };
   if (total_count(piece, mesh.positions.size()) == 0 || !volume.grid) return finish(1.0);
   if (is_binary(volume)) {
     c.binary = true;
+    c.noise = kBinaryNoise * (volume.stats.max - volume.stats.min);
+    c.model.shape_scale = kBinaryShapeScale;
+    c.model.staircase = true;
     return finish(kBinaryScaleVoxels);
   }
   const std::string& t = volume.voxel_type;

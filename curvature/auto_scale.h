@@ -4,6 +4,7 @@
 
 #include "core/mesh.h"
 #include "core/surface_piece.h"
+#include "curvature/adaptive_scale.h"
 #include "volume/volume.h"
 
 namespace isocurv::curvature {
@@ -45,6 +46,9 @@ struct ScaleChoice {
   double quantisation = 0;    ///< step / sqrt(12) for integer voxel types (step 1), else 0
   double edge_step = 0;       ///< median over the vertices of |gradient| per voxel, value units
   double noise_level = 0;     ///< noise / edge_step
+  /// The noise model of the per-vertex choice (curvature/adaptive_scale.h): `noise` (a binary
+  /// volume's: kBinaryNoise times its contrast) on cells of sx sy sz.
+  NoiseModel model;
 };
 
 /// The scale for the volume estimator on `mesh` (extracted from `volume` at `isovalue`):
@@ -57,9 +61,10 @@ struct ScaleChoice {
 /// samples the same ones). On an anisotropic grid the voxel
 /// is the geometric mean spacing: a Gaussian of world deviation sigma averages sigma^3 /
 /// (sx sy sz) samples whatever their shape, so that is the length the noise scales with; no axis
-/// gets under volume::kMinScaleVoxels of its spacing. A binary volume gets kBinaryScaleVoxels.
-/// A smooth float field thus gets 0.8 voxel, noisy 8-bit data about 2. This is the largest scale
-/// of the per-vertex choice (curvature/volume_estimate.h). Deterministic. Throws what
+/// gets under volume::kMinScaleVoxels of its spacing. A binary volume gets kBinaryScaleVoxels,
+/// and its noise is its staircase's (kBinaryNoise times the contrast).
+/// A smooth float field thus gets 0.8 voxel, noisy 8-bit data about 2. This is the first pilot
+/// scale of the per-vertex choice (curvature/adaptive_scale.h). Deterministic. Throws what
 /// volume::grid_frame throws.
 /// With a `piece` (core/surface_piece.h), collective: `mesh` is the piece's, and every piece
 /// gets the scale the single process gets on the whole surface (the noise blocks and the edge

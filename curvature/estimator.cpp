@@ -107,15 +107,22 @@ CurvatureField estimate_field(const Mesh& mesh, const VolumeSource& source, Devi
         throw Error(
             "the volume estimator needs a volume (the one the mesh was extracted from), "
             "not a mesh file; use --estimator rusinkiewicz for meshes");
-      double scale = options.scale, auto_ms = -1;
-      if (scale == 0) {
+      VolumeOptions vo;
+      vo.sigma = options.scale;
+      vo.ao_scale = options.ao_scale;
+      vo.finer_scales = options.finer_scales;
+      vo.piece = options.piece;
+      double auto_ms = -1;
+      if (vo.sigma == 0) {
         StepClock::time_point t = StepClock::now();
         const ScaleChoice c = auto_scale(*source.volume, mesh, source.isovalue, options.piece);
         auto_ms = lap(t);
-        scale = c.scale;
+        vo.sigma = c.scale;
+        vo.adaptive = c.model;
         r.notes.emplace_back("scale", c.binary ? "auto (binary volume)" : "auto");
-        r.parameters.emplace_back("scale", scale);
-        r.parameters.emplace_back("scale_voxels", scale / c.voxel);
+        // The first pilot scale; each vertex's own is the Scale array (adaptive_scale.h).
+        r.parameters.emplace_back("scale", c.scale);
+        r.parameters.emplace_back("scale_voxels", c.scale / c.voxel);
         r.parameters.emplace_back("noise", c.noise);
         r.parameters.emplace_back("measured_noise", c.measured_noise);
         r.parameters.emplace_back("quantisation_noise", c.quantisation);
@@ -123,21 +130,17 @@ CurvatureField estimate_field(const Mesh& mesh, const VolumeSource& source, Devi
         r.parameters.emplace_back("noise_level", c.noise_level);
       } else {
         r.notes.emplace_back("scale", "given");
-        r.parameters.emplace_back("scale", scale);
+        r.parameters.emplace_back("scale", vo.sigma);
       }
       r.parameters.emplace_back("ao_scale", options.ao_scale);
-      VolumePoint point = VolumePoint::vertex;
       if (options.volume_point == Options::Point::surface ||
           (options.volume_point == Options::Point::automatic && is_binary(*source.volume)))
-        point = VolumePoint::surface;
-      r.notes.emplace_back("point", point == VolumePoint::surface ? "surface" : "vertex");
+        vo.point = VolumePoint::surface;
+      r.notes.emplace_back("point", vo.point == VolumePoint::surface ? "surface" : "vertex");
       VolumeEstimateStats st;
-      field = device ? volume_estimate(mesh, *source.volume, source.isovalue, scale,
-                                       options.ao_scale, *device, &st, options.finer_scales, point,
-                                       options.piece)
-                     : volume_estimate_reference(mesh, *source.volume, source.isovalue, scale,
-                                                 options.ao_scale, &st, options.finer_scales,
-                                                 point, options.piece);
+      field = device ? volume_estimate(mesh, *source.volume, source.isovalue, vo, *device, &st)
+                     : volume_estimate_reference(mesh, *source.volume, source.isovalue, vo, &st);
+      if (vo.adaptive) r.parameters.emplace_back("edge_blur", st.blur);
       r.unreliable = st.unreliable;
       r.finer_scale = st.finer_scale;
       r.outside = st.outside;

@@ -73,9 +73,9 @@ std::string build_options() {
       "-DPIVOT_TOLERANCE=%.9g -DOPPOSITE_NORMALS=%.9g -DAO_C0=%.9g -DAO_C1=%.9g "
       "-DAO_C2=%.9g -DAO_SMIN=%.9g -DBRICK_VOXELS=512 -DBRICK_ROWS=64 "
       "-DSPLINE_TAPS=5 -DPADDED=%d -DPAD_BEFORE=%d -DPADDED_VOXELS=%d -DNEWTON_STEPS=%d "
-      "-DSURFACE_CUBIC=%.9ef",
+      "-DSURFACE_Y1=%.9ef -DSURFACE_Y2=%.9ef -DMIN_CORRECTION=%.9ef",
       kPivotTolerance, kOppositeNormals, kAoC0, kAoC1, kAoC2, kAoSMin, kPadded, kPadBefore,
-      kPadded * kPadded * kPadded, kNewtonSteps, kSurfaceCubic);
+      kPadded * kPadded * kPadded, kNewtonSteps, kSurfaceY1, kSurfaceY2, kMinCorrection);
   return buf;
 }
 
@@ -234,7 +234,7 @@ detail::VolumeEvaluation evaluate(const Positions& positions, const volume::Volu
   const float sign = volume.inside == volume::Inside::Above ? -1.0f : 1.0f;
   set_args(s.kernel, pos, cl_uint(nv), blocks, table, dims, params, cl_float(isovalue),
            cl_float(sign), cl_float(ao_scale), cl_int(setup.point == VolumePoint::surface),
-           cl_float(setup.max_shift), cl_float(setup.sigma * setup.sigma), normals, *f1[0], *f1[1], dir1, dir2, *f1[2], *f1[3],
+           cl_float(setup.max_shift()), cl_float(setup.sigma * setup.sigma), normals, *f1[0], *f1[1], dir1, dir2, *f1[2], *f1[3],
            dcurv, *f1[4], *f1[5], *f1[6], *f1[7], shift, surface);
   launch(q, s.kernel, nv, kGroup);
   CurvatureField& out = e.field;
@@ -259,51 +259,62 @@ detail::VolumeEvaluation evaluate(const Positions& positions, const volume::Volu
   return e;
 }
 
-CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalue, double sigma,
-                   float ao_scale, Device& device, VolumeEstimateStats* stats, bool finer_scales,
-                   VolumePoint point, const SurfacePiece* piece) {
-  detail::VolumeSetup setup = detail::volume_setup(mesh, volume, sigma);
-  setup.point = point;
+CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalue,
+                   const VolumeOptions& options, Device& device, VolumeEstimateStats* stats) {
+  detail::VolumeSetup setup = detail::volume_setup(mesh, volume, options.sigma);
+  setup.point = options.point;
+  const float ao_scale = options.ao_scale;
+  const SurfacePiece* piece = options.piece;
   if (!std::isfinite(ao_scale)) throw Error("curvature: ao_scale must be finite");
   if (mesh.positions.empty()) {
     if (stats) *stats = {};
-    if (piece) {  // an empty piece still takes part in the pieces' reduction
-      CurvatureField none;
-      detail::finish_volume_field(mesh, VertexCorners{}, detail::RawVertex{}, detail::ScaleLadder{}, finer_scales,
-                                  ao_scale, none, piece);
+    if (piece) {  // an empty piece still takes part in the pieces' reductions
+      const std::optional<detail::AdaptiveScale> adaptive =
+          detail::adaptive_of(options, setup, volume);
+      const double s2 = adaptive ? std::min(detail::kPilotRatio * setup.sigma, adaptive->hi) : 0;
+      if (adaptive && s2 > setup.sigma) {  // the adaptive choice's reductions
+        const std::vector<float> none;
+        choose_vertex_scales({}, adaptive->model, {setup.sigma, s2, &none, &none, &none, &none},
+                             setup.floor, adaptive->hi, piece);
+      }
+      CurvatureField nothing;
+      detail::finish_volume_field(mesh, VertexCorners{}, detail::RawVertex{},
+                                  detail::ScaleLadder{}, options.finer_scales, ao_scale, nothing,
+                                  piece);
     }
     return {};
   }
+  const std::optional<detail::AdaptiveScale> adaptive = detail::adaptive_of(options, setup, volume);
   VolumeSession& s = session_for(device);
   std::lock_guard<std::mutex> lock(s.mutex);
   detail::ScaleLadder ladder;
   VertexCorners corners;  // built once: the cut and the areas both need them
   build_vertex_corners(mesh, corners);
   detail::VolumeEvaluation e = detail::evaluate_with_finer_scales(
-      mesh, corners, setup, finer_scales,
+      mesh, corners, setup, options.finer_scales,
       [&](const Positions& positions, const detail::VolumeSetup& at) {
         return evaluate(positions, volume, at, isovalue, ao_scale, device, s);
       },
-      ladder);
+      ladder, adaptive ? &*adaptive : nullptr);
   Clock::time_point t = Clock::now();
-  const std::size_t unreliable =
-      detail::finish_volume_field(mesh, corners, e.raw, ladder, finer_scales, ao_scale, e.field, piece);
-  if (point == VolumePoint::vertex) e.field.surface_points = edge_surface_points(mesh, volume, e.field);
+  const std::size_t unreliable = detail::finish_volume_field(
+      mesh, corners, e.raw, ladder, options.finer_scales, ao_scale, e.field, piece);
+  if (options.point == VolumePoint::vertex)
+    e.field.surface_points = edge_surface_points(mesh, volume, e.field);
   e.steps.finish = lap(t);
   if (stats)
     *stats = VolumeEstimateStats{unreliable, e.bricks, ladder.refined,
-                                 detail::count_of(ladder.outside), e.steps};
+                                 detail::count_of(ladder.outside), ladder.blur, e.steps};
   return std::move(e.field);
 }
 
 }  // namespace
 
 CurvatureField volume_estimate(const Mesh& mesh, const volume::Volume& volume, float isovalue,
-                               double sigma, float ao_scale, Device& device,
-                               VolumeEstimateStats* stats, bool finer_scales, VolumePoint point,
-                               const SurfacePiece* piece) {
+                               const VolumeOptions& options, Device& device,
+                               VolumeEstimateStats* stats) {
   try {
-    return run(mesh, volume, isovalue, sigma, ao_scale, device, stats, finer_scales, point, piece);
+    return run(mesh, volume, isovalue, options, device, stats);
   } catch (const cl::Error& e) {
     try {
       device.queue().finish();

@@ -46,11 +46,13 @@
 // prefilter's three passes need for them, are gathered and filtered; a vertex then reads 5^3
 // smoothed samples, whatever the scale.
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "core/cl_device.h"
 #include "core/mesh.h"
 #include "core/surface_piece.h"
+#include "curvature/adaptive_scale.h"
 #include "curvature/curvature_field.h"
 #include "volume/volume.h"
 
@@ -63,21 +65,27 @@ enum class VolumePoint {
   vertex,
   /// The smoothed isosurface where the vertex's gradient line meets it (kNewtonSteps Newton
   /// steps, at most kMaxShiftVoxels), its curvatures those of the parallel surface about
-  /// sigma^2 H further out (k / (1 + e k), e as kSurfaceCubic says), undoing the smoothing's
+  /// sigma^2 H further out (k / (1 + e k), e as kSurfaceY1 and kSurfaceY2 say), undoing the smoothing's
   /// shrinkage: for binary volumes,
   /// whose vertices sit on the voxel staircase, up to half a voxel off the surface (evaluated
   /// there, a torus of tube radius 4 voxels would be off by 12%). The field's surface_points
-  /// are those surface points (kSurfaceCubic), for measure::object_measures.
+  /// are those surface points (kSurfaceY1, kSurfaceY2), for measure::object_measures.
   surface,
 };
 /// VolumePoint::surface: the smoothing's shrinkage at a point of the smoothed isosurface of mean
-/// curvature H, to the next order: sigma^2 H (1 - kSurfaceCubic sigma^2 H^2) (the factor at
+/// curvature H, with y = sigma^2 H^2: sigma^2 H (1 - kSurfaceY1 y + kSurfaceY2 y^2) (the factor at
 /// least 1/2). The surface point (CurvatureField::surface_points) lies that far out along the
 /// normal, and the curvatures are that parallel surface's (k / (1 + e k)). Fitted on the exact
-/// shifts of Gaussian-smoothed balls and cylinders: within 0.005 sigma up to sigma / r = 1/3,
-/// where sigma^2 H alone overshoots a ball by 0.016 sigma (on a binary spherical cavity of
-/// radius 6 voxels at the binary scale of 2 voxels, 1.6% of its volume).
-inline constexpr double kSurfaceCubic = 1.0 / 3.0;
+/// shifts of Gaussian-smoothed balls and cylinders (Gaussian probabilities of a ball and a disc):
+/// within 0.002 sigma up to sigma / r = 1/2 for balls and 0.006 sigma up to 0.6 for cylinders,
+/// the per-vertex scale's reach (kBinaryShapeScale); the first-order sigma^2 H (1 - y / 3) it
+/// replaces was 0.036 sigma short on a ball at 1/2 (a binary ball measured 2.6% short in volume).
+inline constexpr double kSurfaceY1 = 0.31, kSurfaceY2 = 0.117;
+/// VolumePoint::surface: a scale does not fit a vertex (as if eroded) where a principal
+/// curvature's correction factor 1 + e k falls under this: the smoothed surface there is no
+/// parallel surface of the real one (binary spheres at sigma / r near 1/2 had vertices where
+/// the factor fell to 0.1 and H to -13 / r).
+inline constexpr double kMinCorrection = 0.5;
 /// VolumePoint::surface: Newton steps along the gradient line, and the largest move in voxels.
 inline constexpr int kNewtonSteps = 3;
 inline constexpr double kMaxShiftVoxels = 1.5;
@@ -106,34 +114,63 @@ struct VolumeStepTimes {
 struct VolumeEstimateStats {
   std::size_t unreliable = 0;  ///< vertices flagged Unreliable
   std::size_t bricks = 0;      ///< 8^3 bricks filtered or gathered (device path), all scales
-  std::size_t finer_scale = 0;  ///< vertices measured at a finer scale than asked
+  std::size_t finer_scale = 0;  ///< vertices the guard measured finer than first given
   std::size_t outside = 0;      ///< vertices whose support leaves the box at their scale
+  double blur = 0;              ///< adaptive: the edge blur the choice measured, world units
   VolumeStepTimes steps;        ///< device path only
 };
 
-/// The volume estimator on `device` (float; the same steps as volume_estimate_reference), at
-/// scale `sigma` (world units) for the surface at `isovalue` of `volume` from which `mesh` was
-/// extracted. Only the bricks the vertices need are gathered and sent to the device, where the
-/// prefilter's passes (curvature/volume_kernels.cl, smooth_axis) run before the per-vertex kernel.
-/// `ao_scale`: Options::ao_scale. Deterministic. Throws isocurv::Error when sigma is not positive
+/// How volume_estimate measures.
+struct VolumeOptions {
+  /// World units: the scale every vertex starts at (with `adaptive`, the first pilot's).
+  double sigma = 0;
+  float ao_scale = 1;  ///< Options::ao_scale
+  /// The per-vertex guard above (the default). Off, every vertex is measured at sigma and those
+  /// the scale does not fit (eroded or opposed) are Unreliable (the multi-scale arrays use that,
+  /// so that each scale shows only what it resolves); the Scale array is then absent, and
+  /// `adaptive` is ignored.
+  bool finer_scales = true;
+  VolumePoint point = VolumePoint::vertex;
+  /// The per-vertex scale from the data and the shape (curvature/adaptive_scale.h; the default
+  /// of estimate_field): the noise model of the volume. Absent: every vertex starts at sigma.
+  std::optional<NoiseModel> adaptive;
+  /// adaptive: the largest scale, world units; 0: kAdaptiveMaxVoxels voxels (the geometric mean
+  /// spacing), within the volume and the prefilter's volume::kMaxPrefilterDeviation.
+  double adaptive_max = 0;
+  /// `mesh` is one piece of a surface divided among processes (core/surface_piece.h), extracted
+  /// with a margin wide enough for the smoothing of its own vertices at the largest scale (the
+  /// scale's kPrefilterRadius deviations plus the B-spline's reach) and for the box test; the
+  /// call is collective, and the piece's own vertices get bit-identical values to the single
+  /// process's on the whole surface (the whole-surface quantities, the median gradients, are
+  /// reduced). nullptr: the whole surface.
+  const SurfacePiece* piece = nullptr;
+};
+
+/// The volume estimator on `device` (float; the same steps as volume_estimate_reference) for the
+/// surface at `isovalue` of `volume` from which `mesh` was extracted. Only the bricks the vertices
+/// need are gathered and sent to the device, where the prefilter's passes
+/// (curvature/volume_kernels.cl, smooth_axis) run before the per-vertex kernel. Deterministic.
+/// Calls on one device are serialised. Throws isocurv::Error when options.sigma is not positive
 /// and finite, larger than the volume, under volume::kMinScaleVoxels voxels of the coarsest axis,
-/// or so large against a spacing that it would exceed volume::kMaxDeviation voxels; when the grid
-/// transform is not affine with
-/// orthogonal axes; for invalid meshes (check_input); or on an OpenCL failure.
-/// `finer_scales` (the default): the per-vertex scale above. Off, every vertex is measured at
-/// sigma and those the scale does not fit (eroded or opposed) are Unreliable (the multi-scale
-/// arrays use that, so that each scale shows only what it resolves); the Scale array is then
-/// absent.
-/// `piece` (core/surface_piece.h): `mesh` is one piece of a surface divided among processes,
-/// extracted with a margin wide enough for the smoothing of its own vertices (the scale's
-/// kPrefilterRadius deviations plus the B-spline's reach) and for the box test; the call is
-/// collective, and the piece's own vertices get bit-identical values to the single process's
-/// on the whole surface (the one whole-surface quantity, the median gradient, is reduced).
+/// or so large against a spacing that it would exceed volume::kMaxPrefilterDeviation voxels; when
+/// the grid transform is not affine with orthogonal axes; for invalid meshes (check_input); or on
+/// an OpenCL failure.
 CurvatureField volume_estimate(const Mesh& mesh, const volume::Volume& volume, float isovalue,
-                               double sigma, float ao_scale, Device& device,
-                               VolumeEstimateStats* stats = nullptr, bool finer_scales = true,
-                               VolumePoint point = VolumePoint::vertex,
-                               const SurfacePiece* piece = nullptr);
+                               const VolumeOptions& options, Device& device,
+                               VolumeEstimateStats* stats = nullptr);
+
+/// The same at a fixed scale `sigma` (VolumeOptions without `adaptive`).
+inline CurvatureField volume_estimate(const Mesh& mesh, const volume::Volume& volume,
+                                      float isovalue, double sigma, float ao_scale,
+                                      Device& device, VolumeEstimateStats* stats = nullptr,
+                                      bool finer_scales = true,
+                                      VolumePoint point = VolumePoint::vertex,
+                                      const SurfacePiece* piece = nullptr) {
+  VolumeOptions o;
+  o.sigma = sigma, o.ao_scale = ao_scale, o.finer_scales = finer_scales, o.point = point;
+  o.piece = piece;
+  return volume_estimate(mesh, volume, isovalue, o, device, stats);
+}
 
 /// VolumePoint::vertex: the surface points (CurvatureField::surface_points) of `mesh`'s
 /// marching-cubes vertices on `volume`'s grid, from the curvature in `field` (normals, k1, k2,
@@ -154,10 +191,20 @@ std::vector<Vec3f> edge_surface_points(const Mesh& mesh, const volume::Volume& v
 /// The specification: the same in double precision on the host (volume::smooth_reference and
 /// volume::spline_jet), parallel over vertex batches (TBB).
 CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume& volume,
-                                         float isovalue, double sigma, float ao_scale,
-                                         VolumeEstimateStats* stats = nullptr,
-                                         bool finer_scales = true,
-                                         VolumePoint point = VolumePoint::vertex,
-                                         const SurfacePiece* piece = nullptr);
+                                         float isovalue, const VolumeOptions& options,
+                                         VolumeEstimateStats* stats = nullptr);
+
+/// The same at a fixed scale `sigma`.
+inline CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume& volume,
+                                                float isovalue, double sigma, float ao_scale,
+                                                VolumeEstimateStats* stats = nullptr,
+                                                bool finer_scales = true,
+                                                VolumePoint point = VolumePoint::vertex,
+                                                const SurfacePiece* piece = nullptr) {
+  VolumeOptions o;
+  o.sigma = sigma, o.ao_scale = ao_scale, o.finer_scales = finer_scales, o.point = point;
+  o.piece = piece;
+  return volume_estimate_reference(mesh, volume, isovalue, o, stats);
+}
 
 }  // namespace isocurv::curvature

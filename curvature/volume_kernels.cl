@@ -409,8 +409,10 @@ __kernel void volume_curvature(__global const float* positions, uint count,
     shift = (jet.value - isovalue) / len - t;
     if (surface) {  // shrinkage_corrected: the parallel surface e further out (volume_estimate.h)
       const float h = 0.5f * (k1 + k2);
-      const float e = sigma2 * h * fmax(1.0f - SURFACE_CUBIC * sigma2 * h * h, 0.5f);
+      const float y = sigma2 * h * h;
+      const float e = sigma2 * h * fmax(1.0f - SURFACE_Y1 * y + SURFACE_Y2 * y * y, 0.5f);
       surface_point = add3(x, mul3(n, e));  // that parallel surface's point
+      if (fmin(1.0f + e * k1, 1.0f + e * k2) < MIN_CORRECTION) shift = INFINITY;
       k1 /= fmax(1.0f + e * k1, 0.1f);
       k2 /= fmax(1.0f + e * k2, 0.1f);
     }

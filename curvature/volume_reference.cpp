@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <map>
 #include <unordered_map>
 #include <cmath>
 #include <limits>
@@ -12,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/mesh_measures.h"
+#include "curvature/adaptive_scale.h"
 #include "curvature/derived.h"
 #include "curvature/detail/volume_setup.h"
 #include "curvature/implicit_curvature.h"
@@ -44,11 +46,11 @@ VolumeSetup volume_setup(const Mesh& mesh, const volume::Volume& volume, double 
       throw Error(volume.path, "scale " + std::to_string(sigma) + " is larger than the volume (" +
                                    std::to_string(extent) + " world units across)");
   }
-  if (sigma / finest > volume::kMaxDeviation)
+  if (sigma / finest > volume::kMaxPrefilterDeviation)
     throw Error(volume.path, "scale " + std::to_string(sigma) + " is " +
                                  std::to_string(sigma / finest) +
                                  " voxels along the finest axis; at most " +
-                                 std::to_string(int(volume::kMaxDeviation)) + " are supported");
+                                 std::to_string(int(volume::kMaxPrefilterDeviation)) + " are supported");
   if (sigma / s.voxel < volume::kMinScaleVoxels)
     throw Error(volume.path, "scale " + std::to_string(sigma) + " is " +
                                  std::to_string(sigma / s.voxel) +
@@ -62,11 +64,72 @@ VolumeSetup volume_setup(const Mesh& mesh, const volume::Volume& volume, double 
   s.floor = std::min(
       sigma, std::max(kFloorVoxels * mean_voxel, 1.01 * volume::kMinScaleVoxels * s.voxel));
   s.inside = volume.inside;
-  s.max_shift = kMaxShiftVoxels * s.voxel;
   return s;
 }
 
-openvdb::Vec3d spline_reach(const VolumeSetup&) { return openvdb::Vec3d(0.5, 0.5, 0.5); }
+openvdb::Vec3d spline_reach(const VolumeSetup& setup) {
+  openvdb::Vec3d reach(0.5, 0.5, 0.5);
+  if (setup.point == VolumePoint::surface)  // the Newton steps move up to max_shift()
+    for (int a = 0; a < 3; ++a) reach[a] += setup.max_shift() / setup.frame.spacing[a];
+  return reach;
+}
+
+std::optional<AdaptiveScale> adaptive_of(const VolumeOptions& options, const VolumeSetup& setup,
+                                         const volume::Volume& volume) {
+  if (!options.adaptive || !options.finer_scales) return std::nullopt;
+  const std::array<double, 3> h = {setup.frame.spacing[0], setup.frame.spacing[1],
+                                   setup.frame.spacing[2]};
+  double hi = options.adaptive_max > 0 ? options.adaptive_max
+                                       : kAdaptiveMaxVoxels * std::cbrt(h[0] * h[1] * h[2]);
+  hi = std::min(hi, 0.999 * volume::kMaxPrefilterDeviation * std::min({h[0], h[1], h[2]}));
+  if (!volume.domain.empty()) {
+    const openvdb::Coord dim = volume.domain.dim();
+    double extent = 0;
+    for (int a = 0; a < 3; ++a) extent = std::max(extent, dim[a] * h[a]);
+    hi = std::min(hi, extent);
+  }
+  if (!options.adaptive->staircase) hi = std::min(hi, kExtrapolation * kPilotRatio * setup.sigma);
+  if (!(hi > setup.sigma * (1 + 1e-6))) return std::nullopt;
+  AdaptiveScale a{*options.adaptive, hi, options.piece, false, {}};
+  if (!volume.domain.empty() && volume.grid) {
+    const openvdb::Coord lo = volume.domain.min(), up = volume.domain.max();
+    // The spread of the samples on the box's six faces (strided to at most 64 x 64 per face).
+    openvdb::FloatGrid::ConstAccessor acc = volume.grid->getConstAccessor();
+    double sum = 0, sum2 = 0, n = 0;
+    for (int axis = 0; axis < 3; ++axis)
+      for (int side = 0; side < 2; ++side) {
+        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+        const int su = std::max(1, (up[u] - lo[u] + 1) / 64),
+                  sv = std::max(1, (up[v] - lo[v] + 1) / 64);
+        openvdb::Coord c;
+        c[axis] = side ? up[axis] : lo[axis];
+        for (c[u] = lo[u]; c[u] <= up[u]; c[u] += su)
+          for (c[v] = lo[v]; c[v] <= up[v]; c[v] += sv) {
+            const double x = acc.getValue(c);
+            sum += x, sum2 += x * x, n += 1;
+          }
+      }
+    const double mean = sum / n, spread = std::sqrt(std::max(0.0, sum2 / n - mean * mean));
+    const double range = volume.stats.max - volume.stats.min;
+    a.border_varies = spread > kFlatBorderNoise * options.adaptive->noise + 1e-3 * range;
+    a.box = volume.domain;
+  }
+  return a;
+}
+
+std::vector<float> box_limits(const Mesh& mesh, const volume::GridFrame& f,
+                              const openvdb::CoordBBox& box, double least) {
+  std::vector<float> limit(mesh.positions.size());
+  for (std::size_t i = 0; i < limit.size(); ++i) {
+    const Vec3f& p = mesh.positions[i];
+    const openvdb::Vec3d q = f.to_index(openvdb::Vec3d(p[0], p[1], p[2]));
+    double d = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a)
+      d = std::min(d, std::min(q[a] - box.min()[a], box.max()[a] - q[a]) * f.spacing[a]);
+    limit[i] = float(std::max(d / kBorderDeviations, least));
+  }
+  return limit;
+}
 
 CutIndex::CutIndex(const Mesh& mesh, const VertexCorners& corners,
                    const volume::GridFrame& frame) {
@@ -121,73 +184,156 @@ namespace {
 /// its smoothing reaches the box's cut (flagged Boundary, not a reason for a finer scale).
 /// Returns true when it does not fit.
 bool record_fit(const VolumeEvaluation& e, std::size_t j, const Mesh& mesh, std::size_t i,
-                const Vec3f& face, const VolumeSetup& setup, const CutIndex& cut,
+                const Vec3f& face, const VolumeSetup& setup, double sigma, const CutIndex& cut,
                 ScaleLadder& ladder) {
   const Vec3f& n = e.field.normals[j];
-  ladder.scale[i] = float(setup.sigma);
+  ladder.scale[i] = float(sigma);
   // On the voxel staircase (surface) a vertex may lie half a voxel diagonal off the surface.
-  const double allowed = kMaxShiftScales * setup.sigma +
+  const double allowed = kMaxShiftScales * sigma +
                          (setup.point == VolumePoint::surface ? 0.87 * setup.voxel : 0.0);
   ladder.eroded[i] = !(std::abs(double(e.raw.shift[j])) <= allowed);
   ladder.opposed[i] = double(n[0]) * face[0] + double(n[1]) * face[1] + double(n[2]) * face[2] < 0;
-  ladder.outside[i] = cut.near(mesh.positions[i], kSupportDeviations * setup.sigma);
+  ladder.outside[i] = cut.near(mesh.positions[i], kSupportDeviations * sigma);
   return ladder.eroded[i] || ladder.opposed[i];
+}
+
+/// Copies entry j of `from` into vertex i of `all`.
+void copy_vertex(const VolumeEvaluation& from, std::size_t j, VolumeEvaluation& all,
+                 std::size_t i) {
+  CurvatureField& f = all.field;
+  const CurvatureField& g = from.field;
+  f.normals[i] = g.normals[j], f.k1[i] = g.k1[j], f.k2[i] = g.k2[j];
+  f.dir1[i] = g.dir1[j], f.dir2[i] = g.dir2[j], f.H[i] = g.H[j], f.K[i] = g.K[j];
+  f.dcurv[i] = g.dcurv[j], f.shape_index[i] = g.shape_index[j];
+  f.curvedness[i] = g.curvedness[j], f.ao[i] = g.ao[j];
+  if (!f.surface_points.empty()) f.surface_points[i] = g.surface_points[j];
+  all.raw.gradient_norm[i] = from.raw.gradient_norm[j];
+  all.raw.shift[i] = from.raw.shift[j];
+}
+
+void add_costs(const VolumeEvaluation& from, VolumeEvaluation& all) {
+  all.bricks += from.bricks;
+  all.steps.plan += from.steps.plan, all.steps.gather += from.steps.gather;
+  all.steps.smooth += from.steps.smooth, all.steps.vertices += from.steps.vertices;
 }
 
 }  // namespace
 
 VolumeEvaluation evaluate_with_finer_scales(const Mesh& mesh, const VertexCorners& corners,
                                             VolumeSetup setup, bool finer_scales,
-                                            const VolumeEvaluate& evaluate, ScaleLadder& ladder) {
+                                            const VolumeEvaluate& evaluate, ScaleLadder& ladder,
+                                            const AdaptiveScale* adaptive) {
   const std::size_t nv = mesh.positions.size();
-  const float asked = float(setup.sigma);
+  const double s1 = setup.sigma;
   VolumeEvaluation all = evaluate(mesh.positions, setup);
   const std::vector<Vec3f> faces = area_weighted_normals(mesh);
   const CutIndex cut(mesh, corners, setup.frame);
   ladder.scale.assign(nv, 0.0f);
   ladder.eroded.assign(nv, 0), ladder.opposed.assign(nv, 0), ladder.outside.assign(nv, 0);
   ladder.refined = 0;
-  std::vector<std::size_t> which;  // the vertices evaluated at setup.sigma that it does not fit
+  // Evaluates the vertices `which` each at its scale `at[i]` (grouped by scale, each group one
+  // evaluation), keeps the results in `all`, and returns those the scale does not fit.
+  auto evaluate_at = [&](const std::vector<std::size_t>& which, const std::vector<float>& at) {
+    std::map<float, std::vector<std::size_t>> groups;
+    for (std::size_t i : which) groups[at[i]].push_back(i);
+    std::vector<std::size_t> misfits;
+    for (const auto& [sigma, members] : groups) {
+      VolumeSetup s = setup;
+      s.sigma = sigma;
+      Positions positions(members.size());
+      for (std::size_t j = 0; j < members.size(); ++j) positions[j] = mesh.positions[members[j]];
+      const VolumeEvaluation e = evaluate(positions, s);
+      add_costs(e, all);
+      for (std::size_t j = 0; j < members.size(); ++j) {
+        copy_vertex(e, j, all, members[j]);
+        if (record_fit(e, j, mesh, members[j], faces[members[j]], setup, sigma, cut, ladder))
+          misfits.push_back(members[j]);
+      }
+    }
+    std::sort(misfits.begin(), misfits.end());
+    return misfits;
+  };
+  std::vector<std::size_t> which;  // the vertices their scale does not fit
   for (std::size_t i = 0; i < nv; ++i)
-    if (record_fit(all, i, mesh, i, faces[i], setup, cut, ladder)) which.push_back(i);
-  CurvatureField& f = all.field;
+    if (record_fit(all, i, mesh, i, faces[i], setup, s1, cut, ladder)) which.push_back(i);
+  std::vector<float> assigned(nv, float(s1));  // the scale each vertex was first given
+  // Surface points (VolumePoint::surface) stay those of s1 where s1 fits: the shrinkage
+  // correction that places them is fitted up to sigma kappa = 1/3, while the per-vertex scale goes
+  // to kBinaryShapeScale (at 0.5, a binary ball's volume came out 2.6% short).
+  std::vector<Vec3f> first_points;
+  std::vector<std::uint8_t> fits_first(nv, 1);
+  for (std::size_t i : which) fits_first[i] = 0;
+  if (adaptive && finer_scales) first_points = all.field.surface_points;
+  if (adaptive && finer_scales) {
+    const double s2 = std::min(kPilotRatio * s1, adaptive->hi);
+    if (s2 > s1) {
+      VolumeSetup at2 = setup;
+      at2.sigma = s2;
+      const VolumeEvaluation e2 = evaluate(mesh.positions, at2);
+      add_costs(e2, all);
+      ScaleChoiceReport report;
+      // The shape's curvature: on grey levels the smaller of the two pilots' (noise inflates the
+      // first's largest principal curvature); binary: the first's (at the second the staircase's
+      // smoothed surface may already be past its shape limit).
+      std::vector<float> kappa(nv);
+      for (std::size_t i = 0; i < nv; ++i) {
+        kappa[i] = std::max(std::abs(all.field.k1[i]), std::abs(all.field.k2[i]));
+        if (!adaptive->model.staircase)
+          kappa[i] = std::min(kappa[i], std::max(std::abs(e2.field.k1[i]), std::abs(e2.field.k2[i])));
+      }
+      const std::vector<float> limit = adaptive->border_varies
+                                           ? box_limits(mesh, setup.frame, adaptive->box, s1)
+                                           : std::vector<float>();
+      assigned = choose_vertex_scales(
+          mesh.positions, adaptive->model,
+          {s1, s2, &all.field.H, &all.raw.gradient_norm, &e2.field.H, &e2.raw.gradient_norm,
+           &kappa, adaptive->border_varies ? &limit : nullptr},
+          adaptive->model.staircase ? s1 : std::max(setup.floor, s1 / kUnderPilot), adaptive->hi,
+          adaptive->piece, &report);
+      ladder.blur = report.blur;
+      std::vector<std::size_t> others, next;
+      for (std::size_t i = 0; i < nv; ++i) {
+        if (assigned[i] == float(s1)) {
+          if (ladder.eroded[i] || ladder.opposed[i]) next.push_back(i);
+        } else if (assigned[i] == float(s2)) {
+          copy_vertex(e2, i, all, i);
+          if (record_fit(e2, i, mesh, i, faces[i], setup, s2, cut, ladder)) next.push_back(i);
+        } else {
+          others.push_back(i);
+        }
+      }
+      const std::vector<std::size_t> more = evaluate_at(others, assigned);
+      next.insert(next.end(), more.begin(), more.end());
+      std::sort(next.begin(), next.end());
+      which.swap(next);
+    }
+  }
   // Below the floor only the opposed vertices go on, to the reconstruction's own limit: there the
   // field is the samples' B-spline, whose gradient agrees with the marching-cubes surface.
   const double last = std::min(setup.floor, 1.01 * volume::kMinScaleVoxels * setup.voxel);
-  while (finer_scales && setup.sigma > last && !which.empty()) {
-    if (setup.sigma <= setup.floor) {
-      std::vector<std::size_t> opposed;
-      for (std::size_t i : which)
-        if (ladder.opposed[i]) opposed.push_back(i);
-      which.swap(opposed);
-      if (which.empty()) break;
-      setup.sigma = last;
-    } else {
-      setup.sigma = std::max(setup.sigma / kScaleStep, setup.floor);
+  // Compared as the floats the ladder keeps, and only ever downwards, so that the loop ends.
+  const float floor_f = float(setup.floor), last_f = float(last);
+  std::vector<float> at(nv, 0.0f);
+  while (finer_scales && !which.empty()) {
+    std::vector<std::size_t> go;
+    for (std::size_t i : which) {
+      const float current = ladder.scale[i];
+      if (current <= last_f) continue;
+      if (current <= floor_f) {
+        if (!ladder.opposed[i]) continue;
+        at[i] = last_f;
+      } else {
+        at[i] = std::max(float(current / kScaleStep), floor_f);
+      }
+      if (at[i] < current) go.push_back(i);
     }
-    Positions positions(which.size());
-    for (std::size_t j = 0; j < which.size(); ++j) positions[j] = mesh.positions[which[j]];
-    const VolumeEvaluation finer = evaluate(positions, setup);
-    all.bricks += finer.bricks;
-    all.steps.plan += finer.steps.plan, all.steps.gather += finer.steps.gather;
-    all.steps.smooth += finer.steps.smooth, all.steps.vertices += finer.steps.vertices;
-    const CurvatureField& g = finer.field;
-    std::vector<std::size_t> next;
-    for (std::size_t j = 0; j < which.size(); ++j) {
-      const std::size_t i = which[j];
-      f.normals[i] = g.normals[j], f.k1[i] = g.k1[j], f.k2[i] = g.k2[j];
-      f.dir1[i] = g.dir1[j], f.dir2[i] = g.dir2[j], f.H[i] = g.H[j], f.K[i] = g.K[j];
-      f.dcurv[i] = g.dcurv[j], f.shape_index[i] = g.shape_index[j];
-      f.curvedness[i] = g.curvedness[j], f.ao[i] = g.ao[j];
-      if (!f.surface_points.empty()) f.surface_points[i] = g.surface_points[j];
-      all.raw.gradient_norm[i] = finer.raw.gradient_norm[j];
-      all.raw.shift[i] = finer.raw.shift[j];
-      if (record_fit(finer, j, mesh, i, faces[i], setup, cut, ladder)) next.push_back(i);
-    }
-    which.swap(next);
+    which = evaluate_at(go, at);
   }
+  if (!first_points.empty())
+    for (std::size_t i = 0; i < nv; ++i)
+      if (fits_first[i] && ladder.scale[i] >= float(s1)) all.field.surface_points[i] = first_points[i];
   for (std::size_t i = 0; i < nv; ++i)
-    if (ladder.scale[i] < asked) ++ladder.refined;
+    if (ladder.scale[i] < assigned[i]) ++ladder.refined;
   return all;
 }
 
@@ -264,9 +410,11 @@ namespace {
 Vec3f to_f3(const Eigen::Vector3d& v) { return {float(v.x()), float(v.y()), float(v.z())}; }
 
 /// The smoothing's shrinkage at a point of the smoothed isosurface of mean curvature h:
-/// sigma2 h (1 - kSurfaceCubic sigma2 h^2), the factor at least 1/2 (volume_estimate.h).
+/// sigma2 h (1 - kSurfaceY1 y + kSurfaceY2 y^2), y = sigma2 h^2, the factor at least 1/2
+/// (volume_estimate.h).
 double shrinkage(double h, double sigma2) {
-  return sigma2 * h * std::max(1 - kSurfaceCubic * sigma2 * h * h, 0.5);
+  const double y = sigma2 * h * h;
+  return sigma2 * h * std::max(1 - kSurfaceY1 * y + kSurfaceY2 * y * y, 0.5);
 }
 
 /// The curvature of the parallel surface at distance e = shrinkage(H) outward
@@ -318,7 +466,7 @@ detail::VolumeEvaluation evaluate_reference(const Positions& positions,
             const double slope =
                 j.gradient[0] * d[0] + j.gradient[1] * d[1] + j.gradient[2] * d[2];
             if (!(std::abs(slope) > 0)) break;
-            t = std::clamp(t - (j.value - isovalue) / slope, -s.max_shift, s.max_shift);
+            t = std::clamp(t - (j.value - isovalue) / slope, -s.max_shift(), s.max_shift());
           }
           x = x0 + t * d;
         }
@@ -337,7 +485,13 @@ detail::VolumeEvaluation evaluate_reference(const Positions& positions,
       raw.shift[i] = c.gradient_norm > 0 && std::isfinite(c.gradient_norm)
                          ? float((jet.value - isovalue) / c.gradient_norm - t)
                          : std::numeric_limits<float>::infinity();
-      if (s.point == VolumePoint::surface) shrinkage_corrected(c, e_shrink);
+      if (s.point == VolumePoint::surface) {
+        // Past kMinCorrection the parallel surface is not what the smoothing moved: the scale
+        // does not fit (volume_estimate.h).
+        if (std::min(1 + e_shrink * c.k1, 1 + e_shrink * c.k2) < kMinCorrection)
+          raw.shift[i] = std::numeric_limits<float>::infinity();
+        shrinkage_corrected(c, e_shrink);
+      }
       raw.gradient_norm[i] = float(c.gradient_norm);
       out.normals[i] = to_f3(c.normal);
       out.k1[i] = float(c.k1), out.k2[i] = float(c.k2);
@@ -391,28 +545,30 @@ std::vector<Vec3f> edge_surface_points(const Mesh& mesh, const volume::Volume& v
 }
 
 CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume& volume,
-                                         float isovalue, double sigma, float ao_scale,
-                                         VolumeEstimateStats* stats, bool finer_scales,
-                                         VolumePoint point, const SurfacePiece* piece) {
-  detail::VolumeSetup setup = detail::volume_setup(mesh, volume, sigma);
-  setup.point = point;
+                                         float isovalue, const VolumeOptions& options,
+                                         VolumeEstimateStats* stats) {
+  detail::VolumeSetup setup = detail::volume_setup(mesh, volume, options.sigma);
+  setup.point = options.point;
+  const float ao_scale = options.ao_scale;
   if (!std::isfinite(ao_scale)) throw Error("curvature: ao_scale must be finite");
+  const std::optional<detail::AdaptiveScale> adaptive = detail::adaptive_of(options, setup, volume);
   const openvdb::FloatGrid& grid = *volume.grid;
   detail::ScaleLadder ladder;
   VertexCorners corners;  // built once: the cut and the areas both need them
   build_vertex_corners(mesh, corners);
   detail::VolumeEvaluation e = detail::evaluate_with_finer_scales(
-      mesh, corners, setup, finer_scales,
+      mesh, corners, setup, options.finer_scales,
       [&](const Positions& positions, const detail::VolumeSetup& s) {
         return evaluate_reference(positions, grid, s, isovalue, ao_scale);
       },
-      ladder);
-  const std::size_t unreliable =
-      detail::finish_volume_field(mesh, corners, e.raw, ladder, finer_scales, ao_scale, e.field, piece);
-  if (point == VolumePoint::vertex) e.field.surface_points = edge_surface_points(mesh, volume, e.field);
+      ladder, adaptive ? &*adaptive : nullptr);
+  const std::size_t unreliable = detail::finish_volume_field(
+      mesh, corners, e.raw, ladder, options.finer_scales, ao_scale, e.field, options.piece);
+  if (options.point == VolumePoint::vertex)
+    e.field.surface_points = edge_surface_points(mesh, volume, e.field);
   if (stats)
     *stats = VolumeEstimateStats{unreliable, 0, ladder.refined, detail::count_of(ladder.outside),
-                                 {}};
+                                 ladder.blur, {}};
   return std::move(e.field);
 }
 

@@ -74,6 +74,14 @@ struct Grid {
   V3 spacing = V3::Ones();
 };
 
+/// The same box sampled `refine` times finer along every axis: the same world extent, the
+/// spacing divided by `refine`.
+Grid refined(const Grid& g, int refine) {
+  Grid r{g.dims, g.spacing / refine};
+  for (int a = 0; a < 3; ++a) r.dims[a] = (g.dims[a] - 1) * refine + 1;
+  return r;
+}
+
 /// Samples the class's intensity at every voxel centre (world = index * spacing).
 volume::Volume make_volume(const Grid& grid, const std::string& type,
                            const std::function<double(const V3&)>& value) {
@@ -141,24 +149,26 @@ Phi torus(const V3& c, double Rt, double r) {
   };
 }
 
+// The blur is the scanner's at the class's own grid (`grid`, refine 1), in world units, so a
+// refined class is the same scan sampled finer; the noise per voxel is the same at every refine.
 CtCase grey_case(const std::string& name, const Phi& phi, const Grid& grid,
-                 const std::string& type, unsigned seed) {
+                 const std::string& type, unsigned seed, int refine) {
   const bool u8 = type == "uint8";
   const double lo = u8 ? 20 : 1000, hi = u8 ? 220 : 4000, noise = u8 ? 3 : 40;
   V3 blur = V3::Ones();
   for (int a = 0; a < 3; ++a) blur[a] = std::max(1.0, 0.5 * grid.spacing[a]);
   CtCase c;
   c.name = name;
-  c.volume = grey(phi, grid, type, lo, hi, noise, blur, seed);
+  c.volume = grey(phi, refined(grid, refine), type, lo, hi, noise, blur, seed);
   c.iso = float(0.5 * (lo + hi));
   c.exact = [phi](const V3& p, double& H, double& K) { implicit_exact(phi, p, H, K); };
   return c;
 }
 
-CtCase binary_case(const std::string& name, const Phi& phi, const Grid& grid) {
+CtCase binary_case(const std::string& name, const Phi& phi, const Grid& grid, int refine) {
   CtCase c;
   c.name = name;
-  c.volume = binary(phi, grid);
+  c.volume = binary(phi, refined(grid, refine));
   c.iso = 127.5f;
   c.exact = [phi](const V3& p, double& H, double& K) { implicit_exact(phi, p, H, K); };
   c.binary = true;
@@ -174,19 +184,20 @@ std::vector<std::string> ct_like_names() {
           "sphere_box_u8", "torus_binary", "sphere_binary", "part_binary"};
 }
 
-CtCase ct_like_case(const std::string& name, bool small) {
+CtCase ct_like_case(const std::string& name, bool small, int refine) {
+  if (refine < 1 || refine > 8) throw Error("ct_like_case: refine must be 1 to 8");
   const V3 jitter(0.31, -0.17, 0.07);  // centres off the grid
   if (name == "sphere_u8") {
     const double R = small ? 16 : 40;
     const int n = int(2 * R) + 12;
-    return grey_case(name, sphere(V3::Constant(n / 2.0) + jitter, R), {cube(n)}, "uint8", 1);
+    return grey_case(name, sphere(V3::Constant(n / 2.0) + jitter, R), {cube(n)}, "uint8", 1, refine);
   }
   if (name == "torus_u8" || name == "tube_u8") {
     const bool tube = name == "tube_u8";
     const double r = tube ? 3.5 : (small ? 6 : 14), Rt = tube ? (small ? 14 : 24) : (small ? 14 : 36);
     const int nxy = int(2 * (Rt + r)) + 12, nz = int(2 * r) + 12;
     const V3 c = V3(nxy / 2.0, nxy / 2.0, nz / 2.0) + V3(0.23, -0.11, 0.17);
-    return grey_case(name, torus(c, Rt, r), {{nxy, nxy, nz}}, "uint8", tube ? 5 : 2);
+    return grey_case(name, torus(c, Rt, r), {{nxy, nxy, nz}}, "uint8", tube ? 5 : 2, refine);
   }
   if (name == "ellipsoid_u16_thick") {
     const V3 axes = small ? V3(18, 13, 10) : V3(32, 24, 17);
@@ -202,7 +213,7 @@ CtCase ct_like_case(const std::string& name, bool small) {
       const V3 q = rot.transpose() * (p - c);
       return s * (1 - q.cwiseQuotient(axes).squaredNorm());
     };
-    return grey_case(name, phi, grid, "uint16", 6);
+    return grey_case(name, phi, grid, "uint16", 6, refine);
   }
   if (name == "gyroid_u8") {
     const double period = small ? 32 : 48, t = 0.8, k = 2 * M_PI / period;
@@ -213,23 +224,23 @@ CtCase ct_like_case(const std::string& name, bool small) {
                        std::sin(q.z()) * std::cos(q.x());
       return (t - std::abs(g)) / k;  // near a distance: |grad g| is about k
     };
-    return grey_case(name, phi, {cube(n)}, "uint8", 7);
+    return grey_case(name, phi, {cube(n)}, "uint8", 7, refine);
   }
   if (name == "sphere_box_u8") {
     const double R = small ? 16 : 30;
     const std::array<int, 3> dims = {int(1.5 * R) + 12, int(2 * R) + 12, int(1.5 * R) + 12};
     const V3 c(0.5 * R + 0.3, dims[1] / 2.0 - 0.17, 0.5 * R + 0.2);
-    return grey_case(name, sphere(c, R), {dims}, "uint8", 8);
+    return grey_case(name, sphere(c, R), {dims}, "uint8", 8, refine);
   }
   if (name == "torus_binary") {
     // Lachaud, Romon, Thibert and Coeurjolly's torus: R 6, r 2, grid step 0.5.
     const Grid grid{{41, 41, 17}, V3::Constant(0.5)};
-    return binary_case(name, torus(V3(10.013, 10.027, 4.031), 6, 2), grid);
+    return binary_case(name, torus(V3(10.013, 10.027, 4.031), 6, 2), grid, refine);
   }
   if (name == "sphere_binary") {
     const double R = small ? 12 : 24;
     const int n = int(2 * R) + 10;
-    return binary_case(name, sphere(V3::Constant(n / 2.0) + jitter, R), {cube(n)});
+    return binary_case(name, sphere(V3::Constant(n / 2.0) + jitter, R), {cube(n)}, refine);
   }
   if (name == "part_binary") {
     // A box with rounded edges (rounding radius rr), turned off the grid's axes.
@@ -244,7 +255,7 @@ CtCase ct_like_case(const std::string& name, bool small) {
       const double outside = q.cwiseMax(0.0).norm(), inside = std::min(q.maxCoeff(), 0.0);
       return rr - outside - inside;
     };
-    CtCase cs = binary_case(name, phi, {cube(n)});
+    CtCase cs = binary_case(name, phi, {cube(n)}, refine);
     // Exact: faces flat, edges cylinders of radius rr, corners spheres.
     cs.exact = [=](const V3& p, double& H, double& K) {
       const V3 q = local(p);

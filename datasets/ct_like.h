@@ -39,7 +39,9 @@ struct CtCase {
 std::vector<std::string> ct_like_names();
 
 /// The class called `name` at test size (`small`, 10-40k vertices) or bench size. Deterministic
-/// (fixed seeds). Throws isocurv::Error for an unknown name.
-CtCase ct_like_case(const std::string& name, bool small);
+/// (fixed seeds). `refine` (1 to 8): the same object and the same scan sampled `refine` times
+/// finer along every axis (the same world extent and blur, the same noise per voxel), as a finer
+/// scanner or segmentation gives it. Throws isocurv::Error for an unknown name or refine.
+CtCase ct_like_case(const std::string& name, bool small, int refine = 1);
 
 }  // namespace isocurv::datasets

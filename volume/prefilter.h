@@ -42,8 +42,12 @@ inline constexpr double kSplineReach = 2.5;
 /// whatever the truncation (below), so this only trims its fourth moment (bench_accuracy's errors
 /// at 3 and at 4 deviations agree to 2-3 digits; 3 needs a quarter fewer taps at 2 voxels).
 inline constexpr double kPrefilterRadius = 3.0;
-/// The most taps either side of a prefilter: kPrefilterRadius times kMaxDeviation.
-inline constexpr int kPrefilterMaxRadius = 18;
+/// The largest scale the prefilter takes, in voxels of the finest axis (the volume estimator's
+/// largest per-vertex scale, curvature::kAdaptiveMaxVoxels, lies under it on grids up to
+/// 1 x 1 x 2.3).
+inline constexpr double kMaxPrefilterDeviation = 16.0;
+/// The most taps either side of a prefilter: kPrefilterRadius times kMaxPrefilterDeviation.
+inline constexpr int kPrefilterMaxRadius = 48;
 
 /// One axis's prefilter: taps -radius .. radius, weight w[t + radius], summing to 1. A sampled
 /// Gaussian truncated at kPrefilterRadius of its deviation, the deviation chosen so that the

@@ -4,11 +4,13 @@
 #include <cstdint>
 #include <array>
 #include <functional>
+#include <optional>
 #include <unordered_map>
 #include <vector>
 
 #include "core/mesh.h"
 #include "core/surface_piece.h"
+#include "curvature/adaptive_scale.h"
 #include "curvature/curvature_field.h"
 #include "curvature/vertex_corners.h"
 #include "curvature/volume_estimate.h"
@@ -17,13 +19,19 @@
 
 namespace isocurv::curvature::detail {
 
+/// See VolumeSetup::max_shift.
+inline constexpr double kShrinkScales = 0.5;
+
 /// The checked inputs of one volume estimate.
 struct VolumeSetup {
   volume::GridFrame frame;
   double sigma = 0;  ///< world units
   double voxel = 0;  ///< the largest spacing, world units
   double floor = 0;  ///< the finest scale of the per-vertex choice: min(sigma, kFloorVoxels voxel)
-  double max_shift = 0;  ///< VolumePoint::surface: the largest move, kMaxShiftVoxels * voxel
+  /// VolumePoint::surface: the largest move to the smoothed isosurface, world units:
+  /// kMaxShiftVoxels voxels plus kShrinkScales sigma (the smoothing shrinks a surface by about
+  /// sigma^2 H, under 0.4 sigma where sigma kappa <= kBinaryShapeScale).
+  double max_shift() const { return kMaxShiftVoxels * voxel + kShrinkScales * sigma; }
   VolumePoint point = VolumePoint::vertex;
   volume::Inside inside = volume::Inside::Above;
 };
@@ -32,7 +40,8 @@ struct VolumeSetup {
 VolumeSetup volume_setup(const Mesh& mesh, const volume::Volume& volume, double sigma);
 
 /// How far from a vertex (index units per axis, beyond the B-spline's own support) the estimator
-/// may evaluate the field: half a voxel, for rounding (it evaluates at the vertex itself).
+/// may evaluate the field: half a voxel, for rounding, plus (VolumePoint::surface) the Newton
+/// steps' largest move, max_shift().
 openvdb::Vec3d spline_reach(const VolumeSetup& setup);
 
 /// Per-vertex results before the reliability pass: |g| at the vertex (0 where the gradient
@@ -82,16 +91,63 @@ struct ScaleLadder {
   std::vector<std::uint8_t> eroded;   ///< at its final scale: the smoothed isosurface is too far
   std::vector<std::uint8_t> opposed;  ///< at its final scale: the gradient opposes the mesh normal
   std::vector<std::uint8_t> outside;  ///< at its final scale: its smoothing reaches the box's cut
-  std::size_t refined = 0;            ///< vertices measured finer than setup.sigma
+  std::size_t refined = 0;            ///< vertices measured finer than first given
+  double blur = 0;                    ///< adaptive: the edge blur the choice measured, world units
 };
 
-/// Evaluates every vertex of `mesh` at setup.sigma; then, when `finer_scales`, the vertices that
-/// do not fit that scale (eroded, opposed or near the box: volume_estimate.h) again at
-/// sigma / kScaleStep, and so on down to setup.floor, each keeping the first scale it fits (or
-/// the floor's values).
+/// The adaptive per-vertex scale (curvature/adaptive_scale.h): its noise model, its largest
+/// scale (world units) and the piece the surface is divided into (or nullptr).
+struct AdaptiveScale {
+  NoiseModel model;
+  double hi = 0;
+  const SurfacePiece* piece = nullptr;
+  /// A volume whose border samples vary (more than kFlatBorderNoise times its noise): the
+  /// clamping (or a sparse grid's background) outside its box is then no continuation of the
+  /// field (a distance field's slope stops there), so no vertex takes a scale above its distance
+  /// to the box over kBorderDeviations (or the first pilot, if larger). A flat border (a
+  /// scan's air, a mask's zeros) repeats what the volume would have held, and costs nothing.
+  bool border_varies = false;
+  openvdb::CoordBBox box;  ///< the volume's domain (index space), for border_varies
+};
+/// See AdaptiveScale::border_varies (and 0.1% of the value range, for noiseless fields).
+inline constexpr double kFlatBorderNoise = 3.0;
+/// See AdaptiveScale::border_varies: a slope that stops at the box, d deviations away, bends the
+/// smoothed field's second derivatives by about G(d) / sigma; at 3 deviations that was 5% of H on
+/// a distance-field sphere 6 voxels from the box, at 5 it is under 0.01%.
+inline constexpr double kBorderDeviations = 5.0;
+/// The adaptive choice `options` ask for on `volume` (its largest scale within the volume and the
+/// prefilter's range), or nothing when they ask for none, or when that largest scale is not above
+/// the first pilot's.
+std::optional<AdaptiveScale> adaptive_of(const VolumeOptions& options, const VolumeSetup& setup,
+                                         const volume::Volume& volume);
+
+/// Per vertex of `mesh`: its distance to `box` (index space, on `frame`'s grid) over
+/// kBorderDeviations, world units, and at least `least` (the first pilot: the scale the
+/// noise alone asks for; see AdaptiveScale::border_varies).
+std::vector<float> box_limits(const Mesh& mesh, const volume::GridFrame& frame,
+                              const openvdb::CoordBBox& box, double least);
+
+/// The second pilot's scale over the first's (the first is setup.sigma).
+inline constexpr double kPilotRatio = 2.0;
+/// Grey levels: no scale above this many times the second pilot's. The bias the pilots measure
+/// is local and quadratic; far past them it is neither (a rounded box's flat faces, L = 0,
+/// took 12 voxels and smeared the edges' curvature into them: its integral of H 1.1% short).
+inline constexpr double kExtrapolation = 2.0;
+/// Grey levels: no scale under the first pilot's over this. Under it the noise model still holds
+/// but the reconstruction of the blurred edge from its samples biases H (a rounded box at 1 to
+/// 1.6 voxels: its integral of H 1.1% short, at 2.3 voxels 0.2%), which the pilots do not see.
+inline constexpr double kUnderPilot = 1.41421356237309515;
+
+/// Evaluates every vertex of `mesh` at setup.sigma; with `adaptive`, also at kPilotRatio times
+/// that, gives each vertex the scale choose_vertex_scales finds from the two, and evaluates it
+/// there. Then, when `finer_scales`, the vertices their scale does not fit (eroded or opposed:
+/// volume_estimate.h) again at their scale / kScaleStep, and so on down to setup.floor, each
+/// keeping the first scale it fits (or the floor's values). Without finer_scales, `adaptive` is
+/// ignored.
 VolumeEvaluation evaluate_with_finer_scales(const Mesh& mesh, const VertexCorners& corners,
                                             VolumeSetup setup, bool finer_scales,
-                                            const VolumeEvaluate& evaluate, ScaleLadder& ladder);
+                                            const VolumeEvaluate& evaluate, ScaleLadder& ladder,
+                                            const AdaptiveScale* adaptive = nullptr);
 
 /// The number of set flags.
 inline std::size_t count_of(const std::vector<std::uint8_t>& flags) {

@@ -113,6 +113,13 @@ std::vector<ObjectMeasures> measure_volume(const Sampled& s) {
   if (std::getenv("ISOCURV_MEASURE_PRINT"))
     for (const auto& [key, value] : report.parameters)
       if (key == "scale_voxels") std::printf("  scale %.2f voxels, %zu finer\n", value, report.finer_scale);
+  if (std::getenv("ISOCURV_MEASURE_PRINT"))
+    for (const auto& x : field.extra)
+      if (x.name == "Scale") {
+        std::vector<float> v = x.values;
+        std::sort(v.begin(), v.end());
+        std::printf("  per-vertex scale p5 %.3f p50 %.3f p95 %.3f\n", v[v.size() / 20], v[v.size() / 2], v[v.size() * 19 / 20]);
+      }
   return object_measures(mesh, field);
 }
 
@@ -240,7 +247,7 @@ TEST(MeasureAccuracy, BoxWithSphericalCavity) {
                   100 * rel(cavity.integral_H, -4 * M_PI * Rc), 100 * cavity.gauss_bonnet_gap(),
                   100 * objects[0].gauss_bonnet_gap());
     // Its radius is 3 binary scales (2 voxels): the shrinkage's fit is within 0.005 sigma there
-    // (curvature::kSurfaceCubic), 0.25% of the volume, hence twice the volume bound. A mask's
+    // (curvature::kSurfaceY1, kSurfaceY2), 0.25% of the volume, hence twice the volume bound. A mask's
     // cavity is compared with the mask's own (its lattice count is -0.53% off here) and the area
     // of the sphere of that volume.
     const bool binary = k == Kind::binary01 || k == Kind::binary255;
@@ -315,7 +322,7 @@ TEST(MeasureAccuracy, AnisotropicGrid) {
     check(std::string("sphere 1x1x2.5 ") + name_of(k), measure_volume(vs), es, vs, k);
     const Sampled vt = sample(torus, k, {-23.2, -23.4, -11.7}, {23, 23, 12}, spacing);
     // The mask's torus: the binary scale (2.7 units) is 0.45 of the tube radius, past the range
-    // where the shrinkage's fit holds (curvature::kSurfaceCubic, 1/3): the volume is 0.23% short
+    // where the shrinkage's fit holds (curvature::kSurfaceY1, to 1/2): the volume is 0.23% short
     // of the mask's. Allowed 0.3%.
     // Its Gauss-Bonnet gap, +1.03%, has the same cause: allowed 1.5%.
     Allowance allow;
