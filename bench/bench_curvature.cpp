@@ -65,7 +65,7 @@ void run_case(const std::string& name, const Mesh& mesh, int runs, bool with_ref
 Mesh mesh_of(const volume::Volume& v, float iso) { return mc::extract(v, iso, Device::default_device()); }
 
 // The volume estimator beside the mesh estimator and vtkCurvatures on one volume's surface: at
-// the automatic scale (with its finer-scale fallback, as `curvature` runs it) and at one voxel.
+// the default per-vertex scale (its pilot in voxels beside it) and at one voxel.
 void run_volume_case(const std::string& name, const volume::Volume& v, float iso, int runs) {
   Device& dev = Device::default_device();
   const Mesh mesh = mesh_of(v, iso);
@@ -76,6 +76,13 @@ void run_volume_case(const std::string& name, const volume::Volume& v, float iso
   auto at = [&](double sigma) {
     return [&, sigma] { curvature::volume_estimate(mesh, v, iso, sigma, ao, dev, &stats); };
   };
+  // The default: the per-vertex scale (curvature/adaptive_scale.h), as `curvature` runs it.
+  curvature::VolumeOptions defaults;
+  defaults.sigma = choice.scale;
+  defaults.ao_scale = ao;
+  defaults.adaptive = choice.model;
+  if (choice.binary) defaults.point = curvature::VolumePoint::surface;
+  auto per_vertex = [&] { curvature::volume_estimate(mesh, v, iso, defaults, dev, &stats); };
   auto poly = io::to_polydata(mesh, nullptr);
   auto vtk = [&] {
     for (int type : {VTK_CURVATURE_MEAN, VTK_CURVATURE_GAUSS}) {
@@ -86,9 +93,9 @@ void run_volume_case(const std::string& name, const volume::Volume& v, float iso
     }
   };
   const std::vector<double> t = bench::medians_ms(
-      {{mesh_estimator, runs}, {at(choice.scale), runs}, {at(choice.voxel), runs}, {vtk, runs}});
-  curvature::volume_estimate(mesh, v, iso, choice.scale, ao, dev, &stats);
-  const double mem = bench::peak_extra_mib(at(choice.scale));
+      {{mesh_estimator, runs}, {per_vertex, runs}, {at(choice.voxel), runs}, {vtk, runs}});
+  per_vertex();
+  const double mem = bench::peak_extra_mib(per_vertex);
   const curvature::VolumeStepTimes& st = stats.steps;
   std::printf(
       "%-26s %9zu %8.1f %9.1f (%4.2f vox, %6zu finer) %8.1f %8.1f %7.2f %7.2f %7.0f | %5.1f "
