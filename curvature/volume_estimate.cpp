@@ -6,7 +6,9 @@
 #include <chrono>
 #include <cstdio>
 #include <mutex>
+#include <optional>
 #include <string>
+#include <unordered_map>
 
 #include "core/cl_launch.h"
 #include "core/cl_scratch.h"
@@ -154,10 +156,71 @@ void download(cl::CommandQueue& q, cl::Buffer& b, std::vector<T>& v, std::size_t
   if (n) q.enqueueReadBuffer(b, CL_FALSE, 0, n * sizeof(T), v.data());
 }
 
+// The raw samples one estimate has gathered, on the host and the device, each brick once: the
+// pilots and the per-vertex rungs (curvature/adaptive_scale.h) read overlapping bricks, and
+// gathering and uploading them again per evaluation was the largest part of the choice's cost
+// (the gyroid's 628k vertices: 773 of 2585 ms).
+struct RawPool {
+  std::unordered_map<std::uint64_t, std::int32_t> slot;  // brick -> its 512 samples' slot
+  std::vector<float> samples;                             // 512 per slot
+  std::size_t uploaded = 0;                               // slots on the device
+  std::size_t capacity = 0;                               // slots the device buffer was asked for
+  /// When filled for the widest plan at once (the per-vertex choice), that plan: its stage 0's
+  /// bricks are the slots, in order, and every later plan's lie among them.
+  std::optional<volume::SmoothingPlan> widest;
+};
+
+std::uint64_t brick_key(const openvdb::Coord& b) {
+  const auto u = [](int v) { return std::uint64_t(std::int64_t(v) + (1 << 20)) & 0x1fffff; };
+  return (u(b[2]) << 42) | (u(b[1]) << 21) | u(b[0]);
+}
+
+// Gathers the bricks of `bricks` that `raw` lacks, uploads them, and returns `bricks`' table
+// (`table`, over the plan's region) remapped to their slots in `raw`. `q` must be drained before
+// `raw` next grows (its host samples are uploaded without blocking).
+std::vector<std::int32_t> pool_bricks(const volume::SmoothingPlan& plan, const volume::Volume& volume,
+                                      RawPool& raw, cl::CommandQueue& q, VolumeSession& s,
+                                      cl::Buffer*& pool) {
+  const volume::BrickSet& set = plan.stages[0];
+  if (raw.widest) {  // no lookups: the widest plan's table holds every slot
+    pool = &s.get(kPool0, raw.capacity * 512 * sizeof(float));
+    const volume::SmoothingPlan& w = *raw.widest;
+    std::vector<std::int32_t> table(set.table.size(), -1);
+    for (std::size_t n = 0; n < set.bricks.size(); ++n)
+      table[plan.cell(set.bricks[n])] =
+          w.in_region(set.bricks[n]) ? w.stages[0].table[w.cell(set.bricks[n])] : -1;
+    return table;
+  }
+  std::vector<openvdb::Coord> missing;
+  std::vector<std::int32_t> slots(set.bricks.size());
+  std::int32_t next = std::int32_t(raw.samples.size() / 512);
+  for (std::size_t i = 0; i < set.bricks.size(); ++i) {
+    const auto [it, added] = raw.slot.emplace(brick_key(set.bricks[i]), next);
+    if (added) missing.push_back(set.bricks[i]), ++next;
+    slots[i] = it->second;
+  }
+  volume::gather_bricks(*volume.grid, plan.frame, missing, raw.samples);
+  const std::size_t count = raw.samples.size() / 512;
+  if (count > raw.capacity) {  // a new buffer: everything goes up again
+    raw.capacity = std::max(count, raw.capacity + raw.capacity / 2);
+    raw.uploaded = 0;
+  }
+  pool = &s.get(kPool0, raw.capacity * 512 * sizeof(float));
+  if (count > raw.uploaded)
+    q.enqueueWriteBuffer(*pool, CL_FALSE, raw.uploaded * 512 * sizeof(float),
+                         (count - raw.uploaded) * 512 * sizeof(float),
+                         raw.samples.data() + raw.uploaded * 512);
+  raw.uploaded = count;
+  std::vector<std::int32_t> table(set.table.size());
+  for (std::size_t c = 0; c < table.size(); ++c)
+    table[c] = set.table[c] < 0 ? -1 : slots[std::size_t(set.table[c])];
+  return table;
+}
+
 // One evaluation at setup.sigma for `positions` (detail::VolumeEvaluate); `s` is locked.
 detail::VolumeEvaluation evaluate(const Positions& positions, const volume::Volume& volume,
                                   const detail::VolumeSetup& setup, float isovalue, float ao_scale,
-                                  Device& device, VolumeSession& s) {
+                                  Device& device, VolumeSession& s, RawPool& raw) {
   const std::size_t nv = positions.size();
   detail::VolumeEvaluation e;
   if (nv == 0) return e;
@@ -185,10 +248,12 @@ detail::VolumeEvaluation evaluate(const Positions& positions, const volume::Volu
 
   cl::CommandQueue& q = device.queue();
   cl::Buffer& pos = upload(q, s, kPositions, positions);
-  const std::vector<float> samples = volume::gather_stage_samples(*volume.grid, plan);
+  cl::Buffer* pool = nullptr;
+  const std::vector<std::int32_t> table0 = pool_bricks(plan, volume, raw, q, s, pool);
   e.steps.gather = lap(t);
-  upload(q, s, kPool0, samples);  // every host array stays alive until q.finish() below
-  for (int n = 0; n < 4; ++n) upload(q, s, Slot(kTable0 + n), plan.stages[n].table);
+  // Every host array stays alive until q.finish() below.
+  upload(q, s, kTable0, table0);
+  for (int n = 1; n < 4; ++n) upload(q, s, Slot(kTable0 + n), plan.stages[n].table);
   // The three passes of the prefilter: along x from stage 0 into stage 1, along y, along z.
   std::vector<cl_int4> bricks[3];
   std::vector<float> taps[3];
@@ -202,7 +267,8 @@ detail::VolumeEvaluation evaluate(const Positions& positions, const volume::Volu
     const int radius = plan.taps[a].radius;
     taps[a].assign(2 * radius + 15, 0.0f);
     for (int k = 0; k <= 2 * radius; ++k) taps[a][2 * radius + 7 - k] = float(plan.taps[a].w[k]);
-    cl::Buffer& from = s.get(Slot(kPool0 + a), plan.stages[a].bricks.size() * 512 * sizeof(float));
+    cl::Buffer& from = a == 0 ? *pool
+                              : s.get(Slot(kPool0 + a), plan.stages[a].bricks.size() * 512 * sizeof(float));
     cl::Buffer& to = s.get(Slot(kPool0 + a + 1), out.bricks.size() * 512 * sizeof(float));
     cl::Buffer& list = upload(q, s, Slot(kBricks1 + a), bricks[a]);
     cl::Buffer& weights = upload(q, s, Slot(kTaps0 + a), taps[a]);
@@ -287,13 +353,28 @@ CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalu
   const std::optional<detail::AdaptiveScale> adaptive = detail::adaptive_of(options, setup, volume);
   VolumeSession& s = session_for(device);
   std::lock_guard<std::mutex> lock(s.mutex);
+  double prefill_ms = 0;
   detail::ScaleLadder ladder;
   VertexCorners corners;  // built once: the cut and the areas both need them
   build_vertex_corners(mesh, corners);
+  RawPool raw;
+  if (adaptive) {
+    // Every rung reads a subset of the largest scale's raw bricks: gather and upload those once.
+    Clock::time_point t = Clock::now();
+    detail::VolumeSetup widest = setup;
+    widest.sigma = adaptive->hi;
+    const volume::SmoothingPlan plan = volume::plan_smoothing(
+        setup.frame, mesh.positions, detail::spline_reach(widest), widest.sigma);
+    cl::Buffer* pool = nullptr;
+    pool_bricks(plan, volume, raw, device.queue(), s, pool);
+    device.queue().finish();
+    raw.widest = plan;
+    prefill_ms = lap(t);
+  }
   detail::VolumeEvaluation e = detail::evaluate_with_finer_scales(
       mesh, corners, setup, options.finer_scales,
       [&](const Positions& positions, const detail::VolumeSetup& at) {
-        return evaluate(positions, volume, at, isovalue, ao_scale, device, s);
+        return evaluate(positions, volume, at, isovalue, ao_scale, device, s, raw);
       },
       ladder, adaptive ? &*adaptive : nullptr);
   Clock::time_point t = Clock::now();
@@ -302,6 +383,7 @@ CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalu
   if (options.point == VolumePoint::vertex)
     e.field.surface_points = edge_surface_points(mesh, volume, e.field);
   e.steps.finish = lap(t);
+  e.steps.gather += prefill_ms;
   if (stats)
     *stats = VolumeEstimateStats{unreliable, e.bricks, ladder.refined,
                                  detail::count_of(ladder.outside), ladder.blur, e.steps};

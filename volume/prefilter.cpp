@@ -164,9 +164,16 @@ SmoothingPlan plan_smoothing(const GridFrame& frame, const Positions& world_poin
 }
 
 std::vector<float> gather_stage_samples(const openvdb::FloatGrid& grid, const SmoothingPlan& plan) {
-  const std::vector<openvdb::Coord>& bricks = plan.stages[0].bricks;
-  const GridFrame& f = plan.frame;
-  std::vector<float> out(bricks.size() * 512);
+  std::vector<float> out;
+  gather_bricks(grid, plan.frame, plan.stages[0].bricks, out);
+  return out;
+}
+
+void gather_bricks(const openvdb::FloatGrid& grid, const GridFrame& f,
+                   const std::vector<openvdb::Coord>& bricks, std::vector<float>& all) {
+  const std::size_t start = all.size();
+  all.resize(start + bricks.size() * 512);
+  float* const out = all.data() + start;
   auto inside = [&](const openvdb::Coord& c) {
     for (int a = 0; a < 3; ++a)
       if (c[a] < f.lo[a] || c[a] + 7 > f.hi[a]) return false;
@@ -175,7 +182,7 @@ std::vector<float> gather_stage_samples(const openvdb::FloatGrid& grid, const Sm
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, bricks.size(), 16), [&](const auto& r) {
     openvdb::FloatGrid::ConstAccessor acc = grid.getConstAccessor();
     for (std::size_t b = r.begin(); b != r.end(); ++b) {
-      float* dst = out.data() + b * 512;
+      float* dst = out + b * 512;
       const openvdb::Coord origin = first_voxel(bricks[b]);
       if (!f.clamp || inside(origin)) {
         // A brick is exactly one of OpenVDB's 8^3 leaves (or lies in one tile): copy the leaf,
@@ -199,7 +206,6 @@ std::vector<float> gather_stage_samples(const openvdb::FloatGrid& grid, const Sm
           }
     }
   });
-  return out;
 }
 
 SmoothedSamples smooth_reference(const openvdb::FloatGrid& grid, const SmoothingPlan& plan) {

@@ -110,6 +110,11 @@ SmoothingPlan plan_smoothing(const GridFrame& frame, const Positions& world_poin
 /// volume. Parallel (TBB).
 std::vector<float> gather_stage_samples(const openvdb::FloatGrid& grid, const SmoothingPlan& plan);
 
+/// The same for any list of bricks (brick coordinates) on `frame`'s grid, appended to `out` in
+/// the list's order. Parallel (TBB).
+void gather_bricks(const openvdb::FloatGrid& grid, const GridFrame& frame,
+                   const std::vector<openvdb::Coord>& bricks, std::vector<float>& out);
+
 /// The smoothed samples S on stages[3]'s bricks, in double precision: the specification of the
 /// device passes (curvature/volume_kernels.cl, smooth_axis). `background` is what a read outside
 /// every brick returns (a valid plan never makes one).
