@@ -536,6 +536,7 @@ nlohmann::json surface_report(const Surface& s) {
       else
         e[key + "_chosen"] = how;
     }
+    e["implausible_vertices"] = s.estimator.implausible;  // flagged by the one rule (field_stats.h)
     if (s.estimator.estimator == "volume") {
       e["unreliable_vertices"] = s.estimator.unreliable;
       e["finer_scale_vertices"] = s.estimator.finer_scale;

@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "core/lap.h"
 #include "curvature/auto_scale.h"
+#include "curvature/field_stats.h"
 #include "curvature/estimate.h"
 #include "curvature/mesh_estimators.h"
 #include "curvature/reference.h"
@@ -155,6 +156,9 @@ CurvatureField estimate_field(const Mesh& mesh, const VolumeSource& source, Devi
       break;
     }
   }
+  // One rule for what is unmeasured, in the mesh and the statistics (field_stats.h).
+  r.implausible = flag_implausible(mesh, field, options.piece);
+  r.unreliable += r.implausible;
   field.metadata.emplace_back("estimator", r.estimator);
   for (const auto& [key, value] : r.parameters) {
     char text[64];

@@ -41,7 +41,10 @@ struct EstimatorReport {
   std::vector<std::pair<std::string, double>> parameters;
   /// How a parameter chosen from the data was chosen, e.g. {"scale", "auto"}; empty otherwise.
   std::vector<std::pair<std::string, std::string>> notes;
-  std::size_t unreliable = 0;  ///< vertices flagged "Unreliable" (volume: vanishing gradient)
+  /// Vertices flagged "Unreliable": the estimator's own (volume: vanishing gradient) and the
+  /// implausible ones (flag_implausible, field_stats.h).
+  std::size_t unreliable = 0;
+  std::size_t implausible = 0;  ///< of those, flagged by flag_implausible
   /// volume: vertices measured at a finer scale than asked (the per-vertex "Scale" array)
   std::size_t finer_scale = 0;
   /// volume: vertices whose smoothing reaches outside the volume's box at their scale (flagged

@@ -68,6 +68,36 @@ std::vector<std::uint8_t> counted_vertices(const CurvatureField& field, double m
   return counted;
 }
 
+std::size_t flag_implausible(const Mesh& mesh, CurvatureField& field, const SurfacePiece* piece) {
+  const std::size_t n = field.size();
+  if (!complete(field) || n != mesh.positions.size()) return 0;
+  double sum = 0, count = 0;  // the edges of this piece's own triangles
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    if (piece && !(t < piece->owned_triangles.size() && piece->owned_triangles[t])) continue;
+    const Tri& tri = mesh.triangles[t];
+    for (int e = 0; e < 3; ++e) {
+      const Vec3f& a = mesh.positions[tri[e]];
+      const Vec3f& b = mesh.positions[tri[(e + 1) % 3]];
+      const double dx = double(b[0]) - a[0], dy = double(b[1]) - a[1], dz = double(b[2]) - a[2];
+      sum += std::sqrt(dx * dx + dy * dy + dz * dz);
+    }
+    count += 3;
+  }
+  if (piece) {  // in piece order: the same total on every piece
+    const std::vector<double> every = piece->all({sum, count});
+    sum = count = 0;
+    for (std::size_t i = 0; i + 1 < every.size(); i += 2) sum += every[i], count += every[i + 1];
+  }
+  const double above = count > 0 ? threshold(sum / count) : 0;
+  if (field.unreliable.size() != n) field.unreliable.assign(n, 0);
+  std::size_t flagged = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Verdict v = verdict(field, i, above);
+    if (v == Verdict::non_finite || v == Verdict::unreliable) field.unreliable[i] = 1, ++flagged;
+  }
+  return flagged;
+}
+
 FieldStats field_stats(const CurvatureField& field, double mean_edge_length) {
   FieldStats s;
   const std::size_t n = field.size();

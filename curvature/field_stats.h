@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/mesh.h"
+#include "core/surface_piece.h"
 #include "curvature/curvature_field.h"
 
 namespace isocurv::curvature {
@@ -43,6 +45,17 @@ struct FieldStats {
 /// entry per vertex, Unreliable as the unmeasured flag when it has one) with the reliability
 /// threshold from `mean_edge_length` (world units).
 FieldStats field_stats(const CurvatureField& field, double mean_edge_length);
+
+/// The one rule for which vertices are unmeasured, in the statistics and in the mesh alike: sets
+/// `field`'s Unreliable flag (creating the array when absent) on every vertex not already flagged
+/// whose k1, k2, H or K is not finite or whose max(|k1|, |k2|) exceeds 2 / (the mean edge length
+/// of `mesh`): a radius of curvature under half an edge, which the mesh cannot show. Their values
+/// are kept as estimated. With a `piece` (core/surface_piece.h, collective) the mean edge is the
+/// whole surface's (over every piece's own triangles). Returns the number of vertices flagged
+/// here. curvature::estimate_field applies it to what every estimator gives; field_stats then
+/// finds nothing above the threshold that is not flagged.
+std::size_t flag_implausible(const Mesh& mesh, CurvatureField& field,
+                             const SurfacePiece* piece = nullptr);
 
 /// Per vertex of `field`: 1 where field_stats counts it (measured, finite, within the
 /// threshold), else 0. Pictures take their colour range from these vertices.

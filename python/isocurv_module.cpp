@@ -46,6 +46,7 @@
 #include "measure/object_measures.h"
 #include "labels/label_map.h"
 #include "curvature/auto_scale.h"
+#include "curvature/field_stats.h"
 #include "lines/extract.h"
 #include "lines/line_files.h"
 #include "lines/line_types.h"
@@ -497,6 +498,7 @@ py::dict report_dict(const curvature::EstimatorReport& r, const std::string& nor
   d["parameters"] = params;
   d["chosen"] = chosen;
   d["unreliable"] = r.unreliable;
+  d["implausible"] = r.implausible;  // of those, flagged by the library's one rule
   d["normals"] = normals;
   if (vn) {
     py::dict f;
@@ -739,6 +741,9 @@ py::object topology_curvature(PyTopology& t, const py::object& positions, py::ob
       curvature::estimate_resident(e, t.topo, *t.device, co, field);
       for (std::uint8_t u : field.unreliable) r.unreliable += u;
     }
+    // The library's one rule for unmeasured vertices, as estimate_field applies it.
+    r.implausible = curvature::flag_implausible(t.frame, field);
+    r.unreliable += r.implausible;
   }
   return curvature_arrays(std::move(field), report_dict(r, source, nullptr));
 }

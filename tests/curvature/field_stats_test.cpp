@@ -84,3 +84,31 @@ TEST(FieldStats, UnmeasuredVerticesAreCountedApartAndLeftOut) {
 
 }  // namespace
 }  // namespace isocurv::curvature
+
+namespace isocurv::curvature {
+namespace {
+
+// The one rule (flag_implausible): what the statistics leave out is what the mesh flags. A strip
+// of two triangles with edges 1, 1 and sqrt 2 (mean 1.138): threshold 1.757.
+TEST(FieldStats, ImplausibleVerticesAreFlaggedInTheMeshAsTheStatisticsLeaveThemOut) {
+  Mesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}};
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  CurvatureField f = field({0.5f, 3.0f, nan, -1.0f}, {1, 1, 1, 1});
+  const double mean_edge = (4 + 2 * std::sqrt(2.0)) / 6;
+  const FieldStats before = field_stats(f, mean_edge);
+  EXPECT_EQ(before.unreliable + before.non_finite, 2u);
+  EXPECT_EQ(flag_implausible(m, f), 2u);
+  ASSERT_EQ(f.unreliable.size(), 4u);
+  EXPECT_EQ(f.unreliable, (std::vector<std::uint8_t>{0, 1, 1, 0}));
+  EXPECT_EQ(f.k1[1], 3.0f) << "values are kept as estimated";
+  const FieldStats after = field_stats(f, mean_edge);
+  EXPECT_EQ(after.unmeasured, 2u);
+  EXPECT_EQ(after.unreliable + after.non_finite, 0u) << "nothing left out that is not flagged";
+  EXPECT_EQ(after.counted, before.counted);
+  EXPECT_EQ(flag_implausible(m, f), 0u) << "flagged once";
+}
+
+}  // namespace
+}  // namespace isocurv::curvature
