@@ -103,6 +103,16 @@ std::vector<double> as_double(const std::vector<float>& v) {
   return std::vector<double>(v.begin(), v.end());
 }
 
+// The exact H and K of `c` at each vertex of `mesh`.
+void exact_at_vertices(const Case& c, const Mesh& mesh, std::vector<double>& eH,
+                       std::vector<double>& eK) {
+  for (const Vec3f& p : mesh.positions) {
+    double h, k;
+    c.exact(Eigen::Vector3d(p[0], p[1], p[2]), h, k);
+    eH.push_back(h), eK.push_back(k);
+  }
+}
+
 // One line of the summary table.
 struct Summary {
   std::string name;
@@ -116,11 +126,7 @@ Summary run(const Case& c, bool quick) {
   Device& dev = Device::default_device();
   const Mesh mesh = mc::extract(c.volume, c.iso, dev);
   std::vector<double> eH, eK;
-  for (const Vec3f& p : mesh.positions) {
-    double h, k;
-    c.exact(Eigen::Vector3d(p[0], p[1], p[2]), h, k);
-    eH.push_back(h), eK.push_back(k);
-  }
+  exact_at_vertices(c, mesh, eH, eK);
   const openvdb::Vec3d sp = c.volume.spacing();
   std::printf("%s: %zu vertices, voxel type %s, spacing %g %g %g\n", c.name.c_str(),
               mesh.vertex_count(), c.volume.voxel_type.c_str(), sp[0], sp[1], sp[2]);
@@ -260,11 +266,7 @@ void refine_row(const std::string& name, int refine, bool quick) {
   Device& dev = Device::default_device();
   const Mesh mesh = mc::extract(c.volume, c.iso, dev);
   std::vector<double> eH, eK;
-  for (const Vec3f& p : mesh.positions) {
-    double h, k;
-    c.exact(Eigen::Vector3d(p[0], p[1], p[2]), h, k);
-    eH.push_back(h), eK.push_back(k);
-  }
+  exact_at_vertices(c, mesh, eH, eK);
   const curvature::VolumeSource source{&c.volume, c.iso};
   curvature::Options vo;
   vo.estimator = curvature::Estimator::volume;

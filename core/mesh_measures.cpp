@@ -18,15 +18,23 @@ double bounding_box_diagonal(const Mesh& mesh) {
 
 double mean_edge_length(const Mesh& mesh) {
   if (mesh.triangles.empty()) return 0;
-  double sum = 0;
-  for (const Tri& t : mesh.triangles)
+  return edge_length_sum(mesh)[0] / (3.0 * static_cast<double>(mesh.triangles.size()));
+}
+
+std::array<double, 2> edge_length_sum(const Mesh& mesh, const std::vector<std::uint8_t>* only) {
+  double sum = 0, count = 0;
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    if (only && !(i < only->size() && (*only)[i])) continue;
+    const Tri& t = mesh.triangles[i];
     for (int e = 0; e < 3; ++e) {
       const Vec3f& a = mesh.positions[t[e]];
       const Vec3f& b = mesh.positions[t[(e + 1) % 3]];
       const double dx = double(b[0]) - a[0], dy = double(b[1]) - a[1], dz = double(b[2]) - a[2];
       sum += std::sqrt(dx * dx + dy * dy + dz * dz);
     }
-  return sum / (3.0 * static_cast<double>(mesh.triangles.size()));
+    count += 3;
+  }
+  return {sum, count};
 }
 
 double signed_volume_term(const Mesh& mesh, const Tri& t, const Vec3f& o) {

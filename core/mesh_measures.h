@@ -1,6 +1,7 @@
 #pragma once
 // Simple measures of a Mesh shared by several stages.
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "core/mesh.h"
@@ -10,6 +11,13 @@ namespace isocurv {
 /// The mean length of the mesh's triangle edges (shared edges counted once per triangle), in
 /// world units; 0 for a mesh without triangles.
 double mean_edge_length(const Mesh& mesh);
+
+/// The sum of the lengths of the triangles' edges (each triangle's three, world units) and the
+/// number of edges summed, over the triangles t with (*only)[t] set, or all of them when `only` is
+/// nullptr (a triangle past the end of `only` is left out): mean_edge_length's terms, for a
+/// surface divided among processes to reduce.
+std::array<double, 2> edge_length_sum(const Mesh& mesh,
+                                      const std::vector<std::uint8_t>* only = nullptr);
 
 /// The length of the diagonal of the axis-aligned box around the mesh's vertices, in world
 /// units; 0 for a mesh without vertices.

@@ -6,6 +6,8 @@
 
 #include <tbb/parallel_invoke.h>
 
+#include "core/mesh_measures.h"
+
 namespace isocurv::curvature {
 namespace {
 
@@ -69,25 +71,16 @@ std::vector<std::uint8_t> counted_vertices(const CurvatureField& field, double m
 }
 
 std::size_t flag_implausible(const Mesh& mesh, CurvatureField& field, const SurfacePiece* piece) {
-  const std::size_t n = field.size();
-  if (!complete(field) || n != mesh.positions.size()) return 0;
-  double sum = 0, count = 0;  // the edges of this piece's own triangles
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    if (piece && !(t < piece->owned_triangles.size() && piece->owned_triangles[t])) continue;
-    const Tri& tri = mesh.triangles[t];
-    for (int e = 0; e < 3; ++e) {
-      const Vec3f& a = mesh.positions[tri[e]];
-      const Vec3f& b = mesh.positions[tri[(e + 1) % 3]];
-      const double dx = double(b[0]) - a[0], dy = double(b[1]) - a[1], dz = double(b[2]) - a[2];
-      sum += std::sqrt(dx * dx + dy * dy + dz * dz);
-    }
-    count += 3;
-  }
-  if (piece) {  // in piece order: the same total on every piece
+  // The mean edge over this piece's own triangles, reduced over the pieces in piece order (the
+  // same total on every piece) before anything may return: the reduction is collective.
+  auto [sum, count] = edge_length_sum(mesh, piece ? &piece->owned_triangles : nullptr);
+  if (piece) {
     const std::vector<double> every = piece->all({sum, count});
     sum = count = 0;
     for (std::size_t i = 0; i + 1 < every.size(); i += 2) sum += every[i], count += every[i + 1];
   }
+  const std::size_t n = field.size();
+  if (!complete(field) || n != mesh.positions.size()) return 0;
   const double above = count > 0 ? threshold(sum / count) : 0;
   if (field.unreliable.size() != n) field.unreliable.assign(n, 0);
   std::size_t flagged = 0;

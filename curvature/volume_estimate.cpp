@@ -8,7 +8,6 @@
 #include <mutex>
 #include <optional>
 #include <string>
-#include <unordered_map>
 
 #include "core/cl_launch.h"
 #include "core/cl_scratch.h"
@@ -156,64 +155,39 @@ void download(cl::CommandQueue& q, cl::Buffer& b, std::vector<T>& v, std::size_t
   if (n) q.enqueueReadBuffer(b, CL_FALSE, 0, n * sizeof(T), v.data());
 }
 
-// The raw samples one estimate has gathered, on the host and the device, each brick once: the
-// pilots and the per-vertex rungs (curvature/adaptive_scale.h) read overlapping bricks, and
-// gathering and uploading them again per evaluation was the largest part of the choice's cost
-// (the gyroid's 628k vertices: 773 of 2585 ms).
+// The raw samples of one estimate, on the host and the device, gathered and uploaded once, for
+// the widest plan: the first one pool_bricks sees, which the caller makes the widest (the first
+// evaluation is at the largest scale unless the per-vertex choice plans its largest rung before
+// it), so every later plan's bricks lie among its. Gathering them again per evaluation was the
+// largest part of the per-vertex choice's cost (the gyroid's 628k vertices: 773 of 2585 ms).
 struct RawPool {
-  std::unordered_map<std::uint64_t, std::int32_t> slot;  // brick -> its 512 samples' slot
-  std::vector<float> samples;                             // 512 per slot
-  std::size_t uploaded = 0;                               // slots on the device
-  std::size_t capacity = 0;                               // slots the device buffer was asked for
-  /// When filled for the widest plan at once (the per-vertex choice), that plan: its stage 0's
-  /// bricks are the slots, in order, and every later plan's lie among them.
   std::optional<volume::SmoothingPlan> widest;
+  std::vector<float> samples;  // 512 per brick of widest's stage 0, in its order
 };
 
-std::uint64_t brick_key(const openvdb::Coord& b) {
-  const auto u = [](int v) { return std::uint64_t(std::int64_t(v) + (1 << 20)) & 0x1fffff; };
-  return (u(b[2]) << 42) | (u(b[1]) << 21) | u(b[0]);
-}
-
-// Gathers the bricks of `bricks` that `raw` lacks, uploads them, and returns `bricks`' table
-// (`table`, over the plan's region) remapped to their slots in `raw`. `q` must be drained before
-// `raw` next grows (its host samples are uploaded without blocking).
+// The raw samples' device buffer (`pool`) and `plan`'s stage-0 table remapped to their bricks in
+// it, filling `raw` from `plan` first when it is empty. Throws isocurv::Error when a brick of
+// `plan` is not in the widest plan (which would read the background silently).
 std::vector<std::int32_t> pool_bricks(const volume::SmoothingPlan& plan, const volume::Volume& volume,
                                       RawPool& raw, cl::CommandQueue& q, VolumeSession& s,
                                       cl::Buffer*& pool) {
+  if (!raw.widest) {
+    raw.widest = plan;
+    volume::gather_bricks(*volume.grid, plan.frame, plan.stages[0].bricks, raw.samples);
+    pool = &s.get(kPool0, raw.samples.size() * sizeof(float));
+    if (!raw.samples.empty())  // `raw` outlives the estimate's queue
+      q.enqueueWriteBuffer(*pool, CL_FALSE, 0, raw.samples.size() * sizeof(float), raw.samples.data());
+  } else {
+    pool = &s.get(kPool0, raw.samples.size() * sizeof(float));  // the same size: kept as filled
+  }
+  const volume::SmoothingPlan& w = *raw.widest;
   const volume::BrickSet& set = plan.stages[0];
-  if (raw.widest) {  // no lookups: the widest plan's table holds every slot
-    pool = &s.get(kPool0, raw.capacity * 512 * sizeof(float));
-    const volume::SmoothingPlan& w = *raw.widest;
-    std::vector<std::int32_t> table(set.table.size(), -1);
-    for (std::size_t n = 0; n < set.bricks.size(); ++n)
-      table[plan.cell(set.bricks[n])] =
-          w.in_region(set.bricks[n]) ? w.stages[0].table[w.cell(set.bricks[n])] : -1;
-    return table;
+  std::vector<std::int32_t> table(set.table.size(), -1);
+  for (const openvdb::Coord& b : set.bricks) {
+    const std::int32_t slot = w.in_region(b) ? w.stages[0].table[w.cell(b)] : -1;
+    if (slot < 0) throw Error("curvature: a smoothing plan reaches past the estimate's widest one");
+    table[plan.cell(b)] = slot;
   }
-  std::vector<openvdb::Coord> missing;
-  std::vector<std::int32_t> slots(set.bricks.size());
-  std::int32_t next = std::int32_t(raw.samples.size() / 512);
-  for (std::size_t i = 0; i < set.bricks.size(); ++i) {
-    const auto [it, added] = raw.slot.emplace(brick_key(set.bricks[i]), next);
-    if (added) missing.push_back(set.bricks[i]), ++next;
-    slots[i] = it->second;
-  }
-  volume::gather_bricks(*volume.grid, plan.frame, missing, raw.samples);
-  const std::size_t count = raw.samples.size() / 512;
-  if (count > raw.capacity) {  // a new buffer: everything goes up again
-    raw.capacity = std::max(count, raw.capacity + raw.capacity / 2);
-    raw.uploaded = 0;
-  }
-  pool = &s.get(kPool0, raw.capacity * 512 * sizeof(float));
-  if (count > raw.uploaded)
-    q.enqueueWriteBuffer(*pool, CL_FALSE, raw.uploaded * 512 * sizeof(float),
-                         (count - raw.uploaded) * 512 * sizeof(float),
-                         raw.samples.data() + raw.uploaded * 512);
-  raw.uploaded = count;
-  std::vector<std::int32_t> table(set.table.size());
-  for (std::size_t c = 0; c < table.size(); ++c)
-    table[c] = set.table[c] < 0 ? -1 : slots[std::size_t(set.table[c])];
   return table;
 }
 
@@ -337,10 +311,9 @@ CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalu
     if (piece) {  // an empty piece still takes part in the pieces' reductions
       const std::optional<detail::AdaptiveScale> adaptive =
           detail::adaptive_of(options, setup, volume);
-      const double s2 = adaptive ? std::min(detail::kPilotRatio * setup.sigma, adaptive->hi) : 0;
-      if (adaptive && s2 > setup.sigma) {  // the adaptive choice's reductions
-        const std::vector<float> none;
-        choose_vertex_scales({}, adaptive->model, {setup.sigma, s2, &none, &none, &none, &none},
+      if (const auto s2 = adaptive ? detail::second_pilot(*adaptive, setup.sigma) : std::nullopt) {
+        const std::vector<float> none;  // the choice's reductions
+        choose_vertex_scales({}, adaptive->model, {setup.sigma, *s2, &none, &none, &none, &none},
                              setup.floor, adaptive->hi, piece);
       }
       CurvatureField nothing;
@@ -368,7 +341,6 @@ CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalu
     cl::Buffer* pool = nullptr;
     pool_bricks(plan, volume, raw, device.queue(), s, pool);
     device.queue().finish();
-    raw.widest = plan;
     prefill_ms = lap(t);
   }
   detail::VolumeEvaluation e = detail::evaluate_with_finer_scales(

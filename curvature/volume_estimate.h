@@ -159,17 +159,25 @@ CurvatureField volume_estimate(const Mesh& mesh, const volume::Volume& volume, f
                                const VolumeOptions& options, Device& device,
                                VolumeEstimateStats* stats = nullptr);
 
-/// The same at a fixed scale `sigma` (VolumeOptions without `adaptive`).
+/// VolumeOptions at a fixed scale `sigma` (without `adaptive`).
+inline VolumeOptions fixed_scale(double sigma, float ao_scale, bool finer_scales = true,
+                                 VolumePoint point = VolumePoint::vertex,
+                                 const SurfacePiece* piece = nullptr) {
+  VolumeOptions o;
+  o.sigma = sigma, o.ao_scale = ao_scale, o.finer_scales = finer_scales, o.point = point;
+  o.piece = piece;
+  return o;
+}
+
+/// The same at a fixed scale `sigma` (fixed_scale's options).
 inline CurvatureField volume_estimate(const Mesh& mesh, const volume::Volume& volume,
                                       float isovalue, double sigma, float ao_scale,
                                       Device& device, VolumeEstimateStats* stats = nullptr,
                                       bool finer_scales = true,
                                       VolumePoint point = VolumePoint::vertex,
                                       const SurfacePiece* piece = nullptr) {
-  VolumeOptions o;
-  o.sigma = sigma, o.ao_scale = ao_scale, o.finer_scales = finer_scales, o.point = point;
-  o.piece = piece;
-  return volume_estimate(mesh, volume, isovalue, o, device, stats);
+  return volume_estimate(mesh, volume, isovalue,
+                         fixed_scale(sigma, ao_scale, finer_scales, point, piece), device, stats);
 }
 
 /// VolumePoint::vertex: the surface points (CurvatureField::surface_points) of `mesh`'s
@@ -201,10 +209,8 @@ inline CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::
                                                 bool finer_scales = true,
                                                 VolumePoint point = VolumePoint::vertex,
                                                 const SurfacePiece* piece = nullptr) {
-  VolumeOptions o;
-  o.sigma = sigma, o.ao_scale = ao_scale, o.finer_scales = finer_scales, o.point = point;
-  o.piece = piece;
-  return volume_estimate_reference(mesh, volume, isovalue, o, stats);
+  return volume_estimate_reference(mesh, volume, isovalue,
+                                   fixed_scale(sigma, ao_scale, finer_scales, point, piece), stats);
 }
 
 }  // namespace isocurv::curvature

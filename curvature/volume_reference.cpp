@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <map>
+#include <optional>
 #include <unordered_map>
 #include <cmath>
 #include <limits>
@@ -263,50 +264,50 @@ VolumeEvaluation evaluate_with_finer_scales(const Mesh& mesh, const VertexCorner
   std::vector<Vec3f> first_points;
   std::vector<std::uint8_t> fits_first(nv, 1);
   for (std::size_t i : which) fits_first[i] = 0;
-  if (adaptive && finer_scales) first_points = all.field.surface_points;
-  if (adaptive && finer_scales) {
-    const double s2 = std::min(kPilotRatio * s1, adaptive->hi);
-    if (s2 > s1) {
-      VolumeSetup at2 = setup;
-      at2.sigma = s2;
-      const VolumeEvaluation e2 = evaluate(mesh.positions, at2);
-      add_costs(e2, all);
-      ScaleChoiceReport report;
-      // The shape's curvature: on grey levels the smaller of the two pilots' (noise inflates the
-      // first's largest principal curvature); binary: the first's (at the second the staircase's
-      // smoothed surface may already be past its shape limit).
-      std::vector<float> kappa(nv);
-      for (std::size_t i = 0; i < nv; ++i) {
-        kappa[i] = std::max(std::abs(all.field.k1[i]), std::abs(all.field.k2[i]));
-        if (!adaptive->model.staircase)
-          kappa[i] = std::min(kappa[i], std::max(std::abs(e2.field.k1[i]), std::abs(e2.field.k2[i])));
-      }
-      const std::vector<float> limit = adaptive->border_varies
-                                           ? box_limits(mesh, setup.frame, adaptive->box, s1)
-                                           : std::vector<float>();
-      assigned = choose_vertex_scales(
-          mesh.positions, adaptive->model,
-          {s1, s2, &all.field.H, &all.raw.gradient_norm, &e2.field.H, &e2.raw.gradient_norm,
-           &kappa, adaptive->border_varies ? &limit : nullptr},
-          adaptive->model.staircase ? s1 : std::max(setup.floor, s1 / kUnderPilot), adaptive->hi,
-          adaptive->piece, &report);
-      ladder.blur = report.blur;
-      std::vector<std::size_t> others, next;
-      for (std::size_t i = 0; i < nv; ++i) {
-        if (assigned[i] == float(s1)) {
-          if (ladder.eroded[i] || ladder.opposed[i]) next.push_back(i);
-        } else if (assigned[i] == float(s2)) {
-          copy_vertex(e2, i, all, i);
-          if (record_fit(e2, i, mesh, i, faces[i], setup, s2, cut, ladder)) next.push_back(i);
-        } else {
-          others.push_back(i);
-        }
-      }
-      const std::vector<std::size_t> more = evaluate_at(others, assigned);
-      next.insert(next.end(), more.begin(), more.end());
-      std::sort(next.begin(), next.end());
-      which.swap(next);
+  const std::optional<double> pilot2 =
+      adaptive && finer_scales ? second_pilot(*adaptive, s1) : std::nullopt;
+  if (pilot2) {
+    first_points = all.field.surface_points;
+    const double s2 = *pilot2;
+    VolumeSetup at2 = setup;
+    at2.sigma = s2;
+    const VolumeEvaluation e2 = evaluate(mesh.positions, at2);
+    add_costs(e2, all);
+    ScaleChoiceReport report;
+    // The shape's curvature: on grey levels the smaller of the two pilots' (noise inflates the
+    // first's largest principal curvature); binary: the first's (at the second the staircase's
+    // smoothed surface may already be past its shape limit).
+    std::vector<float> kappa(nv);
+    for (std::size_t i = 0; i < nv; ++i) {
+      kappa[i] = std::max(std::abs(all.field.k1[i]), std::abs(all.field.k2[i]));
+      if (!adaptive->model.staircase)
+        kappa[i] = std::min(kappa[i], std::max(std::abs(e2.field.k1[i]), std::abs(e2.field.k2[i])));
     }
+    const std::vector<float> limit = adaptive->border_varies
+                                         ? box_limits(mesh, setup.frame, adaptive->box, s1)
+                                         : std::vector<float>();
+    assigned = choose_vertex_scales(
+        mesh.positions, adaptive->model,
+        {s1, s2, &all.field.H, &all.raw.gradient_norm, &e2.field.H, &e2.raw.gradient_norm,
+         &kappa, adaptive->border_varies ? &limit : nullptr},
+        adaptive->model.staircase ? s1 : std::max(setup.floor, s1 / kUnderPilot), adaptive->hi,
+        adaptive->piece, &report);
+    ladder.blur = report.blur;
+    std::vector<std::size_t> others, next;
+    for (std::size_t i = 0; i < nv; ++i) {
+      if (assigned[i] == float(s1)) {
+        if (ladder.eroded[i] || ladder.opposed[i]) next.push_back(i);
+      } else if (assigned[i] == float(s2)) {
+        copy_vertex(e2, i, all, i);
+        if (record_fit(e2, i, mesh, i, faces[i], setup, s2, cut, ladder)) next.push_back(i);
+      } else {
+        others.push_back(i);
+      }
+    }
+    const std::vector<std::size_t> more = evaluate_at(others, assigned);
+    next.insert(next.end(), more.begin(), more.end());
+    std::sort(next.begin(), next.end());
+    which.swap(next);
   }
   // Below the floor only the opposed vertices go on, to the reconstruction's own limit: there the
   // field is the samples' B-spline, whose gradient agrees with the marching-cubes surface.

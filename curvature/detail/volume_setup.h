@@ -1,8 +1,9 @@
 #pragma once
 // Internals the volume estimator's device path and its reference share
 // (curvature/volume_estimate.h).
-#include <cstdint>
+#include <algorithm>
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <unordered_map>
@@ -129,6 +130,13 @@ std::vector<float> box_limits(const Mesh& mesh, const volume::GridFrame& frame,
 
 /// The second pilot's scale over the first's (the first is setup.sigma).
 inline constexpr double kPilotRatio = 2.0;
+
+/// The second pilot's scale for a first pilot `s1`, or nothing when the choice's largest scale
+/// leaves no room above s1 (then every vertex keeps s1).
+inline std::optional<double> second_pilot(const AdaptiveScale& adaptive, double s1) {
+  const double s2 = std::min(kPilotRatio * s1, adaptive.hi);
+  return s2 > s1 ? std::optional<double>(s2) : std::nullopt;
+}
 /// Grey levels: no scale above this many times the second pilot's. The bias the pilots measure
 /// is local and quadratic; far past them it is neither (a rounded box's flat faces, L = 0,
 /// took 12 voxels and smeared the edges' curvature into them: its integral of H 1.1% short).
