@@ -22,15 +22,23 @@ std::string picture_title(const std::string& input, const std::string& quantity,
 }
 
 std::string estimator_title(const curvature::EstimatorReport& report) {
-  // Only the parameter that changes what the picture shows (the volume estimator's scale).
+  // Only the parameter that changes what the picture shows (the volume estimator's scale): with
+  // a per-vertex scale its range (5th to 95th percentile), not the pilot.
   std::string t = report.estimator;
-  for (const auto& [name, value] : report.parameters)
-    if (name == "scale") {
-      char buf[64];
-      std::snprintf(buf, sizeof buf, ", scale %.3g", value);
-      t += buf;
-    }
-  return t;
+  std::optional<double> scale, p5, p95;
+  for (const auto& [name, value] : report.parameters) {
+    if (name == "scale") scale = value;
+    if (name == "scale_p5") p5 = value;
+    if (name == "scale_p95") p95 = value;
+  }
+  char buf[96];
+  if (p5 && p95 && *p5 != *p95)
+    std::snprintf(buf, sizeof buf, ", scale %.3g-%.3g per vertex", *p5, *p95);
+  else if (p5 || scale)
+    std::snprintf(buf, sizeof buf, ", scale %.3g", p5 ? *p5 : *scale);
+  else
+    return t;
+  return t + buf;
 }
 
 std::string estimator_title(const CommonOptions& o) {

@@ -16,7 +16,8 @@ std::string picture_title(const std::string& input, const std::string& quantity,
                           std::optional<float> isovalue, const std::string& estimator);
 
 /// The estimator as titles name it, from what an estimate used: "rusinkiewicz", "volume, scale
-/// 1.5" (the scale, %g); empty when nothing was estimated.
+/// 1.5" (a given scale, %g), "volume, scale 1.25-3.53 per vertex" (the default's per-vertex
+/// scales, 5th to 95th percentile); empty when nothing was estimated.
 std::string estimator_title(const curvature::EstimatorReport& report);
 
 /// The same from the options, before any estimate (the explorer's titles, checks): --estimator

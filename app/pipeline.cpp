@@ -611,11 +611,11 @@ SurfaceContext surface_context(const Surface& s) {
       if (anatomical_frame_named(value)) c.world_space = value;
     } else if (key == "estimator") {
       made.estimator = value;
-    } else if (key == "scale") {
+    } else if (key == "scale" || key == "scale_p5" || key == "scale_p95") {
       char* end = nullptr;
       const double scale = std::strtod(value.c_str(), &end);
       if (end != value.c_str() && *end == 0 && std::isfinite(scale))
-        made.parameters.emplace_back("scale", scale);
+        made.parameters.emplace_back(key, scale);
     }
   }
   if (!made.estimator.empty()) c.file_estimator = estimator_title(made);

@@ -8,6 +8,10 @@
 #include <tuple>
 #include <unordered_map>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
 #include "core/error.h"
 
 namespace isocurv::curvature {
@@ -40,6 +44,67 @@ struct CellHash {
   }
 };
 
+struct RegionSum {
+  double excess = 0, var = 0;
+  std::size_t count = 0;
+};
+
+// Per vertex, the sums of `term` (excess, var; a NaN excess: none) over the vertices in the 27
+// cells of side `side` around its own. Each cell's terms are added in position order and the 27
+// cells in a fixed order, so that the sums do not depend on the vertices' order (a piece's
+// vertices are ordered differently).
+std::vector<RegionSum> region_sums(const Positions& positions,
+                                   const std::vector<std::array<double, 2>>& term, double side) {
+  const std::size_t nv = positions.size();
+  auto cell_of = [&](const Vec3f& x) {
+    return Cell{std::int64_t(std::floor(x[0] / side)), std::int64_t(std::floor(x[1] / side)),
+                std::int64_t(std::floor(x[2] / side))};
+  };
+  struct Term {
+    Cell cell;
+    Vec3f x;
+    std::array<double, 2> t;
+  };
+  std::vector<Term> terms;
+  terms.reserve(nv);
+  for (std::size_t i = 0; i < nv; ++i)
+    if (!std::isnan(term[i][0])) terms.push_back({cell_of(positions[i]), positions[i], term[i]});
+  tbb::parallel_sort(terms.begin(), terms.end(), [](const Term& a, const Term& b) {
+    return std::tie(a.cell, a.x[0], a.x[1], a.x[2], a.t) <
+           std::tie(b.cell, b.x[0], b.x[1], b.x[2], b.t);
+  });
+  std::unordered_map<Cell, RegionSum, CellHash> sums;
+  for (std::size_t a = 0, b; a < terms.size(); a = b) {
+    RegionSum s;
+    for (b = a; b < terms.size() && terms[b].cell == terms[a].cell; ++b)
+      s.excess += terms[b].t[0], s.var += terms[b].t[1], ++s.count;
+    sums.emplace(terms[a].cell, s);
+  }
+  std::vector<Cell> own(nv);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 4096), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) own[i] = cell_of(positions[i]);
+  });
+  std::unordered_map<Cell, RegionSum, CellHash> regions;
+  for (const Cell& c : own) {
+    if (regions.count(c)) continue;
+    const auto [cx, cy, cz] = c;
+    RegionSum r;
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const auto it = sums.find(Cell{cx + dx, cy + dy, cz + dz});
+          if (it == sums.end()) continue;
+          r.excess += it->second.excess;
+          r.var += it->second.var;
+          r.count += it->second.count;
+        }
+    regions.emplace(c, r);
+  }
+  std::vector<RegionSum> out(nv);
+  for (std::size_t i = 0; i < nv; ++i) out[i] = regions.find(own[i])->second;
+  return out;
+}
+
 }  // namespace
 
 std::vector<float> choose_vertex_scales(const Positions& positions, const NoiseModel& model,
@@ -63,35 +128,38 @@ std::vector<float> choose_vertex_scales(const Positions& positions, const NoiseM
   const double half_span = 0.5 * (p.s2 * p.s2 - p.s1 * p.s1);
   const double face = std::pow(model.cell_volume, 2.0 / 3.0);  // a voxel face, world units^2
 
-  // E[D^2] - var(D) per vertex, summed per cell; each cell's terms in position order, so that the
-  // sums do not depend on the vertices' order (a piece's vertices are ordered differently).
-  const double cell = kRegionScales * p.s2;
-  auto cell_of = [&](const Vec3f& x) {
-    return Cell{std::int64_t(std::floor(x[0] / cell)), std::int64_t(std::floor(x[1] / cell)),
-                std::int64_t(std::floor(x[2] / cell))};
-  };
-  std::unordered_map<Cell, std::vector<std::pair<Vec3f, std::array<double, 2>>>, CellHash> terms;
+  // E[D^2] - var(D) per vertex (NaN where a pilot has no value).
+  std::vector<std::array<double, 2>> term(nv, {std::nan(""), 0.0});
   for (std::size_t i = 0; i < nv; ++i) {
     if (!(g1[i] > 0) || !(g2[i] > 0) || !std::isfinite(H1[i]) || !std::isfinite(H2[i])) continue;
     const double n1 = h_noise(model, g1[i], p.s1), n2 = h_noise(model, g2[i], p.s2);
     const double d = double(H2[i]) - H1[i];
     const double var = n1 * n1 + n2 * n2 - 2 * rho * n1 * n2;
-    terms[cell_of(positions[i])].push_back({positions[i], {d * d - var, var}});
+    term[i] = {d * d - var, var};
   }
-  struct Sum {
-    double excess = 0, var = 0;
-    std::size_t count = 0;
-  };
-  std::unordered_map<Cell, Sum, CellHash> sums;
-  for (auto& [c, list] : terms) {
-    std::sort(list.begin(), list.end(), [](const auto& a, const auto& b) {
-      return std::tie(a.first[0], a.first[1], a.first[2], a.second) <
-             std::tie(b.first[0], b.first[1], b.first[2], b.second);
+  // The lower confidence bound of L^2 (the region's mean excess less kSignificance standard
+  // errors: D^2's mean over n independent values, the noise's correlation area 4 pi s1^2 over
+  // kVertexArea voxel faces per vertex, has a standard error of mean var(D) sqrt(2 / n)), in
+  // each of two regions around every vertex: the 27 cells of side kRegionScales s2 around its
+  // own, and the same of kWideRegion times that side (at most kWideRegionLimit hi), where a bias
+  // too small to stand out of one region's noise may stand out of the wider one's.
+  std::vector<double> L2(nv, 0.0);
+  for (const double side : {kRegionScales * p.s2,
+                            std::min(kWideRegion * kRegionScales * p.s2, kWideRegionLimit * hi)}) {
+    const std::vector<RegionSum> regions = region_sums(positions, term, side);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 4096), [&](const auto& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+        const RegionSum& region = regions[i];
+        if (!region.count) continue;
+        const double count = double(region.count);
+        // Each sampled value stands for p.stride vertices' area, and counts once at most.
+        const double independent = std::max(
+            1.0, std::min(count, count * p.stride * kVertexArea * face / (4 * M_PI * p.s1 * p.s1)));
+        const double margin = kSignificance * (region.var / count) * std::sqrt(2 / independent);
+        L2[i] = std::max(L2[i], std::max(0.0, region.excess / count - margin) /
+                                    (half_span * half_span));
+      }
     });
-    Sum s;
-    for (const auto& t : list) s.excess += t.second[0], s.var += t.second[1];
-    s.count = list.size();
-    sums[c] = s;
   }
 
   // The ladder s1 sqrt(2)^j within [lo, hi].
@@ -126,42 +194,29 @@ std::vector<float> choose_vertex_scales(const Positions& positions, const NoiseM
     std::fill(out.begin(), out.end(), float(chosen));
     return out;
   }
-  for (std::size_t i = 0; i < nv; ++i) {
-    if (!(g1[i] > 0) || !std::isfinite(g1[i])) continue;
-    const auto [cx, cy, cz] = cell_of(positions[i]);
-    // Cells in a fixed order: the sum is the same whatever the vertex order.
-    double excess = 0, var = 0;
-    std::size_t count = 0;
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const auto it = sums.find(Cell{cx + dx, cy + dy, cz + dz});
-          if (it == sums.end()) continue;
-          excess += it->second.excess;
-          var += it->second.var;
-          count += it->second.count;
-        }
-    // The region's mean excess less kSignificance standard errors: D^2's mean over n independent
-    // values (the noise's correlation area 4 pi s1^2 over kVertexArea voxel faces per vertex)
-    // has a standard error of mean var(D) sqrt(2 / n).
-    double L2 = 0;
-    if (count) {
-      const double independent = std::max(1.0, double(count) * kVertexArea * face / (4 * M_PI * p.s1 * p.s1));
-      const double margin = kSignificance * (var / double(count)) * std::sqrt(2 / independent);
-      L2 = std::max(0.0, excess / double(count) - margin) / (half_span * half_span);
-    }
-    double best = std::numeric_limits<double>::infinity();
-    double shape = p.kappa && (*p.kappa)[i] > 0 ? model.shape_scale / (*p.kappa)[i]
-                                                 : std::numeric_limits<double>::infinity();
-    if (p.limit) shape = std::min(shape, double((*p.limit)[i]));
-    for (double s : ladder) {
-      if (s > shape && s > ladder.front()) break;
-      const double g = g1[i] * std::sqrt((b2 + p.s1 * p.s1) / (b2 + s * s));
-      const double n = h_noise(model, g, s), bias2 = 0.25 * s * s * s * s * L2;
-      const double e = n * n + bias2;
-      if (e < best) best = e, out[i] = float(s);
-    }
+  // Per rung: N(s) = noise_at[r] / |g(s1)| (the gradient's fall with the blur folded in) and the
+  // bias's factor s^4 / 4.
+  std::vector<double> noise_at(ladder.size()), bias_at(ladder.size());
+  for (std::size_t r = 0; r < ladder.size(); ++r) {
+    const double s = ladder[r];
+    noise_at[r] = h_noise(model, std::sqrt((b2 + p.s1 * p.s1) / (b2 + s * s)), s);
+    bias_at[r] = 0.25 * s * s * s * s;
   }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 2048), [&](const auto& range) {
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      if (!(g1[i] > 0) || !std::isfinite(g1[i])) continue;
+      double best = std::numeric_limits<double>::infinity();
+      double shape = p.kappa && (*p.kappa)[i] > 0 ? model.shape_scale / (*p.kappa)[i]
+                                                   : std::numeric_limits<double>::infinity();
+      if (p.limit) shape = std::min(shape, double((*p.limit)[i]));
+      for (std::size_t r = 0; r < ladder.size(); ++r) {
+        if (ladder[r] > shape && r > 0) break;
+        const double n = noise_at[r] / g1[i];
+        const double e = n * n + bias_at[r] * L2[i];
+        if (e < best) best = e, out[i] = float(ladder[r]);
+      }
+    }
+  });
   return out;
 }
 

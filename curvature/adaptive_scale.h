@@ -40,6 +40,10 @@ inline constexpr double kNoiseH = 0.10608;
 inline constexpr double kBinaryNoise = 0.15;
 /// The region over which L^2 is averaged, in pilot scales s2 (the cell size of its grid).
 inline constexpr double kRegionScales = 1.0;
+/// The wider region's cell side, in kRegionScales s2, and at most kWideRegionLimit times the
+/// choice's largest scale (which keeps it within the ghost margin of a distributed piece).
+inline constexpr double kWideRegion = 3.0;
+inline constexpr double kWideRegionLimit = 1.5;
 /// The shape's limit: no vertex is measured at a scale above kShapeScale / kappa, kappa its
 /// largest principal curvature (ScalePilots::kappa). Past it the bias is no longer the quadratic
 /// sigma^2 L / 2 the pilots measure (a torus of tube radius r: its level sets deform at
@@ -93,6 +97,9 @@ struct ScalePilots {
   /// Optional: the largest scale each vertex may take (world units), for reasons outside the
   /// noise and the shape (the box of a volume whose border is not flat).
   const std::vector<float>* limit = nullptr;
+  /// The second pilot evaluated a sample of the vertices, one in about `stride` (H2 NaN and g2
+  /// 0 elsewhere): each of its values stands for that many vertices' area.
+  double stride = 1;
 };
 
 /// What the choice measured (for the report).

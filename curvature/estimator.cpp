@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/lap.h"
+#include "core/surface_piece.h"
 #include "curvature/auto_scale.h"
 #include "curvature/field_stats.h"
 #include "curvature/estimate.h"
@@ -141,7 +142,22 @@ CurvatureField estimate_field(const Mesh& mesh, const VolumeSource& source, Devi
       VolumeEstimateStats st;
       field = device ? volume_estimate(mesh, *source.volume, source.isovalue, vo, *device, &st)
                      : volume_estimate_reference(mesh, *source.volume, source.isovalue, vo, &st);
-      if (vo.adaptive) r.parameters.emplace_back("edge_blur", st.blur);
+      if (vo.adaptive) {
+        r.parameters.emplace_back("edge_blur", st.blur);
+        // The range of the per-vertex scales (the Scale array's 5th and 95th percentiles over the
+        // whole surface): what titles quote, the pilot above being no vertex's scale in general.
+        for (const CurvatureField::Named& x : field.extra) {
+          if (x.name != "Scale") continue;
+          std::vector<float> mine;
+          for (std::size_t i = 0; i < x.values.size(); ++i)
+            if (x.values[i] > 0 && owns_vertex(options.piece, i)) mine.push_back(x.values[i]);
+          const std::uint64_t n = total_count(options.piece, mine.size());
+          if (n == 0) break;
+          for (const auto& [name, q] : {std::pair{"scale_p5", 0.05}, std::pair{"scale_p95", 0.95}})
+            r.parameters.emplace_back(
+                name, kth_smallest_positive(options.piece, mine, std::uint64_t(q * double(n - 1))));
+        }
+      }
       r.unreliable = st.unreliable;
       r.finer_scale = st.finer_scale;
       r.outside = st.outside;

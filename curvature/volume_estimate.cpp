@@ -311,9 +311,9 @@ CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalu
     if (piece) {  // an empty piece still takes part in the pieces' reductions
       const std::optional<detail::AdaptiveScale> adaptive =
           detail::adaptive_of(options, setup, volume);
-      if (const auto s2 = adaptive ? detail::second_pilot(*adaptive, setup.sigma) : std::nullopt) {
+      if (const auto pilots = adaptive ? detail::pilot_scales(*adaptive, setup.sigma) : std::nullopt) {
         const std::vector<float> none;  // the choice's reductions
-        choose_vertex_scales({}, adaptive->model, {setup.sigma, *s2, &none, &none, &none, &none},
+        choose_vertex_scales({}, adaptive->model, {pilots->p1, pilots->p2, &none, &none, &none, &none},
                              setup.floor, adaptive->hi, piece);
       }
       CurvatureField nothing;

@@ -89,7 +89,8 @@ std::optional<AdaptiveScale> adaptive_of(const VolumeOptions& options, const Vol
     for (int a = 0; a < 3; ++a) extent = std::max(extent, dim[a] * h[a]);
     hi = std::min(hi, extent);
   }
-  if (!options.adaptive->staircase) hi = std::min(hi, kExtrapolation * kPilotRatio * setup.sigma);
+  if (!options.adaptive->staircase)
+    hi = std::min(hi, kExtrapolation * kGreyPilots[1] * setup.sigma);
   if (!(hi > setup.sigma * (1 + 1e-6))) return std::nullopt;
   AdaptiveScale a{*options.adaptive, hi, options.piece, false, {}};
   if (!volume.domain.empty() && volume.grid) {
@@ -225,8 +226,11 @@ VolumeEvaluation evaluate_with_finer_scales(const Mesh& mesh, const VertexCorner
                                             const VolumeEvaluate& evaluate, ScaleLadder& ladder,
                                             const AdaptiveScale* adaptive) {
   const std::size_t nv = mesh.positions.size();
-  const double s1 = setup.sigma;
-  VolumeEvaluation all = evaluate(mesh.positions, setup);
+  const std::optional<PilotScales> pilots =
+      adaptive && finer_scales ? pilot_scales(*adaptive, setup.sigma) : std::nullopt;
+  // The first evaluation: at the asked scale, or at the first pilot.
+  const double s1 = pilots ? pilots->p1 : setup.sigma;
+  VolumeEvaluation all = evaluate(mesh.positions, pilots ? with_sigma(setup, s1) : setup);
   const std::vector<Vec3f> faces = area_weighted_normals(mesh);
   const CutIndex cut(mesh, corners, setup.frame);
   ladder.scale.assign(nv, 0.0f);
@@ -264,42 +268,50 @@ VolumeEvaluation evaluate_with_finer_scales(const Mesh& mesh, const VertexCorner
   std::vector<Vec3f> first_points;
   std::vector<std::uint8_t> fits_first(nv, 1);
   for (std::size_t i : which) fits_first[i] = 0;
-  const std::optional<double> pilot2 =
-      adaptive && finer_scales ? second_pilot(*adaptive, s1) : std::nullopt;
-  if (pilot2) {
+  if (pilots) {
     first_points = all.field.surface_points;
-    const double s2 = *pilot2;
-    VolumeSetup at2 = setup;
-    at2.sigma = s2;
-    const VolumeEvaluation e2 = evaluate(mesh.positions, at2);
+    const double s2 = pilots->p2;
+    // The second pilot only measures the bias, averaged over regions far wider than the noise's
+    // correlation: a sample of the vertices does (pilot_sample), the same whatever their order.
+    std::vector<std::size_t> sample;
+    for (std::size_t i = 0; i < nv; ++i)
+      if (pilot_sample(mesh.positions[i])) sample.push_back(i);
+    Positions sampled(sample.size());
+    for (std::size_t j = 0; j < sample.size(); ++j) sampled[j] = mesh.positions[sample[j]];
+    const VolumeEvaluation e2 = evaluate(sampled, with_sigma(setup, s2));
     add_costs(e2, all);
-    ScaleChoiceReport report;
-    // The shape's curvature: on grey levels the smaller of the two pilots' (noise inflates the
-    // first's largest principal curvature); binary: the first's (at the second the staircase's
-    // smoothed surface may already be past its shape limit).
-    std::vector<float> kappa(nv);
-    for (std::size_t i = 0; i < nv; ++i) {
-      kappa[i] = std::max(std::abs(all.field.k1[i]), std::abs(all.field.k2[i]));
-      if (!adaptive->model.staircase)
-        kappa[i] = std::min(kappa[i], std::max(std::abs(e2.field.k1[i]), std::abs(e2.field.k2[i])));
+    std::vector<float> H2(nv, std::numeric_limits<float>::quiet_NaN()), g2(nv, 0.0f);
+    std::vector<std::int64_t> in_sample(nv, -1);
+    for (std::size_t j = 0; j < sample.size(); ++j) {
+      H2[sample[j]] = e2.field.H[j], g2[sample[j]] = e2.raw.gradient_norm[j];
+      in_sample[sample[j]] = std::int64_t(j);
     }
+    ScaleChoiceReport report;
+    // The shape's curvature: the first pilot's (on grey levels, at twice the scale the noise asks
+    // for, the noise no longer inflates it: the smaller of both pilots' chose the same scales on
+    // bench_accuracy's classes).
+    std::vector<float> kappa(nv);
+    for (std::size_t i = 0; i < nv; ++i)
+      kappa[i] = std::max(std::abs(all.field.k1[i]), std::abs(all.field.k2[i]));
     const std::vector<float> limit = adaptive->border_varies
-                                         ? box_limits(mesh, setup.frame, adaptive->box, s1)
+                                         ? box_limits(mesh, setup.frame, adaptive->box, setup.sigma)
                                          : std::vector<float>();
+    ScalePilots p{s1, s2, &all.field.H, &all.raw.gradient_norm, &H2, &g2,
+                  &kappa, adaptive->border_varies ? &limit : nullptr};
+    p.stride = kPilotStride;
     assigned = choose_vertex_scales(
-        mesh.positions, adaptive->model,
-        {s1, s2, &all.field.H, &all.raw.gradient_norm, &e2.field.H, &e2.raw.gradient_norm,
-         &kappa, adaptive->border_varies ? &limit : nullptr},
-        adaptive->model.staircase ? s1 : std::max(setup.floor, s1 / kUnderPilot), adaptive->hi,
-        adaptive->piece, &report);
+        mesh.positions, adaptive->model, p,
+        adaptive->model.staircase ? s1 : std::max(setup.floor, setup.sigma / kUnderPilot),
+        adaptive->hi, adaptive->piece, &report);
     ladder.blur = report.blur;
     std::vector<std::size_t> others, next;
     for (std::size_t i = 0; i < nv; ++i) {
       if (assigned[i] == float(s1)) {
         if (ladder.eroded[i] || ladder.opposed[i]) next.push_back(i);
-      } else if (assigned[i] == float(s2)) {
-        copy_vertex(e2, i, all, i);
-        if (record_fit(e2, i, mesh, i, faces[i], setup, s2, cut, ladder)) next.push_back(i);
+      } else if (assigned[i] == float(s2) && in_sample[i] >= 0) {
+        const std::size_t j = std::size_t(in_sample[i]);
+        copy_vertex(e2, j, all, i);
+        if (record_fit(e2, j, mesh, i, faces[i], setup, s2, cut, ladder)) next.push_back(i);
       } else {
         others.push_back(i);
       }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <optional>
 #include <unordered_map>
@@ -36,6 +37,12 @@ struct VolumeSetup {
   VolumePoint point = VolumePoint::vertex;
   volume::Inside inside = volume::Inside::Above;
 };
+
+/// `setup` at another scale.
+inline VolumeSetup with_sigma(VolumeSetup setup, double sigma) {
+  setup.sigma = sigma;
+  return setup;
+}
 
 /// Checks mesh, sigma and the grid (see volume_estimate) and derives the setup.
 VolumeSetup volume_setup(const Mesh& mesh, const volume::Volume& volume, double sigma);
@@ -128,27 +135,59 @@ std::optional<AdaptiveScale> adaptive_of(const VolumeOptions& options, const Vol
 std::vector<float> box_limits(const Mesh& mesh, const volume::GridFrame& frame,
                               const openvdb::CoordBBox& box, double least);
 
-/// The second pilot's scale over the first's (the first is setup.sigma).
-inline constexpr double kPilotRatio = 2.0;
+/// The two pilot scales of the per-vertex choice, world units (p1 < p2).
+struct PilotScales {
+  double p1 = 0, p2 = 0;
+};
+/// The pilots over s1 (setup.sigma, the scale the noise alone asks for). Grey levels: at
+/// kGreyPilots[0] and kGreyPilots[1] times s1. The bias is measured from their difference, and
+/// at s1 the noise hid it: the difference grows as the scales squared and the noise falls as
+/// their power 3.5 (bench_accuracy --refine's torus at 2x: at s1 and 2 s1 its bias stood out
+/// nowhere, every vertex took the largest scale, and the error was 1.8x that at 1x; at 2 s1 and
+/// 4 s1 it is 0.8x). Binary volumes: s1 and kBinaryPilot s1 (their scale comes from the first
+/// pilot's shape, see NoiseModel::staircase).
+inline constexpr double kGreyPilots[2] = {2.0, 4.0};
+inline constexpr double kBinaryPilot = 2.0;
+/// Grey levels: no scale above the second pilot's. The bias the pilots measure is local and
+/// quadratic; far past them it is neither (a rounded box's flat faces, L = 0, took 12 voxels and
+/// smeared the edges' curvature into them: its integral of H 1.1% short).
+inline constexpr double kExtrapolation = 1.0;
 
-/// The second pilot's scale for a first pilot `s1`, or nothing when the choice's largest scale
+/// The pilots for a first scale `s1`, within the choice's largest scale, or nothing when that
 /// leaves no room above s1 (then every vertex keeps s1).
-inline std::optional<double> second_pilot(const AdaptiveScale& adaptive, double s1) {
-  const double s2 = std::min(kPilotRatio * s1, adaptive.hi);
-  return s2 > s1 ? std::optional<double>(s2) : std::nullopt;
+inline std::optional<PilotScales> pilot_scales(const AdaptiveScale& adaptive, double s1) {
+  if (adaptive.model.staircase) {
+    const double p2 = std::min(kBinaryPilot * s1, adaptive.hi);
+    return p2 > s1 ? std::optional<PilotScales>({s1, p2}) : std::nullopt;
+  }
+  const double p2 = std::min(kGreyPilots[1] * s1, adaptive.hi);
+  const double p1 = std::max(s1, p2 * kGreyPilots[0] / kGreyPilots[1]);
+  return p2 > p1 ? std::optional<PilotScales>({p1, p2}) : std::nullopt;
 }
-/// Grey levels: no scale above this many times the second pilot's. The bias the pilots measure
-/// is local and quadratic; far past them it is neither (a rounded box's flat faces, L = 0,
-/// took 12 voxels and smeared the edges' curvature into them: its integral of H 1.1% short).
-inline constexpr double kExtrapolation = 2.0;
+/// The second pilot evaluates one vertex in about this many (pilot_sample): its values only
+/// enter region averages over hundreds of vertices, and the first pilot's noise is correlated
+/// over 4 pi p1^2, some 200 vertices at p1 = 3.5 voxels.
+inline constexpr unsigned kPilotStride = 8;
+/// Whether the second pilot evaluates the vertex at `x`: a hash of its coordinates' bits, so the
+/// same vertices whatever their order (a distributed piece's are ordered differently).
+inline bool pilot_sample(const Vec3f& x) {
+  std::uint64_t h = 0x9e3779b97f4a7c15ull;
+  for (float c : x) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &c, sizeof bits);
+    h = (h ^ bits) * 0xff51afd7ed558ccdull;
+    h ^= h >> 33;
+  }
+  return h % kPilotStride == 0;
+}
 /// Grey levels: no scale under the first pilot's over this. Under it the noise model still holds
 /// but the reconstruction of the blurred edge from its samples biases H (a rounded box at 1 to
 /// 1.6 voxels: its integral of H 1.1% short, at 2.3 voxels 0.2%), which the pilots do not see.
 inline constexpr double kUnderPilot = 1.41421356237309515;
 
-/// Evaluates every vertex of `mesh` at setup.sigma; with `adaptive`, also at kPilotRatio times
-/// that, gives each vertex the scale choose_vertex_scales finds from the two, and evaluates it
-/// there. Then, when `finer_scales`, the vertices their scale does not fit (eroded or opposed:
+/// Evaluates every vertex of `mesh` at setup.sigma; with `adaptive`, at the two pilot scales
+/// instead (pilot_scales), gives each vertex the scale choose_vertex_scales finds from the two,
+/// and evaluates it there. Then, when `finer_scales`, the vertices their scale does not fit (eroded or opposed:
 /// volume_estimate.h) again at their scale / kScaleStep, and so on down to setup.floor, each
 /// keeping the first scale it fits (or the floor's values). Without finer_scales, `adaptive` is
 /// ignored.

@@ -65,6 +65,11 @@ TEST(VolumeEstimatorCli, JsonFieldDataAndTighterStatistics) {
     steps += e["steps_ms"][step].get<double>();
   }
   EXPECT_LE(steps, s["timings_ms"]["curvature"].get<double>() * 1.01 + 0.1) << s.dump(2);
+  // The per-vertex scales' range, which titles quote: the Scale array's 5th and 95th percentiles.
+  ASSERT_TRUE(e.contains("scale_p5") && e.contains("scale_p95")) << e.dump(2);
+  EXPECT_DOUBLE_EQ(e["scale_p5"].get<double>(), e["scale_per_vertex"]["p5"].get<double>());
+  EXPECT_DOUBLE_EQ(e["scale_p95"].get<double>(), e["scale_per_vertex"]["p95"].get<double>());
+  EXPECT_LE(e["scale_p5"].get<double>(), e["scale_p95"].get<double>());
 
   const auto m =
       run_isocurv({"curvature", ball, "--iso", "120.5", "-o", dir / "mesh.vtp", "--estimator",
