@@ -7,6 +7,7 @@
 
 #include "app/commands.h"
 #include "app/label_surfaces.h"
+#include "app/picture_title.h"
 #include "app/pipeline.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -23,6 +24,7 @@ nlohmann::json measures_json(const measure::ObjectMeasures& m, bool with_genus) 
                       {"closed", m.closed},
                       {"boundary_edges", m.boundary_edges},
                       {"area", m.area},
+                      {"mesh_area", m.mesh_area},
                       {"volume", m.closed ? number_or_null(m.volume) : nlohmann::json(nullptr)},
                       {"integral_H", m.integral_H},
                       {"integral_K", m.integral_K},
@@ -30,6 +32,8 @@ nlohmann::json measures_json(const measure::ObjectMeasures& m, bool with_genus) 
                       {"gauss_bonnet_gap", number_or_null(m.gauss_bonnet_gap())},
                       {"unmeasured_vertices", m.unmeasured},
                       {"on_vertices", m.on_vertices},
+                      {"scale", m.scale},
+                      {"resolved", m.resolved},
                       {"box", m.box}};
   if (with_genus) j["genus"] = m.closed ? nlohmann::json(m.genus()) : nlohmann::json(nullptr);
   return j;
@@ -49,7 +53,7 @@ std::string csv_row(const std::string& id, const measure::ObjectMeasures& m, lon
     << num(m.integral_K) << ',' << m.euler << ',' << (genus >= 0 ? std::to_string(genus) : "")
     << ',' << num(m.gauss_bonnet_gap()) << ',' << m.unmeasured;
   for (double b : m.box) s << ',' << num(b);
-  s << '\n';
+  s << ',' << num(m.mesh_area) << ',' << num(m.scale) << ',' << (m.resolved ? 1 : 0) << '\n';
   return s.str();
 }
 
@@ -123,11 +127,14 @@ void register_measure(CLI::App& app) {
     long long genus_sum = 0;
     for (const auto& m : objects) genus_sum += m.closed ? m.genus() : 0;
     const std::string estimator = from_file ? "from the file" : s.estimator.estimator;
+    // What the text states: the estimator with the scale the measure belongs to.
+    const std::string described = from_file ? estimator : estimator_title(s.estimator);
     const bool labelled = !s.label_parts.empty();
     if (!csv.empty()) {
       std::string text = std::string(labelled ? "label,components," : "object,") +
           "vertices,triangles,closed,area,volume,integral_H,integral_K,euler,genus,"
-          "gauss_bonnet_gap,unmeasured_vertices,xmin,xmax,ymin,ymax,zmin,zmax\n";
+          "gauss_bonnet_gap,unmeasured_vertices,xmin,xmax,ymin,ymax,zmin,zmax,mesh_area,scale,"
+          "resolved\n";
       if (labelled)
         for (const LabelRow& r : by_label)
           text += csv_row(std::to_string(r.label) + "," + std::to_string(r.components), r.m, r.genus);
@@ -143,6 +150,7 @@ void register_measure(CLI::App& app) {
       r["input"] = in;
       if (s.volume) r["isovalue"] = s.isovalue;
       r["estimator"] = estimator;
+      r["curvature"] = described;  // e.g. "volume, scale 0.8-1.5 per vertex" (world units)
       r["objects"] = nlohmann::json::array();
       for (const auto& m : objects) r["objects"].push_back(measures_json(m, true));
       if (labelled) {
@@ -174,21 +182,25 @@ void register_measure(CLI::App& app) {
     if (labelled)
       std::printf("%zu label%s, %zu component%s; curvature: %s (each label's own indicator)\n",
                   by_label.size(), by_label.size() == 1 ? "" : "s", objects.size(),
-                  objects.size() == 1 ? "" : "s", estimator.c_str());
+                  objects.size() == 1 ? "" : "s", described.c_str());
     else
       std::printf("%zu component%s%s; curvature: %s\n", objects.size(), objects.size() == 1 ? "" : "s",
                   s.volume ? (" at isovalue " + format_number(s.isovalue)).c_str() : "",
-                  estimator.c_str());
-    std::printf("%6s %12s %12s %12s %12s %6s %6s %9s %s\n", labelled ? "label" : "object", "area",
-                "volume", "int H dA", "int K dA", "euler", "genus", "GB gap", "");
-    auto line = [](const std::string& id, const measure::ObjectMeasures& m, long long genus) {
-      char vol[32] = "", gap[32] = "", g[24] = "";
+                  described.c_str());
+    std::printf("%6s %12s %12s %12s %12s %12s %6s %6s %9s %s\n", labelled ? "label" : "object",
+                "area", "mesh area", "volume", "int H dA", "int K dA", "euler", "genus", "GB gap", "");
+    auto line = [](const std::string& id, const measure::ObjectMeasures& m, long long genus,
+                   bool one = true) {
+      char vol[32] = "", gap[32] = "", g[24] = "", why[96] = "";
       if (m.closed) std::snprintf(vol, sizeof vol, "%.6g", m.volume);
       if (std::isfinite(m.gauss_bonnet_gap())) std::snprintf(gap, sizeof gap, "%+.2f%%", 100 * m.gauss_bonnet_gap());
       if (genus >= 0) std::snprintf(g, sizeof g, "%lld", genus);
-      std::printf("%6s %12.6g %12s %12.6g %12.6g %6lld %6s %9s %s\n", id.c_str(), m.area, vol,
-                  m.integral_H, m.integral_K, m.euler, g, gap,
-                  m.closed ? "" : "cut by the box (open: no volume, no genus)");
+      if (!m.closed)
+        std::snprintf(why, sizeof why, "cut by the box (open: no volume, no genus)");
+      else if (one && !m.resolved)
+        std::snprintf(why, sizeof why, "below its curvature scale (%.3g): H, K integrals unreliable", m.scale);
+      std::printf("%6s %12.6g %12.6g %12s %12.6g %12.6g %6lld %6s %9s %s\n", id.c_str(), m.area,
+                  m.mesh_area, vol, m.integral_H, m.integral_K, m.euler, g, gap, why);
     };
     const std::size_t listed = labelled ? by_label.size() : objects.size();
     for (std::size_t i = 0; i < listed && i < std::size_t(rows); ++i) {
@@ -198,7 +210,16 @@ void register_measure(CLI::App& app) {
     if (listed > std::size_t(rows))
       std::printf("%6s (%zu more %s not listed; --rows, --csv or --json list them)\n", "...",
                   listed - std::size_t(rows), labelled ? "labels" : "smaller components");
-    line("total", all, all.closed ? genus_sum : -1);
+    line("total", all, all.closed ? genus_sum : -1, false);
+    std::printf("area: the smooth surface the curvature describes (its normals and surface points); "
+                "mesh area: the triangles' own, as check and stats.json report it\n");
+    std::size_t below = 0;
+    for (const auto& m : objects) below += !m.resolved;
+    if (below > 0)
+      std::printf("%zu component%s smaller than %.3g times %s largest smoothing scale (%s integrals "
+                  "of H and K and Gauss-Bonnet gap%s measure the smoothing more than the object)\n",
+                  below, below == 1 ? "" : "s", measure::kResolvedExtent, below == 1 ? "its" : "their",
+                  below == 1 ? "its" : "their", below == 1 ? "" : "s");
     std::size_t specks = 0;
     for (const auto& m : objects) specks += m.on_vertices;
     if (specks > 0)

@@ -150,6 +150,10 @@ std::vector<ObjectMeasures> object_measures(const Mesh& mesh, const curvature::C
       for (std::uint32_t i : t) third_area[i] += a;
     }
   }
+  // The per-vertex smoothing scale, when the field has one (the volume estimator's).
+  const std::vector<float>* scales = nullptr;
+  for (const auto& x : field.extra)
+    if (x.name == "Scale" && x.values.size() == nv) scales = &x.values;
   // The positions integrated over: the field's surface points where it has them (finite).
   const auto position = [&](std::uint32_t i) -> const Vec3f& {
     if (moved) {
@@ -183,10 +187,11 @@ std::vector<ObjectMeasures> object_measures(const Mesh& mesh, const curvature::C
     const double a = have_area ? double(field.area[i]) : third_area[i];
     const bool flagged = field.unreliable.size() == nv && field.unreliable[i];
     m.unmeasured += flagged;
-    if (!curved && !flagged && std::isfinite(field.H[i]) && std::isfinite(field.K[i])) {
-      m.integral_H += double(field.H[i]) * a;
-      m.integral_K += double(field.K[i]) * a;
+    if (!flagged && std::isfinite(field.H[i]) && std::isfinite(field.K[i])) {
+      if (!curved) m.integral_H += double(field.H[i]) * a;
+      if (!moved) m.integral_K += double(field.K[i]) * a;  // see ObjectMeasures::integral_K
     }
+    if (scales) m.scale = std::max(m.scale, double((*scales)[i]));
     for (int c = 0; c < 3; ++c) {
       m.box[2 * c] = std::min(m.box[2 * c], double(mesh.positions[i][c]));
       m.box[2 * c + 1] = std::max(m.box[2 * c + 1], double(mesh.positions[i][c]));
@@ -232,9 +237,11 @@ std::vector<ObjectMeasures> object_measures(const Mesh& mesh, const curvature::C
     if (!usable(t, nv)) continue;
     ObjectMeasures& m = out[component[t[0]]];
     ++m.triangles;
+    const auto n = triangle_area_vector(mesh, t);
+    const double flat = 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    m.mesh_area += flat;
     if (!curved) {
-      const auto n = triangle_area_vector(mesh, t);
-      m.area += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      m.area += flat;
       m.volume += signed_volume_term(mesh, t, mesh.positions[m.first_vertex]);
       continue;
     }
@@ -242,8 +249,8 @@ std::vector<ObjectMeasures> object_measures(const Mesh& mesh, const curvature::C
     m.area += p.area;
     m.volume += p.volume;
     m.integral_H += p.H;
-    m.integral_K += p.K;
     if (moved) {
+      m.integral_K += p.K;
       const PatchIntegrals& q = own[ti];
       PatchIntegrals& v = on_vertices[component[t[0]]];
       v.area += q.area;
@@ -265,6 +272,8 @@ std::vector<ObjectMeasures> object_measures(const Mesh& mesh, const curvature::C
     ObjectMeasures& m = out[c];
     m.closed = m.boundary_edges == 0;
     m.euler = (long long)m.vertices - (long long)m.edges + (long long)m.triangles;
+    const double shortest = std::min({m.box[1] - m.box[0], m.box[3] - m.box[2], m.box[5] - m.box[4]});
+    m.resolved = !(shortest < kResolvedExtent * m.scale);
     if (!moved) continue;
     // A component below the estimator's scale (a speck, a sheet a voxel thick) has no smoothed
     // isosurface of its own to move to: its surface points scatter, and can turn it inside out.
@@ -295,7 +304,9 @@ ObjectMeasures total(const std::vector<ObjectMeasures>& objects) {
     t.vertices += m.vertices, t.triangles += m.triangles, t.edges += m.edges;
     t.boundary_edges += m.boundary_edges;
     t.closed = t.closed && m.closed;
-    t.area += m.area, t.volume += m.volume;
+    t.area += m.area, t.volume += m.volume, t.mesh_area += m.mesh_area;
+    t.scale = std::max(t.scale, m.scale);
+    t.resolved = t.resolved && m.resolved;
     t.integral_H += m.integral_H, t.integral_K += m.integral_K;
     t.euler += m.euler;
     t.unmeasured += m.unmeasured;

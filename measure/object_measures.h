@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/mesh.h"
+#include "curvature/adaptive_scale.h"
 #include "curvature/curvature_field.h"
 
 namespace isocurv::measure {
@@ -17,13 +18,21 @@ struct ObjectMeasures {
   std::size_t boundary_edges = 0;  ///< edges in one triangle: the surface is cut (by the box)
   bool closed = false;             ///< no boundary edge
   double area = 0;                 ///< the area of its patches (object_measures)
+  /// The area of the mesh's own flat triangles (what `isocurv check` and stats.json report):
+  /// larger than `area` on rough surfaces, whose triangles tilt with the noise.
+  double mesh_area = 0;
   /// Enclosed volume by the divergence theorem (the integral of x.n dA / 3 over its patches),
   /// exact for the closed surface the patches make; > 0 when it faces outward (an isosurface's
   /// components do). For a cut component, the volume of the cone from its first vertex:
   /// meaningless, reported as is.
   double volume = 0;
   double integral_H = 0;  ///< the integral of H dA (object_measures)
-  double integral_K = 0;  ///< the integral of K dA
+  /// The per-vertex curvature's own total: K times each vertex's area (the field's "Area", else
+  /// a third of its triangles'), so that an estimate which keeps Gauss-Bonnet with its areas
+  /// (Meyer's angle defects) has a gap of zero whatever the patches do; where the field places
+  /// its vertices on another surface (surface points: the volume estimator), K over the patches
+  /// through those points (the areas of that surface, not of the marching-cubes staircase).
+  double integral_K = 0;
   long long euler = 0;    ///< vertices - edges + triangles
   /// (2 - euler) / 2 for a closed component (the number of handles); -1 when cut.
   long long genus() const { return closed ? (2 - euler) / 2 : -1; }
@@ -36,7 +45,19 @@ struct ObjectMeasures {
   /// Measured over the mesh's own vertices although the field had surface points: they changed
   /// its area or volume by more than kMaxSurfaceChange (a component below the estimator's scale).
   bool on_vertices = false;
+  /// The largest per-vertex smoothing scale among its vertices (the field's "Scale" array, world
+  /// units; 0 without one).
+  double scale = 0;
+  /// False when the component is smaller than its curvature's scale resolves: the shortest side
+  /// of its box under kResolvedExtent times `scale`. Its integrals of H and K, and its
+  /// Gauss-Bonnet gap, then say more about the smoothing than about the object.
+  bool resolved = true;
 };
+
+/// A component whose box's shortest side is under this many times its largest smoothing scale
+/// is not resolved (ObjectMeasures::resolved): 2 / curvature::kShapeScale, the diameter of the
+/// smallest ball whose curvature the per-vertex choice measures at that scale.
+inline constexpr double kResolvedExtent = 2.0 / curvature::kShapeScale;
 
 /// Surface points that change a component's area (or a closed one's volume) by more than this
 /// fraction are not used for it (ObjectMeasures::on_vertices). On objects the estimator resolves
@@ -59,8 +80,10 @@ inline constexpr double kMaxSurfaceChange = 0.5;
 ///    component's first position; noise averages out of it) and H and K interpolated linearly
 ///    from the vertices times the area element, by a symmetric 6-point rule of degree 4 (exact
 ///    for the volume, a polynomial of degree 4).
-/// Without normals, the flat triangles of the mesh's vertices and H, K times the per-vertex
-/// mixed area ("Area"; when it is absent, a third of each adjacent triangle's area). Unreliable
+/// Without normals, the flat triangles of the mesh's vertices and H times the per-vertex mixed
+/// area ("Area"; when it is absent, a third of each adjacent triangle's area). The integral of
+/// K is that per-vertex sum on both paths unless the field has surface points
+/// (ObjectMeasures::integral_K). Unreliable
 /// vertices' H and K count as 0 either way. The Euler characteristic, the components and the box
 /// always come from the mesh (its connectivity and vertices). H and K must have one value per
 /// vertex. Triangles with a repeated or out-of-range index are skipped. The patches are

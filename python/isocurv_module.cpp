@@ -835,12 +835,15 @@ void radii_of(const py::object& radius, double diagonal, features::Options& fo) 
 
 /// measure() and measure_labels()'s dict: one numpy array per measure, one entry per object.
 struct MeasureColumns {
-  std::vector<double> area, volume, int_h, int_k, gap, box;
+  std::vector<double> area, mesh_area, volume, int_h, int_k, gap, box, scale;
   std::vector<std::int64_t> euler, genus, vertices, triangles, unmeasured;
-  std::vector<std::uint8_t> closed;
+  std::vector<std::uint8_t> closed, resolved;
 
   void add(const measure::ObjectMeasures& m) {
     area.push_back(m.area);
+    mesh_area.push_back(m.mesh_area);
+    scale.push_back(m.scale);
+    resolved.push_back(m.resolved ? 1 : 0);
     volume.push_back(m.closed ? m.volume : std::numeric_limits<double>::quiet_NaN());
     int_h.push_back(m.integral_H);
     int_k.push_back(m.integral_K);
@@ -857,6 +860,9 @@ struct MeasureColumns {
     const py::ssize_t n = py::ssize_t(area.size());
     py::dict out;
     out["area"] = copy_array(area, {n});
+    out["mesh_area"] = copy_array(mesh_area, {n});
+    out["scale"] = copy_array(scale, {n});
+    out["resolved"] = copy_array(resolved, {n});
     out["volume"] = copy_array(volume, {n});
     out["integral_H"] = copy_array(int_h, {n});
     out["integral_K"] = copy_array(int_k, {n});
@@ -1570,7 +1576,10 @@ docs/measure.md), largest area first, as a dict of numpy arrays with one entry p
 area, volume (enclosed; NaN for a component cut open), integral_H, integral_K (float64, world
 units), euler_characteristic, genus (-1 when open), vertices, triangles, unmeasured_vertices
 (int64), closed (uint8), gauss_bonnet_gap ((integral_K - 2 pi euler) / (2 pi max(1, |euler|)),
-NaN when open) and box ((n, 6): xmin, xmax, ymin, ymax, zmin, zmax). arrays: the mesh's
+NaN when open), box ((n, 6): xmin, xmax, ymin, ymax, zmin, zmax), mesh_area (the mesh's own
+triangles' area, where area is the smooth surface's), scale (the largest per-vertex smoothing
+scale, 0 without a Scale array) and resolved (uint8: 0 when the component is smaller than
+kResolvedExtent times that scale, its curvature integrals unreliable). arrays: the mesh's
 curvature (a dict as curvature() returns; H and K are read, Area and Unreliable when present);
 None estimates curvature(mesh, volume) with its defaults (the volume estimator with a volume).
 iso: the isovalue, with a volume, for a mesh without mesh.isovalue.)doc");

@@ -89,5 +89,42 @@ TEST(ObjectMeasures, WithoutAnAreaArrayTheTrianglesShareTheirAreaAndBadFieldsAre
   EXPECT_TRUE(object_measures(Mesh{}, curvature::CurvatureField{}).empty());
 }
 
+// The integral of K is the per-vertex curvature's own total: a K that keeps Gauss-Bonnet with its
+// vertex areas (here each cube corner's angle defect pi / 2 over its area) has a gap of zero,
+// also where normals make the patches curved (whose areas differ from the vertices').
+TEST(ObjectMeasures, AGaussBonnetKeepingCurvatureHasNoGapOnCurvedPatches) {
+  Mesh m;
+  add_cube(m, 1.0f, {0, 0, 0});
+  curvature::CurvatureField f = field_for(m, 1.0f, 0.0f, 0.0f);
+  for (std::size_t i = 0; i < m.positions.size(); ++i) {
+    f.area[i] = 0.5f + 0.125f * float(i);  // any areas: K carries the defect over them
+    f.K[i] = float(M_PI / 2) / f.area[i];
+    Vec3f n;
+    for (int c = 0; c < 3; ++c) n[c] = (m.positions[i][c] - 0.5f) / std::sqrt(0.75f);
+    f.normals.push_back(n);
+  }
+  const auto objects = object_measures(m, f);
+  ASSERT_EQ(objects.size(), 1u);
+  EXPECT_NEAR(objects[0].gauss_bonnet_gap(), 0, 1e-6);
+  EXPECT_GT(objects[0].area, 6.0) << "the patches bulge out along the normals";
+  EXPECT_NEAR(objects[0].mesh_area, 6, 1e-9) << "the mesh's own triangles";
+}
+
+// A component smaller than its curvature's scale resolves is said to be (the Scale array).
+TEST(ObjectMeasures, AComponentBelowItsScaleIsNotResolved) {
+  Mesh m;
+  add_cube(m, 1.0f, {0, 0, 0});
+  curvature::CurvatureField f = field_for(m, 1.0f, 0.0f, 1.0f);
+  EXPECT_TRUE(object_measures(m, f)[0].resolved) << "no Scale array: nothing to compare";
+  f.extra.push_back({"Scale", std::vector<float>(m.positions.size(), 0.1f)});
+  EXPECT_TRUE(object_measures(m, f)[0].resolved);
+  EXPECT_NEAR(object_measures(m, f)[0].scale, 0.1, 1e-7);
+  f.extra.back().values[3] = 0.5f;  // the largest scale counts
+  const ObjectMeasures o = object_measures(m, f)[0];
+  EXPECT_FALSE(o.resolved);
+  EXPECT_NEAR(o.scale, 0.5, 1e-7);
+  EXPECT_FALSE(total({o}).resolved);
+}
+
 }  // namespace
 }  // namespace isocurv::measure
