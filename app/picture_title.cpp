@@ -17,7 +17,9 @@ std::string picture_title(const std::string& input, const std::string& quantity,
     std::snprintf(text, sizeof text, "iso %g", double(*isovalue));
     title += kSeparator + std::string(text);
   }
-  if (!estimator.empty()) title += kSeparator + estimator;
+  // A label map's colours are its labels: the curvature's estimator and scale say nothing there.
+  if (!estimator.empty() && viz::quantity_kind(quantity) != viz::QuantityKind::label)
+    title += kSeparator + estimator;
   return title;
 }
 

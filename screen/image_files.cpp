@@ -43,8 +43,11 @@ std::string legend_title(const PictureOptions& o) {
 
 viz::PictureLayout screen_layout(int width, int height, const PictureOptions& o,
                                  const viz::ColorRange& range, bool no_data) {
-  return viz::layout_picture(width, height, o.title, legend_title(o), range.lo, range.hi, 0,
-                             no_data);
+  viz::PictureLayout l =
+      viz::layout_picture(width, height, o.title, legend_title(o), range.lo, range.hi, 0, no_data);
+  // As render frames it (viz::stable_surface_right): the values do not move the camera.
+  l.surface.x1 = std::min(l.surface.x1, viz::stable_surface_right(width, height, o.title, legend_title(o)));
+  return l;
 }
 
 bool has_unestimated(const GBuffer& g, const ScreenCurvature& c) {

@@ -175,4 +175,58 @@ vtkSmartPointer<vtkUnsignedCharArray> vertex_colors(const std::vector<float>& va
   return colors;
 }
 
+const std::array<std::array<double, 3>, kCategoricalColors>& categorical_palette() {
+  // Sasha Trubetskoy's 20 distinct colours, in his order (neighbours far apart), less his red
+  // and maroon: the "no data" colour beside a label map is red.
+  static const std::array<std::array<double, 3>, kCategoricalColors> palette = [] {
+    const unsigned hex[kCategoricalColors] = {0x3cb44b, 0xffe119, 0x4363d8, 0xf58231, 0x911eb4, 0x42d4f4,
+                                              0xf032e6, 0xbfef45, 0xfabed4, 0x469990, 0xdcbeff, 0x9a6324,
+                                              0xfffac8, 0xaaffc3, 0x808000, 0xffd8b1, 0x000075, 0xa9a9a9};
+    std::array<std::array<double, 3>, kCategoricalColors> p{};
+    for (std::size_t i = 0; i < kCategoricalColors; ++i)
+      p[i] = {((hex[i] >> 16) & 255) / 255.0, ((hex[i] >> 8) & 255) / 255.0, (hex[i] & 255) / 255.0};
+    return p;
+  }();
+  return palette;
+}
+
+std::vector<double> categories_of(const std::vector<float>& values) {
+  std::vector<double> out;
+  for (float v : values)
+    if (std::isfinite(v)) out.push_back(v);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+std::array<double, 3> categorical_color(std::size_t index) {
+  return categorical_palette()[index % kCategoricalColors];
+}
+
+vtkSmartPointer<vtkUnsignedCharArray> categorical_vertex_colors(
+    const std::vector<float>& values, const std::vector<double>& categories,
+    const std::vector<float>* ao, const std::vector<std::uint8_t>* no_data,
+    const std::array<double, 3>& no_data_rgb) {
+  if (no_data && no_data->size() != values.size()) no_data = nullptr;
+  auto colors = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  colors->SetName("Colors");
+  colors->SetNumberOfComponents(3);
+  colors->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
+  unsigned char* out = colors->GetPointer(0);
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    std::array<double, 3> rgb = no_data_rgb;
+    if (std::isfinite(values[i]) && !(no_data && (*no_data)[i])) {
+      const auto it = std::lower_bound(categories.begin(), categories.end(), double(values[i]));
+      if (it != categories.end() && *it == double(values[i]))
+        rgb = categorical_color(static_cast<std::size_t>(it - categories.begin()));
+    }
+    double shade = 1;
+    if (ao) shade = std::isfinite((*ao)[i]) ? std::clamp(double((*ao)[i]), 0.0, 1.0) : 1.0;
+    for (int c = 0; c < 3; ++c)
+      out[3 * i + static_cast<std::size_t>(c)] =
+          static_cast<unsigned char>(std::lround(255 * rgb[c] * shade));
+  }
+  return colors;
+}
+
 }  // namespace isocurv::viz

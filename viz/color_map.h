@@ -77,4 +77,25 @@ vtkSmartPointer<vtkUnsignedCharArray> vertex_colors(const std::vector<float>& va
                                                     const std::vector<std::uint8_t>* no_data = nullptr,
                                                     const std::array<double, 3>& no_data_rgb = {0.5, 0.5, 0.5});
 
+/// The categorical palette of label maps (Label): kCategoricalColors colours, RGB in [0, 1],
+/// neighbours far apart in hue and lightness (Trubetskoy's distinct colours), none of them near
+/// the "no data" red of a label map.
+inline constexpr std::size_t kCategoricalColors = 18;
+const std::array<std::array<double, 3>, kCategoricalColors>& categorical_palette();
+
+/// The distinct finite values of `values`, ascending (a label map's labels).
+std::vector<double> categories_of(const std::vector<float>& values);
+
+/// Category `index`'s colour (the palette's, cycling): the i-th smallest label gets colour i, so
+/// neighbouring labels differ.
+std::array<double, 3> categorical_color(std::size_t index);
+
+/// RGB colours ("Colors") for label values: each value its category's colour (categories as
+/// categories_of returns them), the others and the flagged ones `no_data_rgb`; AO as
+/// vertex_colors.
+vtkSmartPointer<vtkUnsignedCharArray> categorical_vertex_colors(
+    const std::vector<float>& values, const std::vector<double>& categories,
+    const std::vector<float>* ao = nullptr, const std::vector<std::uint8_t>* no_data = nullptr,
+    const std::array<double, 3>& no_data_rgb = {0.5, 0.5, 0.5});
+
 }  // namespace isocurv::viz

@@ -42,9 +42,6 @@ constexpr double kAmbient = 0.15, kDiffuse = 0.85;
 constexpr double kAmbientWithAo = 0.45, kDiffuseWithAo = 0.55;
 constexpr double kSpecular = 0.15, kSpecularPower = 20;
 constexpr const char* kAoAttribute = "isocurvAO";  // the vertex shader's input for "AO"
-// Screen-space mode lays the picture out for legend labels at least this wide (%.3g of it is
-// the widest label tick_label writes), so the surface box does not follow the image's values.
-constexpr double kWidestLabelValue = 8.88e88;
 
 /// Shader replacements that multiply the ambient term of VTK's lighting by the per-vertex AO
 /// (a vertex attribute, interpolated across triangles): ambientColor is VTK's ambient term,
@@ -90,6 +87,7 @@ struct CurvatureScene::Impl {
   PictureLayout layout;
   int bottom_reserved = 0;
   bool no_data_shown = false;  // some vertex shown is unmeasured (its legend entry is drawn)
+  std::vector<double> categories;  // a label map's labels, when Label is shown
   bool glyphs_stale = true;  // the glyphs are built when first needed after a change
   // Screen-space mode: the image, drawn as RGBA pixels by a 2D actor in the overlay.
   bool image_on = false;
@@ -169,12 +167,16 @@ struct CurvatureScene::Impl {
     const std::string unit = quantity_unit(q, options.length_unit);
     const std::string label = quantity_label(q);
     const std::string legend_title = unit.empty() ? label : label + "\n" + unit;
+    const bool listed = !image_on && quantity_kind(q) == QuantityKind::label && !categories.empty();
     layout = layout_picture(options.width, options.height, options.title, legend_title, range.lo,
-                            range.hi, bottom_reserved, no_data_shown && !image_on);
-    if (image_on)  // narrower (the legend column is wider) and independent of the values
-      layout.surface = layout_picture(options.width, options.height, options.title, legend_title,
-                                      -kWidestLabelValue, kWidestLabelValue, bottom_reserved)
-                           .surface;
+                            range.hi, bottom_reserved, no_data_shown && !image_on,
+                            listed ? &categories : nullptr);
+    // The surface's box no wider than for the widest values, under this legend's title or a
+    // reference one, so that neither the values (a screen-space image's) nor the coloured array
+    // move the camera.
+    layout.surface.x1 = std::min(layout.surface.x1,
+                                 stable_surface_right(options.width, options.height, options.title,
+                                                      legend_title, bottom_reserved));
     const PixelBox& s = layout.surface;
     const double w = std::max(1, options.width), h = std::max(1, options.height);
     renderer->SetViewport(s.x0 / w, s.y0 / h, s.x1 / w, s.y1 / h);
@@ -273,11 +275,17 @@ struct CurvatureScene::Impl {
     no_data_shown = unmeasured && std::any_of(unmeasured->begin(), unmeasured->end(), [](std::uint8_t u) { return u; });
     range = options.range ? color_range({}, q, options.clamp_percentile, options.range)
                           : color_range(range_values(mesh, field, q), q, options.clamp_percentile);
-    auto map = make_color_map(range, cmap);
     vtkPointData* pd = surface->GetPointData();
     pd->RemoveArray("Colors");
-    pd->AddArray(vertex_colors(values, range, map, options.shading == Shading::both ? &field.ao : nullptr,
-                               unmeasured, no_data_color(cmap)));
+    const std::vector<float>* shade = options.shading == Shading::both ? &field.ao : nullptr;
+    categories.clear();
+    if (quantity_kind(q) == QuantityKind::label) {  // a label map: a colour per label
+      categories = categories_of(values);
+      pd->AddArray(categorical_vertex_colors(values, categories, shade, unmeasured, no_data_color(cmap)));
+    } else {
+      pd->AddArray(vertex_colors(values, range, make_color_map(range, cmap), shade, unmeasured,
+                                 no_data_color(cmap)));
+    }
     pd->RemoveArray("AO");
     const bool ambient_ao = options.shading == Shading::ambient_ao;
     if (ambient_ao) {

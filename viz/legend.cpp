@@ -58,6 +58,8 @@ struct Legend::Impl {
   vtkSmartPointer<vtkActor2D> swatch_actor = vtkSmartPointer<vtkActor2D>::New();
   vtkSmartPointer<vtkPolyData> frame = vtkSmartPointer<vtkPolyData>::New();
   vtkSmartPointer<vtkActor2D> frame_actor = vtkSmartPointer<vtkActor2D>::New();
+  vtkSmartPointer<vtkPolyData> categories = vtkSmartPointer<vtkPolyData>::New();
+  vtkSmartPointer<vtkActor2D> categories_actor = vtkSmartPointer<vtkActor2D>::New();
 
   explicit Impl(vtkRenderer* r) : renderer(r) {
     title = make_text(r);
@@ -80,6 +82,13 @@ struct Legend::Impl {
     frame_actor->SetMapper(frame_mapper);
     frame_actor->GetProperty()->SetColor(kFrameGrey, kFrameGrey, kFrameGrey);
     r->AddViewProp(frame_actor);
+    auto categories_mapper = vtkSmartPointer<vtkPolyDataMapper2D>::New();
+    categories_mapper->SetInputData(categories);
+    categories_mapper->SetScalarModeToUseCellData();
+    categories_mapper->SetColorModeToDirectScalars();
+    categories_actor->SetMapper(categories_mapper);
+    categories_actor->VisibilityOff();
+    r->AddViewProp(categories_actor);
   }
 };
 
@@ -136,8 +145,36 @@ void Legend::update(const PictureLayout& layout, const std::string& cmap, const 
   s.frame->SetPoints(fpoints);
   s.frame->SetLines(loop);
   s.frame->Modified();
-  s.bar_actor->SetVisibility(show_bar);
-  s.frame_actor->SetVisibility(show_bar);
+  // A label map's legend: a swatch per label shown, in its category's colour, for the bar.
+  const bool listed = !layout.swatches.empty();
+  s.bar_actor->SetVisibility(show_bar && !listed);
+  s.frame_actor->SetVisibility(show_bar && !listed);
+  s.categories_actor->SetVisibility(show_bar && listed);
+  if (listed) {
+    auto cpoints = vtkSmartPointer<vtkPoints>::New();
+    auto cquads = vtkSmartPointer<vtkCellArray>::New();
+    auto ccolors = vtkSmartPointer<vtkUnsignedCharArray>::New();
+    ccolors->SetNumberOfComponents(3);
+    for (std::size_t i = 0; i < layout.swatches.size(); ++i) {
+      const PixelBox& w = layout.swatches[i];
+      const vtkIdType first = cpoints->GetNumberOfPoints();
+      cpoints->InsertNextPoint(w.x0, w.y0, 0);
+      cpoints->InsertNextPoint(w.x1, w.y0, 0);
+      cpoints->InsertNextPoint(w.x1, w.y1, 0);
+      cpoints->InsertNextPoint(w.x0, w.y1, 0);
+      const vtkIdType q[4] = {first, first + 1, first + 2, first + 3};
+      cquads->InsertNextCell(4, q);
+      const std::array<double, 3> rgb = categorical_color(layout.swatch_category[i]);
+      const unsigned char c[3] = {static_cast<unsigned char>(255 * rgb[0] + 0.5),
+                                  static_cast<unsigned char>(255 * rgb[1] + 0.5),
+                                  static_cast<unsigned char>(255 * rgb[2] + 0.5)};
+      ccolors->InsertNextTypedTuple(c);
+    }
+    s.categories->SetPoints(cpoints);
+    s.categories->SetPolys(cquads);
+    s.categories->GetCellData()->SetScalars(ccolors);
+    s.categories->Modified();
+  }
 
   // The "no data" swatch: a square of that colour with a frame like the bar's.
   const PixelBox& n = layout.no_data;

@@ -38,6 +38,75 @@ PlacedText place(const std::string& text, int font_px, int x, int y) {
   return t;
 }
 
+std::string more_label(std::size_t n) { return "+" + std::to_string(n) + " more"; }
+
+}  // namespace
+
+namespace {
+
+/// layout_picture's legend for a label map: a swatch and its value per label, top to bottom, as
+/// many as fit the column's height (the last line then counts the rest).
+PictureLayout layout_categories(PictureLayout l, int width, int top, int pad, int font,
+                                const std::string& legend_title, int bottom_reserved,
+                                bool no_data, const std::vector<double>& categories) {
+  for (;; --font) {
+    const PixelBox tm = measure_text(legend_title, font);
+    const int swatch_w = std::max(4, static_cast<int>(std::lround(kBarWidthPerFont * font)));
+    const int title_y = top - pad - height_of(tm);
+    const int free_top = legend_title.empty() ? top - pad : title_y - pad;
+    int label_h = height_of(measure_text("0123456789", font));
+    const PixelBox nm = no_data ? measure_text(kNoDataText, font) : PixelBox{};
+    const int entry_h = std::max(label_h, 4) + pad;
+    const int free_bottom = bottom_reserved + pad + (no_data ? entry_h + pad : 0);
+    const std::size_t fit = static_cast<std::size_t>(std::max(1, (free_top - free_bottom) / entry_h));
+    const std::size_t shown = categories.size() <= fit ? categories.size() : fit - 1;
+    std::vector<std::string> texts;
+    for (std::size_t i = 0; i < shown; ++i) texts.push_back(category_label(categories[i]));
+    if (shown < categories.size()) texts.push_back(more_label(categories.size() - shown));
+    int label_w = width_of(nm);
+    for (const std::string& t : texts) label_w = std::max(label_w, width_of(measure_text(t, font)));
+    const int column = std::max(width_of(tm), swatch_w + pad + label_w) + 2 * pad;
+    if (column > kMaxLegendWidth * width && font > kMinFontPx) continue;
+
+    const int x0 = width - column + pad;
+    l.legend_title = place(legend_title, font, x0, title_y);
+    l.legend = l.legend_title.box;
+    auto grow = [&l](const PixelBox& b) {
+      if (b.empty()) return;
+      l.legend = l.legend.empty() ? b
+                                  : PixelBox{std::min(l.legend.x0, b.x0), std::min(l.legend.y0, b.y0),
+                                             std::max(l.legend.x1, b.x1), std::max(l.legend.y1, b.y1)};
+    };
+    l.bar = {};
+    l.ticks.clear();
+    l.labels.clear();
+    l.swatches.clear();
+    l.swatch_category.clear();
+    for (std::size_t i = 0; i < texts.size(); ++i) {
+      const int y1 = free_top - static_cast<int>(i) * entry_h, y0 = y1 - entry_h + pad;
+      const PixelBox m = measure_text(texts[i], font);
+      if (i < shown) {
+        l.swatches.push_back({x0, y0, x0 + swatch_w, y1});
+        l.swatch_category.push_back(i);
+        grow(l.swatches.back());
+      }
+      l.labels.push_back(place(texts[i], font, x0 + swatch_w + pad, y0 + (y1 - y0 - height_of(m)) / 2));
+      grow(l.labels.back().box);
+    }
+    l.no_data = {};
+    l.no_data_label = {};
+    if (no_data) {
+      const int y1 = free_top - static_cast<int>(texts.size()) * entry_h - pad, y0 = y1 - entry_h + pad;
+      l.no_data = {x0, y0, x0 + swatch_w, y1};
+      l.no_data_label = place(kNoDataText, font, l.no_data.x1 + pad, y0 + (y1 - y0 - height_of(nm)) / 2);
+      grow(l.no_data);
+      grow(l.no_data_label.box);
+    }
+    l.surface = {0, bottom_reserved, width - column, top};
+    return l;
+  }
+}
+
 }  // namespace
 
 PixelBox measure_text(const std::string& text, int font_px) {
@@ -78,9 +147,28 @@ std::string tick_label(double value, double range) {
   return text;
 }
 
+int stable_surface_right(int width, int height, const std::string& title,
+                         const std::string& legend_title, int bottom_reserved) {
+  constexpr double kWidestValue = 8.88e88;
+  constexpr const char* kReferenceTitle = "Curvedness\n1/length\u00b2";
+  int right = width;
+  for (const std::string& t : {legend_title, std::string(kReferenceTitle)})
+    right = std::min(right, layout_picture(width, height, title, t, -kWidestValue, kWidestValue,
+                                           bottom_reserved)
+                                .surface.x1);
+  return right;
+}
+
+std::string category_label(double value) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.10g", value);
+  return text;
+}
+
 PictureLayout layout_picture(int width, int height, const std::string& title,
                              const std::string& legend_title, double lo, double hi,
-                             int bottom_reserved, bool no_data) {
+                             int bottom_reserved, bool no_data,
+                             const std::vector<double>* categories) {
   PictureLayout l;
   l.width = width;
   l.height = height;
@@ -103,6 +191,8 @@ PictureLayout layout_picture(int width, int height, const std::string& title,
     top = l.title.box.y0 - pad;
   }
 
+  if (categories) return layout_categories(l, width, top, pad, font, legend_title,
+                                           bottom_reserved, no_data, *categories);
   // The legend column: shrink its font until it takes at most kMaxLegendWidth of the width.
   for (;; --font) {
     l.ticks.clear();

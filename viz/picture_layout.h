@@ -41,6 +41,12 @@ struct PictureLayout {
   PixelBox no_data;                ///< the "no data" swatch under the bar (empty when not asked for)
   PlacedText no_data_label;        ///< "no data", beside the swatch
   PixelBox legend;                 ///< everything of the legend (title, bar, labels, swatch)
+  /// Label maps (layout_picture's `categories`): instead of the bar and its ticks, one swatch
+  /// per label shown, top to bottom in ascending order, its value in `labels` beside it;
+  /// swatch_category[i] is swatches[i]'s index among the categories (its colour,
+  /// viz::categorical_color). When not all fit, a last line in `labels` says how many more.
+  std::vector<PixelBox> swatches;
+  std::vector<std::size_t> swatch_category;
 };
 
 /// The ink extents of `text` (UTF-8, lines split at '\n') at `font_px` (Arial, as drawn by
@@ -55,10 +61,22 @@ PixelBox measure_text(const std::string& text, int font_px);
 /// with the image (about min(width, height) / 36 pixels, 9 to 48) and shrink where the legend
 /// would take more than 40% of the width. With `no_data`, a swatch labelled "no data" sits under
 /// the bar (the colour of the vertices that were not measured). Every text box lies inside the
-/// image.
+/// image. With `categories` (a label map's values, ascending), the legend lists them as
+/// swatches (PictureLayout::swatches) instead of the bar; lo and hi are then not used.
 PictureLayout layout_picture(int width, int height, const std::string& title,
                              const std::string& legend_title, double lo, double hi,
-                             int bottom_reserved = 0, bool no_data = false);
+                             int bottom_reserved = 0, bool no_data = false,
+                             const std::vector<double>* categories = nullptr);
+
+/// The right edge of the surface's box that does not depend on what is coloured: the narrowest
+/// of layout_picture's boxes for the widest values (%.3g of -8.88e88) under `legend_title` and
+/// under a reference two-line title. Render, the explorer and `screen` clip their surface box to
+/// it, so that switching the coloured array (or the values) never moves the camera.
+int stable_surface_right(int width, int height, const std::string& title,
+                         const std::string& legend_title, int bottom_reserved = 0);
+
+/// A label value as the legend writes it (%g, up to 10 significant digits: labels are integers).
+std::string category_label(double value);
 
 /// A tick label for a legend spanning `range` (hi - lo): %g with at least 3 significant digits,
 /// more when the range is small beside the value, so that the 5 ticks of a near-constant array

@@ -1,6 +1,9 @@
 // layout_picture: title, legend and surface boxes inside the image, apart, at 300x300 to 4k.
 #include <gtest/gtest.h>
 
+#include <string>
+#include <vector>
+
 #include "viz/picture_layout.h"
 
 using namespace isocurv;
@@ -93,5 +96,27 @@ TEST(VizPictureLayout, NoDataEntrySitsUnderTheBarInsideTheLegend) {
       EXPECT_FALSE(t.box.overlaps(l.no_data)) << what;
     }
     EXPECT_GE(l.no_data.y0, 0) << what;
+  }
+}
+
+// A label map's legend lists its labels: every one that fits, then how many more.
+TEST(VizPictureLayout, CategoriesAreListedAndTheRestCounted) {
+  std::vector<double> few = {1, 2, 7}, many;
+  for (int i = 0; i < 300; ++i) many.push_back(1000 + i);
+  for (auto [w, h] : {std::pair{300, 300}, std::pair{1024, 768}, std::pair{3840, 2160}}) {
+    const auto a = viz::layout_picture(w, h, "labels.nii", "Label", 0, 1, 0, true, &few);
+    ASSERT_EQ(a.swatches.size(), 3u);
+    ASSERT_EQ(a.labels.size(), 3u);
+    EXPECT_EQ(a.labels[2].text, "7");
+    EXPECT_FALSE(a.no_data.empty());
+    const auto b = viz::layout_picture(w, h, "labels.nii", "Label", 0, 1, 0, false, &many);
+    ASSERT_FALSE(b.labels.empty());
+    EXPECT_EQ(b.labels.size(), b.swatches.size() + 1) << "a last line for the rest";
+    EXPECT_EQ(b.labels.back().text, "+" + std::to_string(300 - b.swatches.size()) + " more");
+    const viz::PixelBox image{0, 0, w, h};
+    for (const viz::PlacedText& t : b.labels) EXPECT_TRUE(image.contains(t.box)) << t.text;
+    for (std::size_t i = 1; i < b.labels.size(); ++i)
+      EXPECT_FALSE(b.labels[i].box.overlaps(b.labels[i - 1].box)) << i;
+    EXPECT_FALSE(b.surface.overlaps(b.legend));
   }
 }

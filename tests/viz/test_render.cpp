@@ -1,12 +1,14 @@
 // viz::render_png under a private Xvfb when there is no display.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 
 #include "core/error.h"
 #include "png_stats.h"
 #include "test_surfaces.h"
+#include "viz/color_map.h"
 #include "viz/curvature_scene.h"
 #include "viz/headless_display.h"
 #include "viz/render.h"
@@ -332,4 +334,63 @@ TEST_F(VizRenderTest, UnmeasuredVerticesGetTheNoDataColourAndStayOutOfTheRange) 
   viz::render_png(without, torus.mesh, f, o);
   EXPECT_LT(test::fraction_near(without, yellow), 0.001) << "the no-data colour where every vertex is measured";
   EXPECT_EQ(test::fraction_near(without, yellow, 0.8, 1.0), 0) << "a no-data swatch with nothing unmeasured";
+}
+
+// A label map gets a colour per label, neighbours distinct (a ramp made labels 12 and 13 look
+// alike), and a legend that lists the labels instead of a bar with ticks at 12.8, 13.5.
+TEST_F(VizRenderTest, LabelsGetDistinctColoursAndALegendOfTheirValues) {
+  auto torus = test::torus(1.f, 0.4f);
+  const std::size_t n = torus.mesh.positions.size();
+  std::vector<float> label(n);
+  for (std::size_t i = 0; i < n; ++i)  // four labels by quadrant: 12, 13, 14, 15
+    label[i] = 12.f + float(torus.mesh.positions[i][0] > 0) + 2.f * float(torus.mesh.positions[i][1] > 0);
+  torus.field.extra.push_back({"Label", label});
+  viz::RenderOptions o;
+  o.color = "Label";
+  o.width = 640;
+  o.height = 480;
+  viz::CurvatureScene scene;
+  scene.set_options(o);
+  scene.set_surface(torus.mesh, torus.field);
+  const viz::PictureLayout& l = scene.layout();
+  ASSERT_EQ(l.swatches.size(), 4u) << "one swatch per label";
+  ASSERT_EQ(l.labels.size(), 4u);
+  EXPECT_EQ(l.labels[0].text, "12");
+  EXPECT_EQ(l.labels[3].text, "15");
+  EXPECT_TRUE(l.bar.empty()) << "no colour bar for labels";
+  for (std::size_t i = 1; i < 4; ++i) {
+    const auto a = viz::categorical_color(i - 1), b = viz::categorical_color(i);
+    double d = 0;
+    for (int c = 0; c < 3; ++c) d += (a[c] - b[c]) * (a[c] - b[c]);
+    EXPECT_GT(std::sqrt(d), 0.25) << "labels " << i - 1 << " and " << i << " look alike";
+  }
+  // Each label's colour is on the picture (it is a real drawn legend and surface).
+  const std::string png = path("labels.png");
+  viz::render_png(png, torus.mesh, torus.field, o);
+  for (std::size_t i = 0; i < 4; ++i) {
+    const auto c = viz::categorical_color(i);
+    const int rgb[3] = {int(255 * c[0] + 0.5), int(255 * c[1] + 0.5), int(255 * c[2] + 0.5)};
+    EXPECT_GT(test::fraction_near(png, rgb, 0.8, 1.0), 0.0) << "no swatch of label " << 12 + i;
+  }
+}
+
+// The surface's box, hence the camera, does not change when only the coloured array does.
+TEST_F(VizRenderTest, ColouringAnotherArrayKeepsTheFraming) {
+  auto torus = test::torus(1.f, 0.4f);
+  torus.field.extra.push_back({"Label", std::vector<float>(torus.mesh.positions.size(), 123456.f)});
+  viz::RenderOptions o;
+  o.width = 800;
+  o.height = 600;
+  viz::CurvatureScene scene;
+  scene.set_surface(torus.mesh, torus.field);
+  std::vector<viz::PixelBox> boxes;
+  for (const char* q : {"H", "K", "ShapeIndex", "Curvedness", "AO", "Label"}) {
+    o.color = q;
+    scene.set_options(o);
+    boxes.push_back(scene.layout().surface);
+  }
+  for (std::size_t i = 1; i < boxes.size(); ++i) {
+    EXPECT_EQ(boxes[i].x1, boxes[0].x1) << i;
+    EXPECT_EQ(boxes[i].y1, boxes[0].y1) << i;
+  }
 }
