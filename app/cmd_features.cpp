@@ -114,8 +114,13 @@ nlohmann::json compute_features(Surface &s, const std::string &in, const CommonO
 }
 
 /// The features mesh: the surface with its curvature and feature arrays (uncompressed).
-void write_features(const std::string &path, const Surface &s, const std::string &in) {
-  const io::Metadata context = context_metadata(s, in);
+/// `report` is compute_features's: with one radius the arrays carry no _r suffix, so the file
+/// says it as field data "feature_radius" (picture titles quote it).
+void write_features(const std::string &path, const Surface &s, const std::string &in,
+                    const nlohmann::json &report) {
+  io::Metadata context = context_metadata(s, in);
+  const nlohmann::json &radii = report["features"]["radii"];
+  if (radii.size() == 1) context.emplace_back("feature_radius", radii[0]["as_given"].get<std::string>());
   io::write_mesh(path, s.mesh, &*s.field, {}, &context);
 }
 
@@ -175,7 +180,7 @@ void register_features(CLI::App &app) {
     Surface& s = *on_zero;
     nlohmann::json r = compute_features(s, in, o, c, fo, timer);
     timer.start("write");
-    write_features(out, s, in);
+    write_features(out, s, in, r);
     timer.stop();
     r["input"] = in;
     r["output"] = out;
@@ -199,7 +204,9 @@ void register_features(CLI::App &app) {
       "features", true, [](Surface& s, const std::string& in, StageTimer& timer) {
         BatchStep::Output out;
         out.report = compute_features(s, in, o, c, feature_selection(c), timer);
-        out.write = [&s, in](const std::string& path) { write_features(path, s, in); };
+        out.write = [&s, in, report = out.report](const std::string& path) {
+          write_features(path, s, in, report);
+        };
         out.summary_keys = {"vertices", "triangles", "features"};
         return out;
       }};

@@ -282,7 +282,8 @@ void register_screen(CLI::App& app) {
       r["producer"] = cast ? "ray cast" : "rasterised mesh";
       r["estimator"] = screen::estimator_label(so);
       if (cast) r["smoothing_voxels"] = smooth;
-      r["image"] = {{"width", c.width}, {"height", c.height}};
+      r["picture"] = {{"width", width}, {"height", height}};  // the PNG written
+      r["image"] = {{"width", c.width}, {"height", c.height}};  // the cast part (--raw's pixels)
       r["surface_pixels"] = g.valid_count();
       r["estimated_pixels"] = hv.size();
       r["coverage"] = double(g.valid_count()) / std::max<std::size_t>(1, g.pixels());
@@ -293,8 +294,9 @@ void register_screen(CLI::App& app) {
       r["timings_ms"] = timer.json();
       std::cout << r.dump(2) << "\n";
     } else if (!o.quiet) {
-      std::cout << "wrote " << out << (raw.empty() ? "" : " and " + raw) << ": " << c.width << "x"
-                << c.height << " image, " << hv.size() << " pixels estimated\n";
+      std::cout << "wrote " << out << " (" << width << "x" << height << ")"
+                << (raw.empty() ? "" : " and " + raw) << ": the surface's part cast at " << c.width
+                << "x" << c.height << ", " << hv.size() << " pixels estimated\n";
     }
   });
 }

@@ -611,6 +611,8 @@ SurfaceContext surface_context(const Surface& s) {
       if (anatomical_frame_named(value)) c.world_space = value;
     } else if (key == "estimator") {
       made.estimator = value;
+    } else if (key == "feature_radius") {
+      c.feature_radius = value;
     } else if (key == "scale" || key == "scale_p5" || key == "scale_p95") {
       char* end = nullptr;
       const double scale = std::strtod(value.c_str(), &end);

@@ -133,6 +133,9 @@ struct SurfaceContext {
   /// A mesh file's curvature as titles name it: "volume, scale 1.5" (estimator_title of the
   /// file's "estimator" and "scale"); empty for volumes and files without them.
   std::string file_estimator;
+  /// The radius of support of a features mesh computed at one radius (`features` writes it as
+  /// field data "feature_radius", as the user gave it: "3%", "0.5"); empty otherwise.
+  std::string feature_radius;
 };
 
 /// The context of `s`: its volume's (isovalue, Volume::length_unit, world_space), else its mesh

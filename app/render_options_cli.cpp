@@ -5,6 +5,7 @@
 
 #include "app/picture_title.h"
 #include "core/error.h"
+#include "features/features.h"
 #include "viz/camera_file.h"
 #include "viz/color_map.h"
 #include "viz/quantity.h"
@@ -220,6 +221,15 @@ std::optional<AnatomicalFrame> anatomical_frame(const std::string& world_space) 
   return anatomical_frame_named(world_space);
 }
 
+namespace {
+/// An array `features` computes (features::feature_name).
+bool is_feature_array(const std::string& name) {
+  for (features::Feature f : features::parse_features("all"))
+    if (name == features::feature_name(f)) return true;
+  return false;
+}
+}  // namespace
+
 viz::RenderOptions render_options_for(const RenderCli& r, const std::string& input,
                                       const SurfaceContext& context, const std::string& estimator,
                                       const curvature::CurvatureField* field) {
@@ -234,7 +244,12 @@ viz::RenderOptions render_options_for(const RenderCli& r, const std::string& inp
     }
   }
   if (!r.camera_file.empty()) o.camera = viz::load_camera(r.camera_file);
-  o.title = r.title.empty() ? picture_title(input, o.color, context.isovalue, estimator) : r.title;
+  // A features mesh of one radius: its arrays have no _r suffix, the title gets the file's radius.
+  std::string quantity = o.color;
+  const viz::QuantityName n = viz::split_quantity_name(o.color);
+  if (!context.feature_radius.empty() && n.radius.empty() && n.scale.empty() && is_feature_array(n.base))
+    quantity += "_r" + context.feature_radius;
+  o.title = r.title.empty() ? picture_title(input, quantity, context.isovalue, estimator) : r.title;
   return o;
 }
 

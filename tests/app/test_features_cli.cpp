@@ -44,6 +44,23 @@ TEST(CliFeatures, SphereArraysAndSeveralRadii) {
   EXPECT_NEAR(sum / double(count), 1.25, 0.02);
 }
 
+// One radius: the arrays carry no suffix, so the file says the radius and a picture's title
+// quotes it; with several, each array's own suffix does.
+TEST(CliFeatures, APictureOfOneRadiusSaysTheRadius) {
+  TempDir dir("features_title");
+  ASSERT_TRUE(run_isocurv({"features", dataset("torus"), "--radius", "3%", "--features", "H_ii,SI_ii",
+                           "-o", dir / "t.vtp", "--quiet"})
+                  .ok());
+  const auto r = run_isocurv({"render", dir / "t.vtp", "--color", "SI_ii", "-o", dir / "t.png", "--json", "--quiet"});
+  ASSERT_TRUE(r.ok()) << r.describe();
+  const json j = parse_json(r.out, "render --json");
+  EXPECT_NE(j.value("title", "").find("r = 3%"), std::string::npos) << j.dump(2);
+  const auto h = run_isocurv({"render", dir / "t.vtp", "--color", "H", "-o", dir / "h.png", "--json", "--quiet"});
+  ASSERT_TRUE(h.ok()) << h.describe();
+  EXPECT_EQ(parse_json(h.out, "render --json").value("title", "").find("r = "), std::string::npos)
+      << "not a feature array: no radius";
+}
+
 TEST(CliFeatures, MeshInputAndBadRadii) {
   TempDir dir("features_bad");
   ASSERT_TRUE(run_isocurv({"curvature", dataset("sphere"), "-o", dir / "s.vtp", "--quiet"}).ok());

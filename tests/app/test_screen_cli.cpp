@@ -66,6 +66,12 @@ TEST(CliScreen, VolumeToPictureAndRawImage) {
   EXPECT_EQ(n, j["estimated_pixels"].get<long>());
   EXPECT_LT(on_background, n / 100) << "the .vti's surface is not where the PNG's is";
   EXPECT_EQ(dir.entries(), (std::vector<std::string>{"s.png", "s.vti"}));
+  // The picture's size as written, in --json and in the line without it.
+  EXPECT_EQ(j["picture"]["width"], 320);
+  EXPECT_EQ(j["picture"]["height"], 240);
+  const auto line = run_isocurv({"screen", dataset("sphere"), "--size", "320x240", "-o", dir / "t.png"}, 120);
+  ASSERT_TRUE(line.ok()) << line.describe();
+  EXPECT_NE(line.out.find("t.png (320x240)"), std::string::npos) << line.out;
 }
 
 // screen frames a volume as render does (on its surface, not its box): the box of the pixels
