@@ -13,6 +13,7 @@
 #include "viz/camera_file.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "curvature/auto_scale.h"
 #include "core/framing_points.h"
 #include "core/mesh_measures.h"
 #include "screen/estimate.h"
@@ -26,6 +27,27 @@
 
 namespace isocurv::app {
 namespace {
+
+/// --smooth as a number of voxels in [0, volume::kMaxSmoothingVoxels]. @throw Error otherwise.
+double parse_smoothing(const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || *end != 0 || !(v >= 0 && v <= volume::kMaxSmoothingVoxels))
+    throw Error("--smooth: expected auto or a number of voxels from 0 to " +
+                format_number(volume::kMaxSmoothingVoxels) + ", not '" + text + "'");
+  return v;
+}
+
+/// The cast's smoothing in voxels: --smooth's number, or for auto the volume estimator's noise
+/// scale (curvature::auto_scale's s1, in voxels) on integer voxel types, 0 on float data.
+double screen_smoothing(const std::string& text, const volume::Volume& v, const Mesh& surface, float iso) {
+  if (text != "auto") return parse_smoothing(text);
+  const bool integer = v.voxel_type != "float" && v.voxel_type != "double" && v.voxel_type != "half";
+  if (!integer || surface.positions.empty()) return 0;
+  const curvature::ScaleChoice c = curvature::auto_scale(v, surface, iso);
+  return std::min(volume::kMaxSmoothingVoxels, c.scale / c.voxel);
+}
+
 
 bool has_ext(const std::string& path, const char* ext) {
   std::string e = std::filesystem::path(path).extension().string();
@@ -139,11 +161,23 @@ void register_screen(CLI::App& app) {
       ->check(CLI::IsMember({"report", "paper"}))
       ->capture_default_str()
       ->group("Screen space");
-  static double smooth = 0;
-  cmd->add_option("--smooth", smooth,
-                  "Smooth the volume by a Gaussian of this deviation (voxels, up to 6) before the "
-                  "cast: quantised CT steps otherwise show as terraces per pixel")
-      ->check(CLI::Range(0.0, volume::kMaxSmoothingVoxels))
+  static std::string smooth_text = "auto";
+  cmd->add_option("--smooth", smooth_text,
+                  "Smooth the volume by a Gaussian of this deviation (voxels, 0 to 6) before the "
+                  "cast: quantised CT steps otherwise show as terraces and moire per pixel. auto: on "
+                  "integer voxel types the volume estimator's noise scale (from the noise and the "
+                  "edge, as --scale auto measures them), on float data 0")
+      ->check(CLI::Validator(
+          [](std::string& v) {
+            if (v == "auto") return std::string();
+            try {
+              parse_smoothing(v);
+            } catch (const Error& e) {
+              return std::string(e.what()).substr(std::string("--smooth: ").size());
+            }
+            return std::string();
+          },
+          "auto or 0..6"))
       ->capture_default_str()
       ->group("Screen space");
   cmd->add_option("--mellado-radius", so.mellado_radius, "Mellado's fit radius (pixels)")
@@ -151,6 +185,8 @@ void register_screen(CLI::App& app) {
       ->capture_default_str()
       ->group("Screen space");
   cmd->callback([] {
+    double smooth = 0;  // voxels, from --smooth
+    if (smooth_text != "auto") smooth = parse_smoothing(smooth_text);
     if (!has_ext(out, ".png")) throw Error(out, "isocurv screen writes a .png picture");
     require_writable_file(out);  // before any work
     if (!raw.empty() && !has_ext(raw, ".vti")) throw Error(raw, "--raw writes a .vti file");
@@ -191,15 +227,18 @@ void register_screen(CLI::App& app) {
       world_space = v.world_space;
       iso = o.iso ? *o.iso : float(v.stats.suggested_isovalue);
       if (!std::isfinite(iso)) throw Error(in, "isovalue must be a finite number");
+      // Framed as render frames the same volume: on its isosurface's vertices less the specks.
+      timer.start("frame");
+      const Mesh surface = extract_surface(v, iso, o);
+      frame_points = framing_points(surface);
+      smooth = screen_smoothing(smooth_text, v, surface, iso);
       timer.start("index");
       cast.emplace(v);
       if (smooth > 0) {
         timer.start("smooth");
         cast->smooth(smooth);
       }
-      // Framed as render frames the same volume: on its isosurface's vertices less the specks.
       timer.start("frame");
-      frame_points = framing_points(extract_surface(v, iso, o));
       if (!cast->surface_bounds(iso, bounds)) {
         empty = true;
         bounds = cast->bounds;

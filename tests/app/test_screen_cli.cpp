@@ -7,6 +7,11 @@
 #include <vtkPointData.h>
 #include <vtkXMLImageDataReader.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/LevelSetSphere.h>
 
@@ -72,6 +77,66 @@ TEST(CliScreen, VolumeToPictureAndRawImage) {
   const auto line = run_isocurv({"screen", dataset("sphere"), "--size", "320x240", "-o", dir / "t.png"}, 120);
   ASSERT_TRUE(line.ok()) << line.describe();
   EXPECT_NE(line.out.find("t.png (320x240)"), std::string::npos) << line.out;
+}
+
+// The interquartile spread of H over the estimated pixels of a --raw image.
+double h_spread(const std::string& vti) {
+  vtkNew<vtkXMLImageDataReader> reader;
+  reader->SetFileName(vti.c_str());
+  reader->Update();
+  auto* pd = reader->GetOutput()->GetPointData();
+  auto* valid = vtkFloatArray::SafeDownCast(pd->GetArray("Valid"));
+  auto* h = vtkFloatArray::SafeDownCast(pd->GetArray("H"));
+  std::vector<float> v;
+  for (vtkIdType i = 0; valid && h && i < valid->GetNumberOfTuples(); ++i)
+    if (valid->GetValue(i) == 1 && std::isfinite(h->GetValue(i))) v.push_back(h->GetValue(i));
+  if (v.size() < 100) return -1;
+  std::sort(v.begin(), v.end());
+  return v[v.size() * 3 / 4] - v[v.size() / 4];
+}
+
+// On integer data the default smoothing comes from the data (the volume estimator's noise
+// scale): a noisy 8-bit ball's H no longer shows the quantised steps pixel by pixel, where
+// --smooth 0 keeps them; float data is not smoothed by default.
+TEST(CliScreen, IntegerDataIsSmoothedFromItsNoiseByDefault) {
+  TempDir dir("screen_smooth");
+  const int n = 48;
+  const double R = 16, c = (n - 1) / 2.0 + 0.3;
+  std::string bytes(std::size_t(n) * n * n, '\0');
+  std::uint32_t seed = 99;
+  std::size_t i = 0;
+  for (int z = 0; z < n; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const double r = std::sqrt((x - c) * (x - c) + (y - c) * (y - c) + (z - c) * (z - c));
+        seed = seed * 1664525u + 1013904223u;
+        const double noise = (double(seed >> 8) / double(1u << 24) - 0.5) * 8;
+        const double v = 20 + 200 * 0.5 * (1 + std::erf((R - r) / std::sqrt(2.0))) + noise;
+        bytes[i++] = char(std::uint8_t(std::lround(std::min(255.0, std::max(0.0, v)))));
+      }
+  const std::string ball = dir / "ball_48x48x48_uint8.raw";
+  write_file(ball, bytes);
+  auto cast = [&](const std::vector<std::string>& extra, const std::string& name) {
+    std::vector<std::string> args = {"screen", ball, "--iso", "120", "--size", "320x240", "-o",
+                                     dir / (name + ".png"), "--raw", dir / (name + ".vti"), "--json", "--quiet"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto r = run_isocurv(args, 120);
+    EXPECT_TRUE(r.ok()) << r.describe();
+    return parse_json(r.out, "screen --json");
+  };
+  const json a = cast({}, "auto"), z = cast({"--smooth", "0"}, "none");
+  EXPECT_GT(a["smoothing_voxels"].get<double>(), 0.8) << a.dump(2);
+  EXPECT_EQ(z["smoothing_voxels"].get<double>(), 0.0);
+  EXPECT_NEAR(a["median_H"].get<double>(), 1 / R, 0.1 / R);
+  const double sa = h_spread(dir / "auto.vti"), sz = h_spread(dir / "none.vti");
+  ASSERT_GT(sa, 0);
+  EXPECT_LT(sa, 0.5 * sz) << "the default left the quantised steps in H";
+  const auto f = run_isocurv({"screen", dataset("torus"), "--size", "160x120", "-o", dir / "t.png", "--json", "--quiet"}, 120);
+  ASSERT_TRUE(f.ok()) << f.describe();
+  EXPECT_EQ(parse_json(f.out, "screen --json")["smoothing_voxels"].get<double>(), 0.0) << "float data";
+  const auto bad = run_isocurv({"screen", ball, "-o", dir / "b.png", "--smooth", "7"}, 60);
+  EXPECT_EQ(bad.exit_code, 2) << "a usage error";
+  EXPECT_NE(bad.err.find("--smooth"), std::string::npos) << bad.err;
 }
 
 // screen frames a volume as render does (on its surface, not its box): the box of the pixels
