@@ -1,5 +1,8 @@
 #include "app/commands.h"
 
+#include <cmath>
+#include <cstdlib>
+
 #include <string>
 #include <utility>
 
@@ -52,6 +55,22 @@ void register_commands(CLI::App& app) {
     CLI::App* cmd = app.get_subcommand(name);  // throws for a name no command has
     cmd->footer(cmd->get_footer() + "\nDocs: docs/" + page);
   }
+  require_finite_numbers(app);
+}
+
+void require_finite_numbers(CLI::App& app) {
+  // CLI11's ranges compare, and every comparison with NaN is false: "nan" passed them all.
+  static const CLI::Validator finite(
+      [](std::string& text) {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (end != text.c_str() && !std::isfinite(v)) return "must be a finite number, not " + text;
+        return std::string();
+      },
+      "");
+  for (CLI::Option* o : app.get_options())
+    if (o->get_type_name().find("FLOAT") != std::string::npos) o->check(finite);
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) require_finite_numbers(*sub);
 }
 
 }  // namespace isocurv::app

@@ -6,7 +6,10 @@
 
 namespace isocurv::app {
 
-void register_commands(CLI::App& app);  ///< all subcommands below
+void register_commands(CLI::App& app);  ///< all subcommands below, then require_finite_numbers
+/// Every floating-point option of `app` and its subcommands refuses NaN and infinities (a usage
+/// error naming the option), whatever range it also checks.
+void require_finite_numbers(CLI::App& app);
 
 /// How a command runs under mpirun with several ranks (docs/distributed.md), the one place that
 /// says so (main() and the batches ask here).

@@ -65,3 +65,25 @@ TEST(CliUsage, HelpStatesTheExitStatuses) {
   EXPECT_NE(r.out.find("1 bad input"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("2 a usage error"), std::string::npos) << r.out;
 }
+
+// A fuzzing campaign passed "nan" through every range check (each comparison with NaN is false):
+// a picture without a surface, an SVG without lines, a series naming a .pvd it never wrote.
+// Every floating-point option now refuses NaN and infinities as a usage error, before any work.
+TEST(CliUsage, NotANumberIsRefusedByEveryFloatOption) {
+  TempDir dir("usage_nan");
+  const std::string png = dir / "o.png";
+  for (const std::vector<std::string>& opt :
+       {std::vector<std::string>{"--roll", "nan"}, {"--elevation", "nan"}, {"--azimuth", "NaN"},
+        {"--zoom", "nan"}, {"--percentile", "nan"}, {"--ao-scale", "nan"}, {"--dirs-length", "nan"},
+        {"--zoom", "inf"}, {"--ao-scale", "-inf"}}) {
+    std::vector<std::string> args = {"render", dataset("sphere"), "-o", png};
+    args.insert(args.end(), opt.begin(), opt.end());
+    expect_usage_error(run_isocurv(args), opt[0]);
+  }
+  expect_usage_error(run_isocurv({"lines", dataset("sphere"), "-o", dir / "l.svg", "--ridge-threshold", "nan"}),
+                     "--ridge-threshold");
+  expect_usage_error(run_isocurv({"curvature", dataset("sphere"), "--time-series", "-o", dir / "s",
+                                  "--time-step", "nan"}),
+                     "--time-step");
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{}) << "nothing written";
+}
