@@ -37,7 +37,19 @@ void add_label_options(CLI::App& cmd, CommonOptions& o, bool with_split) {
   cmd.add_flag("--labels", o.labels,
                "The volume is a label map (an integer segmentation): one surface per label, at the "
                "half level of its indicator, with a Label array on points and cells");
-  cmd.add_option("--label", o.label_list, "Only these labels, e.g. 3,7 (implies --labels)");
+  // Checked while parsing: a bad or empty list is a usage error (exit 2), never silently none.
+  cmd.add_option("--label", o.label_list, "Only these labels, e.g. 3,7 (implies --labels)")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            try {
+              labels::parse_label_list(text);
+            } catch (const Error& e) {
+              const std::string what = e.what(), prefix = "--label: ";
+              return what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what;
+            }
+            return std::string();
+          },
+          "LIST"));
   if (with_split)
     cmd.add_flag("--split", o.split,
                  "With --labels: -o is a folder that gets one mesh file per label (label_<value>.vtp)");

@@ -33,7 +33,7 @@ std::vector<Label> label_map_labels(const volume::Volume& v) {
     if (std::llabs(value) > kMaxLabelValue)
       throw Error(v.path, "--labels: label " + std::to_string(value) + " is beyond +-" +
                               std::to_string(kMaxLabelValue) +
-                              " (2^24: volumes hold 32-bit floats, exact only up to there)");
+                              " (2^24 - 1: volumes hold 32-bit floats, which round larger labels)");
     auto [entry, fresh] = found.try_emplace(value);
     Label& l = entry->second;
     if (fresh) {

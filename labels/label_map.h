@@ -14,9 +14,11 @@ namespace isocurv::labels {
 /// The most labels a label map may hold (the distinct non-zero values), as uint16 segmentations.
 inline constexpr std::size_t kMaxLabels = 65535;
 
-/// The largest label value (in magnitude): volumes hold their voxels as 32-bit floats, exact
-/// integers up to 2^24.
-inline constexpr std::int64_t kMaxLabelValue = 16777216;
+/// The largest label value (in magnitude): volumes hold their voxels as 32-bit floats, whose
+/// integers are exact up to 2^24. One less than that, because a file's 2^24 + 1 arrives rounded
+/// to 2^24 and must not pass as it (and merge with a true 2^24): every integer beyond this one
+/// reads as a float of magnitude 2^24 or more, and is refused.
+inline constexpr std::int64_t kMaxLabelValue = 16777215;
 
 /// One label of a label map: its value, how many voxels hold it, and their box (index space,
 /// inclusive).

@@ -137,7 +137,10 @@ TEST(CliLabels, RefusesWhatIsNotALabelMap) {
   expect_clean_failure(run_isocurv({"measure", dataset("torus"), "--labels"}), "integer label map");
   expect_clean_failure(run_isocurv({"extract", map, "--labels", "--iso", "1", "-o", dir / "x.vtp"}), "--iso");
   expect_clean_failure(run_isocurv({"measure", map, "--label", "7"}), "none of the labels");
-  expect_clean_failure(run_isocurv({"measure", map, "--label", "1,x"}), "--label");
+  // A list that does not parse, or an empty one (once silently measured without labels), is a
+  // usage error (status 2, the fuzzing campaign's finding).
+  for (const char* bad : {"1,x", "", "2.5", "3,3"})
+    expect_usage_error(run_isocurv({"measure", map, "--label", bad}), "--label");
   expect_clean_failure(run_isocurv({"extract", map, "--split", "-o", dir / "s"}), "--split needs --labels");
   ASSERT_TRUE(run_isocurv({"extract", map, "-o", dir / "plain.vtp", "--quiet"}).ok());
   expect_clean_failure(run_isocurv({"measure", dir / "plain.vtp", "--labels"}), "needs a volume");

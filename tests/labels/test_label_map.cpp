@@ -59,6 +59,19 @@ TEST(LabelMap, RefusesFloatVolumesAndTooManyLabels) {
   EXPECT_EQ(label_map_labels(fine).size(), 64000u);
 }
 
+// A file's label 2^24 + 1 arrives in the volume's floats as 2^24: it must be refused, not merged
+// with a true 2^24 (the fuzzing campaign's finding); 2^24 - 1 is exact and kept.
+TEST(LabelMap, LabelsThatFloatsRoundAreRefused) {
+  for (const double v : {16777217.0, -16777217.0, 16777216.0}) {
+    const auto map = label_map(8, "int32", [v](int x, int, int) { return x < 4 ? 5.f : float(v); });
+    EXPECT_THROW(label_map_labels(map), Error) << v;
+  }
+  const auto exact = label_map(8, "int32", [](int x, int, int) { return x < 4 ? 5.f : 16777215.f; });
+  const auto labels = label_map_labels(exact);
+  ASSERT_EQ(labels.size(), 2u);
+  EXPECT_EQ(labels[1].value, 16777215);
+}
+
 TEST(LabelMap, PicksAndParsesLabelLists) {
   EXPECT_EQ(parse_label_list("3,7"), (std::vector<std::int64_t>{3, 7}));
   EXPECT_EQ(parse_label_list(" 7 , -2"), (std::vector<std::int64_t>{7, -2}));
