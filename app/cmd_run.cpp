@@ -47,18 +47,8 @@ nlohmann::json run_one(const std::string& in, const std::string& dir, const Comm
   std::optional<lines::Polylines> poly;  // drawn on the PNG and written as <name>-lines.vtp
   // The folder is made now, and removed again if it was new and the outputs fail; the outputs
   // appear together or not at all.
-  const bool new_folder = !fs::exists(dir);
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir)) throw Error(dir, "cannot create the output folder: " + ec.message());
-  struct RemoveIfNew {
-    bool armed;
-    std::string dir;
-    ~RemoveIfNew() {
-      std::error_code ignored;
-      if (armed) std::filesystem::remove(dir, ignored);  // only when still empty
-    }
-  } cleanup{new_folder, dir};
+  // (Also when the run is interrupted: NewFolder.)
+  const NewFolder folder(dir);
   const std::string stem = file_stem(in, "input");
   const std::string mesh_path = (fs::path(dir) / (stem + "." + format)).string();
   const std::string png_path = (fs::path(dir) / (stem + ".png")).string();
@@ -116,7 +106,6 @@ nlohmann::json run_one(const std::string& in, const std::string& dir, const Comm
   outputs.write(stats_path,
                 [&](const std::string& tmp) { write_text_file(tmp, r.dump(2) + "\n"); });
   outputs.commit();
-  cleanup.armed = false;
   return r;
 }
 

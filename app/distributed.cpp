@@ -330,12 +330,13 @@ nlohmann::json run_distributed(const std::string& in, const std::string& out, bo
   const CommonOptions o = rank_options(options);
   refuse_undistributed(in, o, work);
   if (work == DistributedWork::curvature) require_curvature_format(gather ? out : out + ".vtp");
+  std::unique_ptr<NewFolder> pieces_folder;  // rank 0's: gone again if nothing lands in it
   if (gather)
     dist::together(world, [&] {
       if (world.rank() == 0) require_writable_file(out);
     });
   else
-    dist::require_writable_pieces(world, out);
+    pieces_folder = dist::require_writable_pieces(world, out);
 
   RankSurface rs;
   make_rank_surface(rs, in, o, work, work == DistributedWork::curvature ? EmptySurface::error : EmptySurface::warn);

@@ -25,6 +25,7 @@ constexpr int kSlots = 64;
 constexpr std::size_t kPathBytes = 4096;
 struct Slot {
   std::atomic<int> state{0};
+  bool folder = false;  // rmdir (when empty) instead of unlink, after every file
   char path[kPathBytes];
 };
 Slot g_slots[kSlots];
@@ -38,7 +39,9 @@ struct sigaction g_previous[kSignalCount];
 
 extern "C" void remove_temporaries_and_reraise(int sig) {
   for (Slot& s : g_slots)
-    if (s.state.load() == 2) unlink(s.path);
+    if (s.state.load() == 2 && !s.folder) unlink(s.path);
+  for (int i = kSlots - 1; i >= 0; --i)  // new folders, once their temporaries are gone
+    if (g_slots[i].state.load() == 2 && g_slots[i].folder) rmdir(g_slots[i].path);
   // Hand the signal on: restore the previous action (the default ends the process as it would
   // have without us; a chained handler does its own work and then usually does the same). The
   // signal is blocked until this handler returns, then delivered again.
@@ -64,8 +67,9 @@ void install_handlers() {
   }
 }
 
-/// Registers `path` for removal on a fatal signal; returns its slot, or -1 when none is free.
-int register_temporary(const std::string& path) {
+/// Registers `path` for removal on a fatal signal (a file, or an empty `folder`); returns its
+/// slot, or -1 when none is free.
+int register_temporary(const std::string& path, bool folder = false) {
   static std::mutex installing;
   {
     std::lock_guard<std::mutex> lock(installing);
@@ -76,6 +80,7 @@ int register_temporary(const std::string& path) {
     int expected = 0;
     if (g_slots[i].state.compare_exchange_strong(expected, 1)) {
       std::memcpy(g_slots[i].path, path.c_str(), path.size() + 1);
+      g_slots[i].folder = folder;
       g_slots[i].state.store(2);
       return i;
     }
@@ -219,6 +224,24 @@ void AtomicFileSet::commit() {
     release_temporary(backup_slots[j]);
   }
   entries_.clear();
+}
+
+NewFolder::NewFolder(const std::string& path) : path_(path) {
+  std::error_code ec;
+  if (fs::exists(path_, ec)) {
+    if (!fs::is_directory(path_, ec)) throw Error(path_, "exists and is not a folder");
+    return;
+  }
+  created_ = fs::create_directories(path_, ec);
+  if (ec || !fs::is_directory(path_, ec))
+    throw Error(path_, "cannot create the folder: " + (ec ? ec.message() : std::string("unknown error")));
+  if (created_) slot_ = register_temporary(path_, true);
+}
+
+NewFolder::~NewFolder() {
+  release_temporary(slot_);
+  std::error_code ignored;
+  if (created_) fs::remove(path_, ignored);  // only when still empty
 }
 
 }  // namespace isocurv

@@ -62,4 +62,24 @@ class AtomicFileSet {
   std::vector<Entry> entries_;
 };
 
+/// An output folder made for this run's files: created (with its parents) when it does not exist.
+/// When it was new, it is removed again if it is still empty when this object is destroyed (a
+/// failure before any file was put in it) or when the process is killed by SIGINT, SIGTERM,
+/// SIGHUP or SIGQUIT (after the registered temporaries inside it). An existing folder is never
+/// removed.
+class NewFolder {
+ public:
+  /// @throw Error naming `path` when it exists and is not a folder, or cannot be created.
+  explicit NewFolder(const std::string& path);
+  ~NewFolder();
+  NewFolder(const NewFolder&) = delete;
+  NewFolder& operator=(const NewFolder&) = delete;
+  bool created() const { return created_; }
+
+ private:
+  std::string path_;
+  bool created_ = false;
+  int slot_ = -1;  // in the signal handler's registry, -1 when not registered
+};
+
 }  // namespace isocurv

@@ -143,18 +143,19 @@ std::string piece_path(const std::string& pvtp, int rank) {
   return (fs::path(pvtp).parent_path() / piece_source(pvtp, rank)).string();
 }
 
-void require_writable_pieces(const World& world, const std::string& pvtp) {
+std::unique_ptr<NewFolder> require_writable_pieces(const World& world, const std::string& pvtp) {
   const fs::path folder = fs::path(piece_path(pvtp, 0)).parent_path();
+  std::unique_ptr<NewFolder> made;
   together(world, [&] {
     if (world.rank() != 0) return;
     require_writable_file(pvtp);
     std::error_code ec;
     if (fs::exists(folder, ec) && !fs::is_directory(folder, ec))
       throw Error(folder.string(), "exists and is not a folder (the pieces of " + pvtp + " go there)");
-    fs::create_directories(folder, ec);
-    if (ec) throw Error(folder.string(), "cannot create the pieces' folder: " + ec.message());
+    made = std::make_unique<NewFolder>(folder.string());
   });
   together(world, [&] { require_writable_file(piece_path(pvtp, world.rank())); });
+  return made;
 }
 
 void write_pieces(const World& world, const std::string& pvtp, const Piece& piece,

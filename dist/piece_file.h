@@ -7,6 +7,7 @@
 // All or nothing: every rank writes its piece under a temporary name; only when all succeeded are
 // they renamed into place, and rank 0 writes the .pvtp last. Any failure leaves no new piece and
 // no .pvtp (an existing .pvtp stays as it was).
+#include <memory>
 #include <string>
 
 #include "curvature/curvature_field.h"
@@ -14,6 +15,10 @@
 #include "dist/world.h"
 #include "io/compression.h"
 #include "io/mesh_file.h"
+
+namespace isocurv {
+class NewFolder;
+}
 
 namespace isocurv::dist {
 
@@ -27,8 +32,10 @@ bool is_pvtp(const std::string& path);
 
 /// Collective, before any work: every rank checks that it can write its piece (the pieces' folder
 /// is created by rank 0 first) and rank 0 that it can write `pvtp`. @throw Error (every rank,
-/// naming the first rank that cannot) otherwise.
-void require_writable_pieces(const World& world, const std::string& pvtp);
+/// naming the first rank that cannot) otherwise. Rank 0 gets the folder's guard: keep it until
+/// the pieces are written, so that a failure (or a signal) before then takes a new, still empty
+/// folder away again (NewFolder); the other ranks get nullptr.
+std::unique_ptr<NewFolder> require_writable_pieces(const World& world, const std::string& pvtp);
 
 /// Collective: writes every rank's `piece` (with `field`, per piece vertex, when given, and the
 /// `context` field data) and then `pvtp`, as above. @throw Error on every rank when any failed.

@@ -186,3 +186,47 @@ TEST_F(AtomicFile, SigintDuringASetRemovesEveryTemporary) {
   EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT);
   EXPECT_TRUE(entries().empty()) << ::testing::PrintToString(entries());
 }
+
+// A folder made for the outputs goes again when nothing lands in it: on a failure (the guard's
+// destruction) and when the process is interrupted (an interrupted `isocurv run` left an empty
+// new folder behind); an existing folder and a folder holding files stay.
+TEST_F(AtomicFile, ANewFolderLeftEmptyIsRemovedAlsoOnASignal) {
+  const std::string made = at("out/deeper");
+  {
+    const isocurv::NewFolder f(made);
+    EXPECT_TRUE(f.created());
+    EXPECT_TRUE(fs::is_directory(made));
+  }
+  EXPECT_FALSE(fs::exists(made)) << "an empty new folder stays";
+  {
+    const isocurv::NewFolder f(made);
+    put(made + "/result.txt", "kept");
+  }
+  EXPECT_TRUE(fs::exists(made + "/result.txt")) << "a folder with outputs went";
+  {
+    const isocurv::NewFolder f(made);  // exists already
+    EXPECT_FALSE(f.created());
+  }
+  fs::remove_all(at("out"));
+  put(at("file"), "x");
+  EXPECT_THROW(isocurv::NewFolder(at("file")), isocurv::Error);
+
+  const std::string interrupted = at("interrupted");
+  const pid_t pid = fork();
+  if (pid == 0) {
+    isocurv::NewFolder f(interrupted);
+    isocurv::write_atomically(interrupted + "/mesh.vtp", [](const std::string& tmp) {
+      put(tmp, std::string(1 << 16, 'x'));
+      for (;;) pause();
+    });
+    _exit(0);
+  }
+  for (int i = 0; i < 500 && !(fs::exists(interrupted) && !fs::is_empty(interrupted)); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_TRUE(fs::exists(interrupted)) << "the child never made its folder";
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT);
+  EXPECT_FALSE(fs::exists(interrupted)) << "the interrupted run's new folder stays";
+}

@@ -575,6 +575,13 @@ TEST(Mpirun, AFailingRankStopsAllWithOneLineAndNoPvtp) {
   EXPECT_NE(r.err.find("rank 2"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(out));
   for (int k : {0, 1, 3}) EXPECT_FALSE(fs::exists(dir.path() / "out" / ("out_" + std::to_string(k) + ".vtp")));
+  // A failure after the pieces' folder was made (here: no surface to estimate curvature on) takes
+  // the new, empty folder away again; it once stayed behind as an empty `fresh/`.
+  const std::string fresh = (dir.path() / "fresh.pvtp").string();
+  const CliResult f = mpirun(2, {"curvature", test::dataset("sphere"), "--iso", "1e9", "-o", fresh});
+  EXPECT_EQ(f.exit_code, 1) << f.describe();
+  EXPECT_FALSE(fs::exists(dir.path() / "fresh")) << "an empty pieces folder stayed";
+  EXPECT_FALSE(fs::exists(fresh));
 }
 
 }  // namespace
