@@ -13,6 +13,7 @@
 #include <array>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -200,6 +201,31 @@ inline std::string read_file(const std::string& path) {
 inline void write_file(const std::string& path, const std::string& bytes) {
   std::ofstream out(path, std::ios::binary);
   out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+/// A CT-like ball written as a raw uint8 file named with its dimensions and type
+/// (`prefix`NxNxN_uint8.raw in `dir`): radius R voxels about the centre of the n^3 volume moved
+/// by `offset` voxels along each axis, its edge blurred (Gaussian profile, sigma 1 voxel), values
+/// 20 outside and 220 inside, uniform noise of +-noise/2 grey levels (a linear congruential
+/// sequence from `seed`), quantised.
+inline std::string write_ct_ball(const std::string& dir, int n, double R, double noise, std::uint32_t seed,
+                                 double offset = 0, const std::string& prefix = "ball_") {
+  std::string bytes(std::size_t(n) * n * n, '\0');
+  const double c = (n - 1) / 2.0 + offset;
+  std::size_t i = 0;
+  for (int z = 0; z < n; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const double r = std::sqrt((x - c) * (x - c) + (y - c) * (y - c) + (z - c) * (z - c));
+        seed = seed * 1664525u + 1013904223u;
+        const double u = (double(seed >> 8) / double(1u << 24) - 0.5) * noise;
+        const double v = 20 + 200 * 0.5 * (1 + std::erf((R - r) / std::sqrt(2.0))) + u;
+        bytes[i++] = char(std::uint8_t(std::lround(std::min(255.0, std::max(0.0, v)))));
+      }
+  const std::string size = std::to_string(n);
+  const std::string path = dir + "/" + prefix + size + "x" + size + "x" + size + "_uint8.raw";
+  write_file(path, bytes);
+  return path;
 }
 
 /// Parses stdout as JSON; on failure returns null and records a test failure.

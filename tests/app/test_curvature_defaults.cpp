@@ -15,35 +15,12 @@ using nlohmann::json;
 
 namespace {
 
-// A CT-like ball: radius R voxels about the centre of an n^3 uint8 volume, its edge blurred
-// (Gaussian profile, sigma 1 voxel), values 20 outside and 220 inside, uniform noise of +-3,
-// quantised. Written as a raw file whose name gives its dimensions and type.
-std::string write_ct_ball(const TempDir& dir, int n, double R) {
-  std::string bytes(std::size_t(n) * n * n, '\0');
-  std::uint32_t seed = 12345;
-  const double c = (n - 1) / 2.0;
-  std::size_t i = 0;
-  for (int z = 0; z < n; ++z)
-    for (int y = 0; y < n; ++y)
-      for (int x = 0; x < n; ++x) {
-        const double r = std::sqrt((x - c) * (x - c) + (y - c) * (y - c) + (z - c) * (z - c));
-        seed = seed * 1664525u + 1013904223u;
-        const double noise = (double(seed >> 8) / double(1u << 24) - 0.5) * 6;
-        const double v = 20 + 200 * 0.5 * (1 + std::erf((R - r) / std::sqrt(2.0))) + noise;
-        bytes[i++] = char(std::uint8_t(std::lround(std::min(255.0, std::max(0.0, v)))));
-      }
-  const std::string path = dir / ("ball_" + std::to_string(n) + "x" + std::to_string(n) + "x" +
-                                  std::to_string(n) + "_uint8.raw");
-  write_file(path, bytes);
-  return path;
-}
-
 }  // namespace
 
 TEST(CurvatureDefaults, CtLikeVolumeGivesPlausibleStatistics) {
   TempDir dir("ct_ball");
   const double R = 14;
-  const std::string ball = write_ct_ball(dir, 40, R);
+  const std::string ball = write_ct_ball(dir.path(), 40, R, 6, 12345);
   // 120 is a voxel value (integer isovalue on integer data, as CT users choose).
   const auto r =
       run_isocurv({"run", ball, "--iso", "120", "-o", dir / "out", "--size", "160x120", "--json"});

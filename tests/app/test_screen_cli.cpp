@@ -100,22 +100,8 @@ double h_spread(const std::string& vti) {
 // --smooth 0 keeps them; float data is not smoothed by default.
 TEST(CliScreen, IntegerDataIsSmoothedFromItsNoiseByDefault) {
   TempDir dir("screen_smooth");
-  const int n = 48;
-  const double R = 16, c = (n - 1) / 2.0 + 0.3;
-  std::string bytes(std::size_t(n) * n * n, '\0');
-  std::uint32_t seed = 99;
-  std::size_t i = 0;
-  for (int z = 0; z < n; ++z)
-    for (int y = 0; y < n; ++y)
-      for (int x = 0; x < n; ++x) {
-        const double r = std::sqrt((x - c) * (x - c) + (y - c) * (y - c) + (z - c) * (z - c));
-        seed = seed * 1664525u + 1013904223u;
-        const double noise = (double(seed >> 8) / double(1u << 24) - 0.5) * 8;
-        const double v = 20 + 200 * 0.5 * (1 + std::erf((R - r) / std::sqrt(2.0))) + noise;
-        bytes[i++] = char(std::uint8_t(std::lround(std::min(255.0, std::max(0.0, v)))));
-      }
-  const std::string ball = dir / "ball_48x48x48_uint8.raw";
-  write_file(ball, bytes);
+  const double R = 16;
+  const std::string ball = write_ct_ball(dir.path(), 48, R, 8, 99, 0.3);
   auto cast = [&](const std::vector<std::string>& extra, const std::string& name) {
     std::vector<std::string> args = {"screen", ball, "--iso", "120", "--size", "320x240", "-o",
                                      dir / (name + ".png"), "--raw", dir / (name + ".vti"), "--json", "--quiet"};

@@ -20,23 +20,7 @@ namespace {
 // A CT-like ball (radius R voxels, edge blurred over a voxel, grey levels 20 and 220, uniform
 // noise of +-5 grey levels, uint8) as a raw file named with its dimensions and type.
 std::string write_noisy_ball(const TempDir& dir, int n, double R) {
-  std::string bytes(std::size_t(n) * n * n, '\0');
-  std::uint32_t seed = 777;
-  const double c = (n - 1) / 2.0 + 0.3;
-  std::size_t i = 0;
-  for (int z = 0; z < n; ++z)
-    for (int y = 0; y < n; ++y)
-      for (int x = 0; x < n; ++x) {
-        const double r = std::sqrt((x - c) * (x - c) + (y - c) * (y - c) + (z - c) * (z - c));
-        seed = seed * 1664525u + 1013904223u;
-        const double noise = (double(seed >> 8) / double(1u << 24) - 0.5) * 10;
-        const double v = 20 + 200 * 0.5 * (1 + std::erf((R - r) / std::sqrt(2.0))) + noise;
-        bytes[i++] = char(std::uint8_t(std::lround(std::min(255.0, std::max(0.0, v)))));
-      }
-  const std::string path = dir / ("nball_" + std::to_string(n) + "x" + std::to_string(n) + "x" +
-                                  std::to_string(n) + "_uint8.raw");
-  write_file(path, bytes);
-  return path;
+  return write_ct_ball(dir.path(), n, R, 10, 777, 0.3, "nball_");
 }
 
 TEST(VolumeEstimatorCli, JsonFieldDataAndTighterStatistics) {
