@@ -49,6 +49,15 @@ double percentile(std::vector<double>& v, double q) {
   return v[k];
 }
 
+/// Vertex i's colour `rgb` (in [0, 1]) as bytes into out[3 i ..], times its AO when `ao` is given
+/// (clamped to [0, 1]; a non-finite AO counts as 1).
+void store_shaded(unsigned char* out, std::size_t i, const double* rgb, const std::vector<float>* ao) {
+  double shade = 1;
+  if (ao) shade = std::isfinite((*ao)[i]) ? std::clamp(double((*ao)[i]), 0.0, 1.0) : 1.0;
+  for (int c = 0; c < 3; ++c)
+    out[3 * i + static_cast<std::size_t>(c)] = static_cast<unsigned char>(std::lround(255 * rgb[c] * shade));
+}
+
 constexpr int kTableSize = 1024;
 constexpr double kMaxClampPercentile = 49;
 
@@ -166,11 +175,7 @@ vtkSmartPointer<vtkUnsignedCharArray> vertex_colors(const std::vector<float>& va
       const auto k = static_cast<std::size_t>(std::lround(t));
       std::copy(table.begin() + 3 * k, table.begin() + 3 * k + 3, rgb);
     }
-    double shade = 1;
-    if (ao) shade = std::isfinite((*ao)[i]) ? std::clamp(double((*ao)[i]), 0.0, 1.0) : 1.0;
-    for (int c = 0; c < 3; ++c)
-      out[3 * i + static_cast<std::size_t>(c)] =
-          static_cast<unsigned char>(std::lround(255 * rgb[c] * shade));
+    store_shaded(out, i, rgb, ao);
   }
   return colors;
 }
@@ -220,11 +225,7 @@ vtkSmartPointer<vtkUnsignedCharArray> categorical_vertex_colors(
       if (it != categories.end() && *it == double(values[i]))
         rgb = categorical_color(static_cast<std::size_t>(it - categories.begin()));
     }
-    double shade = 1;
-    if (ao) shade = std::isfinite((*ao)[i]) ? std::clamp(double((*ao)[i]), 0.0, 1.0) : 1.0;
-    for (int c = 0; c < 3; ++c)
-      out[3 * i + static_cast<std::size_t>(c)] =
-          static_cast<unsigned char>(std::lround(255 * rgb[c] * shade));
+    store_shaded(out, i, rgb.data(), ao);
   }
   return colors;
 }
