@@ -56,7 +56,9 @@ void add_common_options(CLI::App& cmd, CommonOptions& o, bool with_iso) {
                  "snapped vertices leave the isosurface by up to this distance")
       ->check(CLI::Range(0.0, 0.5))->capture_default_str();
   cmd.add_flag("--json", o.json, "Print a JSON summary with timings_ms per stage on stdout");
-  cmd.add_flag("--quiet", o.quiet, "No progress bars or messages on stderr");
+  cmd.add_flag("--quiet", o.quiet,
+               "No progress bars or messages on stderr, and no summary line on stdout (--json still "
+               "prints its report)");
   add_volume_options(cmd, o.volume);
   cmd.parse_complete_callback([&o] {
     set_progress_enabled(!o.quiet);

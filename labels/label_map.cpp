@@ -132,6 +132,7 @@ volume::Volume label_indicator(const volume::Volume& v, const Label& label, int 
   out.inside = volume::Inside::Above;
   volume::compute_stats(out);
   out.stats.suggested_isovalue = 0.5;
+  out.stats.suggested_from = "half the indicator";
   return out;
 }
 

@@ -166,8 +166,13 @@ Volume load_vdb(const std::string& path, const LoadOptions& options) {
                             std::to_string(voxel[2]) + ", or a world box that is not finite)");
 
   compute_stats(v);
-  if (auto meta = v.grid->getMetadata<openvdb::FloatMetadata>("isovalue")) v.stats.suggested_isovalue = meta->value();
-  else if (auto dmeta = v.grid->getMetadata<openvdb::DoubleMetadata>("isovalue")) v.stats.suggested_isovalue = dmeta->value();
+  if (auto meta = v.grid->getMetadata<openvdb::FloatMetadata>("isovalue")) {
+    v.stats.suggested_isovalue = meta->value();
+    v.stats.suggested_from = "the file's isovalue";
+  } else if (auto dmeta = v.grid->getMetadata<openvdb::DoubleMetadata>("isovalue")) {
+    v.stats.suggested_isovalue = dmeta->value();
+    v.stats.suggested_from = "the file's isovalue";
+  }
   if (v.stats.voxels == v.stats.nan_count + v.stats.inf_count)
     throw Error(path, "all active voxels of grid '" + v.grid_name + "' are NaN or Inf");
   if (v.stats.nan_count + v.stats.inf_count > 0 || !std::isfinite(v.grid->background())) {

@@ -212,6 +212,7 @@ void compute_stats(Volume& v) {
   }
   const bool level_set = v.grid_class == "level set" || v.grid->getGridClass() == openvdb::GRID_LEVEL_SET;
   s.suggested_isovalue = level_set ? 0.0 : otsu_threshold(s.histogram, s.min, s.max);
+  s.suggested_from = level_set ? "level set zero" : "Otsu";
   v.stats = std::move(s);
 }
 

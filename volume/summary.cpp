@@ -96,6 +96,7 @@ nlohmann::json summary_json(const Volume& v) {
   // 16 coarse bins, each the sum of 16 of the 256 fine ones, over [min, max].
   j["histogram16"] = coarse_histogram(s);
   j["suggested_isovalue"] = s.suggested_isovalue;
+  j["suggested_from"] = s.suggested_from;
   return j;
 }
 
@@ -139,7 +140,7 @@ std::string summary_text(const Volume& v) {
                           (exact ? "" : "  (interpolated in the histogram)"));
   line("non-finite", std::to_string(s.nan_count) + " NaN, " + std::to_string(s.inf_count) + " Inf" +
                          (s.nan_count + s.inf_count ? " (replaced by the outside value)" : ""));
-  line("suggested iso", fmt(s.suggested_isovalue) + (v.grid_class == "level set" ? " (level set zero)" : " (Otsu)"));
+  line("suggested iso", fmt(s.suggested_isovalue) + " (" + s.suggested_from + ")");
   // The histogram as text: 16 bins over the range, bars on a log scale (CT and MR histograms are
   // dominated by the air), with the counts.
   const std::vector<std::uint64_t> coarse = coarse_histogram(s);

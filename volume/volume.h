@@ -22,6 +22,9 @@ struct ValueStats {
   std::uint64_t inf_count = 0;     ///< +-Inf voxels (likewise replaced)
   std::vector<std::uint64_t> histogram;  ///< 256 equal bins over [min, max]
   double suggested_isovalue = 0;   ///< 0 for level sets, else Otsu's threshold on the histogram
+  /// Where suggested_isovalue came from: "Otsu", "level set zero", or "the file's isovalue"
+  /// (a .vdb grid's "isovalue" metadata).
+  std::string suggested_from = "Otsu";
 };
 
 /// A volume as an OpenVDB FloatGrid. The grid's transform maps index space to world space

@@ -1,10 +1,14 @@
 // summary_json / summary_text contents.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <filesystem>
 #include <sstream>
 #include <string>
 
 #include "volume/from_dense.h"
+#include "volume/load.h"
 #include "volume/summary.h"
 
 using namespace isocurv::volume;
@@ -71,4 +75,29 @@ TEST(VolumeSummary, WideIntegerRangesAreExactAndFloatsInterpolated) {
   const Volume fv = from_dense(f.data(), {10, 10, 10}, xf, {"f.raw", "raw", "float", "", Inside::Above});
   EXPECT_FALSE(summary_json(fv)["percentiles_exact"].get<bool>());
   EXPECT_NE(summary_text(fv).find("interpolated"), std::string::npos);
+}
+
+// An isovalue from the file's own metadata is said to be the file's, not Otsu's.
+TEST(VolumeSummary, TheSuggestedIsovalueSaysWhereItCameFrom) {
+  openvdb::initialize();
+  auto grid = openvdb::FloatGrid::create(0.0f);
+  auto acc = grid->getAccessor();
+  for (int z = 0; z < 12; ++z)
+    for (int y = 0; y < 12; ++y)
+      for (int x = 0; x < 12; ++x) acc.setValue(openvdb::Coord(x, y, z), float(x * 10));
+  grid->setName("density");
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("isocurv_summary_" + std::to_string(::getpid()) + ".vdb")).string();
+  openvdb::io::File(path).write({grid});
+  const Volume otsu = load(path);
+  EXPECT_NE(summary_text(otsu).find("(Otsu)"), std::string::npos) << summary_text(otsu);
+  EXPECT_EQ(summary_json(otsu)["suggested_from"], "Otsu");
+  grid->insertMeta("isovalue", openvdb::FloatMetadata(42.5f));
+  openvdb::io::File(path).write({grid});
+  const Volume tagged = load(path);
+  std::filesystem::remove(path);
+  EXPECT_EQ(tagged.stats.suggested_isovalue, 42.5);
+  const std::string text = summary_text(tagged);
+  EXPECT_NE(text.find("42.5 (the file's isovalue)"), std::string::npos) << text;
+  EXPECT_EQ(text.find("Otsu"), std::string::npos) << text;
 }
