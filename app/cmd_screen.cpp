@@ -42,8 +42,7 @@ double parse_smoothing(const std::string& text) {
 /// scale (curvature::auto_scale's s1, in voxels) on integer voxel types, 0 on float data.
 double screen_smoothing(const std::string& text, const volume::Volume& v, const Mesh& surface, float iso) {
   if (text != "auto") return parse_smoothing(text);
-  const bool integer = v.voxel_type != "float" && v.voxel_type != "double" && v.voxel_type != "half";
-  if (!integer || surface.positions.empty()) return 0;
+  if (!volume::is_integer_type(v.voxel_type) || surface.positions.empty()) return 0;
   const curvature::ScaleChoice c = curvature::auto_scale(v, surface, iso);
   return std::min(volume::kMaxSmoothingVoxels, c.scale / c.voxel);
 }
@@ -185,8 +184,7 @@ void register_screen(CLI::App& app) {
       ->capture_default_str()
       ->group("Screen space");
   cmd->callback([] {
-    double smooth = 0;  // voxels, from --smooth
-    if (smooth_text != "auto") smooth = parse_smoothing(smooth_text);
+    double smooth = 0;  // voxels: screen_smoothing's, for a volume
     if (!has_ext(out, ".png")) throw Error(out, "isocurv screen writes a .png picture");
     require_writable_file(out);  // before any work
     if (!raw.empty() && !has_ext(raw, ".vti")) throw Error(raw, "--raw writes a .vti file");
@@ -260,7 +258,7 @@ void register_screen(CLI::App& app) {
     // when the values' own labels give another box, compute once more at it (so the surface is
     // framed in the box render would frame it in), and centre the image in the final box if
     // the labels moved it again.
-    viz::ColorRange range = po.range ? *po.range : viz::ColorRange{-8.88e88, 8.88e88};
+    viz::ColorRange range = po.range ? *po.range : viz::ColorRange{-viz::kWidestLegendValue, viz::kWidestLegendValue};
     viz::PictureLayout layout = screen::screen_layout(width, height, po, range);
     const ViewSpec seen_from = resolve_view(view, anatomical, world_space, in);
     const std::optional<Camera> saved =

@@ -543,33 +543,32 @@ nlohmann::json surface_report(const Surface& s) {
       e["unreliable_vertices"] = s.estimator.unreliable;
       e["finer_scale_vertices"] = s.estimator.finer_scale;
       e["outside_box_vertices"] = s.estimator.outside;
-      if (s.field)
-        for (const auto& x : s.field->extra)
-          if (x.name == "Scale" && !x.values.empty()) {
-            // The per-vertex scale (world units): its distribution over the vertices.
-            std::vector<float> v = x.values;
-            std::sort(v.begin(), v.end());
-            auto at = [&](double p) { return double(v[std::size_t(p * double(v.size() - 1))]); };
-            const bool chosen = e.value("scale_chosen", "").rfind("auto", 0) == 0;
-            nlohmann::json d = {{"min", at(0)},    {"p5", at(0.05)}, {"p50", at(0.5)},
-                                {"p95", at(0.95)}, {"max", at(1)},
-                                {"rule", chosen ? "per vertex, noise against bias and the "
-                                                  "shape's limit, then finer while the smoothing "
-                                                  "erodes the vertex's surface or merges it with "
-                                                  "another (docs/curvature.md)"
-                                                : "the asked scale, divided by sqrt(2) down to "
-                                                  "0.8 voxel while the smoothing erodes the "
-                                                  "vertex's surface or merges it with another "
-                                                  "(docs/curvature.md)"}};
-            if (s.volume) {  // the same in voxels of the geometric mean spacing
-              const openvdb::Vec3d h = s.volume->spacing();
-              const double voxel = std::cbrt(h[0] * h[1] * h[2]);
-              d["voxels"] = {{"min", at(0) / voxel},    {"p5", at(0.05) / voxel},
-                             {"p50", at(0.5) / voxel},  {"p95", at(0.95) / voxel},
-                             {"max", at(1) / voxel}};
-            }
-            e["scale_per_vertex"] = d;
-          }
+      const std::vector<float>* scale = s.field ? s.field->find_extra("Scale") : nullptr;
+      if (scale && !scale->empty()) {
+        // The per-vertex scale (world units): its distribution over the vertices.
+        std::vector<float> v = *scale;
+        std::sort(v.begin(), v.end());
+        auto at = [&](double p) { return double(v[std::size_t(p * double(v.size() - 1))]); };
+        const bool chosen = e.value("scale_chosen", "").rfind("auto", 0) == 0;
+        nlohmann::json d = {{"min", at(0)},    {"p5", at(0.05)}, {"p50", at(0.5)},
+                            {"p95", at(0.95)}, {"max", at(1)},
+                            {"rule", chosen ? "per vertex, noise against bias and the "
+                                              "shape's limit, then finer while the smoothing "
+                                              "erodes the vertex's surface or merges it with "
+                                              "another (docs/curvature.md)"
+                                            : "the asked scale, divided by sqrt(2) down to "
+                                              "0.8 voxel while the smoothing erodes the "
+                                              "vertex's surface or merges it with another "
+                                              "(docs/curvature.md)"}};
+        if (s.volume) {  // the same in voxels of the geometric mean spacing
+          const openvdb::Vec3d h = s.volume->spacing();
+          const double voxel = std::cbrt(h[0] * h[1] * h[2]);
+          d["voxels"] = {{"min", at(0) / voxel},    {"p5", at(0.05) / voxel},
+                         {"p50", at(0.5) / voxel},  {"p95", at(0.95) / voxel},
+                         {"max", at(1) / voxel}};
+        }
+        e["scale_per_vertex"] = d;
+      }
     }
     if (!s.estimator.steps_ms.empty()) {
       nlohmann::json steps = nlohmann::json::object();

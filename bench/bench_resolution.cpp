@@ -44,8 +44,6 @@ constexpr double kMatchVoxels = 0.5;
 /// The second correlation's bound on |H|, per fine voxel.
 constexpr double kResolvedH = 0.25;
 
-bool is_integer_type(const std::string& t) { return t != "float" && t != "double" && t != "half"; }
-
 // `v` averaged over 2x2x2 blocks from its domain's first voxel: spacing doubled, the coarse
 // sample at the centre of its block (so the two describe the same object in world space).
 volume::Volume block_average(const volume::Volume& v) {
@@ -60,7 +58,7 @@ volume::Volume block_average(const volume::Volume& v) {
   t->preScale(openvdb::Vec3d(2 * h[0], 2 * h[1], 2 * h[2]));
   t->postTranslate(first);
   c.grid->setTransform(t);
-  const bool round = is_integer_type(v.voxel_type);
+  const bool round = volume::is_integer_type(v.voxel_type);
   openvdb::FloatGrid::ConstAccessor in = v.grid->getConstAccessor();
   openvdb::FloatGrid::Accessor out = c.grid->getAccessor();
   for (int z = 0; z < n[2]; ++z)
@@ -206,13 +204,11 @@ int main(int argc, char** argv) {
                 "corr", "RMS d/H", "resolved", "corr", "p50 scale f/c", "fine ms", "coarse ms");
     estimate(fine, value, 0, dev, surface);  // warm-up (program builds)
     auto median_scale = [](const Estimate& e) {
-      for (const auto& x : e.field.extra)
-        if (x.name == "Scale" && !x.values.empty()) {
-          std::vector<float> v = x.values;
-          std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-          return double(v[v.size() / 2]);
-        }
-      return 0.0;
+      const std::vector<float>* scale = e.field.find_extra("Scale");
+      if (!scale || scale->empty()) return 0.0;
+      std::vector<float> v = *scale;
+      std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+      return double(v[v.size() / 2]);
     };
     for (double s : scales) {
       const Estimate f = estimate(fine, value, s, dev, surface), c = estimate(coarse, value, s, dev, surface);

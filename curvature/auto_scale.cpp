@@ -79,10 +79,7 @@ ScaleChoice auto_scale(const volume::Volume& volume, const Mesh& mesh, float iso
     c.model.staircase = true;
     return finish(kBinaryScaleVoxels);
   }
-  const std::string& t = volume.voxel_type;
-  const bool integer =
-      t == "uint8" || t == "int8" || t == "int16" || t == "uint16" || t == "int32" || t == "uint32";
-  c.quantisation = integer ? 1 / std::sqrt(12.0) : 0.0;
+  c.quantisation = volume::is_integer_type(volume.voxel_type) ? 1 / std::sqrt(12.0) : 0.0;
   Positions own;  // the vertices this piece counts (all of them without a piece)
   for (std::size_t v = 0; v < mesh.positions.size(); ++v)
     if (owns_vertex(piece, v)) own.push_back(mesh.positions[v]);

@@ -35,6 +35,12 @@ struct CurvatureField {
     std::vector<float> values;
   };
   std::vector<Named> extra;
+  /// The values of the extra array `name` (the first of that name), or nullptr when there is none.
+  const std::vector<float>* find_extra(const std::string& name) const {
+    for (const Named& x : extra)
+      if (x.name == name) return &x.values;
+    return nullptr;
+  }
 
   /// The surface point each vertex stands for, world units, for measure::object_measures to
   /// integrate over: where the volume estimator places the volume's surface (VolumePoint::surface:

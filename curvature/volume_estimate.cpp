@@ -334,10 +334,9 @@ CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalu
   if (adaptive) {
     // Every rung reads a subset of the largest scale's raw bricks: gather and upload those once.
     Clock::time_point t = Clock::now();
-    detail::VolumeSetup widest = setup;
-    widest.sigma = adaptive->hi;
-    const volume::SmoothingPlan plan = volume::plan_smoothing(
-        setup.frame, mesh.positions, detail::spline_reach(widest), widest.sigma);
+    const volume::SmoothingPlan plan =
+        volume::plan_smoothing(setup.frame, mesh.positions,
+                               detail::spline_reach(detail::with_sigma(setup, adaptive->hi)), adaptive->hi);
     cl::Buffer* pool = nullptr;
     pool_bricks(plan, volume, raw, device.queue(), s, pool);
     device.queue().finish();

@@ -213,6 +213,13 @@ void copy_vertex(const VolumeEvaluation& from, std::size_t j, VolumeEvaluation& 
   all.raw.shift[i] = from.raw.shift[j];
 }
 
+/// The positions of `mesh`'s vertices `which`, in that order.
+Positions positions_of(const Mesh& mesh, const std::vector<std::size_t>& which) {
+  Positions p(which.size());
+  for (std::size_t j = 0; j < which.size(); ++j) p[j] = mesh.positions[which[j]];
+  return p;
+}
+
 void add_costs(const VolumeEvaluation& from, VolumeEvaluation& all) {
   all.bricks += from.bricks;
   all.steps.plan += from.steps.plan, all.steps.gather += from.steps.gather;
@@ -243,11 +250,7 @@ VolumeEvaluation evaluate_with_finer_scales(const Mesh& mesh, const VertexCorner
     for (std::size_t i : which) groups[at[i]].push_back(i);
     std::vector<std::size_t> misfits;
     for (const auto& [sigma, members] : groups) {
-      VolumeSetup s = setup;
-      s.sigma = sigma;
-      Positions positions(members.size());
-      for (std::size_t j = 0; j < members.size(); ++j) positions[j] = mesh.positions[members[j]];
-      const VolumeEvaluation e = evaluate(positions, s);
+      const VolumeEvaluation e = evaluate(positions_of(mesh, members), with_sigma(setup, sigma));
       add_costs(e, all);
       for (std::size_t j = 0; j < members.size(); ++j) {
         copy_vertex(e, j, all, members[j]);
@@ -276,9 +279,7 @@ VolumeEvaluation evaluate_with_finer_scales(const Mesh& mesh, const VertexCorner
     std::vector<std::size_t> sample;
     for (std::size_t i = 0; i < nv; ++i)
       if (pilot_sample(mesh.positions[i])) sample.push_back(i);
-    Positions sampled(sample.size());
-    for (std::size_t j = 0; j < sample.size(); ++j) sampled[j] = mesh.positions[sample[j]];
-    const VolumeEvaluation e2 = evaluate(sampled, with_sigma(setup, s2));
+    const VolumeEvaluation e2 = evaluate(positions_of(mesh, sample), with_sigma(setup, s2));
     add_costs(e2, all);
     std::vector<float> H2(nv, std::numeric_limits<float>::quiet_NaN()), g2(nv, 0.0f);
     std::vector<std::int64_t> in_sample(nv, -1);

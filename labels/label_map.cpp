@@ -15,7 +15,7 @@ namespace isocurv::labels {
 
 std::vector<Label> label_map_labels(const volume::Volume& v) {
   const std::string& t = v.voxel_type;
-  if (t == "float" || t == "double" || t == "half" || t.empty())
+  if (!volume::is_integer_type(t))
     throw Error(v.path, "--labels needs an integer label map (each voxel value an object); this volume holds " +
                             (t.empty() ? std::string("floats") : t) + " values");
   std::unordered_map<std::int64_t, Label> found;

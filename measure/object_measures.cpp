@@ -151,9 +151,8 @@ std::vector<ObjectMeasures> object_measures(const Mesh& mesh, const curvature::C
     }
   }
   // The per-vertex smoothing scale, when the field has one (the volume estimator's).
-  const std::vector<float>* scales = nullptr;
-  for (const auto& x : field.extra)
-    if (x.name == "Scale" && x.values.size() == nv) scales = &x.values;
+  const std::vector<float>* scales = field.find_extra("Scale");
+  if (scales && scales->size() != nv) scales = nullptr;
   // The positions integrated over: the field's surface points where it has them (finite).
   const auto position = [&](std::uint32_t i) -> const Vec3f& {
     if (moved) {

@@ -45,6 +45,25 @@ void show(vtkTextActor* a, const PlacedText& t, bool visible) {
   a->SetVisibility(visible && !t.text.empty());
 }
 
+/// Appends `box` to `points` and `cells` as one quad.
+void add_box(vtkPoints* points, vtkCellArray* cells, const PixelBox& box) {
+  const vtkIdType first = points->GetNumberOfPoints();
+  points->InsertNextPoint(box.x0, box.y0, 0);
+  points->InsertNextPoint(box.x1, box.y0, 0);
+  points->InsertNextPoint(box.x1, box.y1, 0);
+  points->InsertNextPoint(box.x0, box.y1, 0);
+  const vtkIdType q[4] = {first, first + 1, first + 2, first + 3};
+  cells->InsertNextCell(4, q);
+}
+
+/// Appends the colour `rgb` (components in [0, 1]) to `colors` as bytes.
+void add_color(vtkUnsignedCharArray* colors, const double rgb[3]) {
+  const unsigned char c[3] = {static_cast<unsigned char>(255 * rgb[0] + 0.5),
+                              static_cast<unsigned char>(255 * rgb[1] + 0.5),
+                              static_cast<unsigned char>(255 * rgb[2] + 0.5)};
+  colors->InsertNextTypedTuple(c);
+}
+
 }  // namespace
 
 struct Legend::Impl {
@@ -124,10 +143,7 @@ void Legend::update(const PictureLayout& layout, const std::string& cmap, const 
     quads->InsertNextCell(4, ids);
     double rgb[3];
     map->GetColor(range.lo + (range.hi - range.lo) * (i + 0.5) / kBarSteps, rgb);
-    const unsigned char c[3] = {static_cast<unsigned char>(255 * rgb[0] + 0.5),
-                                static_cast<unsigned char>(255 * rgb[1] + 0.5),
-                                static_cast<unsigned char>(255 * rgb[2] + 0.5)};
-    colors->InsertNextTypedTuple(c);
+    add_color(colors, rgb);
   }
   s.bar->SetPoints(points);
   s.bar->SetPolys(quads);
@@ -156,19 +172,8 @@ void Legend::update(const PictureLayout& layout, const std::string& cmap, const 
     auto ccolors = vtkSmartPointer<vtkUnsignedCharArray>::New();
     ccolors->SetNumberOfComponents(3);
     for (std::size_t i = 0; i < layout.swatches.size(); ++i) {
-      const PixelBox& w = layout.swatches[i];
-      const vtkIdType first = cpoints->GetNumberOfPoints();
-      cpoints->InsertNextPoint(w.x0, w.y0, 0);
-      cpoints->InsertNextPoint(w.x1, w.y0, 0);
-      cpoints->InsertNextPoint(w.x1, w.y1, 0);
-      cpoints->InsertNextPoint(w.x0, w.y1, 0);
-      const vtkIdType q[4] = {first, first + 1, first + 2, first + 3};
-      cquads->InsertNextCell(4, q);
-      const std::array<double, 3> rgb = categorical_color(layout.swatch_category[i]);
-      const unsigned char c[3] = {static_cast<unsigned char>(255 * rgb[0] + 0.5),
-                                  static_cast<unsigned char>(255 * rgb[1] + 0.5),
-                                  static_cast<unsigned char>(255 * rgb[2] + 0.5)};
-      ccolors->InsertNextTypedTuple(c);
+      add_box(cpoints, cquads, layout.swatches[i]);
+      add_color(ccolors, categorical_color(layout.swatch_category[i]).data());
     }
     s.categories->SetPoints(cpoints);
     s.categories->SetPolys(cquads);
@@ -182,13 +187,8 @@ void Legend::update(const PictureLayout& layout, const std::string& cmap, const 
   show(s.no_data_label, layout.no_data_label, swatch_on);
   if (swatch_on) {
     auto sp = vtkSmartPointer<vtkPoints>::New();
-    sp->InsertNextPoint(n.x0, n.y0, 0);
-    sp->InsertNextPoint(n.x1, n.y0, 0);
-    sp->InsertNextPoint(n.x1, n.y1, 0);
-    sp->InsertNextPoint(n.x0, n.y1, 0);
     auto quad = vtkSmartPointer<vtkCellArray>::New();
-    const vtkIdType q[4] = {0, 1, 2, 3};
-    quad->InsertNextCell(4, q);
+    add_box(sp, quad, n);
     s.swatch->SetPoints(sp);
     s.swatch->SetPolys(quad);
     s.swatch->Modified();

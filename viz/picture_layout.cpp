@@ -40,9 +40,12 @@ PlacedText place(const std::string& text, int font_px, int x, int y) {
 
 std::string more_label(std::size_t n) { return "+" + std::to_string(n) + " more"; }
 
-}  // namespace
-
-namespace {
+/// The box around `a` and `b` (either may be empty).
+PixelBox united(const PixelBox& a, const PixelBox& b) {
+  if (b.empty()) return a;
+  if (a.empty()) return b;
+  return {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
+}
 
 /// layout_picture's legend for a label map: a swatch and its value per label, top to bottom, as
 /// many as fit the column's height (the last line then counts the rest).
@@ -54,7 +57,7 @@ PictureLayout layout_categories(PictureLayout l, int width, int top, int pad, in
     const int swatch_w = std::max(4, static_cast<int>(std::lround(kBarWidthPerFont * font)));
     const int title_y = top - pad - height_of(tm);
     const int free_top = legend_title.empty() ? top - pad : title_y - pad;
-    int label_h = height_of(measure_text("0123456789", font));
+    const int label_h = height_of(measure_text("0123456789", font));
     const PixelBox nm = no_data ? measure_text(kNoDataText, font) : PixelBox{};
     const int entry_h = std::max(label_h, 4) + pad;
     const int free_bottom = bottom_reserved + pad + (no_data ? entry_h + pad : 0);
@@ -71,12 +74,7 @@ PictureLayout layout_categories(PictureLayout l, int width, int top, int pad, in
     const int x0 = width - column + pad;
     l.legend_title = place(legend_title, font, x0, title_y);
     l.legend = l.legend_title.box;
-    auto grow = [&l](const PixelBox& b) {
-      if (b.empty()) return;
-      l.legend = l.legend.empty() ? b
-                                  : PixelBox{std::min(l.legend.x0, b.x0), std::min(l.legend.y0, b.y0),
-                                             std::max(l.legend.x1, b.x1), std::max(l.legend.y1, b.y1)};
-    };
+    auto grow = [&l](const PixelBox& b) { l.legend = united(l.legend, b); };
     l.bar = {};
     l.ticks.clear();
     l.labels.clear();
@@ -149,11 +147,10 @@ std::string tick_label(double value, double range) {
 
 int stable_surface_right(int width, int height, const std::string& title,
                          const std::string& legend_title, int bottom_reserved) {
-  constexpr double kWidestValue = 8.88e88;
   constexpr const char* kReferenceTitle = "Curvedness\n1/length\u00b2";
   int right = width;
   for (const std::string& t : {legend_title, std::string(kReferenceTitle)})
-    right = std::min(right, layout_picture(width, height, title, t, -kWidestValue, kWidestValue,
+    right = std::min(right, layout_picture(width, height, title, t, -kWidestLegendValue, kWidestLegendValue,
                                            bottom_reserved)
                                 .surface.x1);
   return right;
@@ -222,11 +219,7 @@ PictureLayout layout_picture(int width, int height, const std::string& title,
     l.bar = {x0, bar_bottom, x0 + bar_w, bar_top};
     l.labels.clear();
     l.legend = l.legend_title.box.empty() ? l.bar : l.legend_title.box;
-    auto grow = [&l](const PixelBox& b) {
-      if (b.empty()) return;
-      l.legend = {std::min(l.legend.x0, b.x0), std::min(l.legend.y0, b.y0),
-                  std::max(l.legend.x1, b.x1), std::max(l.legend.y1, b.y1)};
-    };
+    auto grow = [&l](const PixelBox& b) { l.legend = united(l.legend, b); };
     grow(l.bar);
     for (int i = 0; i < kTicks; ++i) {
       const std::string text = tick_label(l.ticks[i], hi - lo);

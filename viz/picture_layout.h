@@ -68,8 +68,12 @@ PictureLayout layout_picture(int width, int height, const std::string& title,
                              int bottom_reserved = 0, bool no_data = false,
                              const std::vector<double>* categories = nullptr);
 
+/// A value whose tick label (tick_label: %.3g, "-8.88e+88") is as wide as any: a legend laid out
+/// for it does not narrow when the values change.
+inline constexpr double kWidestLegendValue = 8.88e88;
+
 /// The right edge of the surface's box that does not depend on what is coloured: the narrowest
-/// of layout_picture's boxes for the widest values (%.3g of -8.88e88) under `legend_title` and
+/// of layout_picture's boxes for the widest values (+-kWidestLegendValue) under `legend_title` and
 /// under a reference two-line title. Render, the explorer and `screen` clip their surface box to
 /// it, so that switching the coloured array (or the values) never moves the camera.
 int stable_surface_right(int width, int height, const std::string& title,

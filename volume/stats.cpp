@@ -163,11 +163,8 @@ constexpr double kMaxExactValues = 1 << 20;
 }  // namespace
 
 std::vector<double> exact_integer_percentiles(const Volume& v, const std::vector<double>& fractions) {
-  static const char* const kIntegerTypes[] = {"uint8", "int8", "uint16", "int16", "uint32", "int32"};
   const ValueStats& s = v.stats;
-  const bool integer_type =
-      std::any_of(std::begin(kIntegerTypes), std::end(kIntegerTypes), [&](const char* t) { return v.voxel_type == t; });
-  if (!v.grid || !integer_type || !(s.max >= s.min) || s.min != std::floor(s.min) ||
+  if (!v.grid || !is_integer_type(v.voxel_type) || !(s.max >= s.min) || s.min != std::floor(s.min) ||
       s.max - s.min + 1 > kMaxExactValues)
     return {};
   IntCountAcc init;

@@ -27,6 +27,14 @@ struct ValueStats {
   std::string suggested_from = "Otsu";
 };
 
+/// True for the integer voxel types ("uint8", "int8", "uint16", "int16", "uint32", "int32"), whose
+/// values are exact integers (quantised data); false for "float", "double", "half" and unknown.
+inline bool is_integer_type(const std::string& voxel_type) {
+  for (const char* t : {"uint8", "int8", "uint16", "int16", "uint32", "int32"})
+    if (voxel_type == t) return true;
+  return false;
+}
+
 /// A volume as an OpenVDB FloatGrid. The grid's transform maps index space to world space
 /// (spacing, origin, and for NIfTI/MetaImage a direction matrix). Dense files become a grid
 /// whose data domain is `domain` (index space, inclusive); sparse .vdb grids have
