@@ -146,17 +146,16 @@ CurvatureField estimate_field(const Mesh& mesh, const VolumeSource& source, Devi
         r.parameters.emplace_back("edge_blur", st.blur);
         // The range of the per-vertex scales (the Scale array's 5th and 95th percentiles over the
         // whole surface): what titles quote, the pilot above being no vertex's scale in general.
-        for (const CurvatureField::Named& x : field.extra) {
-          if (x.name != "Scale") continue;
-          std::vector<float> mine;
-          for (std::size_t i = 0; i < x.values.size(); ++i)
-            if (x.values[i] > 0 && owns_vertex(options.piece, i)) mine.push_back(x.values[i]);
-          const std::uint64_t n = total_count(options.piece, mine.size());
-          if (n == 0) break;
+        // Collective with a piece: an empty piece has no Scale array but takes part all the same.
+        std::vector<float> mine;
+        if (const std::vector<float>* scale = field.find_extra("Scale"))
+          for (std::size_t i = 0; i < scale->size(); ++i)
+            if ((*scale)[i] > 0 && owns_vertex(options.piece, i)) mine.push_back((*scale)[i]);
+        const std::uint64_t n = total_count(options.piece, mine.size());
+        if (n > 0)
           for (const auto& [name, q] : {std::pair{"scale_p5", 0.05}, std::pair{"scale_p95", 0.95}})
             r.parameters.emplace_back(
                 name, kth_smallest_positive(options.piece, mine, std::uint64_t(q * double(n - 1))));
-        }
       }
       r.unreliable = st.unreliable;
       r.finer_scale = st.finer_scale;
