@@ -12,6 +12,7 @@
 #include "app/batch.h"
 #include "app/commands.h"
 #include "app/pipeline.h"
+#include "core/device_call.h"
 #include "core/error.h"
 #include "core/lap.h"
 #include "core/mesh_measures.h"
@@ -110,18 +111,21 @@ void run_deform(const DeformCli& c, const CommonOptions& o) {
   co.estimator = *est;
   co.ao_scale = o.ao_scale > 0 ? o.ao_scale : curvature::default_ao_scale(rest);
   const std::size_t nv = rest.vertex_count();
-  cl::Buffer rest_buf(dev.context(), CL_MEM_READ_ONLY, nv * sizeof(Vec3f));
-  dev.queue().enqueueWriteBuffer(rest_buf, CL_TRUE, 0, nv * sizeof(Vec3f), rest.positions.data());
+  cl::Buffer rest_buf;
   std::optional<cl::Buffer> normals_buf;
   std::unique_ptr<deform::DeviceSkin> device_skin;
   const double diag = bounding_box_diagonal(rest);
-  if (c.deformer == "noise") {
-    const std::vector<Vec3f> n = area_weighted_normals(rest);
-    normals_buf = cl::Buffer(dev.context(), CL_MEM_READ_ONLY, nv * sizeof(Vec3f));
-    dev.queue().enqueueWriteBuffer(*normals_buf, CL_TRUE, 0, nv * sizeof(Vec3f), n.data());
-  }
-  if (skin) device_skin = std::make_unique<deform::DeviceSkin>(dev, *skin);
-  dev.queue().finish();
+  device_call(dev, "deform: uploading the mesh", [&] {
+    rest_buf = cl::Buffer(dev.context(), CL_MEM_READ_ONLY, nv * sizeof(Vec3f));
+    dev.queue().enqueueWriteBuffer(rest_buf, CL_TRUE, 0, nv * sizeof(Vec3f), rest.positions.data());
+    if (c.deformer == "noise") {
+      const std::vector<Vec3f> n = area_weighted_normals(rest);
+      normals_buf = cl::Buffer(dev.context(), CL_MEM_READ_ONLY, nv * sizeof(Vec3f));
+      dev.queue().enqueueWriteBuffer(*normals_buf, CL_TRUE, 0, nv * sizeof(Vec3f), n.data());
+    }
+    if (skin) device_skin = std::make_unique<deform::DeviceSkin>(dev, *skin);
+    dev.queue().finish();
+  });
   timer.stop();
 
   io::PvdCollection pvd((fs::path(c.output) / (stem + ".pvd")).string());
@@ -145,13 +149,15 @@ void run_deform(const DeformCli& c, const CommonOptions& o) {
     } else {
       device_skin->apply(rest_buf, deform::bone_matrices(*skin, t), topo.positions());
     }
-    dev.queue().finish();
+    device_call(dev, "deform", [&] { dev.queue().finish(); });
     const double deform_ms = lap(clock);
     curvature::Timings ct;
     curvature::estimate_resident(co.estimator, topo, dev, co, field, &ct);
     const double curv_ms = lap(clock);
-    dev.queue().enqueueReadBuffer(topo.positions(), CL_TRUE, 0, nv * sizeof(Vec3f),
-                                  frame.positions.data());
+    device_call(dev, "deform: reading the positions", [&] {
+      dev.queue().enqueueReadBuffer(topo.positions(), CL_TRUE, 0, nv * sizeof(Vec3f),
+                                    frame.positions.data());
+    });
     const std::string name = frame_name(stem, f);
     const std::string path = (fs::path(c.output) / name).string();
     io::write_mesh(path, frame, &field, o.compress);

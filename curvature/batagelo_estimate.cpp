@@ -2,6 +2,7 @@
 #include <chrono>
 
 #include "core/cl_launch.h"
+#include "core/device_call.h"
 #include "curvature/batagelo.h"
 #include "curvature/detail/mesh_pass_cl.h"
 #include "curvature/input.h"
@@ -81,11 +82,7 @@ CurvatureField run(const Mesh& mesh, Device& device, const Options& options, Tim
 
 CurvatureField estimate_batagelo(const Mesh& mesh, Device& device, const Options& options,
                                  Timings* timings) {
-  try {
-    return run(mesh, device, options, timings);
-  } catch (const cl::Error& e) {
-    detail::rethrow_cl(device, "batagelo", e);
-  }
+  return device_call(device, "curvature: batagelo", [&] { return run(mesh, device, options, timings); });
 }
 
 }  // namespace isocurv::curvature

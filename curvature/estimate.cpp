@@ -10,6 +10,7 @@
 
 #include "core/cl_launch.h"
 #include "core/cl_scratch.h"
+#include "core/device_call.h"
 #include "core/error.h"
 #include "core/lap.h"
 #include "curvature/derived.h"
@@ -246,15 +247,6 @@ void check_prepared(const Topology& topo, Device& device, const Options& options
   check_options(options, topo.vertex_count());
 }
 
-[[noreturn]] void rethrow(Device& device, const cl::Error& e) {
-  try {
-    device.queue().finish();  // no copy may still target the field being unwound
-  } catch (const cl::Error&) {
-  }
-  throw Error(std::string("curvature: OpenCL call ") + e.what() + " failed on " +
-              device.info().name + ": " + cl_error_name(e.err()));
-}
-
 }  // namespace
 
 CurvatureField estimate(const Mesh& mesh, Device& device, const Options& options,
@@ -266,35 +258,27 @@ CurvatureField estimate(const Mesh& mesh, Device& device, const Options& options
 
 void estimate(const Mesh& mesh, Device& device, const Options& options, CurvatureField& out,
               Timings* timings) {
-  try {
-    run(mesh, device, options, out, timings);
-  } catch (const cl::Error& e) {
-    rethrow(device, e);
-  }
+  device_call(device, "curvature", [&] { run(mesh, device, options, out, timings); });
 }
 
 void estimate(const Positions& positions, Topology& topo, Device& device, const Options& options,
               CurvatureField& out, Timings* timings) {
   const Clock::time_point start = Clock::now();
-  try {
+  device_call(device, "curvature", [&] {
     check_prepared(topo, device, options);
     upload_positions(positions, topo);
     const double upload_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
     run_resident(topo, device, options, out, timings, start, upload_ms);
-  } catch (const cl::Error& e) {
-    rethrow(device, e);
-  }
+  });
 }
 
 void estimate_resident(Topology& topo, Device& device, const Options& options,
                        CurvatureField& out, Timings* timings) {
   const Clock::time_point start = Clock::now();
-  try {
+  device_call(device, "curvature", [&] {
     check_prepared(topo, device, options);
     run_resident(topo, device, options, out, timings, start, 0);
-  } catch (const cl::Error& e) {
-    rethrow(device, e);
-  }
+  });
 }
 
 }  // namespace isocurv::curvature

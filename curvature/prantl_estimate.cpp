@@ -3,6 +3,7 @@
 #include <string>
 
 #include "core/cl_launch.h"
+#include "core/device_call.h"
 #include "core/error.h"
 #include "curvature/detail/mesh_pass_cl.h"
 #include "curvature/input.h"
@@ -81,11 +82,8 @@ CurvatureField run(const Mesh& mesh, Device& device, const Options& options, int
 
 CurvatureField estimate_prantl(const Mesh& mesh, Device& device, const Options& options,
                                int edges, PrantlAveraging averaging, Timings* timings) {
-  try {
-    return run(mesh, device, options, edges, averaging, timings);
-  } catch (const cl::Error& e) {
-    detail::rethrow_cl(device, "prantl", e);
-  }
+  return device_call(device, "curvature: prantl",
+                     [&] { return run(mesh, device, options, edges, averaging, timings); });
 }
 
 }  // namespace isocurv::curvature

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "core/device_call.h"
 #include "core/error.h"
 #include "curvature/detail/local_geometry.h"
 #include "curvature/detail/mesh_pass_cl.h"
@@ -52,7 +53,7 @@ Topology prepare(const Triangles& triangles, std::size_t vertex_count, Device& d
     if (t.adjacency_.offsets[v + 1] - t.adjacency_.offsets[v] > kMaxFan)
       large.push_back(std::uint32_t(v));
   t.large_count_ = large.size();
-  try {
+  device_call(device, "curvature: preparing the topology", [&] {
     // Buffers like the cold path's (core/cl_scratch.h: on a CPU device, host memory in huge
     // pages), so the kernels see the same kind of memory either way.
     t.store_ = std::make_shared<ScratchBuffers>(device, kSlots);
@@ -62,10 +63,7 @@ Topology prepare(const Triangles& triangles, std::size_t vertex_count, Device& d
     t.offsets_buf_ = device_copy(device, *t.store_, kOffsets, t.adjacency_.offsets);
     t.corners_buf_ = device_copy(device, *t.store_, kCorners, t.adjacency_.corners);
     t.large_buf_ = device_copy(device, *t.store_, kLarge, large);
-  } catch (const cl::Error& e) {
-    throw Error(std::string("curvature: preparing the topology: OpenCL call ") + e.what() +
-                " failed on " + device.info().name + ": " + cl_error_name(e.err()));
-  }
+  });
   return t;
 }
 

@@ -11,6 +11,7 @@
 
 #include "core/cl_launch.h"
 #include "core/cl_scratch.h"
+#include "core/device_call.h"
 #include "core/error.h"
 #include "core/lap.h"
 #include "curvature/derived.h"
@@ -366,16 +367,8 @@ CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalu
 CurvatureField volume_estimate(const Mesh& mesh, const volume::Volume& volume, float isovalue,
                                const VolumeOptions& options, Device& device,
                                VolumeEstimateStats* stats) {
-  try {
-    return run(mesh, volume, isovalue, options, device, stats);
-  } catch (const cl::Error& e) {
-    try {
-      device.queue().finish();
-    } catch (const cl::Error&) {
-    }
-    throw Error(std::string("curvature: OpenCL call ") + e.what() + " failed on " +
-                device.info().name + ": " + cl_error_name(e.err()));
-  }
+  return device_call(device, "curvature",
+                     [&] { return run(mesh, volume, isovalue, options, device, stats); });
 }
 
 }  // namespace isocurv::curvature

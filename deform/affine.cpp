@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/cl_launch.h"
+#include "core/device_call.h"
 #include "deform/detail/deform_program.h"
 
 namespace isocurv::deform {
@@ -30,14 +31,12 @@ void affine(Device& device, const cl::Buffer& rest, std::size_t vertex_count, co
             cl::Buffer& out) {
   detail::DeformKernels& k = detail::deform_kernels(device);
   std::lock_guard<std::mutex> lock(k.mutex);
-  try {
+  device_call(device, "deform: affine", [&] {
     cl::CommandQueue& q = device.queue();
     q.enqueueWriteBuffer(k.matrix, CL_TRUE, 0, sizeof(Affine), m.data());
     set_args(k.affine, rest, cl_uint(vertex_count), k.matrix, out);
     launch(q, k.affine, vertex_count, detail::kGroup);
-  } catch (const cl::Error& e) {
-    detail::rethrow(device, "affine", e);
-  }
+  });
 }
 
 Positions affine_reference(const Positions& rest, const Affine& m) {

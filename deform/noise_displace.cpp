@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/cl_launch.h"
+#include "core/device_call.h"
 #include "core/error.h"
 #include "deform/detail/deform_program.h"
 
@@ -22,13 +23,11 @@ void noise_displace(Device& device, const cl::Buffer& rest, const cl::Buffer& no
                     std::size_t vertex_count, double frequency, double amplitude, cl::Buffer& out) {
   detail::DeformKernels& k = detail::deform_kernels(device);
   std::lock_guard<std::mutex> lock(k.mutex);
-  try {
+  device_call(device, "deform: noise displacement", [&] {
     set_args(k.noise, rest, normals, cl_uint(vertex_count), k.waves, cl_int(detail::kWaveCount),
              cl_float(frequency), cl_float(amplitude), out);
     launch(device.queue(), k.noise, vertex_count, detail::kGroup);
-  } catch (const cl::Error& e) {
-    detail::rethrow(device, "noise displacement", e);
-  }
+  });
 }
 
 Positions noise_displace_reference(const Positions& rest, const std::vector<Vec3f>& normals,

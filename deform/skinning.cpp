@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/cl_launch.h"
+#include "core/device_call.h"
 #include "core/error.h"
 #include "deform/detail/deform_program.h"
 
@@ -213,7 +214,7 @@ std::vector<Affine> bone_matrices(const Skin& skin, double t) {
 
 DeviceSkin::DeviceSkin(Device& device, const Skin& skin)
     : device_(device), vertex_count_(skin.vertex_count()), bone_count_(skin.bone_count()) {
-  try {
+  device_call(device, "deform: uploading the skin", [&] {
     std::vector<cl_uint4> b(std::max<std::size_t>(vertex_count_, 1));
     std::vector<cl_float4> w(b.size());
     for (std::size_t v = 0; v < vertex_count_; ++v)
@@ -223,9 +224,7 @@ DeviceSkin::DeviceSkin(Device& device, const Skin& skin)
     weights_ = cl::Buffer(device.context(), flags, w.size() * sizeof(cl_float4), w.data());
     matrices_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY,
                            std::max<std::size_t>(bone_count_, 1) * sizeof(Affine));
-  } catch (const cl::Error& e) {
-    detail::rethrow(device, "uploading the skin", e);
-  }
+  });
 }
 
 void DeviceSkin::apply(const cl::Buffer& rest, const std::vector<Affine>& matrices,
@@ -235,14 +234,12 @@ void DeviceSkin::apply(const cl::Buffer& rest, const std::vector<Affine>& matric
                 std::to_string(bone_count_) + " bones");
   detail::DeformKernels& k = detail::deform_kernels(device_);
   std::lock_guard<std::mutex> lock(k.mutex);
-  try {
+  device_call(device_, "deform: skinning", [&] {
     cl::CommandQueue& q = device_.queue();
     q.enqueueWriteBuffer(matrices_, CL_TRUE, 0, matrices.size() * sizeof(Affine), matrices.data());
     set_args(k.skin, rest, bones_, weights_, cl_uint(vertex_count_), matrices_, out);
     launch(q, k.skin, vertex_count_, detail::kGroup);
-  } catch (const cl::Error& e) {
-    detail::rethrow(device_, "skinning", e);
-  }
+  });
 }
 
 Positions skin_reference(const Positions& rest, const Skin& skin,

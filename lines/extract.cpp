@@ -9,6 +9,7 @@
 
 #include "core/cl_input.h"
 #include "core/cl_launch.h"
+#include "core/device_call.h"
 #include "core/error.h"
 #include "core/lap.h"
 #include "lines/detail/vertex_pairs.h"
@@ -264,16 +265,8 @@ Segments run(const Mesh& mesh, const curvature::CurvatureField& field, const Cam
 
 Segments extract(const Mesh& mesh, const curvature::CurvatureField& field, const Camera& camera,
                  const Options& options, Device& device, Timings* timings, bool upload_mesh) {
-  try {
-    return run(mesh, field, camera, options, device, timings, upload_mesh);
-  } catch (const cl::Error& e) {
-    try {
-      device.queue().finish();
-    } catch (const cl::Error&) {
-    }
-    throw Error(std::string("lines: OpenCL call ") + e.what() + " failed on " + device.info().name +
-                ": " + cl_error_name(e.err()));
-  }
+  return device_call(device, "lines",
+                     [&] { return run(mesh, field, camera, options, device, timings, upload_mesh); });
 }
 
 }  // namespace isocurv::lines

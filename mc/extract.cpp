@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/cl_device.h"
+#include "core/device_call.h"
 #include "core/error.h"
 #include "mc/bricks.h"
 #include "mc/detail/mesher_passes.h"
@@ -20,15 +21,6 @@ double ms_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
 }
 
-// Waits for queued work (kernels may be writing into the mesh's vectors) before an error unwinds
-// them; a second failure there changes nothing for the caller.
-void drain(cl::CommandQueue& q) {
-  try {
-    q.finish();
-  } catch (...) {
-  }
-}
-
 }  // namespace
 
 struct Mesher::State {
@@ -40,13 +32,7 @@ struct Mesher::State {
 };
 
 Mesher::Mesher(const volume::Volume& v, Device& device) : state_(std::make_unique<State>(v, device)) {
-  try {
-    state_->tables.emplace(device);
-  } catch (const cl::Error& e) {
-    drain(device.queue());
-    throw Error(std::string("marching cubes setup failed on the OpenCL device: ") + e.what() + " (" +
-                cl_error_name(e.err()) + ")");
-  }
+  device_call(device, "marching cubes: setup", [&] { state_->tables.emplace(device); });
 }
 
 Mesher::~Mesher() = default;
@@ -72,45 +58,42 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
     step = Clock::now();
   };
   if (!origins.empty()) {
-    try {
-      detail::Extraction x{st.device, *st.tables, f, options, st.volume.path};
-      detail::gather_samples(x, st.index, origins);  // 1. their samples with aprons, on the device
+    // Kernels may still write into the mesh's vectors and read x's host arrays: device_call
+    // drains the queue before the mesh unwinds, `drain` before x does.
+    const std::string& path = st.volume.path;
+    device_call(st.device, path.empty() ? "marching cubes" : path + ": marching cubes", [&] {
+      detail::Extraction x{st.device, *st.tables, f, options, path};
+      const DrainOnUnwind drain(st.device);
+      // 1. their samples with aprons, on the device
+      detail::gather_samples(x, st.index, origins);
       tm.gather = ms_since(t1);
       tm.bricks = origins.size();
       t2 = step = Clock::now();
-      if (x.bricks > 0) {  // else every candidate lay wholly on one side: an empty mesh
-        detail::classify_cells(x);  // 2. each cell's case; triangles, vertices, seam vertices per brick
-        tm.seam_vertices = x.seams;
-        mark(&ExtractTimings::classify);
-        if (x.triangles > 0) {
-          detail::hash_seam_vertices(x);  // 3. the vertices other bricks look up, by edge hash
-          mark(&ExtractTimings::seams);
-          detail::sort_seam_vertices(x);  // 4. radix-sorted by hash
-          mark(&ExtractTimings::sort);
-          // 5-6. the sorted hashes as a lookup table; every brick's vertices and triangles, a
-          // neighbour's vertex found there by binary search.
-          std::vector<SnapCandidate> near = detail::emit_triangles(x, mesh, mark);
-          if (!near.empty()) {  // 7. vertices close to a voxel moved onto it, and merged
-            const SnapReport r = snap_vertices(mesh, std::move(near), f, kSnapMinArea * voxel_face_area(st.volume),
-                                               options.snap);
-            tm.snapped = r.moved;
-            tm.merged = r.merged;
-            tm.pushed = r.pushed;
-            if (timings) {
-              tm.snap += ms_since(step);
-              step = Clock::now();
-            }
-          }
-        }
+      if (x.bricks == 0) return;  // every candidate lay wholly on one side: an empty mesh
+      // 2. each cell's case; triangles, vertices, seam vertices per brick
+      detail::classify_cells(x);
+      tm.seam_vertices = x.seams;
+      mark(&ExtractTimings::classify);
+      if (x.triangles == 0) return;
+      detail::hash_seam_vertices(x);  // 3. the vertices other bricks look up, by edge hash
+      mark(&ExtractTimings::seams);
+      detail::sort_seam_vertices(x);  // 4. radix-sorted by hash
+      mark(&ExtractTimings::sort);
+      // 5-6. the sorted hashes as a lookup table; every brick's vertices and triangles, a
+      // neighbour's vertex found there by binary search.
+      std::vector<SnapCandidate> near = detail::emit_triangles(x, mesh, mark);
+      if (near.empty()) return;
+      // 7. vertices close to a voxel moved onto it, and merged
+      const SnapReport r = snap_vertices(mesh, std::move(near), f,
+                                         kSnapMinArea * voxel_face_area(st.volume), options.snap);
+      tm.snapped = r.moved;
+      tm.merged = r.merged;
+      tm.pushed = r.pushed;
+      if (timings) {
+        tm.snap += ms_since(step);
+        step = Clock::now();
       }
-    } catch (const cl::Error& e) {
-      drain(st.device.queue());
-      throw Error(st.volume.path, std::string("marching cubes failed on the OpenCL device: ") + e.what() + " (" +
-                                      cl_error_name(e.err()) + ")");
-    } catch (...) {
-      drain(st.device.queue());
-      throw;
-    }
+    });
   }
   tm.device = ms_since(t2);
   tm.total = ms_since(t0);

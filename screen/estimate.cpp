@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/cl_launch.h"
+#include "core/device_call.h"
 #include "core/error.h"
 #include "curvature/prantl.h"
 #include "screen/detail/kernels.h"
@@ -248,6 +249,7 @@ ScreenCurvature estimate(const GBuffer& g, Device& device, const ScreenOptions& 
   if (work_group < 1) throw Error("screen: the work-group size must be positive");
   ScreenCurvature out = empty_result(g);
   const std::size_t n = g.pixels();
+  return device_call(device, "screen", [&] {
   EstimateState& s = device.state<EstimateState>();
   std::lock_guard<std::mutex> lock(s.mutex);
   cl::Context& ctx = device.context();
@@ -297,6 +299,7 @@ ScreenCurvature estimate(const GBuffer& g, Device& device, const ScreenOptions& 
     out.H[i] = v.s[0], out.K[i] = v.s[1], out.valid[i] = 1, out.step[i] = std::uint8_t(v.s[3]);
   }
   return out;
+  });
 }
 
 }  // namespace isocurv::screen

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/cl_launch.h"
+#include "core/device_call.h"
 #include "core/error.h"
 #include "screen/detail/kernels.h"
 
@@ -158,6 +159,8 @@ GBuffer ray_cast(const volume::DenseField& vol, float iso, const ViewFrame& fram
   frame_depths(g, vol);
   std::array<int, 6> clip{};
   if (!vol.straddling_box(iso, clip)) return g;  // no surface at this isovalue
+  float cam[16] = {0};  // outside device_call: copied from until the queue drains
+  device_call(device, "screen", [&] {
   CastState& s = device.state<CastState>();
   std::lock_guard<std::mutex> lock(s.mutex);
   cl::Context& ctx = device.context();
@@ -184,7 +187,6 @@ GBuffer ray_cast(const volume::DenseField& vol, float iso, const ViewFrame& fram
     s.pixels = n;
   }
   if (!s.cam()) s.cam = cl::Buffer(ctx, CL_MEM_READ_ONLY, 16 * 4);
-  float cam[16] = {0};
   for (int c = 0; c < 3; ++c) {
     cam[c] = float(frame.eye[c]), cam[3 + c] = float(frame.forward[c]);
     cam[6 + c] = float(frame.right[c]), cam[9 + c] = float(frame.up[c]);
@@ -211,6 +213,7 @@ GBuffer ray_cast(const volume::DenseField& vol, float iso, const ViewFrame& fram
     g.normal[i] = {m.s[0], m.s[1], m.s[2]};
     g.valid[i] = p.s[3] != 0.0f;
   }
+  });
   return g;
 }
 

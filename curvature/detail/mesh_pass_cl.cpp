@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/cl_launch.h"
+#include "core/device_call.h"
 #include "core/error.h"
 #include "curvature/derived.h"
 #include "curvature/input.h"
@@ -167,7 +168,7 @@ void estimate_resident_mesh_pass(Estimator e, Topology& topo, Device& device,
     return;
   }
   const bool batagelo = e == Estimator::batagelo;
-  try {
+  device_call(device, batagelo ? "curvature: batagelo" : "curvature: prantl", [&] {
     MeshBuffers m;
     m.positions = &topo.positions();
     m.triangles = &topo.triangle_buffer();
@@ -188,20 +189,8 @@ void estimate_resident_mesh_pass(Estimator e, Topology& topo, Device& device,
     else
       prantl_passes(s, device, m, options, e == Estimator::prantl3 ? 3 : 2, /*area=*/true, timed,
                     clock, t, out);
-  } catch (const cl::Error& err) {
-    rethrow_cl(device, batagelo ? "batagelo" : "prantl", err);
-  }
+  });
   t.total = std::chrono::duration<double, std::milli>(clock - start).count();
   if (timings) *timings = t;
 }
-
-void rethrow_cl(Device& device, const char* what, const cl::Error& e) {
-  try {
-    device.queue().finish();  // no copy may still target the field being unwound
-  } catch (const cl::Error&) {
-  }
-  throw Error(std::string("curvature: ") + what + ": OpenCL call " + e.what() + " failed on " +
-              device.info().name + ": " + cl_error_name(e.err()));
-}
-
 }  // namespace isocurv::curvature::detail

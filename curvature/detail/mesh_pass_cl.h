@@ -98,7 +98,4 @@ void download(cl::CommandQueue& q, ClBuffer& b, std::vector<T>& v, std::size_t n
 /// Milliseconds since `since`, which then moves to now.
 double lap_ms(std::chrono::steady_clock::time_point& since);
 
-/// Rethrows an OpenCL failure of `device` as isocurv::Error naming `what`.
-[[noreturn]] void rethrow_cl(Device& device, const char* what, const cl::Error& e);
-
 }  // namespace isocurv::curvature::detail

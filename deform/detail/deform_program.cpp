@@ -3,6 +3,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/device_call.h"
 #include "core/error.h"
 
 namespace isocurv::kernels {
@@ -38,16 +39,8 @@ std::array<double, 4> noise_wave(int k) {
 DeformKernels& deform_kernels(Device& device) {
   static std::mutex creating;  // Device::state is for one thread at a time
   std::lock_guard<std::mutex> lock(creating);
-  try {
-    return device.state<DeformKernels>();
-  } catch (const cl::Error& e) {
-    rethrow(device, "building the deformers", e);
-  }
-}
-
-void rethrow(Device& device, const char* what, const cl::Error& e) {
-  throw Error(std::string("deform: ") + what + ": OpenCL call " + e.what() + " failed on " +
-              device.info().name + ": " + cl_error_name(e.err()));
+  return device_call(device, "deform: building the deformers",
+                     [&]() -> DeformKernels& { return device.state<DeformKernels>(); });
 }
 
 }  // namespace isocurv::deform::detail

@@ -28,7 +28,4 @@ DeformKernels& deform_kernels(Device& device);
 
 constexpr std::size_t kGroup = 64;
 
-/// Rethrows an OpenCL failure as isocurv::Error naming `what`.
-[[noreturn]] void rethrow(Device& device, const char* what, const cl::Error& e);
-
 }  // namespace isocurv::deform::detail

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/cl_launch.h"
+#include "core/device_call.h"
 #include "core/error.h"
 #include "features/detail/volume_ball.h"
 
@@ -39,17 +40,9 @@ struct FeaturesState {
   cl::Buffer values, xform;
 };
 
-[[noreturn]] void rethrow(Device& device, const char* what, const cl::Error& e) {
-  throw Error(std::string("features: ") + what + ": OpenCL call " + e.what() + " failed on " +
-              device.info().name + ": " + cl_error_name(e.err()));
-}
-
 FeaturesState& state(Device& device) {
-  try {
-    return device.state<FeaturesState>();
-  } catch (const cl::Error& e) {
-    rethrow(device, "building the kernels", e);
-  }
+  return device_call(device, "features: building the kernels",
+                     [&]() -> FeaturesState& { return device.state<FeaturesState>(); });
 }
 
 void upload_volume(Device& device, FeaturesState& s, const volume::DenseField& field) {
@@ -105,7 +98,9 @@ std::vector<WebSums> web_on_device(Device& device, const volume::DenseField& fie
   if (n == 0) return out;
   FeaturesState& s = state(device);
   std::lock_guard<std::mutex> lock(s.mutex);
-  try {
+  std::vector<cl_float4> host(n);  // outside device_call: read into until the queue drains
+  std::vector<std::uint8_t> host_flags(n);
+  device_call(device, "features: features_web", [&] {
     upload_volume(device, s, field);
     cl::Buffer pos, nrm;
     upload_vertices(device, mesh, normals, pos, nrm);
@@ -116,8 +111,6 @@ std::vector<WebSums> web_on_device(Device& device, const volume::DenseField& fie
              cl_uint(n), cl_float(r), cl_int(azimuths), cl_int(adaptive ? 1 : 0),
              cl_float(threshold), cl_uint(seed), res, flags);
     launch_in_parts(device, s.web, 16, n, work_group, progress);
-    std::vector<cl_float4> host(n);
-    std::vector<std::uint8_t> host_flags(n);
     device.queue().enqueueReadBuffer(res, CL_FALSE, 0, n * 16, host.data());
     device.queue().enqueueReadBuffer(flags, CL_TRUE, 0, n, host_flags.data());
     for (std::size_t i = 0; i < n; ++i) {
@@ -125,9 +118,7 @@ std::vector<WebSums> web_on_device(Device& device, const volume::DenseField& fie
       out[i].azimuths = int(host[i].s[3]);
       out[i].boundary = host_flags[i] != 0;
     }
-  } catch (const cl::Error& e) {
-    rethrow(device, "features_web", e);
-  }
+  });
   return out;
 }
 
@@ -143,7 +134,8 @@ BallOnDevice ball_on_device(Device& device, const volume::DenseField& field, flo
   if (nodes.size() > 16) throw Error("features: at most 16 radial quadrature nodes");
   FeaturesState& s = state(device);
   std::lock_guard<std::mutex> lock(s.mutex);
-  try {
+  std::vector<cl_float2> host(n);  // outside device_call: read into until the queue drains
+  device_call(device, "features: features_ball", [&] {
     upload_volume(device, s, field);
     cl::Buffer pos, nrm;
     upload_vertices(device, mesh, normals, pos, nrm);
@@ -159,13 +151,10 @@ BallOnDevice ball_on_device(Device& device, const volume::DenseField& field, flo
              cl_float(field.sign), s.xform, glb, cl_int(azimuths), cl_int(nodes.size()), pos, nrm,
              cl_uint(n), cl_float(r), res, flags);
     launch_in_parts(device, s.ball, 14, n, work_group, progress);
-    std::vector<cl_float2> host(n);
     device.queue().enqueueReadBuffer(res, CL_FALSE, 0, n * 8, host.data());
     device.queue().enqueueReadBuffer(flags, CL_TRUE, 0, n, out.leaves.data());
     for (std::size_t i = 0; i < n; ++i) out.vr[i] = host[i].s[0], out.h[i] = host[i].s[1];
-  } catch (const cl::Error& e) {
-    rethrow(device, "features_ball", e);
-  }
+  });
   return out;
 }
 
