@@ -1,0 +1,69 @@
+#pragma once
+// The curvature estimate curvature() runs and measure(), features() and lines() run when given no
+// curvature arrays: its arguments (estimator=, scale=, normals=, ao_scale=, iso=), the CLI's rules
+// on them, and the report it returns.
+#include <initializer_list>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "curvature/curvature_field.h"
+#include "curvature/estimator.h"
+#include "python/detail/args.h"
+#include "volume/gradient_normals.h"
+
+namespace isocurv::python {
+
+/// The estimator called `name` (ValueError naming `arg` and listing the names otherwise).
+curvature::Estimator estimator_of(const py::object& name, const char* arg);
+
+/// scale= as the CLI's --scale: None or 'auto' (0: chosen from the data) or a positive number.
+double scale_of(const py::object& scale);
+
+/// normals= for the mesh estimators: None (the default), 'volume', 'mesh', 'area' or
+/// 'face-average' (the CLI's --normals).
+std::string normals_of(const py::object& normals);
+
+/// Host-side vertex normals for normals='area' / 'face-average' (empty for 'mesh': the
+/// estimator's own Max-weighted normals).
+std::vector<Vec3f> mesh_normals(const Mesh& mesh, const std::string& source);
+
+/// ao_scale= : None (nothing: 4 mean edge lengths of the mesh) or a positive radius, world units.
+std::optional<float> ao_scale_of(const py::object& ao_scale);
+
+/// What a curvature call used, as CurvatureArrays.report: {"estimator", "parameters" {name:
+/// value}, "chosen" {name: 'auto'|'given'}, "unreliable", "normals"[, "normal_fallbacks"]}.
+py::dict report_dict(const curvature::EstimatorReport& r, const std::string& normals,
+                     const volume::MeshNormals* vn);
+
+/// A ValueError unless `mesh` lies in `volume`: its bounding box (finite vertices) within the
+/// volume's world bounds (the domain's corners through the transform) grown by one voxel (the
+/// longest voxel edge). A mesh of another volume, or of this one loaded with another spacing or
+/// origin, would otherwise be measured in the volume's outside: wrong curvature, no error.
+void check_mesh_in_volume(const Mesh& mesh, const volume::Volume& volume);
+
+/// A curvature estimate and what it used (CurvatureArrays.report).
+struct Estimated {
+  curvature::CurvatureField field;
+  py::dict report;
+};
+
+/// curvature()'s estimate (the CLI's rules), also what features() and lines() estimate when
+/// given no curvature arrays.
+Estimated estimate_of(const std::shared_ptr<PyMesh>& mesh, const volume::Volume* volume,
+                      py::object estimator, py::object scale, py::object normals_arg,
+                      py::object iso, py::object ao_scale, bool cap, py::object device);
+
+/// The isovalue of `mesh` for the volume stages: iso= when given, else mesh.isovalue (set by
+/// extract); a ValueError naming `why` when neither.
+float mesh_isovalue(const PyMesh& mesh, const py::object& iso, const std::string& why);
+
+/// The curvature field the features and lines read: `arrays` (a dict as curvature() returns)
+/// checked to carry `needed`, or, for None, curvature(mesh, volume, iso=iso) with its defaults.
+curvature::CurvatureField field_for(const std::shared_ptr<PyMesh>& mesh,
+                                    const volume::Volume* volume, const py::object& arrays,
+                                    const py::object& iso, py::object device,
+                                    std::initializer_list<const char*> needed);
+
+}  // namespace isocurv::python

@@ -1,0 +1,177 @@
+// The measure area of the isocurv Python module: measure (per connected component) and
+// measure_labels (per label of a label map).
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "curvature/auto_scale.h"
+#include "curvature/curvature_field.h"
+#include "labels/label_map.h"
+#include "mc/extract.h"
+#include "mc/extract_reference.h"
+#include "mc/options.h"
+#include "measure/object_measures.h"
+#include "python/bind.h"
+#include "python/detail/args.h"
+#include "python/detail/arrays.h"
+#include "python/detail/estimate.h"
+
+namespace isocurv::python {
+
+namespace {
+
+/// measure() and measure_labels()'s dict: one numpy array per measure, one entry per object.
+struct MeasureColumns {
+  std::vector<double> area, mesh_area, volume, int_h, int_k, gap, box, scale;
+  std::vector<std::int64_t> euler, genus, vertices, triangles, unmeasured;
+  std::vector<std::uint8_t> closed, resolved;
+
+  void add(const measure::ObjectMeasures& m) {
+    area.push_back(m.area);
+    mesh_area.push_back(m.mesh_area);
+    scale.push_back(m.scale);
+    resolved.push_back(m.resolved ? 1 : 0);
+    volume.push_back(m.closed ? m.volume : std::numeric_limits<double>::quiet_NaN());
+    int_h.push_back(m.integral_H);
+    int_k.push_back(m.integral_K);
+    gap.push_back(m.gauss_bonnet_gap());
+    euler.push_back(m.euler);
+    genus.push_back(m.genus());
+    vertices.push_back(std::int64_t(m.vertices));
+    triangles.push_back(std::int64_t(m.triangles));
+    unmeasured.push_back(std::int64_t(m.unmeasured));
+    closed.push_back(m.closed ? 1 : 0);
+    box.insert(box.end(), m.box.begin(), m.box.end());
+  }
+  py::dict dict() const {
+    const py::ssize_t n = py::ssize_t(area.size());
+    py::dict out;
+    out["area"] = copy_array(area, {n});
+    out["mesh_area"] = copy_array(mesh_area, {n});
+    out["scale"] = copy_array(scale, {n});
+    out["resolved"] = copy_array(resolved, {n});
+    out["volume"] = copy_array(volume, {n});
+    out["integral_H"] = copy_array(int_h, {n});
+    out["integral_K"] = copy_array(int_k, {n});
+    out["euler_characteristic"] = copy_array(euler, {n});
+    out["genus"] = copy_array(genus, {n});
+    out["gauss_bonnet_gap"] = copy_array(gap, {n});
+    out["closed"] = copy_array(closed, {n});
+    out["vertices"] = copy_array(vertices, {n});
+    out["triangles"] = copy_array(triangles, {n});
+    out["unmeasured_vertices"] = copy_array(unmeasured, {n});
+    out["box"] = copy_array(box, {n, 6});
+    return out;
+  }
+};
+
+/// isocurv.measure: measure::object_measures as a dict of numpy arrays, one entry per component.
+py::dict measure_of(const MeshArg& mesh_arg, const VolumeArg& volume_arg, const py::object& arrays,
+                    const py::object& iso, py::object device) {
+  const std::shared_ptr<PyMesh> mesh = mesh_of(mesh_arg, "mesh");
+  const volume::Volume* volume = optional_volume(volume_arg, "volume");
+  if (volume) check_mesh_in_volume(mesh->mesh, *volume);
+  const curvature::CurvatureField field = field_for(mesh, volume, arrays, iso, device, {"H", "K"});
+  MeasureColumns columns;
+  for (const measure::ObjectMeasures& m : measure::object_measures(mesh->mesh, field)) columns.add(m);
+  return columns.dict();
+}
+
+/// measure_labels(): the CLI's measure --labels, one entry per label.
+py::dict measure_labels_of(const VolumeArg& volume_arg, const py::object& labels_arg, py::object device) {
+  const volume::Volume& v = volume_of(volume_arg, "volume");
+  std::vector<std::int64_t> wanted;
+  auto add = [&](const py::handle& item) {
+    if (py::isinstance<py::bool_>(item) || !py::isinstance<py::int_>(item))
+      throw py::type_error("labels: expected int labels, not " + type_name_of(item));
+    const std::int64_t value = item.cast<std::int64_t>();
+    if (std::find(wanted.begin(), wanted.end(), value) != wanted.end())
+      throw py::value_error("labels: label " + std::to_string(value) + " is given twice");
+    wanted.push_back(value);
+  };
+  if (labels_arg.is_none()) {
+  } else if (py::isinstance<py::int_>(labels_arg) && !py::isinstance<py::bool_>(labels_arg)) {
+    add(labels_arg);
+  } else if (py::isinstance<py::sequence>(labels_arg) && !py::isinstance<py::str>(labels_arg)) {
+    for (const py::handle item : labels_arg.cast<py::sequence>()) add(item);
+    if (wanted.empty()) throw py::value_error("labels: empty; pass None for every label");
+  } else {
+    throw py::type_error("labels: expected None, an int or a sequence of ints, not " + type_name_of(labels_arg));
+  }
+  const std::vector<labels::Label> all = labels::label_map_labels(v);
+  std::vector<std::int64_t> missing;
+  const std::vector<labels::Label> picked = labels::pick_labels(all, wanted, missing);
+  if (picked.empty()) throw py::value_error("labels: none of the labels given is in the volume");
+  if (!missing.empty()) {
+    std::string list;
+    for (std::int64_t m : missing) list += (list.empty() ? "" : ", ") + std::to_string(m);
+    PyErr_WarnEx(PyExc_UserWarning, ("no voxel holds label " + list + "; left out").c_str(), 1);
+  }
+  const DeviceChoice dc = device_choice(device);
+  const int margin = labels::indicator_margin(curvature::kBinaryScaleVoxels);
+  std::vector<std::int64_t> label, components;
+  MeasureColumns columns;
+  for (const labels::Label& l : picked) {
+    const volume::Volume ind = labels::label_indicator(v, l, margin);
+    auto mesh = std::make_shared<PyMesh>();
+    {
+      py::gil_scoped_release release;
+      std::lock_guard<std::mutex> lock(device_lock);
+      mesh->mesh = dc.reference ? mc::extract_reference(ind, 0.5f, mc::Options{})
+                                : mc::extract(ind, 0.5f, opened_device(dc), mc::Options{});
+    }
+    mesh->isovalue = 0.5f;
+    if (mesh->mesh.triangles.empty()) continue;  // the label fills the box: no surface
+    const curvature::CurvatureField field =
+        estimate_of(mesh, &ind, py::none(), py::none(), py::none(), py::float_(0.5), py::none(), false, device).field;
+    const std::vector<measure::ObjectMeasures> objects = measure::object_measures(mesh->mesh, field);
+    label.push_back(l.value);
+    components.push_back(std::int64_t(objects.size()));
+    columns.add(measure::total(objects));
+    long long genus = 0;  // the sum of its components' genera (-1 when one is cut)
+    for (const auto& m : objects) genus = (genus < 0 || !m.closed) ? -1 : genus + m.genus();
+    columns.genus.back() = genus;
+  }
+  const py::ssize_t n = py::ssize_t(label.size());
+  py::dict out = columns.dict();
+  out["label"] = copy_array(label, {n});
+  out["components"] = copy_array(components, {n});
+  return out;
+}
+
+}  // namespace
+
+void bind_measure(py::module_& m) {
+  m.def("measure", &measure_of, py::arg("mesh"), py::arg("volume") = py::none(), py::kw_only(),
+        py::arg("arrays") = py::none(), py::arg("iso") = py::none(), py::arg("device") = py::none(),
+        R"doc(Shape measures of every connected component of `mesh` (isocurv measure; see
+docs/measure.md), largest area first, as a dict of numpy arrays with one entry per component:
+area, volume (enclosed; NaN for a component cut open), integral_H, integral_K (float64, world
+units), euler_characteristic, genus (-1 when open), vertices, triangles, unmeasured_vertices
+(int64), closed (uint8), gauss_bonnet_gap ((integral_K - 2 pi euler) / (2 pi max(1, |euler|)),
+NaN when open), box ((n, 6): xmin, xmax, ymin, ymax, zmin, zmax), mesh_area (the mesh's own
+triangles' area, where area is the smooth surface's), scale (the largest per-vertex smoothing
+scale, 0 without a Scale array) and resolved (uint8: 0 when the component is smaller than
+kResolvedExtent times that scale, its curvature integrals unreliable). arrays: the mesh's
+curvature (a dict as curvature() returns; H and K are read, Area and Unreliable when present);
+None estimates curvature(mesh, volume) with its defaults (the volume estimator with a volume).
+iso: the isovalue, with a volume, for a mesh without mesh.isovalue.)doc");
+
+  m.def("measure_labels", &measure_labels_of, py::arg("volume"), py::arg("labels") = py::none(),
+        py::kw_only(), py::arg("device") = py::none(),
+        R"doc(Shape measures of every label of the label map `volume` (isocurv measure --labels;
+see docs/labels.md): each label's surface at the half level of its own indicator (touching labels
+each closed), its curvature from the volume estimator on that indicator. A dict of numpy arrays
+with one entry per label, in ascending label order (or `labels`' order): label, components
+(int64) and the sums over the label's components of what measure() returns (area, volume,
+integral_H, integral_K, euler_characteristic, gauss_bonnet_gap, closed, vertices, triangles,
+unmeasured_vertices, box). labels: None (all), an int or a sequence of ints; labels the volume
+lacks are left out with a UserWarning. A float volume, or more than 65,535 labels, raises
+isocurv.Error; none of `labels` in the volume raises ValueError.)doc");
+}
+
+}  // namespace isocurv::python
