@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "core/vec3.h"
 
 namespace isocurv {
 namespace {
@@ -15,17 +16,12 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kIsoAzimuthDeg = 35;    // the iso view: from -y, turned about +z ...
 constexpr double kIsoElevationDeg = 30;  // ... then raised
 
-Vec add(const Vec& a, const Vec& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec scale(const Vec& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
-double dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec cross(const Vec& a, const Vec& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-Vec normalized(const Vec& a) {
-  const double n = std::sqrt(dot(a, a));
-  return n > 0 ? scale(a, 1 / n) : a;
-}
+using vec3::add;
+using vec3::sub;
+using vec3::scale;
+using vec3::dot;
+using vec3::cross;
+using vec3::normalized;
 
 /// Rodrigues: `v` turned by `deg` degrees about the unit `axis` (right-handed).
 Vec rotate(const Vec& v, const Vec& axis, double deg) {

@@ -1,3 +1,4 @@
+#include "core/vec3.h"
 #include "curvature/mesh_areas.h"
 
 #include <tbb/blocked_range.h>
@@ -15,11 +16,9 @@ int prev(int j) { return j == 0 ? 2 : j - 1; }
 bool repeated_index(const Tri& t) { return t[0] == t[1] || t[1] == t[2] || t[2] == t[0]; }
 
 using P3 = std::array<double, 3>;
-P3 sub(const P3& a, const P3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const P3& a, const P3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-P3 cross(const P3& a, const P3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
+using vec3::sub;
+using vec3::dot;
+using vec3::cross;
 
 }  // namespace
 

@@ -16,26 +16,17 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/vec3.h"
 #include "io/vtk_errors.h"
 
 namespace isocurv::lines {
 namespace {
 
 using V3 = std::array<double, 3>;
-V3 sub(const V3 &a, const V3 &b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-double dot(const V3 &a, const V3 &b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-V3 cross(const V3 &a, const V3 &b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-          a[0] * b[1] - a[1] * b[0]};
-}
-V3 normalized(const V3 &a) {
-  const double n = std::sqrt(dot(a, a));
-  return n > 0 ? V3{a[0] / n, a[1] / n, a[2] / n} : a;
-}
+using vec3::sub;
+using vec3::dot;
+using vec3::cross;
+using vec3::normalized;
 
 struct Style {
   const char *id;

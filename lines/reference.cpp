@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "core/vec3.h"
 #include "curvature/vertex_corners.h"
 
 namespace isocurv::lines {
@@ -11,22 +12,13 @@ namespace {
 
 using V3 = std::array<double, 3>;
 
-V3 to_v3(const Vec3f &a) { return {a[0], a[1], a[2]}; }
+using vec3::to_double;
 Vec3f to_f3(const V3 &a) { return {float(a[0]), float(a[1]), float(a[2])}; }
-double dot(const V3 &a, const V3 &b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-V3 sub(const V3 &a, const V3 &b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-V3 add(const V3 &a, const V3 &b) {
-  return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
-}
-V3 scale(const V3 &a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
-V3 cross(const V3 &a, const V3 &b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-          a[0] * b[1] - a[1] * b[0]};
-}
+using vec3::dot;
+using vec3::sub;
+using vec3::add;
+using vec3::scale;
+using vec3::cross;
 double lerp(double a, double b, double t) { return a + t * (b - a); }
 double clamp01(double x) { return std::min(1.0, std::max(0.0, x)); }
 
@@ -37,12 +29,12 @@ struct VertexView {
 
 VertexView vertex_view(const Mesh &mesh, const curvature::CurvatureField &f,
                        const Camera &camera, std::size_t i, bool with_dcurv) {
-  const V3 p = to_v3(mesh.positions[i]);
+  const V3 p = to_double(mesh.positions[i]);
   const V3 v = camera.view_vector({p[0], p[1], p[2]});
   VertexView q;
-  q.ndotv = dot(to_v3(f.normals[i]), v);
+  q.ndotv = dot(to_double(f.normals[i]), v);
   if (f.dir1.empty()) return q;  // contours alone, from a field without directions
-  const double u = dot(v, to_v3(f.dir1[i])), w = dot(v, to_v3(f.dir2[i]));
+  const double u = dot(v, to_double(f.dir1[i])), w = dot(v, to_double(f.dir2[i]));
   const double u2 = u * u, w2 = w * w, sin2 = u2 + w2;
   const double k1 = f.k1[i], k2 = f.k2[i];
   q.kr = k1 * u2 + k2 * w2;
@@ -98,7 +90,7 @@ std::uint64_t key_of(const Crossing &c) {
 }
 
 V3 point_at(const Mesh &mesh, const Crossing &c) {
-  const V3 a = to_v3(mesh.positions[c.lo]), b = to_v3(mesh.positions[c.hi]);
+  const V3 a = to_double(mesh.positions[c.lo]), b = to_double(mesh.positions[c.hi]);
   return add(a, scale(sub(b, a), c.t));
 }
 
@@ -157,8 +149,8 @@ Segments extract_reference(const Mesh &mesh,
     const Tri &v = mesh.triangles[fi];
     if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0])
       continue;
-    const V3 p[3] = {to_v3(mesh.positions[v[0]]), to_v3(mesh.positions[v[1]]),
-                     to_v3(mesh.positions[v[2]])};
+    const V3 p[3] = {to_double(mesh.positions[v[0]]), to_double(mesh.positions[v[1]]),
+                     to_double(mesh.positions[v[2]])};
     const V3 normal2 =
         cross(sub(p[1], p[0]), sub(p[2], p[0])); // twice the area
     const double area2 = std::sqrt(dot(normal2, normal2));
@@ -243,12 +235,12 @@ Segments extract_reference(const Mesh &mesh,
       double e[3];
       V3 mean_dir{0, 0, 0};
       bool ok = true;
-      const V3 dir0 = to_v3(ridge ? field.dir1[v[0]] : field.dir2[v[0]]);
+      const V3 dir0 = to_double(ridge ? field.dir1[v[0]] : field.dir2[v[0]]);
       for (int j = 0; j < 3; ++j) {
         const std::uint32_t i = v[j];
         const double k1 = field.k1[i], k2 = field.k2[i];
         ok = ok && (ridge ? k1 > std::fabs(k2) : k2 < -std::fabs(k1));
-        const V3 d = to_v3(ridge ? field.dir1[i] : field.dir2[i]);
+        const V3 d = to_double(ridge ? field.dir1[i] : field.dir2[i]);
         const double sign = dot(d, dir0) < 0 ? -1 : 1;
         e[j] = sign * (ridge ? field.dcurv[i][0] : field.dcurv[i][3]);
         mean_dir = add(mean_dir, scale(d, sign));

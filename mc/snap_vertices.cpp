@@ -1,3 +1,5 @@
+#include "core/union_find.h"
+#include "core/vec3.h"
 #include "mc/snap_vertices.h"
 
 #include <algorithm>
@@ -19,12 +21,10 @@ constexpr std::uint64_t kField = 0xfffff;  // one coordinate of an edge key (20 
 
 using Vec3d = std::array<double, 3>;
 
-Vec3d to_d(const Vec3f& v) { return {v[0], v[1], v[2]}; }
-Vec3d sub(const Vec3d& a, const Vec3d& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3d cross(const Vec3d& a, const Vec3d& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+using vec3::to_double;
+using vec3::sub;
+using vec3::cross;
+using vec3::dot;
 
 // Twice the area vector of the triangle (a, b, c).
 Vec3d area_vector(const Vec3d& a, const Vec3d& b, const Vec3d& c) { return cross(sub(b, a), sub(c, a)); }
@@ -74,11 +74,6 @@ int parity(std::uint64_t p) {
   return int(((p >> 42) & 1u) | (((p >> 22) & 1u) << 1) | (((p >> 2) & 1u) << 2));
 }
 
-int find_root(std::vector<int>& parent, int i) {
-  while (parent[i] != i) i = parent[i] = parent[parent[i]];
-  return i;
-}
-
 // A triangle of a group's star that keeps one member: (m, a, b) in winding order.
 struct Kept {
   std::uint32_t tri, m, a, b;
@@ -91,7 +86,8 @@ struct Worker {
   std::vector<std::uint32_t> vertices, tris, dropped, kept_tris, order;
   std::vector<Vec3f> outer;
   std::vector<Kept> kept;
-  std::vector<int> parent, fan_of, root_fan, size, open;
+  UnionFind fans{0};  // kept triangles joined across spokes
+  std::vector<int> fan_of, root_fan, size, open;
   std::vector<Vec3f> where_f;
   SnapReport report;
 };
@@ -184,12 +180,11 @@ class Snapper {
 
     // Fans: kept triangles joined across spokes.
     const int nk = static_cast<int>(kept.size());
-    std::vector<int>& parent = w.parent;
-    parent.resize(nk);
-    std::iota(parent.begin(), parent.end(), 0);
+    UnionFind& fans = w.fans;
+    fans.reset(std::size_t(nk));
     for (int i = 0; i < nk; ++i)
       for (int p : {kept[i].partner_a, kept[i].partner_b})
-        if (p >= 0) parent[find_root(parent, i)] = find_root(parent, p);
+        if (p >= 0) fans.unite(std::uint32_t(i), std::uint32_t(p));
     std::vector<int>& fan_of = w.fan_of;
     std::vector<int>& root_fan = w.root_fan;
     fan_of.assign(nk, -1);
@@ -197,7 +192,7 @@ class Snapper {
     int nfans = 0;
     for (int i = 0; i < nk; ++i) {
       if (kept[i].twin >= 0) continue;
-      int& f = root_fan[find_root(parent, i)];
+      int& f = root_fan[fans.find(std::uint32_t(i))];
       if (f < 0) f = nfans++;
       fan_of[i] = f;
     }
@@ -233,7 +228,7 @@ class Snapper {
       where_f[f] = {float(where[f][0]), float(where[f][1]), float(where[f][2])};
     for (int f = 0; f < nfans; ++f)  // fans facing the same way (symmetric sheets) would coincide
       for (int g = 0; g < f; ++g) {
-        const Vec3d d = sub(to_d(where_f[f]), to_d(where_f[g]));
+        const Vec3d d = sub(to_double(where_f[f]), to_double(where_f[g]));
         if (where_f[f] == where_f[g] || dot(d, d) < 0.25 * offset_ * offset_) return false;
       }
 
@@ -242,10 +237,10 @@ class Snapper {
       for (int i = 0; i < nk; ++i) {
         const Kept& k = kept[i];
         if (fan_of[i] < 0) continue;
-        const Vec3d p = to_d(where_f[fan_of[i]]);
-        const Vec3d after = area_vector(p, to_d(mesh_.positions[k.a]), to_d(mesh_.positions[k.b]));
-        const Vec3d before = area_vector(to_d(mesh_.positions[k.m]), to_d(mesh_.positions[k.a]),
-                                         to_d(mesh_.positions[k.b]));
+        const Vec3d p = to_double(where_f[fan_of[i]]);
+        const Vec3d after = area_vector(p, to_double(mesh_.positions[k.a]), to_double(mesh_.positions[k.b]));
+        const Vec3d before = area_vector(to_double(mesh_.positions[k.m]), to_double(mesh_.positions[k.a]),
+                                         to_double(mesh_.positions[k.b]));
         if (0.5 * std::sqrt(dot(after, after)) < min_area_ || dot(after, before) < 0) return false;
       }
       return true;
@@ -309,7 +304,7 @@ class Snapper {
       const std::uint64_t other = point_key((edge & kSnapUpper) ? edge & ~kSnapUpper : edge | kSnapUpper);
       const Vec3d d = sub(voxel_position(other, frame_), at);
       Vec3f& p = mesh_.positions[cand_[i].vertex];
-      const Vec3d now = sub(to_d(p), at);
+      const Vec3d now = sub(to_double(p), at);
       if (dot(now, now) >= push * push * dot(d, d)) continue;
       old.emplace_back(cand_[i].vertex, p);
       p = {float(at[0] + push * d[0]), float(at[1] + push * d[1]), float(at[2] + push * d[2])};
@@ -324,10 +319,10 @@ class Snapper {
       for (std::uint32_t k = first_[i]; k < first_[i + 1]; ++k) {
         const Tri& t = mesh_.triangles[incident_[k]];
         if (t[0] == kNone) continue;
-        const Vec3d before = area_vector(to_d(position_before(t[0])), to_d(position_before(t[1])),
-                                         to_d(position_before(t[2])));
-        const Vec3d after = area_vector(to_d(mesh_.positions[t[0]]), to_d(mesh_.positions[t[1]]),
-                                        to_d(mesh_.positions[t[2]]));
+        const Vec3d before = area_vector(to_double(position_before(t[0])), to_double(position_before(t[1])),
+                                         to_double(position_before(t[2])));
+        const Vec3d after = area_vector(to_double(mesh_.positions[t[0]]), to_double(mesh_.positions[t[1]]),
+                                        to_double(mesh_.positions[t[2]]));
         if (dot(after, before) <= 0 || 0.5 * std::sqrt(dot(after, after)) < min_area_) {
           sound = false;
           break;

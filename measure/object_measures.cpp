@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/mesh_measures.h"
 #include "core/union_find.h"
+#include "core/vec3.h"
 
 namespace isocurv::measure {
 namespace {
@@ -25,16 +26,14 @@ bool usable(const Tri& t, std::size_t nv) {
 
 using V3 = std::array<double, 3>;
 
-V3 sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-V3 cross(const V3& a, const V3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-V3 to_v3(const Vec3f& p) { return {double(p[0]), double(p[1]), double(p[2])}; }
+using vec3::sub;
+using vec3::dot;
+using vec3::cross;
+using vec3::to_double;
 
 /// The unit normal of a field normal, or zero when it is missing, not finite or not near unit.
 V3 unit_normal(const Vec3f& n) {
-  const V3 v = to_v3(n);
+  const V3 v = to_double(n);
   const double len = std::sqrt(dot(v, v));
   if (!(len > 0.5 && len < 1.5)) return {0, 0, 0};
   return {v[0] / len, v[1] / len, v[2] / len};
@@ -216,17 +215,17 @@ std::vector<ObjectMeasures> object_measures(const Mesh& mesh, const curvature::C
         double h[3], k[3];
         for (int c = 0; c < 3; ++c) {
           const std::uint32_t i = t[c];
-          x[c] = to_v3(position(i));
+          x[c] = to_double(position(i));
           n[c] = unit_normal(field.normals[i]);
           const bool measured = !(field.unreliable.size() == nv && field.unreliable[i]) &&
                                 std::isfinite(field.H[i]) && std::isfinite(field.K[i]);
           h[c] = measured ? double(field.H[i]) : 0.0;
           k[c] = measured ? double(field.K[i]) : 0.0;
         }
-        patch[ti] = integrate_patch(x, n, h, k, to_v3(position(first)));
+        patch[ti] = integrate_patch(x, n, h, k, to_double(position(first)));
         if (moved) {
-          for (int c = 0; c < 3; ++c) x[c] = to_v3(mesh.positions[t[c]]);
-          own[ti] = integrate_patch(x, n, h, k, to_v3(mesh.positions[first]));
+          for (int c = 0; c < 3; ++c) x[c] = to_double(mesh.positions[t[c]]);
+          own[ti] = integrate_patch(x, n, h, k, to_double(mesh.positions[first]));
         }
       }
     });

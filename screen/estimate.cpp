@@ -12,6 +12,7 @@
 #include "core/cl_launch.h"
 #include "core/device_call.h"
 #include "core/error.h"
+#include "core/vec3.h"
 #include "curvature/prantl.h"
 #include "screen/detail/kernels.h"
 
@@ -58,8 +59,8 @@ Rules rules_for(const GBuffer& g, const ScreenOptions& o) {
 }
 
 using A3 = std::array<double, 3>;
-A3 d3(const Vec3f& v) { return {v[0], v[1], v[2]}; }
-double dot(const A3& a, const A3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+using vec3::to_double;
+using vec3::dot;
 
 struct Pixel {
   const GBuffer& g;
@@ -79,7 +80,7 @@ struct Pixel {
   }
   bool triangle(int a, int b, double& h, double& k) const {
     if (a < 0 || b < 0) return false;
-    const A3 n0 = d3(g.normal[c]), n1 = d3(g.normal[a]), n2 = d3(g.normal[b]);
+    const A3 n0 = to_double(g.normal[c]), n1 = to_double(g.normal[a]), n2 = to_double(g.normal[b]);
     if (o.max_normal_angle_deg > 0) {
       const double cmax = std::cos(o.max_normal_angle_deg * M_PI / 180);
       if (dot(n0, n1) < cmax || dot(n1, n2) < cmax || dot(n2, n0) < cmax) return false;
@@ -131,7 +132,7 @@ void prantl_pixel(const Pixel& px, ScreenCurvature& out) {
 void mellado_pixel(const Pixel& px, ScreenCurvature& out) {
   const GBuffer& g = px.g;
   const int r = px.o.mellado_radius;
-  const A3 pc = d3(g.position[px.c]);
+  const A3 pc = to_double(g.position[px.c]);
   auto visit = [&](auto&& f) {
     for (int j = -r; j <= r; ++j)
       for (int i = -r; i <= r; ++i) {
@@ -140,8 +141,8 @@ void mellado_pixel(const Pixel& px, ScreenCurvature& out) {
           continue;
         const int q = qx + px.r.width * qy;
         if (!g.valid[q] || std::abs(px.r.window(g.depth[q]) - px.dc) > px.r.tau) continue;
-        const A3 p = d3(g.position[q]);
-        f(A3{p[0] - pc[0], p[1] - pc[1], p[2] - pc[2]}, d3(g.normal[q]));
+        const A3 p = to_double(g.position[q]);
+        f(A3{p[0] - pc[0], p[1] - pc[1], p[2] - pc[2]}, to_double(g.normal[q]));
       }
   };
   double h2 = 0;

@@ -5,16 +5,15 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/vec3.h"
 
 namespace isocurv::screen {
 namespace {
 
 using V = std::array<double, 3>;
-V sub(const V& a, const V& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const V& a, const V& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-V cross(const V& a, const V& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
+using vec3::sub;
+using vec3::dot;
+using vec3::cross;
 V unit(const V& a) {
   const double n = std::sqrt(dot(a, a));
   return n > 0 ? V{a[0] / n, a[1] / n, a[2] / n} : V{0, 0, 0};

@@ -8,17 +8,16 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/vec3.h"
 
 namespace isocurv::screen {
 namespace {
 
 using V = std::array<double, 3>;
-V sub(const V& a, const V& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const V& a, const V& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-V cross(const V& a, const V& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-V d3(const Vec3f& v) { return {v[0], v[1], v[2]}; }
+using vec3::sub;
+using vec3::dot;
+using vec3::cross;
+using vec3::to_double;
 
 constexpr int kBand = 16;  // image rows per parallel task
 
@@ -55,7 +54,7 @@ GBuffer rasterise(const Mesh& mesh, const std::vector<Vec3f>& normals, const Vie
     bool ok = true;
     for (int j = 0; j < 3; ++j) {
       double x, y, z;
-      if (!frame.project(d3(mesh.positions[t[j]]), x, y, z) || (!frame.ortho && z < g.near))
+      if (!frame.project(to_double(mesh.positions[t[j]]), x, y, z) || (!frame.ortho && z < g.near))
         ok = false;
       x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
     }
@@ -78,8 +77,8 @@ GBuffer rasterise(const Mesh& mesh, const std::vector<Vec3f>& normals, const Vie
       const int y0 = std::max(bx.y0, ya), y1 = std::min(bx.y1, yb);
       if (bx.x0 > bx.x1 || y0 > y1) continue;
       const Tri& t = mesh.triangles[f];
-      const V p0 = d3(mesh.positions[t[0]]), e1 = sub(d3(mesh.positions[t[1]]), p0),
-              e2 = sub(d3(mesh.positions[t[2]]), p0);
+      const V p0 = to_double(mesh.positions[t[0]]), e1 = sub(to_double(mesh.positions[t[1]]), p0),
+              e2 = sub(to_double(mesh.positions[t[2]]), p0);
       for (int y = y0; y <= y1; ++y)
         for (int x = bx.x0; x <= bx.x1; ++x) {
           V o, d;

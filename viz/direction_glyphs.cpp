@@ -14,6 +14,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/vec3.h"
 #include "io/vtk_errors.h"
 
 namespace isocurv::viz {
@@ -25,9 +26,7 @@ constexpr double kLengthOfSpacing = 0.7;      // default segment length
 constexpr double kLiftEdges = 0.15;           // off the surface along the normal
 constexpr double kMaxCellsPerAxis = 1 << 20;  // the cell key holds 21 bits per axis
 
-double length(const Vec3f& v) {
-  return std::sqrt(double(v[0]) * v[0] + double(v[1]) * v[1] + double(v[2]) * v[2]);
-}
+double length(const Vec3f& v) { return std::sqrt(vec3::wide_dot(v, v)); }
 
 bool usable(const Vec3f& v) {
   const double l = length(v);

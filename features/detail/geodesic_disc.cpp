@@ -1,3 +1,4 @@
+#include "core/vec3.h"
 #include "features/detail/geodesic_disc.h"
 
 #include <algorithm>
@@ -11,13 +12,8 @@ namespace {
 
 using V3 = std::array<double, 3>;
 
-V3 cross(const double a[3], const double b[3]) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-          a[0] * b[1] - a[1] * b[0]};
-}
-double norm(const V3 &v) {
-  return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-}
+using vec3::cross;
+using vec3::norm;
 
 /// How much the linear interpolation of a distance over a triangle exceeds the
 /// distance itself, on average over the triangle: a distance d from a far
@@ -201,12 +197,8 @@ GeodesicDisc geodesic_disc(const Mesh &mesh, const MeshGraph &graph,
         continue;
       const Vec3f *x[3] = {&mesh.positions[t[0]], &mesh.positions[t[1]],
                            &mesh.positions[t[2]]};
-      const double e1[3] = {double((*x[1])[0]) - (*x[0])[0],
-                            double((*x[1])[1]) - (*x[0])[1],
-                            double((*x[1])[2]) - (*x[0])[2]};
-      const double e2[3] = {double((*x[2])[0]) - (*x[0])[0],
-                            double((*x[2])[1]) - (*x[0])[1],
-                            double((*x[2])[2]) - (*x[0])[2]};
+      const V3 e1 = vec3::sub(vec3::to_double(*x[1]), vec3::to_double(*x[0]));
+      const V3 e2 = vec3::sub(vec3::to_double(*x[2]), vec3::to_double(*x[0]));
       const double area = 0.5 * norm(cross(e1, e2));
       // Unreached corners lie beyond the march's limit: far outside.
       double d[3];
@@ -215,7 +207,7 @@ GeodesicDisc geodesic_disc(const Mesh &mesh, const MeshGraph &graph,
         reached = reached && known(t[c]);
         d[c] = known(t[c]) ? s.dist[t[c]] : 2 * limit;
       }
-      const double shift = reached ? interpolation_excess(e1, e2, d) : 0;
+      const double shift = reached ? interpolation_excess(e1.data(), e2.data(), d) : 0;
       out.area += area * positive_fraction(r - d[0] + shift, r - d[1] + shift,
                                            r - d[2] + shift);
     }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/vec3.h"
 #include "curvature/detail/local_geometry.h"
 
 namespace isocurv::features::detail {
@@ -14,11 +15,9 @@ using V = std::array<double, 3>;
 V add(const V& a, const V& b, double s = 1) {
   return {a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2]};
 }
-double dot(const V& a, const V& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-V cross(const V& a, const V& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double norm(const V& a) { return std::sqrt(dot(a, a)); }
+using vec3::dot;
+using vec3::cross;
+using vec3::norm;
 
 /// The volume read in world space: the signed field and its world gradient at a world point.
 struct WorldField {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/vec3.h"
 
 namespace isocurv {
 namespace {
@@ -15,11 +16,9 @@ namespace {
 using Vec = std::array<double, 3>;
 constexpr double kPi = 3.14159265358979323846;
 
-double dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec cross(const Vec& a, const Vec& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
+using vec3::dot;
+using vec3::sub;
+using vec3::cross;
 
 void expect_vec(const Vec& got, const Vec& want, double tol = 1e-12) {
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(got[i], want[i], tol) << "component " << i;

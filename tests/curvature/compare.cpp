@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/vec3.h"
 #include "test_meshes.h"
 
 namespace isocurv::test {
@@ -15,9 +16,6 @@ double angle(const Vec3f& a, const Vec3f& b, bool as_lines) {
   if (la == 0 || lb == 0) return la == lb ? 0 : M_PI;
   const double c = std::clamp(d / (la * lb), -1.0, 1.0);
   return std::acos(as_lines ? std::abs(c) : c);
-}
-double dot(const Vec3f& a, const Vec3f& b) {
-  return double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2];
 }
 }  // namespace
 
@@ -44,8 +42,8 @@ FieldDifference compare(const curvature::CurvatureField& x, const curvature::Cur
       d.dir_angle = std::max(d.dir_angle, angle(x.dir1[i], ref.dir1[i], true));
       ++d.dir_count;
       // dcurv = (C111, C112, C122, C222) flips with dir1 (odd powers of it) and dir2.
-      const double s1 = dot(x.dir1[i], ref.dir1[i]) < 0 ? -1 : 1;
-      const double s2 = dot(x.dir2[i], ref.dir2[i]) < 0 ? -1 : 1;
+      const double s1 = vec3::wide_dot(x.dir1[i], ref.dir1[i]) < 0 ? -1 : 1;
+      const double s2 = vec3::wide_dot(x.dir2[i], ref.dir2[i]) < 0 ? -1 : 1;
       const double sign[4] = {s1, s2, s1, s2};
       for (int q = 0; q < 4; ++q)
         dc.push_back(sign[q] * x.dcurv[i][q]), dc_ref.push_back(ref.dcurv[i][q]);

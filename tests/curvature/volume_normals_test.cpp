@@ -7,6 +7,7 @@
 
 #include "core/cl_device.h"
 #include "core/mesh_measures.h"
+#include "core/vec3.h"
 #include "curvature/estimate.h"
 #include "mc/extract.h"
 #include "tests/mc/volumes.h"
@@ -15,9 +16,6 @@
 namespace isocurv::test {
 namespace {
 
-double dot(const Vec3f& a, const Vec3f& b) {
-  return double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2];
-}
 
 // A plate of value 128, one voxel thick (z = 8), a one-voxel gap (z = 9), then a slab of 255
 // (z = 10..15), both over x, y in [4, 19]; 0 elsewhere. At isovalue 40 the central differences
@@ -43,7 +41,7 @@ TEST(VolumeNormals, ThinPlateFallsBackToFaceNormals) {
   // The plain gradient normals point against the faces on the plate's upper face.
   const std::vector<Vec3f> plain = volume::gradient_normals(v, mesh.positions);
   std::size_t against = 0;
-  for (std::size_t i = 0; i < plain.size(); ++i) against += dot(plain[i], faces[i]) <= 0;
+  for (std::size_t i = 0; i < plain.size(); ++i) against += vec3::wide_dot(plain[i], faces[i]) <= 0;
   ASSERT_GT(against, 50u) << "the plate's upper face (16 x 16 vertices) has misleading gradients";
 
   const volume::MeshNormals checked = volume::gradient_normals_for_mesh(v, mesh);
@@ -51,9 +49,9 @@ TEST(VolumeNormals, ThinPlateFallsBackToFaceNormals) {
   EXPECT_GE(checked.fallbacks(), against);
   EXPECT_GT(checked.opposed, 50u);
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-    ASSERT_GT(dot(checked.normals[i], faces[i]), 0.0)
+    ASSERT_GT(vec3::wide_dot(checked.normals[i], faces[i]), 0.0)
         << "vertex " << i << " disagrees with its faces";
-    ASSERT_NEAR(dot(checked.normals[i], checked.normals[i]), 1.0, 1e-5) << "vertex " << i;
+    ASSERT_NEAR(vec3::wide_dot(checked.normals[i], checked.normals[i]), 1.0, 1e-5) << "vertex " << i;
   }
   // Elsewhere the gradient is kept: on the slab's upper face (z = 15.84) the normals are the
   // gradient's, exactly +z.
@@ -104,8 +102,8 @@ TEST(VolumeNormals, CapVerticesTakeTheBoxFacesNormal) {
       if (corner) continue;  // beyond two faces: the faces' mean normal
       Vec3f face{0, 0, 0};
       face[k] = low ? -1.0f : 1.0f;
-      EXPECT_GT(dot(capped.normals[i], face), 0.9999) << i;
-      off_before += dot(plain.normals[i], face) < 0.9;
+      EXPECT_GT(vec3::wide_dot(capped.normals[i], face), 0.9999) << i;
+      off_before += vec3::wide_dot(plain.normals[i], face) < 0.9;
       ++checked;
     }
   }
@@ -128,7 +126,7 @@ TEST(VolumeNormals, ZeroGradientIsWeak) {
   EXPECT_GT(checked.weak, 100u) << "both faces of the gap";
   const std::vector<Vec3f> faces = area_weighted_normals(mesh);
   for (std::size_t i = 0; i < mesh.positions.size(); ++i)
-    ASSERT_GT(dot(checked.normals[i], faces[i]), 0.0) << "vertex " << i;
+    ASSERT_GT(vec3::wide_dot(checked.normals[i], faces[i]), 0.0) << "vertex " << i;
 }
 
 TEST(VolumeNormals, SmoothVolumeKeepsEveryGradientNormal) {
