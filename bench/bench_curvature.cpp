@@ -74,14 +74,16 @@ void run_volume_case(const std::string& name, const volume::Volume& v, float iso
   curvature::VolumeEstimateStats stats;
   auto mesh_estimator = [&] { curvature::estimate(mesh, dev, {}, nullptr); };
   auto at = [&](double sigma) {
-    return [&, sigma] { curvature::volume_estimate(mesh, v, iso, sigma, ao, dev, &stats); };
+    curvature::VolumeOptions o = curvature::fixed_scale(sigma, ao);
+    o.point = curvature::VolumePoint::vertex;
+    return [&, o] { curvature::volume_estimate(mesh, v, iso, o, dev, &stats); };
   };
   // The default: the per-vertex scale (curvature/adaptive_scale.h), as `curvature` runs it.
   curvature::VolumeOptions defaults;
   defaults.sigma = choice.scale;
   defaults.ao_scale = ao;
   defaults.adaptive = choice.model;
-  if (choice.binary) defaults.point = curvature::VolumePoint::surface;
+  defaults.point = curvature::resolved_point(curvature::VolumePoint::automatic, v);
   auto per_vertex = [&] { curvature::volume_estimate(mesh, v, iso, defaults, dev, &stats); };
   auto poly = io::to_polydata(mesh, nullptr);
   auto vtk = [&] {

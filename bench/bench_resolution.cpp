@@ -13,7 +13,7 @@
 //
 // PATH defaults to ../shared/datasets/lobster/lobster.vol; V to its suggested isovalue; the
 // scales (world units) to 2 and 4 voxels beside the default; --surface evaluates at the smoothed
-// surface's points (curvature::Options::Point::surface) instead of the vertices.
+// surface's points (curvature::VolumePoint::surface) instead of the vertices.
 #include <openvdb/openvdb.h>
 #include <tbb/global_control.h>
 
@@ -92,7 +92,7 @@ Estimate estimate(const volume::Volume& v, float iso, double scale, Device& dev,
   o.estimator = curvature::Estimator::volume;
   o.scale = scale;  // 0: the default, per vertex
   o.ao_scale = curvature::default_ao_scale(e.mesh);
-  if (surface) o.volume_point = curvature::Options::Point::surface;
+  if (surface) o.volume_point = curvature::VolumePoint::surface;
   const auto t0 = std::chrono::steady_clock::now();
   e.field = curvature::estimate_field(e.mesh, {&v, iso}, &dev, o);
   e.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

@@ -135,9 +135,7 @@ CurvatureField estimate_field(const Mesh& mesh, const VolumeSource& source, Devi
         r.parameters.emplace_back("scale", vo.sigma);
       }
       r.parameters.emplace_back("ao_scale", options.ao_scale);
-      if (options.volume_point == Options::Point::surface ||
-          (options.volume_point == Options::Point::automatic && is_binary(*source.volume)))
-        vo.point = VolumePoint::surface;
+      vo.point = resolved_point(options.volume_point, *source.volume);
       r.notes.emplace_back("point", vo.point == VolumePoint::surface ? "surface" : "vertex");
       VolumeEstimateStats st;
       field = device ? volume_estimate(mesh, *source.volume, source.isovalue, vo, *device, &st)

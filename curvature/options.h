@@ -45,20 +45,34 @@ enum class Estimator {
   meyer,
 };
 
+/// Where the volume estimator takes each vertex's curvature (curvature/volume_estimate.h).
+enum class VolumePoint {
+  /// surface on binary volumes (curvature::is_binary), vertex otherwise (resolved_point).
+  automatic,
+  /// The level set through the vertex: for grey-level volumes, whose marching-cubes vertices lie
+  /// within the noise of the surface.
+  vertex,
+  /// The smoothed isosurface where the vertex's gradient line meets it (kNewtonSteps Newton
+  /// steps, at most kMaxShiftVoxels), its curvatures those of the parallel surface about
+  /// sigma^2 H further out (k / (1 + e k), e as kSurfaceY1 and kSurfaceY2 say), undoing the
+  /// smoothing's shrinkage: for binary volumes, whose vertices sit on the voxel staircase, up to
+  /// half a voxel off the surface (evaluated there, a torus of tube radius 4 voxels would be off
+  /// by 12%). The field's surface_points are those surface points, for measure::object_measures.
+  surface,
+};
+
 struct Options {
   /// Which estimator estimate_field runs (estimate() and estimate_reference() are Rusinkiewicz's).
   Estimator estimator = Estimator::rusinkiewicz;
   /// Volume estimator: the Gaussian's standard deviation sigma, world units; 0 (the default)
   /// chooses it from the data (curvature/auto_scale.h). Ignored by the mesh estimators.
   double scale = 0;
-  /// Volume estimator: a vertex whose smoothed surface vanishes at the scale (a structure thinner
-  /// than about twice the scale) is measured at half the scale, and so on down to one voxel
-  /// (curvature/volume_estimate.h). false: such vertices are Unreliable (--scale S1,S2,...).
+  /// Volume estimator: a vertex the scale does not fit (its smoothed surface eroded or merged with
+  /// another) is measured at finer scales, down to a floor, as curvature/volume_estimate.h
+  /// states. false: such vertices are Unreliable (--scale S1,S2,...).
   bool finer_scales = true;
-  /// Volume estimator: where each vertex's curvature is taken (curvature/volume_estimate.h,
-  /// VolumePoint). automatic (the default): the smoothed isosurface on binary volumes
-  /// (curvature::is_binary), the level set through the vertex otherwise.
-  enum class Point { automatic, vertex, surface } volume_point = Point::automatic;
+  /// Volume estimator: where each vertex's curvature is taken (VolumePoint above).
+  VolumePoint volume_point = VolumePoint::automatic;
   /// Per-vertex outward normals supplied from outside (e.g. the volume gradient), one per mesh
   /// vertex; they need not be unit length (they are normalised). A zero or non-finite entry falls
   /// back to the mesh normal of that vertex. nullptr (the default): normals from the mesh faces.

@@ -54,24 +54,11 @@
 #include "core/surface_piece.h"
 #include "curvature/adaptive_scale.h"
 #include "curvature/curvature_field.h"
+#include "curvature/options.h"
 #include "volume/volume.h"
 
 namespace isocurv::curvature {
 
-/// Where the smoothed field's level set is taken at each vertex (see above).
-enum class VolumePoint {
-  /// The level set through the vertex: for grey-level volumes, whose marching-cubes vertices lie
-  /// within the noise of the surface.
-  vertex,
-  /// The smoothed isosurface where the vertex's gradient line meets it (kNewtonSteps Newton
-  /// steps, at most kMaxShiftVoxels), its curvatures those of the parallel surface about
-  /// sigma^2 H further out (k / (1 + e k), e as kSurfaceY1 and kSurfaceY2 say), undoing the smoothing's
-  /// shrinkage: for binary volumes,
-  /// whose vertices sit on the voxel staircase, up to half a voxel off the surface (evaluated
-  /// there, a torus of tube radius 4 voxels would be off by 12%). The field's surface_points
-  /// are those surface points (kSurfaceY1, kSurfaceY2), for measure::object_measures.
-  surface,
-};
 /// VolumePoint::surface: the smoothing's shrinkage at a point of the smoothed isosurface of mean
 /// curvature H, with y = sigma^2 H^2: sigma^2 H (1 - kSurfaceY1 y + kSurfaceY2 y^2) (the factor at
 /// least 1/2). The surface point (CurvatureField::surface_points) lies that far out along the
@@ -130,7 +117,9 @@ struct VolumeOptions {
   /// so that each scale shows only what it resolves); the Scale array is then absent, and
   /// `adaptive` is ignored.
   bool finer_scales = true;
-  VolumePoint point = VolumePoint::vertex;
+  /// Where each vertex's curvature is taken (curvature/options.h, VolumePoint); automatic (the
+  /// default): resolved_point's choice.
+  VolumePoint point = VolumePoint::automatic;
   /// The per-vertex scale from the data and the shape (curvature/adaptive_scale.h; the default
   /// of estimate_field): the noise model of the volume. Absent: every vertex starts at sigma.
   std::optional<NoiseModel> adaptive;
@@ -147,38 +136,35 @@ struct VolumeOptions {
 };
 
 /// The volume estimator on `device` (float; the same steps as volume_estimate_reference) for the
-/// surface at `isovalue` of `volume` from which `mesh` was extracted. Only the bricks the vertices
-/// need are gathered and sent to the device, where the prefilter's passes
-/// (curvature/volume_kernels.cl, smooth_axis) run before the per-vertex kernel. Deterministic.
-/// Calls on one device are serialised. Throws isocurv::Error when options.sigma is not positive
-/// and finite, larger than the volume, under volume::kMinScaleVoxels voxels of the coarsest axis,
-/// or so large against a spacing that it would exceed volume::kMaxPrefilterDeviation voxels; when
-/// the grid transform is not affine with orthogonal axes; for invalid meshes (check_input); or on
-/// an OpenCL failure.
+/// surface at `isovalue` of `volume` from which `mesh` was extracted: one CurvatureField entry per
+/// mesh vertex, world units (curvatures in 1 / world units, Scale in world units), normals outward
+/// (volume.inside). Only the bricks the vertices need are gathered and sent to the device, where
+/// the passes of curvature/detail/volume_passes.h run (plan, gather, smooth, pad, evaluate, read
+/// back) once per scale of the per-vertex choice.
+/// Deterministic: the same inputs give the same bits at every work-group size and on every piece
+/// of a distributed surface (options.piece).
+/// Threading: calls on one device are serialised (one mutex per device); calls on different
+/// devices may run in parallel. `stats` (optional) receives what the call did.
+/// Errors (isocurv::Error, nothing written to `stats`): options.sigma not positive and finite,
+/// larger than the volume, under volume::kMinScaleVoxels voxels of the coarsest axis, or so large
+/// against a spacing that it would exceed volume::kMaxPrefilterDeviation voxels; ao_scale not
+/// finite; a grid transform that is not affine with orthogonal axes; an invalid mesh
+/// (check_input); an OpenCL failure (core/device_call.h: the queue is drained first).
 CurvatureField volume_estimate(const Mesh& mesh, const volume::Volume& volume, float isovalue,
                                const VolumeOptions& options, Device& device,
                                VolumeEstimateStats* stats = nullptr);
 
-/// VolumeOptions at a fixed scale `sigma` (without `adaptive`).
-inline VolumeOptions fixed_scale(double sigma, float ao_scale, bool finer_scales = true,
-                                 VolumePoint point = VolumePoint::vertex,
-                                 const SurfacePiece* piece = nullptr) {
+/// VolumeOptions at a fixed scale `sigma` (without `adaptive`); the other fields keep their
+/// defaults.
+inline VolumeOptions fixed_scale(double sigma, float ao_scale = 1) {
   VolumeOptions o;
-  o.sigma = sigma, o.ao_scale = ao_scale, o.finer_scales = finer_scales, o.point = point;
-  o.piece = piece;
+  o.sigma = sigma, o.ao_scale = ao_scale;
   return o;
 }
 
-/// The same at a fixed scale `sigma` (fixed_scale's options).
-inline CurvatureField volume_estimate(const Mesh& mesh, const volume::Volume& volume,
-                                      float isovalue, double sigma, float ao_scale,
-                                      Device& device, VolumeEstimateStats* stats = nullptr,
-                                      bool finer_scales = true,
-                                      VolumePoint point = VolumePoint::vertex,
-                                      const SurfacePiece* piece = nullptr) {
-  return volume_estimate(mesh, volume, isovalue,
-                         fixed_scale(sigma, ao_scale, finer_scales, point, piece), device, stats);
-}
+/// VolumePoint::automatic resolved for `volume`: surface on binary volumes (curvature::is_binary:
+/// their vertices sit on the voxel staircase), vertex otherwise; other values unchanged.
+VolumePoint resolved_point(VolumePoint point, const volume::Volume& volume);
 
 /// VolumePoint::vertex: the surface points (CurvatureField::surface_points) of `mesh`'s
 /// marching-cubes vertices on `volume`'s grid, from the curvature in `field` (normals, k1, k2,
@@ -201,16 +187,5 @@ std::vector<Vec3f> edge_surface_points(const Mesh& mesh, const volume::Volume& v
 CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume& volume,
                                          float isovalue, const VolumeOptions& options,
                                          VolumeEstimateStats* stats = nullptr);
-
-/// The same at a fixed scale `sigma`.
-inline CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume& volume,
-                                                float isovalue, double sigma, float ao_scale,
-                                                VolumeEstimateStats* stats = nullptr,
-                                                bool finer_scales = true,
-                                                VolumePoint point = VolumePoint::vertex,
-                                                const SurfacePiece* piece = nullptr) {
-  return volume_estimate_reference(mesh, volume, isovalue,
-                                   fixed_scale(sigma, ao_scale, finer_scales, point, piece), stats);
-}
 
 }  // namespace isocurv::curvature

@@ -3,21 +3,13 @@
 // curvature/implicit_curvature.cpp): smooth_axis, three times (one pass of the separable
 // prefilter per axis, one work item per voxel of the bricks the next pass reads), then
 // volume_curvature (one work item per mesh vertex, reading 5^3 smoothed samples).
-// Appended to curvature_math.cl; built with -DBRICK_VOXELS, -DBRICK_ROWS, -DSPLINE_TAPS,
-// -DPADDED, -DPAD_BEFORE, -DPADDED_VOXELS, -DNEWTON_STEPS and curvature_math.cl's constants.
+// Built from curvature/detail/volume_layout.h (the brick layout and VolumeParams, shared with the
+// host), curvature_math.cl and this file, in that order, with -DNEWTON_STEPS, -DSURFACE_Y1,
+// -DSURFACE_Y2, -DMIN_CORRECTION and curvature_math.cl's constants from their C++ definitions.
 
-// Index-space frame: the world -> index matrix B (row-major), the world position of a fixed
-// anchor voxel (the brick holding the volume's first voxel: positions measured from it round the
-// same whatever vertices share the call) and the region's first voxel less the anchor, and the maps of index-space derivatives to world space by order
-// (volume_estimate.cpp, world_maps): h[e] = sum_f m2[e][f] d_f over the 6 distinct second
-// derivatives f (in PAIR_ORDERS order), t[e] = sum_f m3[e][f] d_f over the 10 third (TRIPLE_ORDERS).
-typedef struct {
-  float b[9];
-  float origin[3];
-  float m2[6][6];
-  float m3[10][10];
-  float first[3];
-} frame_t;
+// The index-space frame and the scalars of one evaluation: VolumeParams (volume_layout.h), copied
+// from __constant memory into each work item's private memory.
+typedef VolumeParams frame_t;
 
 // The orders (nx, ny, nz) of the distinct second and third index-space derivatives, in the order
 // of the Hessian (xx xy xz yy yz zz) and third-derivative (xxx xxy ... zzz) components.
@@ -343,8 +335,7 @@ INLINE float4 dcurv_forms(const jet_t* j, vec3 m, float s, float len, vec3 e1, v
 // (CurvatureField::surface_points), else the vertex.
 __kernel void volume_curvature(__global const float* positions, uint count,
                                __global const float* blocks, __global const int* table, int4 dims,
-                               __constant const float* frame_params, float isovalue, float sign,
-                               float ao_scale, int surface, float max_shift, float sigma2,
+                               __constant const VolumeParams* params,
                                __global float* normals, __global float* k1_out,
                                __global float* k2_out, __global float* dir1_out,
                                __global float* dir2_out, __global float* H_out,
@@ -355,15 +346,10 @@ __kernel void volume_curvature(__global const float* positions, uint count,
   const uint i = get_global_id(0);
   if (i >= count) return;
   const samples_t s = {0, table, dims};
-  frame_t f;
-  #pragma unroll
-  for (int k = 0; k < 9; ++k) f.b[k] = frame_params[k];
-  for (int k = 0; k < 36; ++k) ((float*)f.m2)[k] = frame_params[12 + k];
-  for (int k = 0; k < 100; ++k) ((float*)f.m3)[k] = frame_params[48 + k];
-  #pragma unroll
-  for (int k = 0; k < 3; ++k) f.origin[k] = frame_params[9 + k];
-  #pragma unroll
-  for (int k = 0; k < 3; ++k) f.first[k] = frame_params[148 + k];
+  const frame_t f = *params;
+  const float isovalue = f.isovalue, sign = f.sign, ao_scale = f.ao_scale;
+  const float max_shift = f.max_shift, sigma2 = f.sigma2;
+  const int surface = f.surface;
 
   const vec3 x0 = load3(positions, i);
   vec3 x = x0;

@@ -1,6 +1,6 @@
 #pragma once
 // Internals the volume estimator's device path and its reference share
-// (curvature/volume_estimate.h).
+// (curvature/volume_estimate.h), implemented in volume_setup.cpp.
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -44,8 +44,10 @@ inline VolumeSetup with_sigma(VolumeSetup setup, double sigma) {
   return setup;
 }
 
-/// Checks mesh, sigma and the grid (see volume_estimate) and derives the setup.
-VolumeSetup volume_setup(const Mesh& mesh, const volume::Volume& volume, double sigma);
+/// Checks the mesh, options.sigma, options.ao_scale and the grid (see volume_estimate) and derives
+/// the setup, with options.point resolved (resolved_point).
+VolumeSetup volume_setup(const Mesh& mesh, const volume::Volume& volume,
+                         const VolumeOptions& options);
 
 /// How far from a vertex (index units per axis, beyond the B-spline's own support) the estimator
 /// may evaluate the field: half a voxel, for rounding, plus (VolumePoint::surface) the Newton

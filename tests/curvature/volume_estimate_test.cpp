@@ -27,6 +27,14 @@
 namespace isocurv::test {
 namespace {
 
+// Options at a fixed scale, the level set through the vertex unless told otherwise.
+curvature::VolumeOptions volume_options_at(
+    double sigma, float ao_scale, curvature::VolumePoint point = curvature::VolumePoint::vertex) {
+  curvature::VolumeOptions o = curvature::fixed_scale(sigma, ao_scale);
+  o.point = point;
+  return o;
+}
+
 // f(world) sampled on dims voxels at world = origin + R diag(spacing) index.
 volume::Volume sample_affine(const std::function<double(const Eigen::Vector3d&)>& f,
                              std::array<int, 3> dims, const Eigen::Vector3d& spacing,
@@ -120,10 +128,11 @@ TEST(VolumeEstimator, KernelMatchesReference) {
                                         std::pair{1.7, VolumePoint::surface}}) {
       const double sigma = voxels * voxel_of(c.volume);
       const curvature::CurvatureField ref = curvature::volume_estimate_reference(
-          c.mesh, c.volume, c.iso, sigma, 0.1f, nullptr, true, point);
+          c.mesh, c.volume, c.iso, volume_options_at(sigma, 0.1f, point));
       curvature::VolumeEstimateStats st;
-      const curvature::CurvatureField dev = curvature::volume_estimate(
-          c.mesh, c.volume, c.iso, sigma, 0.1f, Device::default_device(), &st, true, point);
+      const curvature::CurvatureField dev =
+          curvature::volume_estimate(c.mesh, c.volume, c.iso, volume_options_at(sigma, 0.1f, point),
+                                     Device::default_device(), &st);
       EXPECT_GT(st.bricks, 0u);
       const FieldDifference d = compare(dev, ref, 0.5);
       // Float against double: prefilter sums of up to 37 taps, then 125 weighted samples.
@@ -157,7 +166,7 @@ TEST(VolumeEstimator, KernelMatchesReference) {
       EXPECT_EQ(dev.extra.front().values, ref.extra.front().values) << "the same Scale per vertex";
       // Deterministic: a second run is bit-identical.
       const curvature::CurvatureField again = curvature::volume_estimate(
-          c.mesh, c.volume, c.iso, sigma, 0.1f, Device::default_device(), nullptr, true, point);
+          c.mesh, c.volume, c.iso, volume_options_at(sigma, 0.1f, point), Device::default_device());
       EXPECT_EQ(again.H, dev.H);
       EXPECT_EQ(again.dcurv, dev.dcurv);
       EXPECT_EQ(again.surface_points, dev.surface_points);
@@ -178,8 +187,8 @@ TEST(VolumeEstimator, SphereSignsDensityAndLevelSet) {
         Eigen::Vector3d::Ones(), Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), inside);
     const Mesh m = mc::extract(v, 0.0f, Device::default_device());
     ASSERT_GT(m.vertex_count(), 500u);
-    const curvature::CurvatureField f =
-        curvature::volume_estimate(m, v, 0.0f, 1.0, 1.0f, Device::default_device());
+    const curvature::CurvatureField f = curvature::volume_estimate(
+        m, v, 0.0f, volume_options_at(1.0, 1.0f), Device::default_device());
     double worst = 0;
     for (std::size_t i = 0; i < m.vertex_count(); ++i) {
       worst = std::max(worst, std::abs(f.H[i] * R - 1));
@@ -207,7 +216,8 @@ TEST(VolumeEstimator, SecondOrderConvergence) {
       std::vector<double> H, K;
       exact(*field, c.mesh, H, K);
       const curvature::CurvatureField f = curvature::volume_estimate(
-          c.mesh, c.volume, c.iso, voxel_of(c.volume), 1.0f, Device::default_device());
+          c.mesh, c.volume, c.iso, volume_options_at(voxel_of(c.volume), 1.0f),
+          Device::default_device());
       const Errors e = errors(f, H, K);
       if (previous > 0) {
         EXPECT_GT(previous / e.H, 3.0) << name << " " << res << ": " << e.H;
@@ -271,8 +281,8 @@ TEST(VolumeEstimator, AnisotropicAndRotatedGrids) {
       H.push_back(ev.sum() / 2);
       K.push_back(ev[0] * ev[1] + ev[1] * ev[2] + ev[0] * ev[2]);
     }
-    const curvature::CurvatureField f =
-        curvature::volume_estimate(m, v, 0.0f, 2.0, 1.0f, Device::default_device());
+    const curvature::CurvatureField f = curvature::volume_estimate(
+        m, v, 0.0f, volume_options_at(2.0, 1.0f), Device::default_device());
     const Errors e = errors(f, H, K);
     if (std::string(g.name) == "isotropic") iso_error = e.H;
     // Smoothing a quadric adds a constant (sigma^2 sum 1/a_i^2 = 0.063 here), so the smoothed

@@ -82,8 +82,10 @@ TEST(VolumeEstimatorPiece, SubMeshGetsTheWholeMeshValuesToTheBit) {
   ASSERT_GT(sub.positions.size(), 100u);
   for (const bool on_device : {true, false}) {
     auto run = [&](const Mesh& mesh) {
-      return on_device ? curvature::volume_estimate(mesh, v, 0.0f, sigma, 1.0f, device)
-                       : curvature::volume_estimate_reference(mesh, v, 0.0f, sigma, 1.0f);
+      curvature::VolumeOptions o = curvature::fixed_scale(sigma, 1.0f);
+      o.point = curvature::VolumePoint::vertex;
+      return on_device ? curvature::volume_estimate(mesh, v, 0.0f, o, device)
+                       : curvature::volume_estimate_reference(mesh, v, 0.0f, o);
     };
     const curvature::CurvatureField whole = run(m), part = run(sub);
     std::size_t compared = 0, differ = 0;
