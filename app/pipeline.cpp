@@ -1,8 +1,5 @@
 #include "app/pipeline.h"
 
-#include "core/mesh_measures.h"
-#include "curvature/face_average_normals.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -26,11 +23,13 @@
 #include "curvature/field_stats.h"
 #include "curvature/weld.h"
 #include "curvature/reference.h"
+#include "curvature/request.h"
 #include "io/mesh_file.h"
 #include "mc/extract.h"
 #include "mc/extract_reference.h"
 #include "mc/mesh_check.h"
 #include "volume/gradient_normals.h"
+#include "volume/isovalue_check.h"
 #include "volume/load.h"
 
 namespace isocurv::app {
@@ -105,12 +104,57 @@ std::vector<std::string> parse_scales(const std::string& text) {
   return scales;
 }
 
+namespace {
+
+/// The curvature request of --estimator, --scale (its first value), --normals and --ao-scale.
+curvature::Request curvature_request(const CommonOptions& o) {
+  curvature::Request r;
+  if (!o.estimator.empty()) {
+    r.estimator = curvature::estimator_from_name(o.estimator);
+    if (!r.estimator) throw Error("--estimator: unknown estimator '" + o.estimator + "'");
+  }
+  const std::optional<curvature::NormalsSource> normals = curvature::normals_from_name(o.normals);
+  if (!normals) throw Error("--normals: unknown normals '" + o.normals + "'");
+  r.normals = *normals;
+  r.scale_given = o.scale != "auto";
+  const std::vector<std::string> scales = parse_scales(o.scale);
+  r.scale = scales[0] == "auto" ? 0.0 : std::strtod(scales[0].c_str(), nullptr);
+  if (o.ao_scale > 0) r.ao_scale = o.ao_scale;
+  return r;
+}
+
+/// A curvature request's error (curvature::resolve) in the command line's words: its options.
+Error request_error(const curvature::RequestError& e) {
+  const std::string name = curvature::estimator_name(e.estimator);
+  switch (e.problem) {
+    case curvature::RequestProblem::estimator_needs_volume:
+      return Error("--estimator " + name +
+                   " needs a volume input (it reads the volume's derivatives), not a mesh file");
+    case curvature::RequestProblem::normals_not_for_volume:
+      return Error("--normals applies to the mesh estimators; --estimator " + name +
+                   " takes its normals from the volume's gradient at --scale");
+    case curvature::RequestProblem::scale_not_for_mesh:
+      return Error("--scale applies to --estimator volume");
+    case curvature::RequestProblem::volume_normals_need_volume:
+      return Error("--normals volume needs a volume input, not a mesh file");
+    default:  // iso, the isovalue and the values: not asked by the command line's options
+      break;
+  }
+  const char* option = "";
+  switch (e.field) {
+    case curvature::RequestField::estimator: option = "--estimator"; break;
+    case curvature::RequestField::normals: option = "--normals"; break;
+    case curvature::RequestField::scale: option = "--scale"; break;
+    case curvature::RequestField::iso: option = "--iso"; break;
+    case curvature::RequestField::ao_scale: option = "--ao-scale"; break;
+  }
+  return Error(std::string(option) + ": " + e.detail());
+}
+
+}  // namespace
+
 curvature::Estimator default_estimator(const CommonOptions& o, bool volume_input) {
-  if (!o.estimator.empty()) return *curvature::estimator_from_name(o.estimator);
-  // The volume estimator is the most accurate on every class of docs/curvature.md's table;
-  // --normals only means something to the mesh estimators, so it keeps Rusinkiewicz's.
-  return volume_input && o.normals.empty() ? curvature::Estimator::volume
-                                           : curvature::Estimator::rusinkiewicz;
+  return curvature::default_estimator(curvature_request(o), volume_input);
 }
 
 void apply_estimator_parameters(const CommonOptions& o, curvature::Options& co) {
@@ -149,7 +193,7 @@ void add_curvature_options(CLI::App& cmd, CommonOptions& o, bool mesh_input) {
                  "the faces with Max's weights, as Rusinkiewicz; the default for mesh files), area (face "
                  "normals weighted by area) or face-average (the plain average of unit face normals, "
                  "Batagelo's protocol)")
-      ->check(CLI::IsMember({"mesh", "area", "face-average", "volume"}));
+      ->check(CLI::IsMember(curvature::normals_names()));
   cmd.add_option("--batagelo-weights", o.batagelo_weights,
                  "--estimator batagelo: each 1-ring neighbour's weight in the one-pass tensor, uniform (the "
                  "default, as the paper) or inverse-square (1/|x|^2 of its offset in the tangent plane)")
@@ -273,23 +317,11 @@ volume::Volume load_volume(const std::string& path, const CommonOptions& o, Stag
 
 float checked_isovalue(const std::string& path, const volume::Volume& v,
                        std::optional<float> requested) {
-  const float value = requested ? *requested : static_cast<float>(v.stats.suggested_isovalue);
-  if (!std::isfinite(value))
-    throw Error(path, "isovalue must be a finite number");
-  if (requested && (value < v.stats.min || value > v.stats.max))
-    throw Error(path, "isovalue " + format_number(value) + " is outside the value range [" +
-                          format_number(v.stats.min) + ", " + format_number(v.stats.max) + "]");
-  // The tie rule: a voxel equal to the isovalue is outside, so at the top of the range (bottom
-  // when the object is below the isovalue) no voxel is inside and there is no surface.
-  const bool above = v.inside == volume::Inside::Above;
-  if (value == static_cast<float>(above ? v.stats.max : v.stats.min))
-    throw Error(path, "isovalue " + format_number(value) + " equals the " +
-                          (above ? "maximum" : "minimum") +
-                          " value, so there is no surface: a voxel equal to the isovalue counts as "
-                          "outside, and none is " + (above ? "above" : "below") +
-                          " it (the range is [" + format_number(v.stats.min) + ", " +
-                          format_number(v.stats.max) + "])");
-  return value;
+  try {
+    return volume::checked_isovalue(v, requested);
+  } catch (const volume::IsovalueError& e) {
+    throw Error(path, e.what());
+  }
 }
 
 namespace {
@@ -401,48 +433,32 @@ curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Vol
                                              StageTimer& timer, NormalsUsed* used,
                                              curvature::EstimatorReport* report,
                                              const SurfacePiece* piece) {
+  curvature::Resolved request;
+  try {
+    request = curvature::resolve(curvature_request(o), volume != nullptr,
+                                 volume ? std::optional<float>(isovalue) : std::nullopt);
+  } catch (const curvature::RequestError& e) {
+    throw request_error(e);
+  }
   curvature::Options co;
   co.piece = piece;
-  co.estimator = default_estimator(o, volume != nullptr);
-  const bool mesh_estimator = !curvature::needs_volume(co.estimator);
-  if (!mesh_estimator && !volume)
-    throw Error("--estimator " + o.estimator +
-                " needs a volume input (it reads the volume's derivatives), not a mesh file");
-  if (!mesh_estimator && !o.normals.empty())
-    throw Error("--normals applies to the mesh estimators; --estimator " + o.estimator +
-                " takes its normals from the volume's gradient at --scale");
-  if (mesh_estimator && o.scale != "auto")
-    throw Error("--scale applies to --estimator volume");
+  co.estimator = request.estimator;
   if (!o.batagelo_weights.empty() && co.estimator != curvature::Estimator::batagelo)
     throw Error("--batagelo-weights applies to --estimator batagelo");
   apply_estimator_parameters(o, co);
   const std::vector<std::string> scales = parse_scales(o.scale);  // several: arrays per scale, below
   NormalsUsed chosen;
-  chosen.source = !mesh_estimator ? "volume estimator"
-                  : o.normals.empty() ? (volume ? "volume" : "mesh")
-                                      : o.normals;
-  volume::MeshNormals normals;
-  std::vector<Vec3f> averaged;  // area / face-average: computed here, so every estimator gets them
-  if (mesh_estimator && (chosen.source == "area" || chosen.source == "face-average")) {
-    averaged = chosen.source == "area" ? area_weighted_normals(mesh) : curvature::face_average_normals(mesh);
-    co.vertex_normals = &averaged;
-  }
-  if (mesh_estimator && chosen.source == "volume") {
-    if (!volume) throw Error("--normals volume needs a volume input, not a mesh file");
-    timer.start("normals");
-    normals = volume::gradient_normals_for_mesh(*volume, mesh, o.cap);
-    timer.stop();
-    chosen.opposed = normals.opposed;
-    chosen.weak = normals.weak;
-    chosen.caps = normals.caps;
-    co.vertex_normals = &normals.normals;
-  }
+  chosen.source = curvature::normals_report_name(request);
+  // area, face-average and volume normals: computed here, so that every mesh estimator gets them
+  if (request.normals == curvature::NormalsSource::volume) timer.start("normals");
+  const volume::MeshNormals normals = curvature::host_normals(request.normals, mesh, volume, o.cap);
+  if (request.normals == curvature::NormalsSource::volume) timer.stop();
+  if (curvature::host_computed(request.normals)) co.vertex_normals = &normals.normals;
+  chosen.opposed = normals.opposed;
+  chosen.weak = normals.weak;
+  chosen.caps = normals.caps;
   if (used) *used = chosen;
-  if (o.ao_scale > 0) {
-    co.ao_scale = o.ao_scale;
-  } else {
-    co.ao_scale = curvature::default_ao_scale(mesh, piece);
-  }
+  co.ao_scale = request.ao_scale ? *request.ao_scale : curvature::default_ao_scale(mesh, piece);
   if (!reference_device(o)) device_for(o);  // open the device (and fail on it) before timing
   timer.start("curvature");
   curvature::EstimatorReport r;

@@ -170,7 +170,8 @@ Mesh extract_surface(const volume::Volume& v, float isovalue, const CommonOption
 volume::Volume load_volume(const std::string& path, const CommonOptions& o, StageTimer& timer, float* iso);
 
 /// The isovalue to use on `v`: `requested`, or the suggested one when it is empty; checked as
-/// load_volume describes (an Error naming `path` when outside the range or at its inside end).
+/// load_volume describes (volume::checked_isovalue; an Error naming `path` when outside the range
+/// or at its inside end).
 float checked_isovalue(const std::string& path, const volume::Volume& v,
                        std::optional<float> requested);
 
@@ -206,16 +207,17 @@ void prepare_mesh_for_curvature(Surface& s, const std::string& path, const Commo
 void reestimate_keeping_extras(Surface& s, const std::string& path, const CommonOptions& o,
                                StageTimer& timer);
 
-/// The estimator a command runs: --estimator when given, else volume for volume input without
-/// --normals, else rusinkiewicz.
+/// The estimator a command runs (curvature::default_estimator): --estimator when given, else
+/// volume for volume input without --normals, else rusinkiewicz.
 curvature::Estimator default_estimator(const CommonOptions& o, bool volume_input);
 
 /// Estimates the curvature of `mesh` (stage "curvature") on the chosen device with --estimator
-/// (curvature::estimate_field), then the AO --ao-method chooses (apply_ao). Rusinkiewicz's normals: --normals, by default volume when `volume`
-/// is given, else mesh; volume normals come from volume::gradient_normals_for_mesh (face normals
-/// where the gradient disagrees or vanishes). --normals volume without a volume (a mesh file) is an
-/// Error. The volume estimator (at --scale, from `volume` at `isovalue`) takes no --normals and
-/// needs a volume. `used` and `report`, when given, receive what was used. `piece`: `mesh` is one
+/// (curvature::estimate_field), then the AO --ao-method chooses (apply_ao). The request's rules
+/// are curvature::resolve's (curvature/request.h), its errors worded with the options: the mesh
+/// estimators' normals are --normals, by default volume when `volume` is given, else mesh; volume
+/// normals come from volume::gradient_normals_for_mesh (face normals where the gradient disagrees
+/// or vanishes). --normals volume without a volume (a mesh file) is an Error. The volume estimator
+/// (at --scale, from `volume` at `isovalue`) takes no --normals and needs a volume. `used` and `report`, when given, receive what was used. `piece`: `mesh` is one
 /// piece of a distributed surface (curvature::Options::piece; collective).
 curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Volume* volume,
                                              float isovalue, const CommonOptions& o,

@@ -13,6 +13,7 @@
 #include "curvature/estimate.h"
 #include "curvature/estimator.h"
 #include "curvature/field_stats.h"
+#include "curvature/request.h"
 #include "curvature/topology.h"
 #include "python/bind.h"
 #include "python/detail/args.h"
@@ -64,10 +65,18 @@ py::object topology_curvature(PyTopology& t, const py::object& positions, py::ob
   if (!curvature::has_prepared_path(e))
     throw py::value_error("estimator: Topology runs only " + curvature::prepared_estimator_names() +
                           "; " + curvature::no_prepared_path_reason(e));
-  std::string source = normals_of(normals_arg);
-  if (source == "volume")
-    throw py::value_error("normals: Topology takes 'mesh', 'area' or 'face-average' (no volume)");
-  if (source.empty()) source = "mesh";
+  curvature::Request request;  // the library's rules, for a mesh without a volume
+  request.estimator = e;
+  request.normals = normals_of(normals_arg);
+  if (!ao_scale.is_none()) request.ao_scale = number_of(ao_scale, "ao_scale");
+  curvature::Resolved resolved;
+  try {
+    resolved = curvature::resolve(request, false);
+  } catch (const curvature::RequestError& error) {
+    if (error.problem == curvature::RequestProblem::volume_normals_need_volume)
+      throw py::value_error("normals: Topology takes 'mesh', 'area' or 'face-average' (no volume)");
+    throw request_error(error);
+  }
   py::array_t<float, py::array::c_style | py::array::forcecast> p;
   try {
     p = positions.cast<decltype(p)>();
@@ -80,7 +89,6 @@ py::object topology_curvature(PyTopology& t, const py::object& positions, py::ob
   if (p.ndim() != 2 || p.shape(1) != 3 || std::size_t(p.shape(0)) != n)
     throw py::value_error("positions: expected shape (" + std::to_string(n) +
                           ", 3) (one per vertex of the prepared mesh)");
-  const std::optional<float> ao = ao_scale_of(ao_scale);
   curvature::Options co;
   co.estimator = e;
   curvature::CurvatureField field;
@@ -90,10 +98,10 @@ py::object topology_curvature(PyTopology& t, const py::object& positions, py::ob
     py::gil_scoped_release release;  // p stays referenced, so its data stays valid
     std::lock_guard<std::mutex> frame_lock(t.lock);
     std::memcpy(static_cast<void*>(t.frame.positions.data()), p.data(), n * sizeof(Vec3f));
-    co.ao_scale = ao ? *ao : curvature::default_ao_scale(t.frame);
+    co.ao_scale = resolved.ao_scale ? *resolved.ao_scale : curvature::default_ao_scale(t.frame);
     r.parameters.emplace_back("ao_scale", co.ao_scale);
-    const std::vector<Vec3f> averaged = mesh_normals(t.frame, source);
-    if (!averaged.empty()) co.vertex_normals = &averaged;
+    const volume::MeshNormals averaged = curvature::host_normals(resolved.normals, t.frame, nullptr);
+    if (curvature::host_computed(resolved.normals)) co.vertex_normals = &averaged.normals;
     std::lock_guard<std::mutex> lock(device_lock);
     if (e == curvature::Estimator::rusinkiewicz) {
       curvature::estimate(t.frame.positions, t.topo, *t.device, co, field);
@@ -106,7 +114,7 @@ py::object topology_curvature(PyTopology& t, const py::object& positions, py::ob
     r.implausible = curvature::flag_implausible(t.frame, field);
     r.unreliable += r.implausible;
   }
-  return curvature_arrays(std::move(field), report_dict(r, source, nullptr));
+  return curvature_arrays(std::move(field), report_dict(r, curvature::normals_name(resolved.normals), nullptr));
 }
 
 }  // namespace

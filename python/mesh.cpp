@@ -1,8 +1,6 @@
 // The mesh area of the isocurv Python module: isocurv.Mesh, extract, read_mesh, write_mesh and
 // check.
-#include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <cstring>
 #include <memory>
 #include <optional>
@@ -19,6 +17,7 @@
 #include "python/bind.h"
 #include "python/detail/args.h"
 #include "python/detail/arrays.h"
+#include "volume/isovalue_check.h"
 #include "volume/volume.h"
 
 namespace isocurv::python {
@@ -62,29 +61,17 @@ std::shared_ptr<PyMesh> mesh_from_arrays(const py::object& vertices, const py::o
 }
 
 /// The isovalue extract() uses on `v`: `iso`, or the suggested one for None; checked as the
-/// command line's checked_isovalue (app/pipeline.cpp) checks --iso, with its messages after
-/// "iso: " instead of the file name: outside [min, max], or at the end of the range where no
-/// voxel can be inside (a voxel equal to the isovalue is outside), is a ValueError.
+/// command line checks --iso (volume::checked_isovalue), with its messages after "iso: " instead
+/// of the file name: outside [min, max], or at the end of the range where no voxel can be inside
+/// (a voxel equal to the isovalue is outside), is a ValueError.
 float checked_isovalue(const volume::Volume& v, const py::object& iso) {
-  const float value =
-      iso.is_none() ? float(v.stats.suggested_isovalue) : finite_number(iso, "iso");
-  if (!std::isfinite(value)) throw py::value_error("iso: isovalue must be a finite number");
-  auto num = [](double x) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%g", x);
-    return std::string(buf);
-  };
-  const std::string range = "[" + num(v.stats.min) + ", " + num(v.stats.max) + "]";
-  if (!iso.is_none() && (value < v.stats.min || value > v.stats.max))
-    throw py::value_error("iso: isovalue " + num(value) + " is outside the value range " + range);
-  const bool above = v.inside == volume::Inside::Above;
-  if (value == float(above ? v.stats.max : v.stats.min))
-    throw py::value_error("iso: isovalue " + num(value) + " equals the " +
-                          (above ? "maximum" : "minimum") +
-                          " value, so there is no surface: a voxel equal to the isovalue counts "
-                          "as outside, and none is " + (above ? "above" : "below") +
-                          " it (the range is " + range + ")");
-  return value;
+  const std::optional<float> requested =
+      iso.is_none() ? std::nullopt : std::optional<float>(finite_number(iso, "iso"));
+  try {
+    return volume::checked_isovalue(v, requested);
+  } catch (const volume::IsovalueError& e) {
+    throw py::value_error(std::string("iso: ") + e.what());
+  }
 }
 
 }  // namespace

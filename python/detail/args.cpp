@@ -92,13 +92,16 @@ std::array<double, 3> triple(const py::object& o, const char* name) {
   return v;
 }
 
-float finite_number(const py::object& o, const char* arg) {
-  float v = 0;
+float number_of(const py::object& o, const char* arg) {
   try {
-    v = o.cast<float>();
+    return o.cast<float>();
   } catch (const py::cast_error&) {
     throw py::type_error(std::string(arg) + ": expected a number");
   }
+}
+
+float finite_number(const py::object& o, const char* arg) {
+  const float v = number_of(o, arg);
   if (!std::isfinite(v)) throw py::value_error(std::string(arg) + ": must be a finite number");
   return v;
 }

@@ -115,6 +115,9 @@ volume::Inside inside_of(const std::string& s);
 /// A sequence of 3 numbers (x, y, z) (TypeError / ValueError naming `name` otherwise).
 std::array<double, 3> triple(const py::object& o, const char* name);
 
+/// A Python number as a float, NaN and infinities included (TypeError naming `arg` otherwise).
+float number_of(const py::object& o, const char* arg);
+
 /// A Python number as a finite float (TypeError / ValueError naming `arg` otherwise).
 float finite_number(const py::object& o, const char* arg);
 

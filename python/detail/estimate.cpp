@@ -7,9 +7,7 @@
 #include <cstdio>
 #include <limits>
 
-#include "core/mesh_measures.h"
 #include "curvature/ao_scale.h"
-#include "curvature/face_average_normals.h"
 #include "python/detail/arrays.h"
 
 namespace isocurv::python {
@@ -43,28 +41,47 @@ double scale_of(const py::object& scale) {
   return v;
 }
 
-std::string normals_of(const py::object& normals) {
-  if (normals.is_none()) return "";
+curvature::NormalsSource normals_of(const py::object& normals) {
+  if (normals.is_none()) return curvature::NormalsSource::automatic;
   if (!py::isinstance<py::str>(normals))
     throw py::type_error("normals: expected 'volume', 'mesh', 'area' or 'face-average'");
   const std::string s = normals.cast<std::string>();
-  if (s != "volume" && s != "mesh" && s != "area" && s != "face-average")
+  const std::optional<curvature::NormalsSource> n = curvature::normals_from_name(s);
+  if (!n || *n == curvature::NormalsSource::automatic)  // "" is the command line's default only
     throw py::value_error("normals: expected 'volume', 'mesh', 'area' or 'face-average', not '" +
                           s + "'");
-  return s;
+  return *n;
 }
 
-std::vector<Vec3f> mesh_normals(const Mesh& mesh, const std::string& source) {
-  if (source == "area") return area_weighted_normals(mesh);
-  if (source == "face-average") return curvature::face_average_normals(mesh);
-  return {};
-}
-
-std::optional<float> ao_scale_of(const py::object& ao_scale) {
-  if (ao_scale.is_none()) return std::nullopt;
-  const float v = finite_number(ao_scale, "ao_scale");
-  if (!(v > 0)) throw py::value_error("ao_scale: a positive number (world units)");
-  return v;
+py::value_error request_error(const curvature::RequestError& e) {
+  using P = curvature::RequestProblem;
+  const std::string name = curvature::estimator_name(e.estimator);
+  switch (e.problem) {
+    case P::estimator_needs_volume:
+      return py::value_error("estimator: '" + name +
+                             "' needs the volume argument (it reads the volume's derivatives), "
+                             "not a mesh alone");
+    case P::normals_not_for_volume:
+      return py::value_error("normals: applies to the mesh estimators; estimator='" + name +
+                             "' takes its normals from the volume's gradient at scale");
+    case P::scale_not_for_mesh:
+      return py::value_error("scale: applies to estimator='volume' only");
+    case P::volume_normals_need_volume:
+      return py::value_error("normals: 'volume' needs the volume argument");
+    case P::iso_not_for_mesh:
+      return py::value_error("iso: applies to estimator='volume' only");
+    case P::needs_isovalue:
+      return py::value_error(
+          "iso: estimator='" + name +
+          "' needs the mesh's isovalue (meshes from isocurv.extract carry it as mesh.isovalue)");
+    case P::not_positive:
+      if (e.field == curvature::RequestField::ao_scale)
+        return py::value_error("ao_scale: a positive number (world units)");
+      break;
+    case P::not_finite:
+      break;
+  }
+  return py::value_error(e.what());  // "<argument>: <problem>"
 }
 
 py::dict report_dict(const curvature::EstimatorReport& r, const std::string& normals,
@@ -132,67 +149,42 @@ Estimated estimate_of(const std::shared_ptr<PyMesh>& mesh, const volume::Volume*
                       py::object estimator, py::object scale, py::object normals_arg,
                       py::object iso, py::object ao_scale, bool cap, py::object device) {
   const DeviceChoice dc = device_choice(device);
-  curvature::Options co;
-  const std::string given = normals_of(normals_arg);
-  // The CLI's default (app/pipeline.cpp default_estimator): volume when there is a volume and no
-  // normals were asked for.
-  co.estimator = estimator.is_none() && volume && given.empty()
-                     ? curvature::Estimator::volume
-                     : estimator_of(estimator, "estimator");
-  const bool mesh_estimator = !curvature::needs_volume(co.estimator);
-  const std::string name = curvature::estimator_name(co.estimator);
-  // The CLI's rules (app/pipeline.cpp estimate_curvature), as ValueErrors naming the argument.
-  if (!mesh_estimator && !volume)
-    throw py::value_error("estimator: '" + name +
-                          "' needs the volume argument (it reads the volume's derivatives), not "
-                          "a mesh alone");
-  if (!mesh_estimator && !given.empty())
-    throw py::value_error("normals: applies to the mesh estimators; estimator='" + name +
-                          "' takes its normals from the volume's gradient at scale");
-  if (mesh_estimator && !scale.is_none())
-    throw py::value_error("scale: applies to estimator='volume' only");
-  co.scale = scale_of(scale);
-  const std::string source = !mesh_estimator ? "volume estimator"
-                             : given.empty() ? (volume ? "volume" : "mesh")
-                                             : given;
-  if (source == "volume" && !volume)
-    throw py::value_error("normals: 'volume' needs the volume argument");
-  float isovalue = 0;
-  if (!mesh_estimator) {
-    if (!iso.is_none())
-      isovalue = finite_number(iso, "iso");
-    else if (mesh->isovalue)
-      isovalue = *mesh->isovalue;
-    else
-      throw py::value_error(
-          "iso: estimator='" + name +
-          "' needs the mesh's isovalue (meshes from isocurv.extract carry it as mesh.isovalue)");
-    if (!std::isfinite(isovalue)) throw py::value_error("iso: must be a finite number");
-  } else if (!iso.is_none()) {
-    throw py::value_error("iso: applies to estimator='volume' only");
+  // The arguments converted (TypeErrors, and a scale that is no positive number or 'auto'), then
+  // the library's rules on them (curvature::resolve, the command line's), as ValueErrors naming
+  // the argument.
+  curvature::Request request;
+  request.normals = normals_of(normals_arg);
+  if (!estimator.is_none()) request.estimator = estimator_of(estimator, "estimator");
+  request.scale_given = !scale.is_none();
+  request.scale = scale_of(scale);
+  if (!iso.is_none()) request.iso = number_of(iso, "iso");
+  if (!ao_scale.is_none()) request.ao_scale = number_of(ao_scale, "ao_scale");
+  curvature::Resolved r;
+  try {
+    r = curvature::resolve(request, volume != nullptr, mesh->isovalue);
+  } catch (const curvature::RequestError& e) {
+    throw request_error(e);
   }
   if (mesh->mesh.triangles.empty()) throw py::value_error("mesh: has no triangles");
   if (volume) check_mesh_in_volume(mesh->mesh, *volume);
-  const std::optional<float> ao = ao_scale_of(ao_scale);
-  co.ao_scale = ao ? *ao : curvature::default_ao_scale(mesh->mesh);
+  curvature::Options co;
+  co.estimator = r.estimator;
+  co.scale = r.scale;
+  co.ao_scale = r.ao_scale ? *r.ao_scale : curvature::default_ao_scale(mesh->mesh);
   curvature::CurvatureField field;
   curvature::EstimatorReport report;
   volume::MeshNormals vn;
-  std::vector<Vec3f> averaged;
   {
     py::gil_scoped_release release;
-    if (source == "volume") {
-      vn = volume::gradient_normals_for_mesh(*volume, mesh->mesh, cap);
-      co.vertex_normals = &vn.normals;
-    } else if (source == "area" || source == "face-average") {
-      averaged = mesh_normals(mesh->mesh, source);
-      co.vertex_normals = &averaged;
-    }
+    vn = curvature::host_normals(r.normals, mesh->mesh, volume, cap);
+    if (curvature::host_computed(r.normals)) co.vertex_normals = &vn.normals;
     std::lock_guard<std::mutex> lock(device_lock);
-    field = curvature::estimate_field(mesh->mesh, {volume, isovalue},
+    field = curvature::estimate_field(mesh->mesh, {volume, r.isovalue},
                                       dc.reference ? nullptr : &opened_device(dc), co, &report);
   }
-  return {std::move(field), report_dict(report, source, source == "volume" ? &vn : nullptr)};
+  const bool gradient = r.normals == curvature::NormalsSource::volume;
+  return {std::move(field),
+          report_dict(report, curvature::normals_report_name(r), gradient ? &vn : nullptr)};
 }
 
 float mesh_isovalue(const PyMesh& mesh, const py::object& iso, const std::string& why) {

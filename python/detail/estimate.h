@@ -10,6 +10,7 @@
 
 #include "curvature/curvature_field.h"
 #include "curvature/estimator.h"
+#include "curvature/request.h"
 #include "python/detail/args.h"
 #include "volume/gradient_normals.h"
 
@@ -21,16 +22,13 @@ curvature::Estimator estimator_of(const py::object& name, const char* arg);
 /// scale= as the CLI's --scale: None or 'auto' (0: chosen from the data) or a positive number.
 double scale_of(const py::object& scale);
 
-/// normals= for the mesh estimators: None (the default), 'volume', 'mesh', 'area' or
+/// normals= for the mesh estimators: None (automatic, the default), 'volume', 'mesh', 'area' or
 /// 'face-average' (the CLI's --normals).
-std::string normals_of(const py::object& normals);
+curvature::NormalsSource normals_of(const py::object& normals);
 
-/// Host-side vertex normals for normals='area' / 'face-average' (empty for 'mesh': the
-/// estimator's own Max-weighted normals).
-std::vector<Vec3f> mesh_normals(const Mesh& mesh, const std::string& source);
-
-/// ao_scale= : None (nothing: 4 mean edge lengths of the mesh) or a positive radius, world units.
-std::optional<float> ao_scale_of(const py::object& ao_scale);
+/// A curvature request's error (curvature::resolve) in the module's words: a ValueError naming
+/// the argument ("normals: applies to the mesh estimators; ...").
+py::value_error request_error(const curvature::RequestError& e);
 
 /// What a curvature call used, as CurvatureArrays.report: {"estimator", "parameters" {name:
 /// value}, "chosen" {name: 'auto'|'given'}, "unreliable", "normals"[, "normal_fallbacks"]}.
@@ -49,7 +47,7 @@ struct Estimated {
   py::dict report;
 };
 
-/// curvature()'s estimate (the CLI's rules), also what features() and lines() estimate when
+/// curvature()'s estimate (the CLI's rules: curvature::resolve), also what features() and lines() estimate when
 /// given no curvature arrays.
 Estimated estimate_of(const std::shared_ptr<PyMesh>& mesh, const volume::Volume* volume,
                       py::object estimator, py::object scale, py::object normals_arg,
