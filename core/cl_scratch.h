@@ -17,7 +17,7 @@ enum ScratchSlot : std::size_t {
   kMcSamples, kMcCounts, kMcOrigins, kMcCases, kMcRowRanks, kMcTriangleOffsets, kMcVertexOffsets,
   kMcSeamOffsets, kMcPositions, kMcKeys, kMcHashes, kMcOrder, kMcSeamVertices, kMcSeamKeys,
   kMcTableHashes, kMcTableVertices, kMcTableKeys, kMcBucketStarts, kMcTriangles, kMcSnapCount,
-  kMcSnapEdges, kMcSnapVertices,
+  kMcSnapEdges, kMcSnapVertices, kMcEmitParams,
   kScratchSlots
 };
 

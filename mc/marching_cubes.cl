@@ -18,8 +18,7 @@
 // sorted hashes (the hash numbers a block's lower faces as a few runs) and placed by their edge
 // keys. The output has no duplicate and no unreferenced vertex by construction.
 
-#define APRON 9
-#define BRICK_SAMPLES 729
+// APRON, BRICK_SAMPLES and McEmitParams come from mc/detail/mc_layout.h, prepended by the host.
 
 __constant int corner_offset[8] = {0, APRON * APRON, APRON * APRON + APRON, APRON, 1, APRON * APRON + 1,
                                    APRON * APRON + APRON + 1, APRON + 1};
@@ -392,16 +391,23 @@ inline void note_snap(float f, float snap, ulong edge, uint vertex, __global uin
 // the vertices of the edges on its upper faces that other bricks own, from the seam table
 // (record_upper_faces); (1) a walk over the non-empty cells writing each owned crossed edge's
 // vertex and recording it in the map; (2) a second walk writing every triangle corner from the map.
-__kernel void mc_emit(__global const float* samples, __global const int4* origins, uint nbricks,
-                      int4 cell_max, int4 key_origin, int4 hash_origin, uint2 blocks, uint hash_mask,
-                      float min_fraction, float16 world, __global const ushort* case_slots,
+__kernel void mc_emit(__global const float* samples, __global const int4* origins,
+                      __constant const McEmitParams* params, __global const ushort* case_slots,
                       __global const uchar* tri_count, __global const ushort* crossed, __global const uchar* cases,
-                      __global const uint* triangle_offsets, uint ntriangles, __global const uint* vertex_offsets,
-                      uint nvertices, __global const uint* table_hashes, __global const uint* table_vertices,
-                      __global const ulong* table_keys, uint nseams, __global const uint* starts, uint shift,
-                      __global float* positions, __global uint* triangles, uint write_keys,
-                      __global ulong* keys, float snap, __global uint* snap_count, uint snap_capacity,
-                      __global ulong* snap_edges, __global uint* snap_vertices) {
+                      __global const uint* triangle_offsets, __global const uint* vertex_offsets,
+                      __global const uint* table_hashes, __global const uint* table_vertices,
+                      __global const ulong* table_keys, __global const uint* starts,
+                      __global float* positions, __global uint* triangles, __global ulong* keys,
+                      __global uint* snap_count, __global ulong* snap_edges, __global uint* snap_vertices) {
+  const McEmitParams pm = *params;
+  const uint nbricks = pm.bricks, ntriangles = pm.triangles, nvertices = pm.vertices;
+  const uint nseams = pm.seams, shift = pm.shift, hash_mask = pm.hash_mask;
+  const uint write_keys = pm.write_keys, snap_capacity = pm.snap_capacity;
+  const float min_fraction = pm.min_fraction, snap = pm.snap;
+  const int4 cell_max = vload4(0, pm.cell_max), key_origin = vload4(0, pm.key_origin);
+  const int4 hash_origin = vload4(0, pm.hash_origin);
+  const uint2 blocks = vload2(0, pm.hash_blocks);
+  const float16 world = vload16(0, pm.world);
   uint b = get_global_id(0);
   if (b >= nbricks) return;
   __global const float* brick = samples + (size_t)b * BRICK_SAMPLES;

@@ -1,6 +1,7 @@
 #include "mc/detail/mesher_passes.h"
 
 #include <algorithm>
+#include <cstddef>
 
 #include "core/cl_input.h"
 #include "core/cl_launch.h"
@@ -14,9 +15,18 @@
 
 namespace isocurv::kernels {
 extern const char* const marching_cubes_cl;
+extern const char* const mc_layout_h;
 }
 
 namespace isocurv::mc::detail {
+
+// The C header's layout as the host sees it (mc_emit reads McEmitParams from one buffer).
+static_assert(sizeof(McEmitParams) == 40 * 4, "McEmitParams: 40 packed 4-byte fields");
+static_assert(offsetof(McEmitParams, hash_blocks) == 12 * 4);
+static_assert(offsetof(McEmitParams, world) == 16 * 4);
+static_assert(offsetof(McEmitParams, bricks) == 32 * 4);
+static_assert(offsetof(McEmitParams, snap_capacity) == 39 * 4);
+static_assert(APRON == kApron && BRICK_SAMPLES == kBrickSamples, "mc/bricks.h's brick layout");
 namespace {
 
 constexpr std::size_t kBricksPerGroup = 1;  // one work item per brick (PoCL runs a group on one thread)
@@ -69,7 +79,8 @@ OutputArray(Device&, std::vector<T, A>&, std::size_t) -> OutputArray<T>;
 }  // namespace
 
 MesherTables::MesherTables(Device& device) {
-  program = &device.program("marching_cubes", kernels::marching_cubes_cl);
+  static const std::string source = std::string(kernels::mc_layout_h) + "\n" + kernels::marching_cubes_cl;
+  program = &device.program("marching_cubes", source.c_str());
   const CaseTable& t = case_table();
   tri_count = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, std::size_t(256),
                          static_cast<void*>(const_cast<std::uint8_t*>(t.triangle_count.data())));
@@ -195,23 +206,38 @@ std::vector<SnapCandidate> emit_triangles(Extraction& x, Mesh& mesh, const Mark&
   mark(&ExtractTimings::read);
 
   build_seam_table(x);
-  cl_float16 world{};
-  for (int i = 0; i < 12; ++i) world.s[i] = x.frame.world[i];
   // The vertices near a voxel (Options::snap), listed in any order: at most one entry each.
   const bool snapping = x.options.snap > 0;
   const std::size_t snap_room = snapping ? x.vertices : 1;
   cl::Buffer& snap_count = scratch.get(kMcSnapCount, sizeof(cl_uint));
   cl::Buffer& snap_edges = scratch.get(kMcSnapEdges, snap_room * sizeof(cl_ulong));
   cl::Buffer& snap_vertices = scratch.get(kMcSnapVertices, snap_room * sizeof(cl_uint));
-  const cl_uint zero = 0;
+  static const cl_uint zero = 0;  // read by a queued copy
   if (snapping) q.enqueueWriteBuffer(snap_count, CL_FALSE, 0, sizeof zero, &zero);
+  McEmitParams& p = x.emit_params;  // read by the queued copy: lives in x
+  p = McEmitParams{};
+  const openvdb::Coord cell_max = x.frame.cells.max();
+  for (int a = 0; a < 3; ++a) {
+    p.cell_max[a] = cell_max[a];
+    p.key_origin[a] = x.frame.key_origin[a];
+    p.hash_origin[a] = x.hash_origin.s[a];
+  }
+  p.hash_blocks[0] = x.hash_blocks.s[0], p.hash_blocks[1] = x.hash_blocks.s[1];
+  p.hash_mask = x.hash_mask;
+  p.min_fraction = kMinEdgeFraction;
+  for (int i = 0; i < 12; ++i) p.world[i] = x.frame.world[i];
+  p.bricks = x.bricks, p.triangles = x.triangles, p.vertices = x.vertices, p.seams = x.seams;
+  p.shift = x.shift;
+  p.write_keys = write_keys;
+  p.snap = x.options.snap;
+  p.snap_capacity = static_cast<cl_uint>(snap_room);
+  cl::Buffer& params = scratch.get(kMcEmitParams, sizeof(McEmitParams));
+  q.enqueueWriteBuffer(params, CL_FALSE, 0, sizeof(McEmitParams), &p);
   cl::Kernel& emit = x.device.kernel(*x.tables.program, "mc_emit");
-  set_args(emit, *x.samples, *x.origins, x.bricks, to_int4(x.frame.cells.max()), to_int4(x.frame.key_origin),
-           x.hash_origin, x.hash_blocks, x.hash_mask, kMinEdgeFraction, world, x.tables.case_slots,
-           x.tables.tri_count, x.tables.crossed, *x.cases, *x.triangle_offsets, x.triangles, *x.vertex_offsets,
-           x.vertices, *x.table_hashes, *x.table_vertices, *x.table_keys, x.seams, *x.bucket_starts, x.shift,
-           out_pos.buffer(), out_tris.buffer(), write_keys, out_keys.buffer(), x.options.snap, snap_count,
-           static_cast<cl_uint>(snap_room), snap_edges, snap_vertices);
+  set_args(emit, *x.samples, *x.origins, params, x.tables.case_slots, x.tables.tri_count,
+           x.tables.crossed, *x.cases, *x.triangle_offsets, *x.vertex_offsets, *x.table_hashes,
+           *x.table_vertices, *x.table_keys, *x.bucket_starts, out_pos.buffer(), out_tris.buffer(),
+           out_keys.buffer(), snap_count, snap_edges, snap_vertices);
   launch(q, emit, x.bricks, kBricksPerGroup);
   mark(&ExtractTimings::emit);
 

@@ -13,6 +13,7 @@
 
 #include "core/cl_device.h"
 #include "core/mesh.h"
+#include "mc/detail/mc_layout.h"
 #include "mc/bricks.h"
 #include "mc/extract.h"
 #include "mc/frame.h"
@@ -55,6 +56,8 @@ struct Extraction {
   // build_seam_table
   cl_uint shift = 0, buckets = 0;
   cl::Buffer *table_hashes = nullptr, *table_vertices = nullptr, *table_keys = nullptr, *bucket_starts = nullptr;
+  // emit_triangles
+  McEmitParams emit_params{};  ///< mc_emit's parameter block (mc/detail/mc_layout.h)
 };
 
 /// Pass 1: the samples of the bricks `origins` (BrickIndex::candidates) with their aprons,
