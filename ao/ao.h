@@ -2,6 +2,7 @@
 // ao::compute: the per-vertex "AO" array of a CurvatureField by one of the ambient-occlusion
 // methods (ao/method.h). A stage after curvature: the formulas read the field's k1, k2 or H, the
 // ray casts read the volume the mesh came from.
+// Tested in tests/ao/test_ao.cpp.
 #include <string>
 
 #include "ao/method.h"

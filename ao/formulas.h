@@ -4,6 +4,7 @@
 // (G-AO2) and 5.4 (R-AO2, R-AO4) give the corrected forms used here; the papers' misprints are
 // noted where they matter. Griffin's polynomial stays in curvature/derived.h (ambient_occlusion),
 // Griffin's exact integral is ao/griffin_exact.h.
+// Tested in tests/ao/test_ao.cpp.
 #include <algorithm>
 #include <cmath>
 

@@ -1,6 +1,7 @@
 #pragma once
 // Griffin et al.'s exact curvature AO over (k1, k2) (section 3.7, eq. 10-12; SEEDS-SPEC.md G-AO2):
 // the integral their diagonal polynomial (curvature/derived.h) was fitted from.
+// Tested in tests/ao/test_ao.cpp.
 
 namespace isocurv::ao {
 

@@ -1,5 +1,6 @@
 #pragma once
 // The ambient-occlusion methods ao::compute offers (ao/ao.h), and their command-line names.
+// Tested in tests/ao/test_ao.cpp, tests/app/test_ao_cli.cpp (through its users).
 #include <optional>
 #include <string>
 #include <vector>

@@ -1,6 +1,7 @@
 #pragma once
 // Ray-cast ambient occlusion from the volume: the reference the curvature formulas are judged by
 // (SEEDS-SPEC.md R-AORAY, volume mode).
+// Tested in tests/ao/test_ao.cpp.
 #include <vector>
 
 #include "core/mesh.h"

@@ -17,6 +17,7 @@
 #include "curvature/estimator.h"
 #include "curvature/field_stats.h"
 #include "curvature/mesh_estimators.h"
+#include "curvature/request.h"
 #include "datasets/exact_curvature.h"
 #include "datasets/field.h"
 #include "volume/gradient_normals.h"
@@ -125,13 +126,18 @@ void register_compare(CLI::App& app) {
     prepare_mesh_for_curvature(s, in, o);
     const Mesh& mesh = s.mesh;
     curvature::Options co;
-    const std::string source = o.normals.empty() ? (s.volume ? "volume" : "mesh") : o.normals;
-    volume::MeshNormals normals;
-    if (source == "volume") {
-      if (!s.volume) throw Error("--normals volume needs a volume input, not a mesh file");
-      normals = volume::gradient_normals_for_mesh(*s.volume, mesh, o.cap);
-      co.vertex_normals = &normals.normals;
-    }
+    // The mesh estimators' normals as `curvature` takes them (curvature/request.h): --normals,
+    // else the volume's gradient with a volume, else the faces.
+    curvature::NormalsSource asked =
+        curvature::normals_from_name(o.normals).value_or(curvature::NormalsSource::automatic);
+    if (asked == curvature::NormalsSource::automatic)
+      asked = s.volume ? curvature::NormalsSource::volume : curvature::NormalsSource::mesh;
+    if (asked == curvature::NormalsSource::volume && !s.volume)
+      throw Error("--normals volume needs a volume input, not a mesh file");
+    const std::string source = curvature::normals_name(asked);
+    const volume::MeshNormals normals =
+        curvature::host_normals(asked, mesh, s.volume ? &*s.volume : nullptr, o.cap);
+    if (curvature::host_computed(asked)) co.vertex_normals = &normals.normals;
     co.ao_scale = curvature::default_ao_scale(mesh);
     apply_estimator_parameters(o, co);  // --scale reaches the volume row, the weights batagelo's
     Device* device = reference_device(o) ? nullptr : &device_for(o);

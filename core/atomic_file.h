@@ -2,6 +2,7 @@
 // Writing output files safely: to a temporary name beside the target, then renamed over it; a
 // set of files all together or not at all. Temporaries still being written are removed when the
 // process is killed by SIGINT, SIGTERM, SIGHUP or SIGQUIT.
+// Tested in tests/core/test_atomic_file.cpp, tests/io/test_mesh_file.cpp.
 #include <functional>
 #include <string>
 #include <vector>

@@ -4,6 +4,7 @@
 // Shared by everything that needs a viewpoint (viz renders, lines' contours and SVG output) so
 // that a line drawing and a rendered PNG of the same options see the same thing. No VTK here;
 // viz/ applies a Camera to a vtkCamera.
+// Tested in tests/core/test_camera.cpp, tests/screen/scenes.h.
 #include <array>
 #include <vector>
 #include <optional>

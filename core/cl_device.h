@@ -1,5 +1,6 @@
 #pragma once
 // The OpenCL device shared by every compute stage: device choice, queue, program builds.
+// Tested in tests/core/scan_sort_test.cpp, tests/core/test_program_cache.cpp.
 #define CL_HPP_TARGET_OPENCL_VERSION 120
 #define CL_HPP_MINIMUM_OPENCL_VERSION 120
 #define CL_HPP_ENABLE_EXCEPTIONS

@@ -1,5 +1,6 @@
 #pragma once
 // Host arrays as kernel inputs without a copy where the device works in host memory.
+// Tested in tests/curvature/batagelo_test.cpp (through its users).
 #include <algorithm>
 #include <cstddef>
 #include <vector>

@@ -2,6 +2,7 @@
 // Setting a kernel's arguments and launching it over n work items with a fixed work-group size.
 // PoCL compiles one work-group function per distinct local size (about 100 ms each): leaving the
 // local size to the runtime would recompile for every new problem size, so every launch names it.
+// Tested in tests/features/test_sampled.cpp (through its users).
 #include <cstddef>
 
 #include "core/cl_device.h"

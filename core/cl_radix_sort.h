@@ -1,5 +1,6 @@
 #pragma once
 // Stable LSD radix sort of (key, value) pairs on the device (vertex fusion, vertex adjacency).
+// Tested in tests/core/scan_sort_test.cpp.
 #include "core/cl_device.h"
 
 namespace isocurv {

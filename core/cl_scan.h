@@ -1,5 +1,6 @@
 #pragma once
 // Exclusive prefix sum on the device (the mesher's offsets, the radix sort).
+// Tested in tests/core/scan_sort_test.cpp.
 #include "core/cl_device.h"
 
 namespace isocurv {

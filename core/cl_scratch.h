@@ -3,6 +3,8 @@
 // estimates do not pay for fresh memory each time. On CPU devices they are backed by host memory,
 // in huge pages from 128 KiB up (first-touching small pages is slow on virtual machines; below
 // that, one huge page's zeroing costs more than the small pages).
+// Tested through its users: every device stage (tests/mc/extract_test.cpp reuses one device's
+// buffers across extractions).
 #include <memory>
 #include <vector>
 

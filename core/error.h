@@ -1,5 +1,6 @@
 #pragma once
 // The one exception type isocurv throws for bad input or an unusable environment.
+// Tested in tests/core/test_atomic_file.cpp, tests/core/test_camera.cpp.
 #include <stdexcept>
 #include <string>
 

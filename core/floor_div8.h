@@ -1,6 +1,7 @@
 #pragma once
 // Brick coordinates of 8^3 bricks: the voxel-to-brick division that rounds towards minus
 // infinity (integer division rounds towards zero, wrong for negative coordinates).
+// Tested through its users: tests/mc/bricks_test.cpp (negative brick origins) and tests/volume.
 namespace isocurv {
 
 /// floor(v / 8) for any int v.

@@ -1,5 +1,6 @@
 #pragma once
 // What a picture of a mesh is framed on: the mesh's vertices without its specks.
+// Tested in tests/core/test_framing_points.cpp.
 #include <array>
 #include <vector>
 

@@ -1,5 +1,6 @@
 #pragma once
 // Wall time of consecutive steps, for the step times the stages report.
+// Not tested: a stopwatch; its figures only reach timing reports.
 #include <chrono>
 
 namespace isocurv {

@@ -1,5 +1,6 @@
 #pragma once
 // The plain indexed triangle mesh passed between stages.
+// Tested in tests/app/mesh_compare.h, tests/curvature/test_meshes.h.
 #include <array>
 #include <cstdint>
 #include <memory>

@@ -1,5 +1,6 @@
 #pragma once
 // Simple measures of a Mesh shared by several stages.
+// Tested in tests/curvature/request_test.cpp, tests/curvature/volume_normals_test.cpp.
 #include <array>
 #include <cstdint>
 #include <vector>

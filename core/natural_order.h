@@ -1,6 +1,7 @@
 #pragma once
 // Natural ("human") order of names: runs of digits compare as numbers, so frame_2 sorts before
 // frame_10. Used to order the frames of a series (file names, .vdb grid names).
+// Tested in tests/series/test_natural_order.cpp.
 #include <string>
 #include <vector>
 

@@ -13,6 +13,7 @@
 // warning line on stderr (see set_program_cache_warnings).
 //
 // Threading: the functions here may be called from any thread; they touch only files.
+// Tested in tests/core/test_program_cache.cpp.
 #include <cstdint>
 #include <optional>
 #include <string>

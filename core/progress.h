@@ -1,5 +1,6 @@
 #pragma once
 // A progress bar on stderr for long steps; silent when stderr is not a terminal or when quiet.
+// Tested in tests/core/test_progress.cpp, tests/io/test_mesh_file.cpp.
 #include <atomic>
 #include <chrono>
 #include <condition_variable>

@@ -7,6 +7,7 @@
 //
 // Contract: each vertex and triangle of the whole surface is owned by exactly one piece; the
 // pieces call the reductions collectively (every piece, the same calls in the same order).
+// Tested in tests/curvature/volume_piece_test.cpp.
 #include <cstdint>
 #include <vector>
 

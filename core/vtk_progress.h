@@ -2,6 +2,7 @@
 // Forwards a VTK algorithm's progress (its ProgressEvent, 0..1) to the running stage's bar
 // (core/progress.h). Header-only, for the stages that run VTK readers and writers (volume, io);
 // whoever includes it links VTK's CommonCore.
+// Tested in tests/io/test_mesh_file.cpp (progress while writing).
 #include <vtkAlgorithm.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCommand.h>

@@ -5,6 +5,8 @@
 // arrays and on extents near 2^31, and silently dropped data a header did not declare (a .vtp
 // whose NumberOfPolys said 1 lost 2,351 triangles). Internal: shared by io/vtp_format.cpp and
 // volume/load_vtk_image.cpp, not installed.
+// Tested through the readers that call it: tests/io/test_mesh_file.cpp,
+// tests/volume/test_bad_input.cpp.
 #include <cstddef>
 #include <string>
 #include <vector>

@@ -25,6 +25,7 @@
 //
 // Each vertex then takes the scale of the ladder s1 sqrt(2)^j within [lo, hi] whose
 // N(sigma)^2 + (sigma^2 L / 2)^2 is least.
+// Tested in tests/curvature/adaptive_scale_test.cpp.
 #include <cstddef>
 #include <vector>
 

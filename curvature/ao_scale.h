@@ -1,5 +1,6 @@
 #pragma once
 // The default ambient-occlusion radius for a mesh.
+// Tested through the commands that default to it: tests/app/test_ao_cli.cpp.
 #include "core/mesh.h"
 #include "core/surface_piece.h"
 

@@ -1,5 +1,6 @@
 #pragma once
 // --scale auto: the volume estimator's Gaussian scale chosen from the data.
+// Tested in tests/curvature/volume_estimate_test.cpp, tests/curvature/volume_piece_test.cpp.
 #include <string>
 
 #include "core/mesh.h"

@@ -1,6 +1,7 @@
 #pragma once
 // Batagelo & Wu 2007 ("Estimating curvatures and their derivatives on meshes of arbitrary
 // topology from sampling directions"): the one-pass per-vertex estimator, double precision.
+// Tested in tests/curvature/batagelo_test.cpp, tests/curvature/estimator_bad_input_test.cpp.
 #include "core/cl_device.h"
 #include "core/mesh.h"
 #include "curvature/curvature_field.h"

@@ -1,5 +1,6 @@
 #pragma once
 // Goldfeather and Interrante 2004's cubic fit with normals: a comparison estimator, double only.
+// Tested in tests/curvature/comparison_estimators_test.cpp.
 #include "core/mesh.h"
 #include "curvature/curvature_field.h"
 #include "curvature/options.h"

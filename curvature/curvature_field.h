@@ -1,5 +1,6 @@
 #pragma once
 // The per-vertex curvature arrays the curvature stage produces (names as in DESIGN.md).
+// Tested in tests/curvature/compare.h, tests/curvature/estimator_protocols.h.
 #include <array>
 #include <cstdint>
 #include <string>

@@ -2,6 +2,7 @@
 // Quantities derived from the principal curvatures at one point: shape index, curvedness and the
 // curvature-based ambient occlusion. Templates so the double reference and float code agree; the
 // OpenCL kernels (curvature_math.cl) repeat these formulas.
+// Tested in tests/curvature/closed_form_test.cpp, tests/ao/test_ao.cpp.
 #include <algorithm>
 #include <cmath>
 

@@ -36,9 +36,6 @@ enum Slot : std::size_t {
   kSlots
 };
 
-// Fans up to this many corners are checked for boundary edges in registers (vertex_boundary).
-constexpr std::uint32_t kMaxFan = 8;
-
 const std::string& program_source() {
   static const std::string source =
       std::string(kernels::curvature_math_cl) + "\n" + kernels::curvature_kernels_cl;

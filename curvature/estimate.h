@@ -1,5 +1,6 @@
 #pragma once
 // curvature::estimate: per-vertex curvature of a triangle mesh on an OpenCL device.
+// Tested in tests/curvature/closed_form_test.cpp, tests/curvature/degenerate_test.cpp.
 #include "core/cl_device.h"
 #include "core/mesh.h"
 #include "curvature/curvature_field.h"

@@ -1,6 +1,7 @@
 #pragma once
 // curvature::estimate_field: every curvature estimator behind one call (Options::estimator), all
 // returning the same CurvatureField (names and conventions of curvature_field.h).
+// Tested in tests/curvature/ct_classes_test.cpp, tests/curvature/volume_estimate_test.cpp.
 #include <optional>
 #include <string>
 #include <utility>

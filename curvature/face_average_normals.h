@@ -1,6 +1,7 @@
 #pragma once
 // Vertex normals as the plain average of the unit face normals (Prantl's report eq. 2.2; the
 // normals of Batagelo & Wu's Fig. 2 protocol).
+// Tested in tests/curvature/face_average_normals_test.cpp.
 #include <vector>
 
 #include "core/mesh.h"

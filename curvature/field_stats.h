@@ -1,5 +1,6 @@
 #pragma once
 // Summary statistics of a CurvatureField (stats.json and --json of the isocurv commands).
+// Tested in tests/curvature/field_stats_test.cpp.
 #include <array>
 #include <cstddef>
 #include <cstdint>

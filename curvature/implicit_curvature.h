@@ -1,6 +1,7 @@
 #pragma once
 // Curvature of an implicit surface at one point from the field's derivatives there (the volume
 // estimator's per-vertex step; double precision, the specification of volume_kernels.cl).
+// Tested through the volume estimator: tests/curvature/volume_estimate_test.cpp (closed forms).
 #include <Eigen/Core>
 #include <array>
 

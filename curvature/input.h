@@ -1,5 +1,6 @@
 #pragma once
 // Validation of the curvature stage's input, shared by the kernels' host code and the reference.
+// Tested in tests/curvature/estimator_bad_input_test.cpp (every estimator's refusals).
 #include "core/mesh.h"
 #include "curvature/options.h"
 

@@ -1,6 +1,7 @@
 #pragma once
 // What every curvature estimator takes from the mesh itself, whatever gives the curvature: the
 // mixed Voronoi areas ("Area") and the open-boundary flags ("Boundary").
+// Tested through the Area and Boundary arrays: tests/curvature/closed_form_test.cpp, tests/measure.
 #include <array>
 #include <cstdint>
 #include <vector>

@@ -2,6 +2,7 @@
 // Every per-vertex curvature estimator that needs only the mesh (and its normals), by name: the
 // project's Rusinkiewicz estimator, the seeds' one-pass estimators (Batagelo, Prantl) and the
 // comparison estimators (quadric and cubic fits, normal-curvature sampling, Meyer's operators).
+// Tested in tests/deform/prepared_test.cpp.
 #include <optional>
 #include <string>
 #include <vector>

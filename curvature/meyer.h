@@ -1,6 +1,7 @@
 #pragma once
 // Meyer, Desbrun, Schroeder and Barr 2003's discrete operators: cotangent mean curvature and
 // angle-deficit Gaussian curvature over mixed Voronoi areas. A comparison estimator, double only.
+// Tested in tests/curvature/comparison_estimators_test.cpp.
 #include "core/mesh.h"
 #include "curvature/curvature_field.h"
 #include "curvature/options.h"

@@ -2,6 +2,7 @@
 // Curvature at several scales in one field: the volume estimator run once per scale, each run's
 // scalar arrays kept under a suffix "_s<name>" (e.g. "H_s2" for --scale 2), as the command line
 // spells the scale, so users can see structure by scale (ParaView, `render --color H_s2`).
+// Tested through --scale S1,S2: tests/app/test_volume_options.cpp.
 #include <string>
 #include <vector>
 

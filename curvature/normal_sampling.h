@@ -1,6 +1,7 @@
 #pragma once
 // Normal curvature sampled along the 1-ring edges (Batagelo & Wu eq. 12, after Chen and Schmitt
 // and Meyer et al.): a comparison estimator, double only.
+// Tested in tests/curvature/comparison_estimators_test.cpp.
 #include "core/mesh.h"
 #include "curvature/curvature_field.h"
 #include "curvature/options.h"

@@ -1,5 +1,6 @@
 #pragma once
 // Options of the curvature estimator (curvature::estimate and curvature::estimate_reference).
+// Tested in tests/curvature/estimator_protocols_test.cpp (through its users).
 #include <vector>
 
 #include "core/mesh.h"

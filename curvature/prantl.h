@@ -2,6 +2,7 @@
 // Prantl, Vasa and Kolingerova 2017 ("Fast screen space curvature estimation on GPU", section
 // 3.1) in object space: a shape operator per triangle from its edges and vertex normals, averaged
 // into the vertices. Double precision.
+// Tested in tests/curvature/prantl_test.cpp, tests/curvature/estimator_bad_input_test.cpp.
 #include <array>
 
 #include "core/cl_device.h"

@@ -1,5 +1,6 @@
 #pragma once
 // Taubin-style quadric fit (Batagelo & Wu section 3.1): a comparison estimator, double only.
+// Tested in tests/curvature/comparison_estimators_test.cpp.
 #include "core/mesh.h"
 #include "curvature/curvature_field.h"
 #include "curvature/options.h"

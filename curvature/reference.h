@@ -1,6 +1,7 @@
 #pragma once
 // The specification of the curvature stage: Rusinkiewicz's estimator, as Griffin et al.
 // parallelise it, written plainly in double precision. The OpenCL kernels are tested against it.
+// Tested in tests/curvature/kernel_vs_reference_test.cpp, tests/curvature/batagelo_test.cpp.
 #include "core/mesh.h"
 #include "curvature/curvature_field.h"
 #include "curvature/options.h"

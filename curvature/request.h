@@ -3,6 +3,7 @@
 // Python module (python/detail/estimate.cpp): the default estimator, the combinations that are
 // errors, and the vertex normals the mesh estimators use. The callers convert their own arguments
 // into a Request and word a RequestError in their own terms ("--normals ...", "normals: ...").
+// Tested in tests/curvature/request_test.cpp.
 #include <optional>
 #include <string>
 #include <vector>

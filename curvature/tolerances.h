@@ -1,6 +1,8 @@
 #pragma once
 // Thresholds shared by the double reference and the float kernels (passed to the OpenCL build as
 // macros), so both skip the same degenerate triangles.
+// Tested through the kernels beside their references:
+// tests/curvature/mesh_estimator_kernels_test.cpp.
 
 namespace isocurv::curvature {
 

@@ -9,15 +9,15 @@
 #include "curvature/detail/mesh_pass_cl.h"
 #include "curvature/estimator.h"
 #include "curvature/input.h"
+#include "curvature/vertex_corners.h"
 
 namespace isocurv::curvature {
 namespace {
 
-// Fans with more corners go to vertex_boundary_large (the value estimate.cpp and mesh_pass_cl use).
-constexpr std::uint32_t kMaxFan = 8;
-
-// The slots of a Topology's ScratchBuffers.
-enum Slot : std::size_t {
+// The slots of a Topology's ScratchBuffers (qualified: estimate.cpp, which may share a unity
+// batch, has slots of its own).
+struct TopologySlot {
+  enum : std::size_t {
   kPositions,
   kTriangles,
   kOffsets,
@@ -26,10 +26,11 @@ enum Slot : std::size_t {
   kNbOffsets,
   kNbIds,
   kSlots
+  };
 };
 
 template <class T, class A>
-cl::Buffer device_copy(Device& device, ScratchBuffers& store, Slot slot,
+cl::Buffer device_copy(Device& device, ScratchBuffers& store, std::size_t slot,
                        const std::vector<T, A>& v) {
   cl::Buffer b = store.get(slot, std::max<std::size_t>(v.size() * sizeof(T), 16));
   if (!v.empty()) device.queue().enqueueWriteBuffer(b, CL_TRUE, 0, v.size() * sizeof(T), v.data());
@@ -56,13 +57,13 @@ Topology prepare(const Triangles& triangles, std::size_t vertex_count, Device& d
   device_call(device, "curvature: preparing the topology", [&] {
     // Buffers like the cold path's (core/cl_scratch.h: on a CPU device, host memory in huge
     // pages), so the kernels see the same kind of memory either way.
-    t.store_ = std::make_shared<ScratchBuffers>(device, kSlots);
+    t.store_ = std::make_shared<ScratchBuffers>(device, TopologySlot::kSlots);
     t.positions_ =
-        t.store_->get(kPositions, std::max<std::size_t>(vertex_count * sizeof(Vec3f), 16));
-    t.triangle_buf_ = device_copy(device, *t.store_, kTriangles, triangles);
-    t.offsets_buf_ = device_copy(device, *t.store_, kOffsets, t.adjacency_.offsets);
-    t.corners_buf_ = device_copy(device, *t.store_, kCorners, t.adjacency_.corners);
-    t.large_buf_ = device_copy(device, *t.store_, kLarge, large);
+        t.store_->get(TopologySlot::kPositions, std::max<std::size_t>(vertex_count * sizeof(Vec3f), 16));
+    t.triangle_buf_ = device_copy(device, *t.store_, TopologySlot::kTriangles, triangles);
+    t.offsets_buf_ = device_copy(device, *t.store_, TopologySlot::kOffsets, t.adjacency_.offsets);
+    t.corners_buf_ = device_copy(device, *t.store_, TopologySlot::kCorners, t.adjacency_.corners);
+    t.large_buf_ = device_copy(device, *t.store_, TopologySlot::kLarge, large);
   });
   return t;
 }
@@ -73,8 +74,8 @@ const cl::Buffer& Topology::neighbour_offsets_buffer() {
     shape.triangles = triangles_;
     shape.positions.resize(vertex_count_);
     const detail::Neighbours nb = detail::vertex_neighbours(shape, adjacency_);
-    nb_offsets_buf_ = device_copy(*device_, *store_, kNbOffsets, nb.offsets);
-    nb_ids_buf_ = device_copy(*device_, *store_, kNbIds, nb.ids);
+    nb_offsets_buf_ = device_copy(*device_, *store_, TopologySlot::kNbOffsets, nb.offsets);
+    nb_ids_buf_ = device_copy(*device_, *store_, TopologySlot::kNbIds, nb.ids);
     have_neighbours_ = true;
   }
   return nb_offsets_buf_;

@@ -1,6 +1,7 @@
 #pragma once
 // curvature::Topology: a mesh's connectivity prepared once for per-frame curvature of a deforming
 // mesh (Griffin et al. 2012 section 3.4: the triangles never change, only the positions do).
+// Tested in tests/deform/animation_test.cpp, tests/deform/prepared_test.cpp.
 #include <cstddef>
 #include <cstdint>
 #include <memory>

@@ -1,11 +1,16 @@
 #pragma once
 // The vertex -> corner adjacency that lets per-vertex kernels sum their triangles in a fixed order.
+// Tested in tests/lines/test_vertex_pairs.cpp.
 #include <cstdint>
 #include <vector>
 
 #include "core/mesh.h"
 
 namespace isocurv::curvature {
+
+/// Fans of up to this many corners are checked for boundary edges in registers (the kernels'
+/// vertex_boundary); larger ones go to vertex_boundary_large. Shared by every mesh-estimator path.
+inline constexpr std::uint32_t kMaxFan = 8;
 
 /// Compressed rows: the corners (3 * triangle + j) of vertex v are
 /// corners[offsets[v] .. offsets[v + 1]), in increasing order. Triangles with a repeated vertex

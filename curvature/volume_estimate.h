@@ -45,6 +45,7 @@
 // Cost follows the surface: only the 8^3 bricks the vertices' B-splines read, and what the
 // prefilter's three passes need for them, are gathered and filtered; a vertex then reads 5^3
 // smoothed samples, whatever the scale.
+// Tested in tests/curvature/volume_estimate_test.cpp, tests/curvature/volume_piece_test.cpp.
 #include <cstddef>
 #include <optional>
 #include <vector>

@@ -1,6 +1,7 @@
 #pragma once
 // Welding exact duplicate vertices, so the estimator sees the connectivity of a mesh whose
 // triangles were stored each with its own corners (other tools' PLY and OBJ files).
+// Tested in tests/curvature/weld_test.cpp.
 #include <cstddef>
 
 #include "core/mesh.h"

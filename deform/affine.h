@@ -2,6 +2,7 @@
 // deform::affine: an affine map of every vertex, written on the device (an analytic deformer
 // with exact curvature: a unit sphere mesh scaled by diag(a, b, c) is an ellipsoid; a rotation
 // is a rigid motion, the frame-coherence test's driver).
+// Tested in tests/deform/animation_test.cpp, tests/deform/deformers_test.cpp.
 #include <array>
 #include <cstddef>
 

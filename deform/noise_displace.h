@@ -1,6 +1,7 @@
 #pragma once
 // deform::noise_displace: displacement along the normal by a smooth noise field (Batagelo & Wu's
 // Fig. 1, a noise-deformed sphere; Griffin's bump-mapped demo), written on the device.
+// Tested in tests/deform/deform_fixtures.h, tests/deform/deformers_test.cpp.
 #include <cstddef>
 #include <vector>
 

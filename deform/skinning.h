@@ -18,6 +18,7 @@
 // >= 0, summing to 1 within 1e-3 per vertex; at least one keyframe, each with one pose per bone;
 // rotations non-zero (normalised on reading); "rotation" defaults to [1, 0, 0, 0] and
 // "translation" to [0, 0, 0]. Before the first keyframe and after the last the pose is held.
+// Tested in tests/deform/deformers_test.cpp.
 #include <array>
 #include <cstddef>
 #include <cstdint>

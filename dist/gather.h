@@ -2,6 +2,7 @@
 // The whole surface on one rank: every piece's owned vertices (with their curvature arrays) and
 // owned triangles sent to rank 0 and joined by global id, each vertex and triangle once. For
 // --gather, and for the commands that finish on one process (run's picture, check's report).
+// Tested in tests/dist/test_distributed.cpp (mpirun runs bit-identical to one process).
 #include "core/mesh.h"
 #include "curvature/curvature_field.h"
 #include "dist/piece.h"

@@ -10,6 +10,7 @@
 //   a vertex, and an edge, to the lowest rank owning a triangle around it.
 // Each rank decides this alone from its local extraction, which reaches kExtractGhostCells past its
 // slab so that every triangle around its vertices is there exactly as the whole extraction makes it.
+// Tested in tests/dist/test_distributed.cpp.
 #include <cstdint>
 #include <vector>
 

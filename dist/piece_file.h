@@ -7,6 +7,7 @@
 // All or nothing: every rank writes its piece under a temporary name; only when all succeeded are
 // they renamed into place, and rank 0 writes the .pvtp last. Any failure leaves no new piece and
 // no .pvtp (an existing .pvtp stays as it was).
+// Tested in tests/dist/test_distributed.cpp (.pvtp pieces and gathered .vtp).
 #include <memory>
 #include <string>
 

@@ -3,6 +3,7 @@
 // NRRD, NIfTI and MetaImage files, so a slab is one contiguous run of the file), cut between
 // 8-cell brick layers and balanced by the bricks that carry surface, not by volume: a CT with
 // much air, or a sparse .vdb, gives each rank the same share of the real work.
+// Tested in tests/dist/test_distributed.cpp.
 #include <climits>
 #include <cstdint>
 #include <vector>

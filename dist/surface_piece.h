@@ -3,6 +3,7 @@
 // its local extraction it owns, and the reductions over the ranks that the whole-surface
 // quantities (the volume estimator's automatic scale and weak-gradient threshold, the AO scale)
 // need.
+// Tested in tests/dist/test_distributed.cpp and tests/curvature/volume_piece_test.cpp.
 #include "core/mesh.h"
 #include "core/surface_piece.h"
 #include "dist/piece.h"

@@ -7,6 +7,7 @@
 // ranks only is wrapped so that each rank reaches the next agree() with its error as a string
 // (dist::guarded), never with an exception in flight: a rank that threw past a collective would
 // leave the others waiting for ever.
+// Tested in tests/app/test_extract_curvature.cpp (through its users).
 #include <cstdint>
 #include <functional>
 #include <stdexcept>

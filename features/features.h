@@ -4,6 +4,7 @@
 // quantities that integrate over a ball around each vertex instead of
 // differentiating at it, so they measure shape at a chosen scale and are far
 // less sensitive to voxel-scale noise than per-vertex curvature.
+// Tested in tests/features/feature_helpers.h, tests/features/test_features.cpp.
 #include <string>
 #include <vector>
 

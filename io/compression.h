@@ -1,5 +1,6 @@
 #pragma once
 // How .vtp files are compressed (`--compress none|lz4|zlib[:LEVEL]`); PLY, OBJ and STL ignore it.
+// Tested in tests/io/test_mesh_file.cpp.
 #include <string>
 
 namespace isocurv::io {

@@ -1,6 +1,7 @@
 #pragma once
 // The named per-vertex arrays of a CurvatureField, in one place, so that every file format and the
 // renderer use the same names and component counts (DESIGN.md: "Output array names").
+// Tested in tests/io/test_mesh_file.cpp.
 #include <array>
 #include <cstdint>
 #include <string>

@@ -13,6 +13,7 @@
 //
 // Float arrays read back from .vtp and .ply are bit-for-bit what was written; .obj writes floats
 // with 9 significant digits, which also round-trips exactly. Mesh::edge_keys are not stored.
+// Tested in tests/io/test_mesh_file.cpp, tests/io/test_fuzz_regressions.cpp.
 #include <cstdint>
 #include <optional>
 #include <string>

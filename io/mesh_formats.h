@@ -3,6 +3,7 @@
 // extension. Writers write straight to `path` (the caller makes it atomic and checks the field's
 // sizes); `field` may be null. Writers throw std::runtime_error with the bare problem (the caller
 // names the target file, not the temporary); readers throw Error naming `path`.
+// Tested through io/mesh_file.h: tests/io/test_mesh_file.cpp (every format round trip).
 #include <string>
 
 #include "io/compression.h"

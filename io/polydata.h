@@ -1,6 +1,7 @@
 #pragma once
 // Converting a Mesh (with its curvature arrays) to vtkPolyData and back; used by the .vtp/.stl
 // formats and by viz/.
+// Tested in tests/io/test_polydata.cpp.
 #include <string>
 
 #include <vtkSmartPointer.h>

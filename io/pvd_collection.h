@@ -10,6 +10,7 @@
 // File names are stored relative to the .pvd's folder (so the folder can be moved), with the
 // five XML special characters escaped. Times are written with 17 significant digits, so they read
 // back exactly.
+// Tested in tests/io/test_pvd_collection.cpp, tests/app/test_deform_cli.cpp.
 #include <string>
 #include <vector>
 

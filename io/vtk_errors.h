@@ -1,5 +1,6 @@
 #pragma once
 // Turning VTK's error reports (printed to stderr by default) into exceptions.
+// Tested in tests/app/cli.h, python/tests/test_isocurv.py (through its users).
 #include <string>
 #include <vector>
 

@@ -3,6 +3,7 @@
 // TotalSegmentator, ITK-SNAP). Each label becomes its own surface, extracted at the half level of
 // its indicator (1 on the label's voxels, 0 elsewhere), so touching labels each get a closed
 // surface of their own.
+// Tested in tests/labels/test_label_map.cpp.
 #include <cstdint>
 #include <string>
 #include <vector>

@@ -2,6 +2,7 @@
 // The surfaces of several labels as one mesh: positions and triangles concatenated, their
 // curvature arrays too, and a "Label" array on the vertices (CurvatureField::extra) and on the
 // triangles, as one mesh file holding every label.
+// Tested in tests/labels/test_label_map.cpp.
 #include <cstdint>
 #include <vector>
 

@@ -1,5 +1,6 @@
 #pragma once
 // lines::extract: the per-face feature-line extraction on an OpenCL device.
+// Tested in tests/lines/test_bad_input.cpp, tests/lines/test_ct_like.cpp.
 #include "core/cl_device.h"
 #include "lines/segments.h"
 

@@ -1,5 +1,6 @@
 #pragma once
 // Feature lines out: vtkPolyData, .vtp files and SVG drawings.
+// Tested in tests/lines/test_svg_visibility.cpp.
 #include <array>
 #include <string>
 

@@ -1,6 +1,7 @@
 #pragma once
 // The kinds of feature line the lines stage extracts, and the --lines list that
 // selects them.
+// Tested in tests/lines/test_ct_like.cpp, tests/lines/test_ridges.cpp (through its users).
 #include <cstdint>
 #include <string>
 

@@ -1,6 +1,7 @@
 #pragma once
 // Options of the lines stage (lines::extract and lines::extract_reference) and
 // the thresholds they resolve to on a given curvature field.
+// Tested in tests/lines/test_thresholds.cpp.
 #include "curvature/curvature_field.h"
 #include "lines/line_types.h"
 

@@ -1,5 +1,6 @@
 #pragma once
 // Segments joined into polylines where they meet on a mesh edge.
+// Tested in tests/lines/test_contours.cpp, tests/lines/test_ct_like.cpp.
 #include <cstdint>
 #include <vector>
 

@@ -2,6 +2,7 @@
 // The specification of the per-face line extraction, written plainly in double
 // precision (single-threaded). The OpenCL kernels (lines/extract.h) are tested
 // against it.
+// Tested in tests/lines/test_bad_input.cpp, tests/lines/test_contours.cpp.
 #include "lines/segments.h"
 
 namespace isocurv::lines {

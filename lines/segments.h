@@ -1,6 +1,7 @@
 #pragma once
 // The lines stage's per-face output: unconnected segments, one per face and
 // line type at most.
+// Tested in tests/lines/test_bad_input.cpp, tests/lines/test_contours.cpp (through its users).
 #include <cstdint>
 #include <vector>
 

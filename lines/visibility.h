@@ -1,5 +1,6 @@
 #pragma once
 // Hidden-line removal for vector output: an exact ray cast against the surface.
+// Tested in tests/lines/test_svg_visibility.cpp.
 #include <memory>
 #include <vector>
 

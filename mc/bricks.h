@@ -1,6 +1,7 @@
 #pragma once
 // Sparse brick selection: only 8^3-cell bricks (aligned with VDB leaf nodes) whose samples,
 // with a one-voxel apron, straddle the isovalue are sent to the device.
+// Tested in tests/mc/bricks_test.cpp, tests/mc/extract_test.cpp.
 #include <cstdint>
 #include <unordered_map>
 #include <vector>

@@ -1,5 +1,6 @@
 #pragma once
 // The marching-cubes case table: for each of the 256 corner sign patterns, the triangles' edges.
+// Tested in tests/mc/extract_test.cpp (the kernels against mc/extract_reference.h).
 #include <array>
 #include <cstdint>
 

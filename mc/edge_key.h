@@ -1,5 +1,6 @@
 #pragma once
 // Identity of a cube edge (the key vertex fusion compares) and its hash. Mirrored in mc/*.cl.
+// Tested in tests/mc/edge_hash_test.cpp.
 #include <cstdint>
 
 namespace isocurv::mc {

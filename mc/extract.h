@@ -1,5 +1,6 @@
 #pragma once
 // mc::extract: a volume's isosurface as a fused, indexed triangle mesh, computed on the device.
+// Tested in tests/mc/extract_test.cpp, tests/mc/real_volume_test.cpp.
 #include <memory>
 #include <vector>
 

@@ -1,5 +1,6 @@
 #pragma once
 // The plain sequential marching cubes: the specification the device mesher is tested against.
+// Tested in tests/mc/extract_test.cpp, tests/mc/snap_test.cpp.
 #include "core/mesh.h"
 #include "mc/options.h"
 #include "volume/volume.h"

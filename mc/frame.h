@@ -1,6 +1,7 @@
 #pragma once
 // What an extraction reads from a volume: which cells, how a voxel becomes a signed value, and
 // the index-to-world map. Shared by the reference mesher and the device mesher so both agree.
+// Tested in tests/mc/bricks_test.cpp, tests/dist/test_distributed.cpp.
 #include <array>
 #include <cmath>
 #include <cstdint>

@@ -1,5 +1,6 @@
 #pragma once
 // Fusion and topology checks any user can run on any mesh (isocurv check).
+// Tested in tests/mc/mesh_check_test.cpp, tests/mc/extract_test.cpp.
 #include <array>
 #include <cstdint>
 #include <vector>

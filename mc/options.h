@@ -1,5 +1,6 @@
 #pragma once
 // Options of the marching-cubes mesher.
+// Tested in tests/mc/extract_test.cpp, tests/mc/snap_test.cpp (through its users).
 #include <array>
 #include <climits>
 

@@ -11,6 +11,7 @@
 // consistent winding and no triangle below a minimum area or flipped against its former normal;
 // elsewhere the vertices keep their place. Applied identically after the device mesher and the
 // C++ reference (both list the same vertices), so the two still agree.
+// Tested in tests/mc/snap_test.cpp.
 #include <cstdint>
 #include <vector>
 

@@ -1,5 +1,6 @@
 #pragma once
 // Triangle quality of any mesh: smallest area and angle, and the counts of slivers.
+// Tested in tests/mc/mesh_check_test.cpp, tests/mc/real_volume_test.cpp.
 #include <cstddef>
 
 #include "core/mesh.h"

@@ -2,6 +2,7 @@
 // measure::object_measures: the four Minkowski functionals of every connected component of a
 // surface (enclosed volume, area, integral of H, Euler characteristic), the integral of K beside
 // them, and the Gauss-Bonnet gap by which each result checks itself.
+// Tested in tests/measure/test_object_measures.cpp, tests/measure/test_measure_accuracy.cpp.
 #include <array>
 #include <cstddef>
 #include <vector>

@@ -3,6 +3,7 @@
 // al.'s per-triangle shape operator on pixel triangles, with the level of detail and the
 // depth-discontinuity rule, and Mellado et al.'s screen-space sphere fit (the paper's baseline).
 // The OpenCL kernels (screen_kernels.cl) and their double-precision C++ reference.
+// Tested in tests/screen/scenes.h.
 #include <cstdint>
 #include <string>
 #include <vector>

@@ -2,6 +2,7 @@
 // The deferred G-buffer screen-space curvature reads: per pixel a surface point, its unit normal
 // and its eye depth, for one camera. Filled by the volume ray caster (ray_cast.h) or the mesh
 // rasteriser (rasterise.h); read by the estimators (estimate.h).
+// Tested in tests/screen/scenes.h.
 #include <array>
 #include <cstdint>
 #include <vector>

@@ -1,6 +1,7 @@
 #pragma once
 // The screen stage's outputs: the picture (PNG, with title and colour-bar legend laid out as
 // isocurv render does) and the raw per-pixel values (.vti).
+// Tested through the screen command: tests/app/test_screen_cli.cpp.
 #include <string>
 
 #include "screen/estimate.h"

@@ -3,6 +3,7 @@
 // a mesh fully in view, the camera pulled back in steps, and at each step the mean squared
 // difference between screen-space curvature and the object-space per-vertex curvature
 // interpolated in the triangle each pixel sees.
+// Tested in tests/screen/test_pull_back.cpp.
 #include <vector>
 
 #include "core/camera.h"

@@ -1,6 +1,7 @@
 #pragma once
 // G-buffer producer (ii): a mesh rasterised in software (SEEDS-SPEC 4.4), so that meshes from
 // files give screen-space curvature too.
+// Tested in tests/screen/test_mesh_vs_volume.cpp, tests/screen/test_pull_back.cpp.
 #include <array>
 #include <cstdint>
 #include <vector>

@@ -1,6 +1,7 @@
 #pragma once
 // G-buffer producer (i): the isosurface of a volume cast per pixel, no mesh involved
 // (SEEDS-SPEC 4.4). The OpenCL kernel (screen_kernels.cl, ray_cast) and its C++ reference.
+// Tested in tests/screen/test_ray_cast.cpp, tests/screen/test_ct_like.cpp.
 #include "core/cl_device.h"
 #include "screen/gbuffer.h"
 #include "volume/dense_field.h"

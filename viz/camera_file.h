@@ -3,6 +3,7 @@
 //
 // The file: {"position": [x, y, z], "focal_point": [x, y, z], "view_up": [x, y, z],
 // "ortho": false, "view_angle_deg": 30, "parallel_scale": 1} in world units.
+// Tested in tests/viz/test_explorer.cpp.
 #include <string>
 
 #include "core/camera.h"

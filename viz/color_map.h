@@ -6,6 +6,7 @@
 // "grey" (black to white) and "bgr" (the papers' blue-green-red, green at the centre). "auto"
 // picks diverging for signed quantities (H, K, k1, k2, ShapeIndex and the arrays named after
 // them: H_s2, H_ii, SI_ii, ...; viz::QuantityKind), grey for AO and viridis for the others.
+// Tested in tests/viz/test_color_map.cpp, tests/viz/test_render.cpp.
 #include <vtkSmartPointer.h>
 
 #include <array>

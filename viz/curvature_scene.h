@@ -2,6 +2,7 @@
 // A VTK scene showing one curvature surface: the coloured, shaded mesh, optional direction
 // glyphs, and a 2D overlay with the title and the legend laid out so that neither covers the
 // surface (picture_layout.h). Used by render_png and the explorer.
+// Tested in tests/viz/test_explorer_screen.cpp, tests/viz/test_render.cpp.
 #include <memory>
 
 #include "core/camera.h"

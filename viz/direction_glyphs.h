@@ -1,5 +1,6 @@
 #pragma once
 // Principal directions drawn as short line segments on an even subsample of the vertices.
+// Tested in tests/viz/test_color_map.cpp.
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 

@@ -4,6 +4,7 @@
 // isovalue slider). It never extracts or reads anything itself: the caller supplies a callback
 // that turns an isovalue into a surface (the app composes mc::extract and curvature::estimate, or
 // reads a series' mesh file). The parts are in viz/detail/ (internal).
+// Tested in tests/viz/explorer_fixture.h, tests/viz/test_explorer.cpp.
 #include <array>
 #include <functional>
 #include <string>

@@ -1,5 +1,6 @@
 #pragma once
 // An X display for VTK: Debian's VTK 9.1 renders through GLX even offscreen, so it needs one.
+// Tested in tests/viz/test_render.cpp.
 
 class vtkRenderWindow;
 

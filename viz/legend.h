@@ -1,6 +1,7 @@
 #pragma once
 // The picture's 2D overlay: title, colour bar with its title and tick labels, drawn where a
 // PictureLayout puts them.
+// Tested in tests/viz/test_explorer_screen.cpp and the pictures of tests/viz/test_render.cpp.
 #include <memory>
 
 #include "viz/color_map.h"

@@ -1,6 +1,7 @@
 #pragma once
 // Feature lines drawn over a curvature surface (render --lines, run --lines,
 // the explorer's 'l').
+// Tested through render --lines: tests/viz/test_render.cpp.
 #include <memory>
 
 #include "core/camera.h"

@@ -1,6 +1,7 @@
 #pragma once
 // Where the title, the legend (colour bar, its title and labels) and the surface go in a picture,
 // with text measured by VTK's FreeType renderer so that nothing is clipped from 300x300 to 4k.
+// Tested in tests/viz/test_picture_layout.cpp, tests/viz/test_color_map.cpp.
 #include <string>
 #include <vector>
 

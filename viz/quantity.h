@@ -5,6 +5,7 @@
 // read from the name: its base (the name without a scale suffix "_s<S>" or a radius suffix
 // "_r<R>") decides its kind (QuantityKind), its colour map and range (color_map.h), its unit and
 // its description.
+// Tested in tests/viz/test_color_map.cpp, tests/viz/test_explorer.cpp.
 #include <string>
 #include <vector>
 

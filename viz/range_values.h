@@ -1,6 +1,7 @@
 #pragma once
 // The values a picture's automatic colour range is taken from, so that a picture, a sweep's shared
 // range and the statistics all count the same vertices.
+// Tested through the pictures' colour ranges: tests/viz/test_render.cpp.
 #include <string>
 #include <vector>
 

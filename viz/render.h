@@ -1,5 +1,6 @@
 #pragma once
 // Headless rendering of a curvature surface to a PNG.
+// Tested in tests/viz/test_render.cpp.
 #include <string>
 
 #include "core/mesh.h"

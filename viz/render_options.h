@@ -1,5 +1,6 @@
 #pragma once
 // How a curvature surface is shown: shared by render_png and the explorer.
+// Tested in tests/viz/test_render.cpp, tests/viz/test_explorer_screen.cpp (through its users).
 #include <optional>
 #include <array>
 #include <string>

@@ -1,6 +1,7 @@
 #pragma once
 // A per-pixel curvature image as the explorer's screen-space mode shows it (plain data, filled by
 // the caller from screen::estimate; viz does not depend on screen/).
+// Tested in tests/viz/test_explorer_screen.cpp (through its users).
 #include <cstdint>
 #include <string>
 #include <vector>

@@ -1,5 +1,7 @@
 #pragma once
 // Saving what a render window shows as a PNG.
+// Tested through every picture written: tests/viz/test_render.cpp,
+// tests/viz/test_explorer_view.cpp.
 #include <string>
 
 class vtkRenderWindow;

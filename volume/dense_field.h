@@ -4,6 +4,7 @@
 // caster's empty-space skipping). What the device stages that sample the volume at arbitrary
 // points upload (screen/ray_cast, features' sampled path); dense_field.cl is the same field on the
 // device. Independent of the isovalue: built once, read at any number of isovalues.
+// Tested in tests/volume/test_dense_field_smooth.cpp, tests/screen/scenes.h.
 #include <array>
 #include <cmath>
 #include <cstdint>

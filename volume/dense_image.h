@@ -1,5 +1,6 @@
 #pragma once
 // The common last step of every dense loader: decoded voxels plus geometry -> Volume.
+// Tested in tests/volume/test_loaders.cpp (through its users).
 #include <array>
 #include <cstdint>
 #include <string>

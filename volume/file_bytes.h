@@ -3,6 +3,7 @@
 // function throws isocurv::Error(path, problem) on a missing, unreadable or truncated input, and
 // never allocates more than the data can justify (a compressed stream is inflated into a buffer
 // that grows with the data actually produced, capped at the expected size).
+// Tested through the loaders: tests/volume/test_loaders.cpp, tests/volume/test_bad_input.cpp.
 #include <cstddef>
 #include <cstdint>
 #include <string>

@@ -1,5 +1,6 @@
 #pragma once
 // Building a Volume from a dense array in memory (every dense loader and the dataset generators use it).
+// Tested in tests/volume/test_from_dense.cpp, tests/volume/test_gradient_normals.cpp.
 #include <array>
 #include <optional>
 #include <string>

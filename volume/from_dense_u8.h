@@ -1,5 +1,6 @@
 #pragma once
 // from_dense for 8-bit data, without an intermediate float copy (most large volumes are uint8).
+// Tested through the loaders of 8-bit files: tests/volume/test_loaders.cpp.
 #include <cstdint>
 
 #include "volume/from_dense.h"

@@ -4,6 +4,7 @@
 // deviation sigma (world units), evaluated at any world point, each tap read from the grid (the
 // automatic scale's edge measure uses it). Also the grid frame, the jet type and its Taylor shift
 // that the volume estimator's reconstruction (volume/prefilter.h, volume/spline_jet.h) shares.
+// Tested in tests/volume/test_noise_estimate.cpp (through its users).
 #include <openvdb/openvdb.h>
 
 #include <array>

@@ -1,5 +1,6 @@
 #pragma once
 // Surface normals from the volume itself (the default normals of curvature on volume input).
+// Tested in tests/volume/test_gradient_normals.cpp, tests/ao/test_ao.cpp.
 #include <cstddef>
 #include <vector>
 

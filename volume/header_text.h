@@ -1,5 +1,7 @@
 #pragma once
 // Small strict parsers for the text headers of NRRD, MetaImage and DGtal VOL files.
+// Tested through the header readers: tests/volume/test_loaders.cpp,
+// tests/volume/test_bad_input.cpp.
 #include <cstddef>
 #include <cstdint>
 #include <optional>

@@ -1,6 +1,7 @@
 #pragma once
 // The isovalue a volume is extracted at, checked against its values once for the command line
 // (app/pipeline.cpp, "FILE: ...") and the Python module (extract(), "iso: ...").
+// Tested in tests/curvature/request_test.cpp.
 #include <optional>
 
 #include "core/error.h"

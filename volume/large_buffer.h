@@ -2,6 +2,7 @@
 // An uninitialised heap array for voxel payloads. Unlike std::vector it does not zero its memory,
 // and arrays of 2 MiB or more are placed on transparent huge pages where the OS offers them
 // (Linux madvise): touching fresh memory page by page costs more than decoding into it.
+// Tested in tests/volume/test_bad_input.cpp, tests/volume/test_loaders.cpp (through its users).
 #include <cstddef>
 #include <cstdint>
 #include <memory>

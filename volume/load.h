@@ -1,5 +1,6 @@
 #pragma once
 // volume::load: any supported volume file -> Volume (an openvdb::FloatGrid with its transform).
+// Tested in tests/volume/test_loaders.cpp, tests/volume/test_bad_input.cpp.
 #include <array>
 #include <optional>
 #include <string>

@@ -1,6 +1,7 @@
 #pragma once
 // One loader per file format; volume::load (load.cpp) picks one by extension. Each takes the
 // path and the load options and returns a finished Volume, or throws Error(path, problem).
+// Tested in tests/volume/test_loaders.cpp and tests/volume/test_bad_input.cpp.
 #include <string>
 
 #include "volume/load.h"

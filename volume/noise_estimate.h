@@ -1,5 +1,6 @@
 #pragma once
 // A robust estimate of a volume's voxel noise near a surface (for choosing a smoothing scale).
+// Tested in tests/volume/test_noise_estimate.cpp.
 #include <cstddef>
 
 #include "core/mesh.h"

@@ -1,5 +1,6 @@
 #pragma once
 // Otsu's threshold on a value histogram: the isovalue that best separates two classes of voxels.
+// Tested in tests/volume/test_otsu.cpp.
 #include <cstdint>
 #include <vector>
 

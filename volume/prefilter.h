@@ -15,6 +15,7 @@
 // own axis, which is the same thing since the filters are separable); a sparse grid's inactive
 // voxels read as its background. Nothing here is sized by the dense volume: only the bricks the
 // points' reconstruction reads, and what the passes need for them, are filtered.
+// Tested in tests/volume/test_prefilter.cpp.
 #include <openvdb/openvdb.h>
 
 #include <array>

@@ -4,6 +4,7 @@
 // smoothed samples S and the centred quartic B-spline beta4 (C3: the third derivatives, which the
 // curvature derivative needs, are continuous). The double-precision specification that
 // curvature/volume_kernels.cl (spline_jet) follows.
+// Tested in tests/volume/test_prefilter.cpp.
 #include "volume/gaussian_jet.h"
 #include "volume/prefilter.h"
 

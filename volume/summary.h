@@ -1,5 +1,6 @@
 #pragma once
 // What `isocurv info` prints about a loaded volume.
+// Tested in tests/volume/test_summary.cpp.
 #include <nlohmann/json.hpp>
 
 #include <string>

@@ -1,5 +1,6 @@
 #pragma once
 // The scalar grids of a .vdb file, for reading a multi-grid file as the frames of a series.
+// Tested in tests/volume/test_vdb_lengths.cpp.
 #include <string>
 #include <vector>
 

@@ -1,5 +1,6 @@
 #pragma once
 // The loaded volume every later stage reads: an OpenVDB float grid plus what was learned loading it.
+// Tested in tests/mc/flying_edges.h.
 #include <openvdb/openvdb.h>
 
 #include <cstdint>

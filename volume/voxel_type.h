@@ -1,5 +1,6 @@
 #pragma once
 // On-disk scalar voxel types and their conversion to float.
+// Tested in tests/volume/test_reader_honesty.cpp (through its users).
 #include <cstddef>
 #include <cstdint>
 #include <optional>

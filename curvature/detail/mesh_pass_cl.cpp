@@ -12,6 +12,7 @@
 #include "curvature/derived.h"
 #include "curvature/input.h"
 #include "curvature/tolerances.h"
+#include "curvature/vertex_corners.h"
 
 namespace isocurv::kernels {
 extern const char* const curvature_math_cl;
@@ -21,10 +22,6 @@ extern const char* const mesh_estimator_kernels_cl;
 
 namespace isocurv::curvature::detail {
 namespace {
-
-// Fans up to this many corners are checked for boundary edges in registers (vertex_boundary);
-// the same value as the Rusinkiewicz path's.
-constexpr std::uint32_t kMaxFan = 8;
 
 const std::string& program_source() {
   static const std::string source = std::string(kernels::curvature_math_cl) + "\n" +

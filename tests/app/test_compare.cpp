@@ -57,6 +57,25 @@ TEST(CliCompare, MeshFileAndReferenceDevice) {
   EXPECT_EQ(bad.err_lines()[0].rfind("isocurv:", 0), 0u) << bad.describe();
 }
 
+// --normals area and face-average reach the mesh estimators as they do in `curvature` (they were
+// named in the report but the estimators kept their own normals).
+TEST(CliCompare, AreaAndFaceAverageNormalsTakeEffect) {
+  TempDir dir("compare_normals");
+  const std::string mesh = dir / "torus.ply";
+  ASSERT_TRUE(run_isocurv({"extract", dataset("torus"), "-o", mesh, "--quiet"}).ok());
+  std::map<std::string, double> p50;
+  for (const char* normals : {"mesh", "area", "face-average"}) {
+    const auto r = run_isocurv({"compare", mesh, "--normals", normals, "--json"}, 120);
+    ASSERT_TRUE(r.ok()) << r.describe();
+    const json j = parse_json(r.out, "compare --json");
+    EXPECT_EQ(j["normals"], normals);
+    for (const json& e : j["estimators"])
+      if (e["estimator"] == "rusinkiewicz") p50[normals] = e["H"]["p50"].get<double>();
+  }
+  EXPECT_NE(p50["area"], p50["mesh"]);
+  EXPECT_NE(p50["face-average"], p50["mesh"]);
+}
+
 TEST(CliCompare, OptionsItWouldIgnoreAreRefusedTheOthersTakeEffect) {
   // compare runs every estimator and reports no AO: --estimator and --ao-scale would change
   // nothing, so they are usage errors, before any work.
