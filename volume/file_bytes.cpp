@@ -3,6 +3,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -95,37 +96,89 @@ Bytes inflate_exact(const std::string& path, const std::uint8_t* data, std::size
   return out;
 }
 
-GzipReader::GzipReader(const std::string& path) : path_(path) {
+struct GzipReader::State {
+  std::ifstream file;
+  std::vector<std::uint8_t> buffer = std::vector<std::uint8_t>(std::size_t(1) << 18);
+  z_stream zs{};          // next_in / avail_in: the buffer's bytes not yet consumed (plain files too)
+  bool inflating = false;  // inflateInit2 done
+  bool gzip = false;       // else a plain file, read as it is
+  bool eof = false;        // the file has no more bytes
+  bool done = false;       // the end of the last member's trailer was reached
+  ~State() {
+    if (inflating) inflateEnd(&zs);
+  }
+};
+
+GzipReader::GzipReader(const std::string& path) : path_(path), s_(std::make_unique<State>()) {
   file_size(path);
-  file_ = gzopen(path.c_str(), "rb");
-  if (!file_) throw Error(path, "cannot open file");
-  gzbuffer(static_cast<gzFile>(file_), 1 << 17);
+  s_->file.open(path, std::ios::binary);
+  if (!s_->file) throw Error(path, "cannot open file");
+  fill(2);
+  s_->gzip = s_->zs.avail_in >= 2 && s_->zs.next_in[0] == 0x1f && s_->zs.next_in[1] == 0x8b;
+  if (s_->gzip) {
+    if (inflateInit2(&s_->zs, 15 + 16) != Z_OK) throw Error(path, "zlib initialisation failed");
+    s_->inflating = true;
+  }
 }
 
-GzipReader::~GzipReader() {
-  if (file_) gzclose(static_cast<gzFile>(file_));
+GzipReader::~GzipReader() = default;
+
+bool GzipReader::fill(std::size_t want) {
+  // Moves the unconsumed bytes to the front of the buffer and reads more after them, until
+  // `want` are there or the file ends. False when fewer than `want` are left.
+  State& s = *s_;
+  std::size_t have = s.zs.avail_in;
+  if (have >= want) return true;
+  if (s.eof) return false;
+  if (have > 0) std::memmove(s.buffer.data(), s.zs.next_in, have);
+  while (have < want && !s.eof) {
+    s.file.read(reinterpret_cast<char*>(s.buffer.data() + have), std::streamsize(s.buffer.size() - have));
+    have += std::size_t(s.file.gcount());
+    if (s.file.bad()) throw Error(path_, "read error");
+    if (!s.file) s.eof = true;  // a short read: the end of the file
+  }
+  s.zs.next_in = s.buffer.data();
+  s.zs.avail_in = uInt(have);
+  return have >= want;
 }
 
 std::size_t GzipReader::read(void* out, std::size_t n) {
-  auto* dst = static_cast<char*>(out);
+  State& s = *s_;
+  auto* dst = static_cast<std::uint8_t*>(out);
   std::size_t total = 0;
-  while (total < n) {
-    const unsigned chunk = unsigned(std::min<std::size_t>(n - total, 1u << 30));
-    const int got = gzread(static_cast<gzFile>(file_), dst + total, chunk);
-    if (got < 0) {
-      int err = 0;
-      const char* msg = gzerror(static_cast<gzFile>(file_), &err);
-      throw Error(path_, std::string("corrupt or truncated gzip stream (") + (msg ? msg : "unknown error") + ")");
+  if (!s.gzip) {
+    while (total < n && (s.zs.avail_in > 0 || fill(1))) {
+      const std::size_t k = std::min<std::size_t>(n - total, s.zs.avail_in);
+      std::memcpy(dst + total, s.zs.next_in, k);
+      s.zs.next_in += k;
+      s.zs.avail_in -= uInt(k);
+      total += k;
     }
-    if (got == 0) break;
-    total += std::size_t(got);
+    return total;
   }
-  if (total < n) {
-    // gzread reports a truncated stream as end of data plus an error state.
-    int err = 0;
-    const char* msg = gzerror(static_cast<gzFile>(file_), &err);
-    if (err != Z_OK && err != Z_STREAM_END)
-      throw Error(path_, std::string("corrupt or truncated gzip stream (") + (msg ? msg : "unknown error") + ")");
+  while (total < n && !s.done) {
+    if (s.zs.avail_in == 0) fill(1);
+    const uInt chunk = uInt(std::min<std::size_t>(n - total, std::size_t(1) << 30));
+    s.zs.next_out = dst + total;
+    s.zs.avail_out = chunk;
+    const int rc = inflate(&s.zs, Z_NO_FLUSH);
+    total += chunk - s.zs.avail_out;
+    if (rc == Z_STREAM_END) {
+      // The member's trailer matched (zlib checks the CRC-32 and length). Another member may
+      // follow; bytes that do not start one are ignored, as gzip and gzread do.
+      fill(2);
+      if (s.zs.avail_in >= 2 && s.zs.next_in[0] == 0x1f && s.zs.next_in[1] == 0x8b)
+        inflateReset(&s.zs);
+      else
+        s.done = true;
+    } else if (rc == Z_BUF_ERROR && s.zs.avail_in == 0) {
+      // No progress and no input left: the file ends inside the stream, whatever its size.
+      throw Error(path_, "gzip stream is truncated: the file ends before the stream does (its data or its "
+                         "CRC-32 and length trailer is cut short)");
+    } else if (rc != Z_OK) {
+      throw Error(path_, std::string("corrupt gzip stream (") +
+                             (s.zs.msg ? s.zs.msg : "error " + std::to_string(rc)) + ")");
+    }
   }
   return total;
 }

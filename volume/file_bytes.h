@@ -6,6 +6,7 @@
 // Tested through the loaders: tests/volume/test_loaders.cpp, tests/volume/test_bad_input.cpp.
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -33,8 +34,14 @@ Bytes read_bytes(const std::string& path, std::uint64_t offset, std::uint64_t le
 Bytes inflate_exact(const std::string& path, const std::uint8_t* data, std::size_t size,
                                         std::uint64_t expected, const std::string& what);
 
-/// Reads a gzip-compressed file incrementally (gzread), so headers can be parsed before the
-/// payload size is known.
+/// Reads a gzip-compressed file incrementally, so headers can be parsed before the payload size is
+/// known; a file that does not start with the gzip magic (1f 8b) is read as it is. The stream is
+/// inflated here (not by zlib's gzread, whose end-of-file check depended on where its buffers
+/// ended: a trailer cut by a few bytes passed above about 80^3 voxels). The end of the data is
+/// only reported after the end of the last member and its CRC-32 and length trailer, which zlib
+/// checks; a file that ends before that is "truncated" at every size. Members in sequence (pigz,
+/// bgzip, `cat a.gz b.gz`) are one stream, as gzip reads them; bytes after the last member that do
+/// not start another are ignored (as gzread did).
 class GzipReader {
  public:
   explicit GzipReader(const std::string& path);
@@ -42,18 +49,21 @@ class GzipReader {
   GzipReader(const GzipReader&) = delete;
   GzipReader& operator=(const GzipReader&) = delete;
 
-  /// Reads up to `n` bytes (fewer only at the end of the stream); throws on a corrupt stream.
+  /// Reads up to `n` bytes (fewer only at the complete end of the stream); throws on a corrupt
+  /// stream or one the file cuts short.
   std::size_t read(void* out, std::size_t n);
   /// Reads exactly `n` bytes into `out`, throwing "truncated <what>" at a premature end.
   void read_exact(void* out, std::size_t n, const std::string& what);
   /// Skips `n` bytes (throws at a premature end).
   void skip(std::size_t n, const std::string& what);
-  /// True when the whole stream has been consumed.
+  /// True when the whole stream, trailer included, has been consumed (throws when it is cut).
   bool at_end();
 
  private:
+  struct State;
+  bool fill(std::size_t want);
   std::string path_;
-  void* file_ = nullptr;  // gzFile
+  std::unique_ptr<State> s_;
 };
 
 /// Inflates a whole gzip file that must hold exactly `expected` bytes.

@@ -48,6 +48,18 @@ std::vector<double> parse_numbers_exact(const std::string& path, const std::stri
 std::vector<long long> parse_integers_exact(const std::string& path, const std::string& s, std::size_t n,
                                             const std::string& what) {
   const auto v = parse_numbers_exact(path, s, n, what);
+  // Written as integers: digits with an optional sign. strtod alone took "41.0", "4.1e1" and
+  // "0x29" as 41 (`sizes: 41 41.0 41`, the fuzzing campaign of issue 55).
+  for (std::size_t i = 0; i < s.size();) {
+    while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
+    std::size_t j = i;
+    if (j < s.size() && (s[j] == '+' || s[j] == '-')) ++j;
+    const std::size_t digits = j;
+    while (j < s.size() && std::isdigit(static_cast<unsigned char>(s[j]))) ++j;
+    if (i < s.size() && (j == digits || (j < s.size() && !std::isspace(static_cast<unsigned char>(s[j])))))
+      throw Error(path, "bad " + what + " '" + trim(s) + "'");
+    i = j;
+  }
   std::vector<long long> out;
   for (double d : v) {
     // range first: casting a double beyond long long's range is undefined

@@ -21,7 +21,8 @@ std::optional<std::vector<double>> parse_numbers(const std::string& s);
 /// Exactly `n` numbers, else throws Error(path, "bad <what> '<s>'").
 std::vector<double> parse_numbers_exact(const std::string& path, const std::string& s, std::size_t n,
                                         const std::string& what);
-/// Exactly `n` integers, else throws Error(path, "bad <what> '<s>'").
+/// Exactly `n` integers, each written as one (digits with an optional sign: "41.0", "4e1" and
+/// "0x29" are refused), else throws Error(path, "bad <what> '<s>'").
 std::vector<long long> parse_integers_exact(const std::string& path, const std::string& s, std::size_t n,
                                             const std::string& what);
 /// Parses `count` whitespace-separated numbers of an ASCII payload; throws when there are fewer

@@ -1,5 +1,6 @@
 // MetaImage (.mhd header + data file, or .mha with the data after the header): `Key = Value`
-// lines ending with ElementDataFile; raw, zlib-compressed (CompressedData = True) or ASCII data.
+// lines ending with ElementDataFile; raw, zlib-compressed (CompressedData = True; a file shorter
+// than its CompressedDataSize is refused) or ASCII data.
 // Raw binary data honour LoadOptions::z_slab (index z is the file's slice order: nothing here
 // permutes or flips the voxels); compressed and ASCII data are read whole.
 #include <algorithm>
@@ -114,6 +115,20 @@ Volume load_metaimage(const std::string& path, const LoadOptions& options) {
     skip = parse_integers_exact(path, keys["HeaderSize"], 1, "HeaderSize")[0];
     if (skip < -1) throw Error(path, "bad HeaderSize " + keys["HeaderSize"]);
     if (skip > 0) data_offset = std::min(data_size, data_offset + std::uint64_t(std::min(skip, 1LL << 62)));
+  }
+  // CompressedDataSize (optional) is checked against the compressed bytes present; it was once
+  // ignored. Fewer bytes than it says: the file is cut, refused (one line naming the field). More
+  // bytes than it says: read, without a warning, because the zlib stream itself decides where the
+  // data end and its Adler-32 trailer and exact inflated size vouch for them (inflate_exact), and
+  // files in the wild carry a stale count (VTK's frogtissue.mhd says 260020 for a 262087-byte
+  // stream that inflates exactly to its DimSize, checksum correct).
+  if (compressed && binary && keys.count("CompressedDataSize")) {
+    const long long declared = parse_integers_exact(path, keys["CompressedDataSize"], 1, "CompressedDataSize")[0];
+    if (declared < 1) throw Error(path, "bad CompressedDataSize '" + keys["CompressedDataSize"] + "'");
+    const std::uint64_t present = data_size - data_offset;
+    if (std::uint64_t(declared) > present)
+      throw Error(data_path, "voxel data is truncated: CompressedDataSize " + std::to_string(declared) +
+                                 " but the file holds " + std::to_string(present) + " compressed bytes");
   }
   // The dimensions must fit the data before anything is allocated for them.
   const std::uint64_t count = checked_payload(path, {d[0], d[1], d[2]}, *type, data_path, data_size - data_offset,

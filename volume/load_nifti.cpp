@@ -1,5 +1,9 @@
 // NIfTI-1 single files (.nii, .nii.gz), either byte order. Geometry: the sform when its code is
-// set, else the qform, else pixdim spacing at the origin; scl_slope/scl_inter are applied.
+// set, else the qform (its quaternion normalised as nifti1_io.c does), else pixdim spacing at the
+// origin. scl_slope/scl_inter are applied (when the slope is finite and non-zero and the
+// intercept finite, as NIfTI says): scaled values are real values, even where they make the
+// integers of an integer-typed file non-integer (Volume::voxel_type stays the type on disk;
+// labels::label_map_labels refuses such a map, naming the scaling).
 // A plain .nii honours LoadOptions::z_slab: file slice k is always index z k (orientation lives
 // in the transform only, and finish_dense's flip of a left-handed frame reverses X alone), and
 // the scaling is per voxel. A .nii.gz is read whole.
@@ -117,7 +121,21 @@ Volume load_nifti(const std::string& path, const LoadOptions& options) {
     image.origin = {m[0][3], m[1][3], m[2][3]};
   } else if (qform_code > 0) {
     double b = h.f32(256), c = h.f32(260), d = h.f32(264);
-    const double a = std::sqrt(std::max(0.0, 1.0 - (b * b + c * c + d * d)));
+    if (!std::isfinite(b) || !std::isfinite(c) || !std::isfinite(d))
+      throw Error(path, "bad qform quaternion (quatern_b, c or d is not a finite number)");
+    // As nifti1_io.c's nifti_quatern_to_mat44: a = sqrt(1 - b^2 - c^2 - d^2), and when that is
+    // (nearly) zero or negative, (b, c, d) is normalised and a = 0 (a half turn). Taking a = 0
+    // without normalising once gave a matrix of columns |b,c,d|^2 long: pixdim 1 read as 3.
+    double a = 1.0 - (b * b + c * c + d * d);
+    if (a < 1e-7) {
+      const double len = std::sqrt(b * b + c * c + d * d);
+      b /= len;
+      c /= len;
+      d /= len;
+      a = 0;
+    } else {
+      a = std::sqrt(a);
+    }
     const double R[3][3] = {{a * a + b * b - c * c - d * d, 2 * (b * c - a * d), 2 * (b * d + a * c)},
                             {2 * (b * c + a * d), a * a + c * c - b * b - d * d, 2 * (c * d - a * b)},
                             {2 * (b * d - a * c), 2 * (c * d + a * b), a * a + d * d - c * c - b * b}};

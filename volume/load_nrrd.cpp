@@ -1,9 +1,12 @@
 // NRRD (.nrrd with attached data, .nhdr with a detached data file): 3-D scalar images with raw,
 // gzip or ASCII encoding; geometry from "space directions" + "space origin", else "spacings";
-// the anatomical meaning of the world axes from "space" (Volume::world_space).
+// the anatomical meaning of the world axes from "space" (Volume::world_space). Both `spacings`
+// and `space directions` given must agree; `line skip` is 0 or more; integer fields are written
+// as integers (header_text.h).
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <map>
 
@@ -151,6 +154,22 @@ Volume load_nrrd(const std::string& path, const LoadOptions& options) {
       image.spacing[i] = len;
       for (std::size_t j = 0; j < 3; ++j) image.axes[i][j] = (*v)[j] / len;
     }
+    // `spacings` beside `space directions`: NRRD (teem) forbids the pair. Given equal (as some
+    // writers repeat them) or as nan (teem's "not set"), it is read; when they disagree nothing
+    // says which one is right (the spacing of an axis would silently be the directions'), so the
+    // file is refused, naming both. A negative spacing disagrees too: the direction gives the sign.
+    if (fields.count("spacings")) {
+      const auto s = parse_numbers_exact(path, get("spacings"), 3, "spacings");
+      for (std::size_t i = 0; i < 3; ++i) {
+        if (std::isnan(s[i])) continue;
+        if (!(std::fabs(s[i] - image.spacing[i]) <= 1e-6 * image.spacing[i])) {
+          char text[96];
+          std::snprintf(text, sizeof text, " (axis %c: %g against %g)", char('x' + i), s[i], image.spacing[i]);
+          throw Error(path, "NRRD spacings '" + get("spacings") + "' disagree with space directions '" +
+                                get("space directions") + "'" + text + "; give one of them");
+        }
+      }
+    }
   } else if (fields.count("spacings")) {
     // Kept as written: finish_dense refuses 0 and non-finite spacings (NaN once became 1) and
     // takes a negative one as a flip, as every format does.
@@ -184,6 +203,9 @@ Volume load_nrrd(const std::string& path, const LoadOptions& options) {
   // line skip, then byte skip (-1: the data ends the file; raw encoding only).
   if (fields.count("line skip")) {
     const long long lines = parse_integers_exact(path, get("line skip"), 1, "line skip")[0];
+    // Only `byte skip` has a -1 (the data end the file); a negative line count means nothing, and
+    // was once read as 0: refused.
+    if (lines < 0) throw Error(path, "bad line skip '" + get("line skip") + "' (a number of lines, 0 or more)");
     const Bytes text = read_bytes(data_path, data_offset, std::min<std::uint64_t>(data_size - data_offset, 1 << 20));
     std::size_t p = 0;
     for (long long i = 0; i < lines; ++i) {

@@ -217,11 +217,13 @@ TEST(VolumeLoadMetaImage, MhaLocalAndCompressedWithRotation) {
   expect_ramp(load(dir.file("ramp.mha")), axis_aligned({0.5, 0.25, 2}, {1, 2, 3}), "metaimage", "float");
 
   // Compressed data, and a 90-degree rotation about z: index x -> world +y, index y -> world -x.
-  write_file(dir.file("rot.zraw"), zlib_compress(to_bytes(ramp_values<std::uint8_t>())));
+  // CompressedDataSize must be the compressed bytes' count (tests/volume/test_issue55_readers.cpp).
+  const auto z = zlib_compress(to_bytes(ramp_values<std::uint8_t>()));
+  write_file(dir.file("rot.zraw"), z);
   write_file(dir.file("rot.mhd"),
              "NDims = 3\nDimSize = 5 4 3\nElementType = MET_UCHAR\nElementSpacing = 0.5 0.25 2\nOffset = 1 2 3\n"
-             "TransformMatrix = 0 1 0 -1 0 0 0 0 1\nCompressedData = True\nCompressedDataSize = 99\n"
-             "ElementDataFile = rot.zraw\n");
+             "TransformMatrix = 0 1 0 -1 0 0 0 0 1\nCompressedData = True\nCompressedDataSize = " +
+                 std::to_string(z.size()) + "\nElementDataFile = rot.zraw\n");
   expect_ramp(load(dir.file("rot.mhd")),
               [](int x, int y, int z) { return openvdb::Vec3d(1 - 0.25 * y, 2 + 0.5 * x, 3 + 2.0 * z); }, "metaimage",
               "uint8");
