@@ -13,6 +13,27 @@
 
 namespace isocurv::labels {
 
+namespace {
+
+/// Throws when `value`, a voxel of the integer-typed map `v`, is not an integer. Only a scaling
+/// makes that: NIfTI's scl_slope / scl_inter, which the loader applies (the values are real
+/// values); rounding them instead once merged labels (slope 0.5: labels 1 and 2 both became 1)
+/// or left every label without voxels (inter 0.25).
+void check_integer(const volume::Volume& v, double value) {
+  if (value == std::nearbyint(value)) return;
+  std::ostringstream text;
+  text << value;
+  if (v.format == "nifti")
+    throw Error(v.path, "--labels: the NIfTI header's scl_slope/scl_inter scale this " + v.voxel_type +
+                            " label map to non-integer values (" + text.str() +
+                            "), which cannot be labels; a label map must be stored unscaled (scl_slope 0 or 1, "
+                            "scl_inter 0) or scaled to integers");
+  throw Error(v.path, "--labels needs integer labels, and this " + v.voxel_type + " volume holds the value " +
+                          text.str());
+}
+
+}  // namespace
+
 std::vector<Label> label_map_labels(const volume::Volume& v) {
   const std::string& t = v.voxel_type;
   if (!volume::is_integer_type(t))
@@ -28,6 +49,7 @@ std::vector<Label> label_map_labels(const volume::Volume& v) {
     if (b.empty()) continue;
     const std::uint64_t n = b.volume();
     visited += n;
+    check_integer(v, static_cast<double>(*it));
     const std::int64_t value = std::llround(static_cast<double>(*it));
     if (value == 0) continue;
     if (std::llabs(value) > kMaxLabelValue)
@@ -49,6 +71,7 @@ std::vector<Label> label_map_labels(const volume::Volume& v) {
   }
   // Blocks equal to the grid's background everywhere are not stored; they hold the background.
   const std::int64_t background = std::llround(static_cast<double>(v.grid->background()));
+  if (visited < domain.volume()) check_integer(v, static_cast<double>(v.grid->background()));
   if (visited < domain.volume() && background != 0) {
     Label& l = found[background];
     l.value = background;
