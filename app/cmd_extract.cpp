@@ -18,6 +18,11 @@ namespace {
 nlohmann::json extract_one(const std::string& in, const std::string& out, const CommonOptions& o) {
   if (o.labelled()) return label_surfaces_to_files(in, out, o, false);
   if (o.split) throw Error("--split needs --labels or --label");
+  // A mesh has no isosurface to extract: writing it out again looked like an extraction at
+  // isovalue 0 and dropped its arrays.
+  if (is_mesh_path(in))
+    throw Error(in, "a mesh file: extract takes a volume (isocurv curvature MESH -o OUT writes a "
+                    "mesh with its curvature, isocurv check reads one)");
   require_writable_file(out);  // before any work
   StageTimer timer;
   Surface s = load_surface(in, o, timer, EmptySurface::warn);

@@ -72,12 +72,12 @@ std::vector<LabelRow> label_rows(const std::vector<measure::ObjectMeasures>& obj
   for (const labels::LabelPart& p : parts) {
     std::vector<measure::ObjectMeasures> mine;
     for (const auto& m : objects)
-      if (m.first_vertex >= p.first_vertex && m.first_vertex < p.first_vertex + p.vertices) mine.push_back(m);
+      if (p.holds_vertex(m.first_vertex)) mine.push_back(m);
     LabelRow r;
     r.label = p.value;
     r.components = mine.size();
     r.m = measure::total(mine);
-    for (const auto& m : mine) r.genus = (r.genus < 0 || !m.closed) ? -1 : r.genus + m.genus();
+    r.genus = measure::genus_sum(mine);
     rows.push_back(r);
   }
   return rows;
@@ -124,8 +124,7 @@ void register_measure(CLI::App& app) {
     const measure::ObjectMeasures all = measure::total(objects);
     const std::vector<LabelRow> by_label = label_rows(objects, s.label_parts);
     timer.stop();
-    long long genus_sum = 0;
-    for (const auto& m : objects) genus_sum += m.closed ? m.genus() : 0;
+    const long long genus_total = measure::genus_sum(objects);  // -1 when one is cut
     const std::string estimator = from_file ? "from the file" : s.estimator.estimator;
     // What the text states: the estimator with the scale the measure belongs to.
     const std::string described = from_file ? estimator : estimator_title(s.estimator);
@@ -142,7 +141,7 @@ void register_measure(CLI::App& app) {
         for (std::size_t i = 0; i < objects.size(); ++i)
           text += csv_row(std::to_string(i + 1), objects[i], objects[i].closed ? objects[i].genus() : -1);
       text += csv_row(labelled ? "total," + std::to_string(objects.size()) : "total", all,
-                      all.closed ? genus_sum : -1);
+                      genus_total);
       write_text_file(csv, text);
     }
     if (o.json) {
@@ -165,14 +164,13 @@ void register_measure(CLI::App& app) {
         std::size_t k = 0;  // each component's label
         for (const auto& m : objects) {
           for (const labels::LabelPart& p : s.label_parts)
-            if (m.first_vertex >= p.first_vertex && m.first_vertex < p.first_vertex + p.vertices)
-              r["objects"][k]["label"] = p.value;
+            if (p.holds_vertex(m.first_vertex)) r["objects"][k]["label"] = p.value;
           ++k;
         }
       }
       r["total"] = measures_json(all, false);
       r["total"]["components"] = objects.size();
-      r["total"]["genus"] = all.closed ? nlohmann::json(genus_sum) : nlohmann::json(nullptr);
+      r["total"]["genus"] = genus_total >= 0 ? nlohmann::json(genus_total) : nlohmann::json(nullptr);
       if (!csv.empty()) r["csv"] = csv;
       r["timings_ms"] = timer.json();
       std::cout << r.dump(2) << "\n";
@@ -210,7 +208,7 @@ void register_measure(CLI::App& app) {
     if (listed > std::size_t(rows))
       std::printf("%6s (%zu more %s not listed; --rows, --csv or --json list them)\n", "...",
                   listed - std::size_t(rows), labelled ? "labels" : "smaller components");
-    line("total", all, all.closed ? genus_sum : -1, false);
+    line("total", all, genus_total, false);
     std::printf("area: the smooth surface the curvature describes (its normals and surface points); "
                 "mesh area: the triangles' own, as check and stats.json report it\n");
     std::size_t below = 0;

@@ -37,6 +37,9 @@ nlohmann::json run_one(const std::string& in, const std::string& dir, const Comm
   StageTimer timer;
   // Fails (no surface, ...) before any output folder is made.
   // Under mpirun: the ranks extract the surface and its curvature together, rank 0 goes on alone.
+  // Label surfaces are not divided among ranks: every rank would compute and write all of them.
+  if (o.labelled() && dist::World::get().size() > 1)
+    throw Error("--labels and --label do not run distributed (run them without mpirun)");
   std::optional<Surface> on_zero = o.labelled() ? load_label_surfaces(in, o, timer, true)
                                                 : surface_for_rank_zero(in, o, timer, DistributedWork::curvature);
   if (!on_zero) return nlohmann::json::object();

@@ -118,30 +118,23 @@ Surface load_label_surfaces(const std::string& path, const CommonOptions& o, Sta
   if (merged.parts.empty()) throw Error(path, "--labels: no label has a surface");
   s.mesh = std::move(merged.mesh);
   s.field = std::move(merged.field);
-  s.triangle_labels = std::move(merged.triangle_labels);
+  s.label_cells = {io::CellArray{"Label", std::move(merged.triangle_labels)}};
   s.label_parts = std::move(merged.parts);
   return s;
 }
 
-io::CellArrays label_cells(const Surface& s) {
-  if (s.label_parts.empty()) return {};
-  return {io::CellArray{"Label", s.triangle_labels}};
-}
+const io::CellArrays& label_cells(const Surface& s) { return s.label_cells; }
 
 std::vector<std::string> write_split_labels(const Surface& s, const std::string& dir,
                                             const std::string& format,
                                             const CommonOptions& o, const io::Metadata& context,
                                             AtomicFileSet& outputs) {
-  labels::LabelledMesh m;
-  m.mesh = s.mesh;
-  if (s.field) m.field = *s.field;
-  m.triangle_labels = s.triangle_labels;
-  m.parts = s.label_parts;
   std::vector<std::string> paths;
+  const curvature::CurvatureField none;
   for (const labels::LabelPart& p : s.label_parts) {
     Mesh mesh;
     curvature::CurvatureField field;
-    labels::extract_label(m, p.value, mesh, field);
+    labels::extract_label(s.mesh, s.field ? *s.field : none, p, mesh, field);
     const std::string path =
         (std::filesystem::path(dir) / ("label_" + std::to_string(p.value) + "." + format)).string();
     const io::CellArrays cells = {io::CellArray{"Label", std::vector<std::int32_t>(mesh.triangles.size(),

@@ -16,7 +16,7 @@ void add_label_options(CLI::App& cmd, CommonOptions& o, bool with_split);
 /// The surfaces of the labels of the label map `path` (all of them, or --label's), as one
 /// Surface: `volume` the label map, `mesh` the labels' surfaces one after another, each the
 /// marching-cubes surface at 0.5 of its indicator (labels::label_indicator: touching labels each
-/// get a closed surface), `triangle_labels` and `label_parts` saying which is which. With
+/// get a closed surface), `label_cells` and `label_parts` saying which is which. With
 /// `curvature`, each label's curvature is estimated on its own indicator (estimate_curvature:
 /// the volume estimator by default, at the binary scale) and `field` holds them all; without it,
 /// `field` holds only the per-vertex "Label". isovalue is 0.5. A --label value the map lacks,
@@ -27,7 +27,7 @@ Surface load_label_surfaces(const std::string& path, const CommonOptions& o, Sta
                             bool curvature);
 
 /// The cell arrays of `s` for io::write_mesh: {"Label"} for a label map's surfaces, else none.
-io::CellArrays label_cells(const Surface& s);
+const io::CellArrays& label_cells(const Surface& s);
 
 /// Checks, before any work, that `out` can take a label map's surfaces: a writable file, or with
 /// --split a folder name (not an existing file). @throw Error naming `out`.

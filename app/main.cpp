@@ -5,8 +5,10 @@
 #include <exception>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "app/commands.h"
+#include "app/suggest.h"
 #include "core/error.h"
 #include "core/huge_pages.h"
 #include "dist/world.h"
@@ -76,9 +78,14 @@ int run(int argc, char** argv) {
     std::string names;  // every registered command, so the list cannot fall behind
     for (const CLI::App* c : app.get_subcommands([](const CLI::App*) { return true; }))
       names += (names.empty() ? "" : " ") + c->get_name();
+    std::vector<std::string> all;
+    for (const CLI::App* c : app.get_subcommands([](const CLI::App*) { return true; }))
+      all.push_back(c->get_name());
+    const std::string near = isocurv::app::closest_name(argv[1], all);
+    const std::string hint = near.empty() ? "" : "did you mean " + near + "? ";
     if (prints_errors())
-      std::fprintf(stderr, "isocurv: unknown command '%s' (commands: %s; see isocurv --help)\n", argv[1],
-                 names.c_str());
+      std::fprintf(stderr, "isocurv: unknown command '%s' (%scommands: %s; see isocurv --help)\n", argv[1],
+                   hint.c_str(), names.c_str());
     return kUsageError;
   }
   try {
@@ -91,9 +98,14 @@ int run(int argc, char** argv) {
     return app.exit(e);  // --help, --help-all, --version: printed on stdout, status 0
   } catch (const CLI::ParseError& e) {
     const std::string where = known.empty() ? "isocurv" : "isocurv " + known.front()->get_name();
+    // A mistyped option: name the closest one the command knows.
+    const std::string hint =
+        dynamic_cast<const CLI::ExtrasError*>(&e)
+            ? isocurv::app::option_suggestion(known.empty() ? &app : known.front(), argc, argv)
+            : "";
     if (prints_errors())
-      std::fprintf(stderr, "isocurv: %s (see %s --help)\n", isocurv::one_line(e.what()).c_str(),
-                   where.c_str());
+      std::fprintf(stderr, "isocurv: %s%s (see %s --help)\n", isocurv::one_line(e.what()).c_str(),
+                   hint.c_str(), where.c_str());
     return kUsageError;
   } catch (const isocurv::Error& e) {
     if (prints_errors()) std::fprintf(stderr, "isocurv: %s\n", isocurv::one_line(e.what()).c_str());

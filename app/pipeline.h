@@ -117,9 +117,10 @@ struct Surface {
   std::size_t welded = 0;    ///< duplicate vertices merged by prepare_mesh_for_curvature
   bool flipped = false;      ///< triangles reversed by --flip
   io::Metadata file_metadata;  ///< a mesh file's field data (io::MeshFile::metadata)
-  /// A label map's surfaces (app/label_surfaces.h): each triangle's label, and where each
-  /// label's vertices and triangles lie; empty otherwise.
-  std::vector<std::int32_t> triangle_labels;
+  /// A label map's surfaces (app/label_surfaces.h): each triangle's label (the "Label" cell
+  /// array the mesh files carry), and where each label's vertices and triangles lie; empty
+  /// otherwise.
+  io::CellArrays label_cells;
   std::vector<labels::LabelPart> label_parts;
 };
 

@@ -88,22 +88,32 @@ void append_label(LabelledMesh& into, std::int64_t value, const Mesh& mesh,
 
 void extract_label(const LabelledMesh& m, std::int64_t value, Mesh& mesh,
                    curvature::CurvatureField& field) {
+  auto p = std::find_if(m.parts.begin(), m.parts.end(), [&](const LabelPart& q) { return q.value == value; });
+  if (p == m.parts.end()) {
+    mesh = Mesh{};
+    field = curvature::CurvatureField{};
+    return;
+  }
+  extract_label(m.mesh, m.field, *p, mesh, field);
+}
+
+void extract_label(const Mesh& merged, const curvature::CurvatureField& merged_field,
+                   const LabelPart& part, Mesh& mesh, curvature::CurvatureField& field) {
   mesh = Mesh{};
   field = curvature::CurvatureField{};
-  auto p = std::find_if(m.parts.begin(), m.parts.end(), [&](const LabelPart& q) { return q.value == value; });
-  if (p == m.parts.end()) return;
+  const LabelPart* p = &part;
   const std::uint32_t v0 = p->first_vertex;
-  mesh.positions.assign(m.mesh.positions.begin() + v0, m.mesh.positions.begin() + v0 + p->vertices);
+  mesh.positions.assign(merged.positions.begin() + v0, merged.positions.begin() + v0 + p->vertices);
   mesh.triangles.reserve(p->triangles);
   for (std::size_t t = p->first_triangle; t < p->first_triangle + p->triangles; ++t) {
-    const Tri& tri = m.mesh.triangles[t];
+    const Tri& tri = merged.triangles[t];
     mesh.triangles.push_back({tri[0] - v0, tri[1] - v0, tri[2] - v0});
   }
-  field.metadata = m.field.metadata;
-  if (!m.field.surface_points.empty())
-    field.surface_points.assign(m.field.surface_points.begin() + v0,
-                                m.field.surface_points.begin() + v0 + p->vertices);
-  io::for_each_array(m.field, [&](const char* name, const auto& src) {
+  field.metadata = merged_field.metadata;
+  if (!merged_field.surface_points.empty())
+    field.surface_points.assign(merged_field.surface_points.begin() + v0,
+                                merged_field.surface_points.begin() + v0 + p->vertices);
+  io::for_each_array(merged_field, [&](const char* name, const auto& src) {
     if (src.empty()) return;
     auto slice = [&](auto& dst) { dst.assign(src.begin() + v0, src.begin() + v0 + p->vertices); };
     bool fixed = false;

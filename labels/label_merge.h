@@ -16,6 +16,8 @@ struct LabelPart {
   std::int64_t value = 0;
   std::uint32_t first_vertex = 0, vertices = 0;
   std::size_t first_triangle = 0, triangles = 0;
+  /// True when vertex `v` of the merged mesh belongs to this label.
+  bool holds_vertex(std::uint32_t v) const { return v >= first_vertex && v - first_vertex < vertices; }
 };
 
 /// Several labels' surfaces in one mesh. Labels never share a vertex, so each label's surface
@@ -40,5 +42,10 @@ void append_label(LabelledMesh& into, std::int64_t value, const Mesh& mesh,
 /// empty when `m` has no such label.
 void extract_label(const LabelledMesh& m, std::int64_t value, Mesh& mesh,
                    curvature::CurvatureField& field);
+
+/// The same for one part of a merged mesh and field (as LabelledMesh holds them), without a
+/// LabelledMesh: `part` must be one of the merged mesh's parts.
+void extract_label(const Mesh& merged, const curvature::CurvatureField& merged_field,
+                   const LabelPart& part, Mesh& mesh, curvature::CurvatureField& field);
 
 }  // namespace isocurv::labels

@@ -294,6 +294,12 @@ std::vector<ObjectMeasures> object_measures(const Mesh& mesh, const curvature::C
   return out;
 }
 
+long long genus_sum(const std::vector<ObjectMeasures>& objects) {
+  long long genus = 0;
+  for (const ObjectMeasures& m : objects) genus = (genus < 0 || !m.closed) ? -1 : genus + m.genus();
+  return genus;
+}
+
 ObjectMeasures total(const std::vector<ObjectMeasures>& objects) {
   ObjectMeasures t;
   t.closed = true;

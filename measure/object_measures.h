@@ -96,4 +96,7 @@ std::vector<ObjectMeasures> object_measures(const Mesh& mesh, const curvature::C
 /// on_vertices when all, or any, are; the box around all; first_vertex 0).
 ObjectMeasures total(const std::vector<ObjectMeasures>& objects);
 
+/// The sum of the objects' genera, or -1 when one of them is not closed (its genus undefined).
+long long genus_sum(const std::vector<ObjectMeasures>& objects);
+
 }  // namespace isocurv::measure

@@ -86,15 +86,23 @@ py::dict measure_labels_of(const VolumeArg& volume_arg, const py::object& labels
   const volume::Volume& v = volume_of(volume_arg, "volume");
   std::vector<std::int64_t> wanted;
   auto add = [&](const py::handle& item) {
-    if (py::isinstance<py::bool_>(item) || !py::isinstance<py::int_>(item))
+    // Python and numpy integers (anything with __index__), not bools.
+    if (py::isinstance<py::bool_>(item) || !PyIndex_Check(item.ptr()))
       throw py::type_error("labels: expected int labels, not " + type_name_of(item));
-    const std::int64_t value = item.cast<std::int64_t>();
+    const py::object whole = py::reinterpret_steal<py::object>(PyNumber_Index(item.ptr()));
+    if (!whole) throw py::error_already_set();
+    int overflow = 0;
+    const long long value = PyLong_AsLongLongAndOverflow(whole.ptr(), &overflow);
+    if (overflow != 0 || value > labels::kMaxLabelValue || value < -labels::kMaxLabelValue)
+      throw py::value_error("labels: label " + std::string(py::str(whole)) +
+                            " is beyond +-" + std::to_string(labels::kMaxLabelValue) +
+                            " (labels are read as 32-bit floats, exact up to 2^24)");
     if (std::find(wanted.begin(), wanted.end(), value) != wanted.end())
       throw py::value_error("labels: label " + std::to_string(value) + " is given twice");
     wanted.push_back(value);
   };
   if (labels_arg.is_none()) {
-  } else if (py::isinstance<py::int_>(labels_arg) && !py::isinstance<py::bool_>(labels_arg)) {
+  } else if (PyIndex_Check(labels_arg.ptr()) && !py::isinstance<py::bool_>(labels_arg)) {
     add(labels_arg);
   } else if (py::isinstance<py::sequence>(labels_arg) && !py::isinstance<py::str>(labels_arg)) {
     for (const py::handle item : labels_arg.cast<py::sequence>()) add(item);
@@ -113,7 +121,7 @@ py::dict measure_labels_of(const VolumeArg& volume_arg, const py::object& labels
   }
   const DeviceChoice dc = device_choice(device);
   const int margin = labels::indicator_margin(curvature::kBinaryScaleVoxels);
-  std::vector<std::int64_t> label, components;
+  std::vector<std::int64_t> label, components, filling;
   MeasureColumns columns;
   for (const labels::Label& l : picked) {
     const volume::Volume ind = labels::label_indicator(v, l, margin);
@@ -125,16 +133,26 @@ py::dict measure_labels_of(const VolumeArg& volume_arg, const py::object& labels
                                 : mc::extract(ind, 0.5f, opened_device(dc), mc::Options{});
     }
     mesh->isovalue = 0.5f;
-    if (mesh->mesh.triangles.empty()) continue;  // the label fills the box: no surface
+    if (mesh->mesh.triangles.empty()) {  // the label fills the box: no surface
+      filling.push_back(l.value);
+      continue;
+    }
     const curvature::CurvatureField field =
         estimate_of(mesh, &ind, py::none(), py::none(), py::none(), py::float_(0.5), py::none(), false, device).field;
     const std::vector<measure::ObjectMeasures> objects = measure::object_measures(mesh->mesh, field);
     label.push_back(l.value);
     components.push_back(std::int64_t(objects.size()));
     columns.add(measure::total(objects));
-    long long genus = 0;  // the sum of its components' genera (-1 when one is cut)
-    for (const auto& m : objects) genus = (genus < 0 || !m.closed) ? -1 : genus + m.genus();
-    columns.genus.back() = genus;
+    columns.genus.back() = measure::genus_sum(objects);  // -1 when a component is cut
+  }
+  if (!filling.empty()) {  // as the CLI's measure --labels says it
+    std::string list;
+    for (std::int64_t f : filling) list += (list.empty() ? "" : ", ") + std::to_string(f);
+    const bool one = filling.size() == 1;
+    const std::string message = std::string("label") + (one ? " " : "s ") + list +
+                                (one ? " has" : " have") + " no surface (" +
+                                (one ? "it fills" : "they fill") + " the box); left out";
+    if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 1) != 0) throw py::error_already_set();
   }
   const py::ssize_t n = py::ssize_t(label.size());
   py::dict out = columns.dict();
@@ -170,8 +188,10 @@ with one entry per label, in ascending label order (or `labels`' order): label, 
 (int64) and the sums over the label's components of what measure() returns (area, volume,
 integral_H, integral_K, euler_characteristic, gauss_bonnet_gap, closed, vertices, triangles,
 unmeasured_vertices, box). labels: None (all), an int or a sequence of ints; labels the volume
-lacks are left out with a UserWarning. A float volume, or more than 65,535 labels, raises
-isocurv.Error; none of `labels` in the volume raises ValueError.)doc");
+lacks, and labels that fill the volume's box (no surface), are left out with a UserWarning;
+labels may be Python or numpy integers within +-16,777,215 (ValueError beyond). A float volume,
+or more than 65,535 labels, raises isocurv.Error; none of `labels` in the volume raises
+ValueError.)doc");
 }
 
 }  // namespace isocurv::python

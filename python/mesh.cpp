@@ -2,6 +2,7 @@
 // check.
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -183,6 +184,22 @@ void bind_mesh(py::module_& m) {
           if (!py::isinstance<py::dict>(arrays))
             throw py::type_error("arrays: expected a dict of numpy arrays");
           field = field_from_dict(arrays.cast<py::dict>(), mesh->mesh.positions.size());
+          // .obj and .stl hold the geometry and Normals only: say what stays behind.
+          if (has_extension(path, ".obj") || has_extension(path, ".stl")) {
+            std::string dropped;
+            for (const auto& [key, value] : arrays.cast<py::dict>()) {
+              const std::string name = py::str(key).cast<std::string>();
+              if (name != "Normals") dropped += (dropped.empty() ? "" : ", ") + name;
+            }
+            if (!dropped.empty()) {
+              const std::string ext = std::filesystem::path(path).extension().string();
+              const std::string message = "write_mesh: " + ext +
+                                          " keeps only the geometry and Normals; not written: " +
+                                          dropped + " (use .vtp or .ply to keep them)";
+              if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 1) != 0)
+                throw py::error_already_set();
+            }
+          }
         }
         py::gil_scoped_release release;
         io::write_mesh(path, mesh->mesh, field ? &*field : nullptr, c);

@@ -17,6 +17,7 @@
 #include "core/error.h"
 #include "core/program_cache.h"
 #include "python/bind.h"
+#include "python/detail/args.h"
 #include "python/detail/arrays.h"
 
 namespace py = pybind11;
@@ -37,7 +38,8 @@ PYBIND11_MODULE(isocurv, m) {
       "topo.curvature(positions)\n"
       "  isocurv.features(mesh, v, radius='2%'), isocurv.lines(mesh, arrays=arrays), "
       "isocurv.screen(v)\n\n"
-      "Errors raise isocurv.Error (a RuntimeError) with the command line's one-line message; "
+      "Errors raise isocurv.Error (a RuntimeError) with the command line's one-line message, "
+      "arguments named as here; "
       "wrong\n"
       "argument types raise TypeError, wrong shapes or values ValueError, naming the argument.";
   static py::exception<Error> error_type(m, "Error", PyExc_RuntimeError);
@@ -45,10 +47,11 @@ PYBIND11_MODULE(isocurv, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const Error& e) {
-      error_type(e.what());
-    } catch (const cl::Error& e) {
-      error_type(
-          (std::string("OpenCL: ") + e.what() + " (" + isocurv::cl_error_name(e.err()) + ")").c_str());
+      error_type(python::in_python_words(e.what()).c_str());
+    } catch (const cl::Error& e) {  // the library words its own (core/device_call.h): a last resort
+      error_type((std::string("OpenCL call ") + e.what() + " failed: " +
+                  isocurv::cl_error_name(e.err()))
+                     .c_str());
     }
   });
   isocurv::set_program_cache_warnings(true);

@@ -2,6 +2,7 @@
 #include "python/detail/args.h"
 
 #include <cctype>
+#include <utility>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -116,6 +117,42 @@ bool has_extension(const std::string& path, const char* ext) {
   std::string e = std::filesystem::path(path).extension().string();
   for (char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
   return e == ext;
+}
+
+std::string in_python_words(const std::string& message) {
+  // The flags whose library messages reach Python, and the arguments that stand for them.
+  static const std::pair<const char*, const char*> kArguments[] = {
+      {"compress", "compress"}, {"labels", "labels"},     {"label", "labels"},
+      {"spacing", "spacing"},   {"origin", "origin"},     {"grid", "grid"},
+      {"samples", "samples"},   {"lines", "lines"},       {"iso", "iso"},
+      {"scale", "scale"},       {"normals", "normals"},   {"estimator", "estimator"},
+      {"ao-scale", "ao_scale"}, {"dims", "dims"},         {"type", "type"},
+      {"endian", "endian"},     {"inside", "inside"},     {"radius", "radius"},
+      {"snap", "snap"},         {"view", "view"},         {"zoom", "zoom"}};
+  std::string out;
+  std::size_t i = 0;
+  while (i < message.size()) {
+    const bool starts = message.compare(i, 2, "--") == 0 &&
+                        (i == 0 || !(std::isalnum(static_cast<unsigned char>(message[i - 1])) ||
+                                     message[i - 1] == '-'));
+    if (starts) {
+      std::size_t end = i + 2;
+      while (end < message.size() &&
+             (std::isalnum(static_cast<unsigned char>(message[end])) || message[end] == '-'))
+        ++end;
+      const std::string flag = message.substr(i + 2, end - i - 2);
+      const char* argument = nullptr;
+      for (const auto& [f, a] : kArguments)
+        if (flag == f) argument = a;
+      if (argument) {
+        out += argument;
+        i = end;
+        continue;
+      }
+    }
+    out += message[i++];
+  }
+  return out;
 }
 
 }  // namespace isocurv::python

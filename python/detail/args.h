@@ -127,4 +127,10 @@ std::string g_format(double x);
 /// True when `path`'s extension is `ext` (".svg"), in any case.
 bool has_extension(const std::string& path, const char* ext);
 
+/// A library message in the module's words: each command-line flag it names that the module
+/// takes as an argument ("--compress", "--labels", "--label", "--spacing", ...) becomes that
+/// argument's name ("compress", "labels", ...); other text is unchanged. Every isocurv.Error
+/// goes through it (module.cpp).
+std::string in_python_words(const std::string& message);
+
 }  // namespace isocurv::python

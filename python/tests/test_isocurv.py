@@ -155,6 +155,15 @@ class Meshes(unittest.TestCase):
             np.testing.assert_array_equal(extra["curv"], arrays["k1"])
             np.testing.assert_array_equal(extra["Scale"], arrays["Scale"])
             self.assertEqual(sorted(os.listdir(d)), ["a.vtp", "b.vtp", "c.ply", "e.vtp"])
+            # Library messages name this module's arguments, not the command line's flags.
+            with self.assertRaisesRegex(isocurv.Error, "^compress 'gzip'"):
+                isocurv.write_mesh(os.path.join(d, "x.vtp"), mesh, compress="gzip")
+            # .obj keeps the geometry and Normals: the rest is named, not dropped silently.
+            with self.assertWarnsRegex(UserWarning, "not written: .*k1"):
+                isocurv.write_mesh(os.path.join(d, "g.obj"), mesh, arrays)
+            with warnings.catch_warnings():
+                warnings.simplefilter("error")
+                isocurv.write_mesh(os.path.join(d, "h.obj"), mesh, {"Normals": arrays["Normals"]})
 
     @unittest.skipUnless(os.path.exists(TORUS), "bundled datasets not built")
     def test_same_mesh_and_curvature_as_the_command_line(self):
@@ -581,12 +590,26 @@ class Measure(unittest.TestCase):
                 self.assertAlmostEqual(float(m[key][k]), float(a[key][0]),
                                        delta=1e-4 * abs(float(a[key][0])) + 1e-9, msg=key)
         self.assertEqual(list(isocurv.measure_labels(v)["label"]), [4, 9])
+        # numpy integers are labels too; out-of-range ones are a ValueError, not a cast error.
+        self.assertEqual(list(isocurv.measure_labels(v, [np.int64(9), np.uint8(4)])["label"]), [9, 4])
+        self.assertEqual(list(isocurv.measure_labels(v, np.int32(4))["label"]), [4])
+        for bad in (2 ** 70, -(2 ** 70), 2 ** 24):
+            with self.assertRaisesRegex(ValueError, "labels: label .* is beyond"):
+                isocurv.measure_labels(v, [bad])
+        with self.assertRaisesRegex(TypeError, "labels"):
+            isocurv.measure_labels(v, [4.0])
         with self.assertRaises(isocurv.Error):
             isocurv.measure_labels(isocurv.from_array(labels.astype(np.float32)))
         with self.assertRaises(ValueError):
             isocurv.measure_labels(v, [5])
         with self.assertRaises(TypeError):
             isocurv.measure_labels(v, "4")
+
+    def test_a_label_that_fills_the_box_is_left_out_with_a_warning(self):
+        full = isocurv.from_array(np.full((12, 12, 12), 3, np.uint8))
+        with self.assertWarnsRegex(UserWarning, "label 3 has no surface"):
+            m = isocurv.measure_labels(full)
+        self.assertEqual(len(m["label"]), 0)
 
 
 class Features(unittest.TestCase):

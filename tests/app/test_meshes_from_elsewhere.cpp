@@ -30,6 +30,17 @@ Mesh flipped(Mesh m) {
 
 }  // namespace
 
+// extract takes volumes: a mesh file is refused with one line, not written out again as if it
+// had been extracted at isovalue 0 (which dropped its arrays).
+TEST(MeshesFromElsewhere, ExtractRefusesAMeshFile) {
+  TempDir dir("extract_mesh");
+  sphere_mesh(dir);
+  const std::string out = dir / "again.vtp";
+  const auto r = run_isocurv({"extract", dir / "sphere.ply", "-o", out});
+  expect_clean_failure(r, "a mesh file: extract takes a volume");
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 TEST(MeshesFromElsewhere, CurvatureWeldsAnUnweldedMesh) {
   TempDir dir("unwelded");
   const Mesh sphere = sphere_mesh(dir);

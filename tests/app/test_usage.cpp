@@ -37,6 +37,26 @@ TEST(CliUsage, UnknownCommandIsAUsageError) {
                      "extrct");
 }
 
+// Mistyped names get the closest one the command knows; nothing close, no guess.
+TEST(CliUsage, MistypedNamesGetASuggestion) {
+  TempDir dir("suggest");
+  const auto colour =
+      run_isocurv({"render", dataset("sphere"), "-o", dir / "o.png", "--colour", "H"});
+  expect_usage_error(colour, "--colour");
+  EXPECT_NE(colour.err.find("did you mean --color?"), std::string::npos) << colour.describe();
+  const auto isovalue =
+      run_isocurv({"extract", dataset("sphere"), "-o", dir / "o.vtp", "--isovalue", "0.5"});
+  expect_usage_error(isovalue, "--isovalue");
+  EXPECT_NE(isovalue.err.find("did you mean --iso?"), std::string::npos) << isovalue.describe();
+  const auto far = run_isocurv({"extract", dataset("sphere"), "-o", dir / "o.vtp", "--zzzzzz"});
+  expect_usage_error(far, "--zzzzzz");
+  EXPECT_EQ(far.err.find("did you mean"), std::string::npos) << far.describe();
+  const auto command = run_isocurv({"extrct", dataset("sphere"), "-o", dir / "o.vtp"});
+  expect_usage_error(command, "extrct");
+  EXPECT_NE(command.err.find("did you mean extract?"), std::string::npos) << command.describe();
+  EXPECT_TRUE(dir.entries().empty()) << ::testing::PrintToString(dir.entries());
+}
+
 TEST(CliUsage, UnknownCommandListsEveryCommand) {
   // The list once named only the first eight commands.
   const auto r = run_isocurv({"frobnicate"});

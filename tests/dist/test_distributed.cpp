@@ -562,6 +562,22 @@ TEST(Mpirun, CheckAndRunFinishOnRankZero) {
   EXPECT_EQ(sa["triangles"], sb["triangles"]);
 }
 
+// Label surfaces are not divided among ranks: `run --labels` is refused under several ranks like
+// extract and curvature (every rank computed and wrote all of them).
+TEST(Mpirun, LabelsAreRefusedByEveryCommandThatTakesThem) {
+  REQUIRE_MPIRUN();
+  TempDir dir("labels_ranks");
+  const std::string volume = std::string(test_paths::shared_datasets()) + "/lobster/lobster.vol";
+  for (const char* command : {"run", "extract", "curvature"}) {
+    const std::string out = (dir.path() / (std::string(command) + "_out")).string();
+    const std::string target = std::string(command) == "run" ? out : out + ".pvtp";
+    const CliResult r = mpirun(2, {command, volume, "--labels", "-o", target, "--quiet"});
+    EXPECT_EQ(r.exit_code, 1) << command << ": " << r.describe();
+    EXPECT_NE(r.err.find("do not run distributed"), std::string::npos) << command << ": " << r.err;
+    EXPECT_FALSE(fs::exists(target)) << command;
+  }
+}
+
 // A rank that cannot write its piece stops every rank: one line (from rank 0, naming the rank),
 // status 1, no .pvtp and no new piece.
 TEST(Mpirun, AFailingRankStopsAllWithOneLineAndNoPvtp) {
