@@ -57,7 +57,9 @@ void register_check(CLI::App& app) {
     if (!on_zero) return;
     Surface& s = *on_zero;
     timer.start("check");
-    const mc::MeshCheck c = mc::check_mesh(s.mesh);
+    // A mesh of isocurv's --labels: duplicates within a label; touching labels' walls expected.
+    const std::vector<float>* labels = s.field ? s.field->find_extra("Label") : nullptr;
+    const mc::MeshCheck c = mc::check_mesh(s.mesh, labels);
     const double edge = mean_edge_length(s.mesh);
     const std::string unit = s.volume ? "voxel^2" : "mean-edge-length^2";
     const mc::TriangleQuality q =
@@ -78,6 +80,8 @@ void register_check(CLI::App& app) {
                           {"vertices", c.vertices},
                           {"triangles", c.triangles},
                           {"duplicate_vertices", c.duplicate_vertices},
+                          {"labelled", labels != nullptr},
+                          {"label_wall_vertices", c.label_wall_vertices},
                           {"unreferenced_vertices", c.unreferenced_vertices},
                           {"degenerate_triangles", c.degenerate_triangles},
                           {"edges", c.edges},
@@ -126,8 +130,12 @@ void register_check(CLI::App& app) {
     if (s.volume) std::printf("  isovalue              %g\n", s.isovalue);
     std::printf("  vertices              %zu\n  triangles             %zu\n", c.vertices,
                 c.triangles);
-    std::printf("  duplicate vertices    %zu%s\n", c.duplicate_vertices,
-                first_few(c.duplicates, "=").c_str());
+    std::printf("  duplicate vertices    %zu%s%s\n", c.duplicate_vertices,
+                labels ? " within a label" : "", first_few(c.duplicates, "=").c_str());
+    if (labels)
+      std::printf("  label walls           %zu vertices shared by touching labels (each label's "
+                  "surface is closed on its own; not a problem)\n",
+                  c.label_wall_vertices);
     std::printf("  unreferenced vertices %zu\n  degenerate triangles  %zu\n",
                 c.unreferenced_vertices, c.degenerate_triangles);
     std::printf("  edges                 %zu (boundary %zu, non-manifold %zu)%s\n", c.edges,

@@ -33,8 +33,9 @@ struct Label {
 /// count and box. One pass over the domain (OpenVDB's value iterator; tiles count as their voxels).
 /// Label 0 is the background.
 /// @throw Error naming v.path when the volume is not an integer one (its voxel_type is float,
-///        double or half: labels must be exact), when it holds more than kMaxLabels labels, or a
-///        value beyond kMaxLabelValue.
+///        double or half: labels must be exact), when a value is not an integer (a NIfTI
+///        scl_slope/scl_inter scaling), when it holds more than kMaxLabels labels, or a value
+///        beyond kMaxLabelValue.
 std::vector<Label> label_map_labels(const volume::Volume& v);
 
 /// Parses a --label list ("3,7" or "3, 7"): distinct integers. @throw Error for anything else.

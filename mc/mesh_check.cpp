@@ -1,6 +1,7 @@
 #include "mc/mesh_check.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <numeric>
@@ -21,6 +22,11 @@ struct PositionHash {
     std::memcpy(b, p.data(), sizeof b);
     return (std::size_t(b[0]) * 73856093u) ^ (std::size_t(b[1]) * 19349663u) ^
            (std::size_t(b[2]) * 83492791u);
+  }
+  std::size_t operator()(const std::array<float, 4>& p) const {
+    std::uint32_t l;
+    std::memcpy(&l, &p[3], sizeof l);
+    return (*this)(Vec3f{p[0], p[1], p[2]}) ^ (std::size_t(l) * 2654435761u);
   }
 };
 
@@ -44,17 +50,31 @@ double MeshCheck::closed_signed_volume() const {
   return v;
 }
 
-MeshCheck check_mesh(const Mesh& mesh) {
+MeshCheck check_mesh(const Mesh& mesh, const std::vector<float>* vertex_labels) {
   MeshCheck r;
   r.vertices = mesh.positions.size();
   r.triangles = mesh.triangles.size();
   const auto nv = static_cast<std::uint32_t>(mesh.positions.size());
+  const bool labelled = vertex_labels && vertex_labels->size() == nv;
 
   std::unordered_map<Vec3f, std::uint32_t, PositionHash> seen;
   seen.reserve(nv);
+  // With labels, the positions are keyed by label too: (x, y, z, label).
+  std::unordered_map<std::array<float, 4>, std::uint32_t, PositionHash> seen_in_label;
+  if (labelled) seen_in_label.reserve(nv);
   for (std::uint32_t i = 0; i < nv; ++i) {
-    const auto [it, fresh] = seen.emplace(canonical(mesh.positions[i]), i);
-    if (!fresh) r.duplicates.push_back({i, it->second});
+    const Vec3f p = canonical(mesh.positions[i]);
+    const auto [it, fresh] = seen.emplace(p, i);
+    if (!labelled) {
+      if (!fresh) r.duplicates.push_back({i, it->second});
+      continue;
+    }
+    const auto [same, fresh_in_label] =
+        seen_in_label.emplace(std::array<float, 4>{p[0], p[1], p[2], (*vertex_labels)[i] + 0.0f}, i);
+    if (!fresh_in_label)
+      r.duplicates.push_back({i, same->second});
+    else if (!fresh)
+      ++r.label_wall_vertices;
   }
   r.duplicate_vertices = r.duplicates.size();
 

@@ -24,6 +24,10 @@ struct ComponentCheck {
 struct MeshCheck {
   std::size_t vertices = 0, triangles = 0;
   std::size_t duplicate_vertices = 0;     ///< vertices at exactly the position of an earlier one
+  /// With vertex labels: vertices at the position of an earlier vertex of another label only (the
+  /// coincident walls of touching labels, each label's surface closed on its own): not problems,
+  /// and not counted in duplicate_vertices.
+  std::size_t label_wall_vertices = 0;
   std::size_t unreferenced_vertices = 0;  ///< vertices no triangle uses
   std::size_t degenerate_triangles = 0;   ///< a repeated index or zero area
   std::size_t edges = 0;                  ///< distinct undirected edges
@@ -57,7 +61,9 @@ struct MeshCheck {
 };
 
 /// Counts and lists everything in MeshCheck. O(T log T); exact (positions compared by value, so
-/// -0 equals +0).
-MeshCheck check_mesh(const Mesh& mesh);
+/// -0 equals +0). `vertex_labels` (one per vertex, e.g. the "Label" array of isocurv's --labels
+/// meshes) makes duplicates those of one label; coincident vertices of different labels are
+/// label_wall_vertices. nullptr, or a size other than the vertex count: no labels.
+MeshCheck check_mesh(const Mesh& mesh, const std::vector<float>* vertex_labels = nullptr);
 
 }  // namespace isocurv::mc

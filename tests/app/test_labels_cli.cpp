@@ -129,6 +129,30 @@ TEST(CliLabels, MeshesCarryLabelOnPointsAndCellsAndSplitWritesOneFilePerLabel) {
   EXPECT_GT(png_size(dir / "l.png")[0], 0u);
 }
 
+// check understands isocurv's labelled meshes: touching labels' coincident walls are each label's
+// own closed surface, not duplicate vertices (it reported PROBLEMS FOUND).
+TEST(CliLabels, CheckAcceptsTheWallsOfTouchingLabels) {
+  TempDir dir("labels_check");
+  const std::string map = write_nrrd(dir, "map", "uint8", [](int x, int y, int z) { return three_labels(x, y, z); });
+  const std::string mesh = dir / "labels.vtp";
+  ASSERT_TRUE(run_isocurv({"extract", map, "--labels", "-o", mesh, "--quiet"}, 120).ok());
+  const auto r = run_isocurv({"check", mesh, "--json"}, 120);
+  EXPECT_EQ(r.exit_code, 0) << r.describe();
+  const json j = parse_json(r.out, "check --json");
+  EXPECT_TRUE(j["labelled"].get<bool>());
+  EXPECT_EQ(j["duplicate_vertices"], 0) << j.dump();
+  EXPECT_GT(j["label_wall_vertices"].get<int>(), 0) << "labels 1 and 2 touch";
+  EXPECT_FALSE(j["problems_found"].get<bool>());
+  // The same triangles without their labels (a .ply written by another tool) are judged as any
+  // mesh: the coincident vertices are duplicates there.
+  const Mesh bare = io::read_mesh(mesh).mesh;
+  const std::string plain = dir / "plain.ply";
+  io::write_mesh(plain, bare, nullptr);
+  const auto p = run_isocurv({"check", plain, "--json"}, 120);
+  EXPECT_EQ(p.exit_code, 1) << p.describe();
+  EXPECT_GT(parse_json(p.out, "check --json")["duplicate_vertices"].get<int>(), 0);
+}
+
 TEST(CliLabels, RefusesWhatIsNotALabelMap) {
   TempDir dir("labels");
   const std::string map = write_nrrd(dir, "map", "uint8", [](int x, int y, int z) { return three_labels(x, y, z); });
