@@ -85,7 +85,7 @@ Mesh Mesher::extract(float isovalue, const Options& options, ExtractTimings* tim
       if (near.empty()) return;
       // 7. vertices close to a voxel moved onto it, and merged
       const SnapReport r = snap_vertices(mesh, std::move(near), f,
-                                         kSnapMinArea * voxel_face_area(st.volume), options.snap);
+                                         kSnapMinArea, options.snap);
       tm.snapped = r.moved;
       tm.merged = r.merged;
       tm.pushed = r.pushed;

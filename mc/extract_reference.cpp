@@ -59,7 +59,7 @@ Mesh extract_reference(const volume::Volume& v, float isovalue, const Options& o
           mesh.triangles.push_back(tri);
         }
       }
-  snap_vertices(mesh, std::move(snaps), f, kSnapMinArea * voxel_face_area(v), options.snap);
+  snap_vertices(mesh, std::move(snaps), f, kSnapMinArea, options.snap);
   return mesh;
 }
 

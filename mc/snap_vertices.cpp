@@ -54,11 +54,49 @@ Vec3d voxel_position(std::uint64_t p, const Frame& f) {
   return w;
 }
 
-double abs_det(const Frame& f) {
-  const auto& w = f.world;
-  return std::fabs(double(w[0]) * (double(w[5]) * w[10] - double(w[6]) * w[9]) -
-                   double(w[1]) * (double(w[4]) * w[10] - double(w[6]) * w[8]) +
-                   double(w[2]) * (double(w[4]) * w[9] - double(w[5]) * w[8]));
+// The frame's world -> index map: index = inverse (world - translation), in double. Snapping
+// judges every triangle in index space, so its decisions do not depend on the spacing.
+struct IndexMap {
+  double inv[3][3];
+  double t[3];
+  explicit IndexMap(const Frame& f) {
+    const auto& w = f.world;
+    const double a[3][3] = {{w[0], w[1], w[2]}, {w[4], w[5], w[6]}, {w[8], w[9], w[10]}};
+    const double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+                       a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                       a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) {
+        // inverse = adjugate / det: cofactor of (c, r)
+        const int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
+        inv[r][c] = (a[r1][c1] * a[r2][c2] - a[r1][c2] * a[r2][c1]) / det;
+      }
+    for (int r = 0; r < 3; ++r) t[r] = w[r * 4 + 3];
+  }
+  // Exact for the identity map (spacing 1, origin 0): the world positions themselves.
+  Vec3d operator()(const Vec3d& p) const {
+    const double d[3] = {p[0] - t[0], p[1] - t[1], p[2] - t[2]};
+    Vec3d i;
+    for (int r = 0; r < 3; ++r) i[r] = inv[r][0] * d[0] + inv[r][1] * d[1] + inv[r][2] * d[2];
+    return i;
+  }
+  Vec3d operator()(const Vec3f& p) const { return (*this)(to_double(p)); }
+};
+
+// Index position of the voxel with point key `p`.
+Vec3d voxel_index(std::uint64_t p, const Frame& f) {
+  return {double(std::int64_t((p >> 42) & kField) + f.key_origin.x()),
+          double(std::int64_t((p >> 22) & kField) + f.key_origin.y()),
+          double(std::int64_t((p >> 2) & kField) + f.key_origin.z())};
+}
+
+// The world position of index position `i` (the frame's map, in double).
+Vec3d world_of(const Vec3d& i, const Frame& f) {
+  Vec3d w;
+  for (int r = 0; r < 3; ++r)
+    w[r] = f.world[r * 4 + 0] * i[0] + f.world[r * 4 + 1] * i[1] + f.world[r * 4 + 2] * i[2] +
+           f.world[r * 4 + 3];
+  return w;
 }
 
 // Where a voxel's surface splits into several fans (sheets touching there, or a tunnel pinched
@@ -97,8 +135,7 @@ struct Worker {
 class Snapper {
  public:
   Snapper(Mesh& mesh, const std::vector<SnapCandidate>& c, const Frame& frame, double min_area)
-      : mesh_(mesh), cand_(c), frame_(frame), min_area_(min_area),
-        offset_(kFanOffset * std::cbrt(abs_det(frame))) {
+      : mesh_(mesh), cand_(c), frame_(frame), index_(frame), min_area_(min_area) {
     slot_.assign(mesh.positions.size(), kNone);
     for (std::uint32_t i = 0; i < cand_.size(); ++i) slot_[cand_[i].vertex] = i;
     // The triangles with a candidate (one parallel scan in fixed chunks, joined in order), and
@@ -200,6 +237,7 @@ class Snapper {
 
     // Each fan's vertex: on the voxel, or beside it towards the fan's outer vertices.
     const Vec3d at = voxel_position(point, frame_);
+    const Vec3d at_index = voxel_index(point, frame_);
     std::vector<Vec3d> where(nfans, at);
     if (nfans > 1) {
       for (int f = 0; f < nfans; ++f) {
@@ -213,13 +251,18 @@ class Snapper {
           }
         std::sort(outer.begin(), outer.end());
         Vec3d sum{0, 0, 0};
-        for (const Vec3f& q : outer)
-          for (int c = 0; c < 3; ++c) sum[c] += q[c];
+        for (const Vec3f& q : outer) {
+          const Vec3d qi = index_(q);
+          for (int c = 0; c < 3; ++c) sum[c] += qi[c];
+        }
         const double count = double(outer.size());
-        const Vec3d d = {sum[0] / count - at[0], sum[1] / count - at[1], sum[2] / count - at[2]};
+        const Vec3d d = {sum[0] / count - at_index[0], sum[1] / count - at_index[1],
+                         sum[2] / count - at_index[2]};
         const double len = std::sqrt(dot(d, d));
         if (!(len > 0)) return false;
-        for (int c = 0; c < 3; ++c) where[f][c] = at[c] + offset_ * d[c] / len;
+        Vec3d moved;
+        for (int c = 0; c < 3; ++c) moved[c] = at_index[c] + kFanOffset * d[c] / len;
+        where[f] = world_of(moved, frame_);
       }
     }
     std::vector<Vec3f>& where_f = w.where_f;
@@ -228,8 +271,8 @@ class Snapper {
       where_f[f] = {float(where[f][0]), float(where[f][1]), float(where[f][2])};
     for (int f = 0; f < nfans; ++f)  // fans facing the same way (symmetric sheets) would coincide
       for (int g = 0; g < f; ++g) {
-        const Vec3d d = sub(to_double(where_f[f]), to_double(where_f[g]));
-        if (where_f[f] == where_f[g] || dot(d, d) < 0.25 * offset_ * offset_) return false;
+        const Vec3d d = sub(index_(where_f[f]), index_(where_f[g]));
+        if (where_f[f] == where_f[g] || dot(d, d) < 0.25 * kFanOffset * kFanOffset) return false;
       }
 
     // Sound geometry: no triangle too small or turned over.
@@ -237,10 +280,10 @@ class Snapper {
       for (int i = 0; i < nk; ++i) {
         const Kept& k = kept[i];
         if (fan_of[i] < 0) continue;
-        const Vec3d p = to_double(where_f[fan_of[i]]);
-        const Vec3d after = area_vector(p, to_double(mesh_.positions[k.a]), to_double(mesh_.positions[k.b]));
-        const Vec3d before = area_vector(to_double(mesh_.positions[k.m]), to_double(mesh_.positions[k.a]),
-                                         to_double(mesh_.positions[k.b]));
+        const Vec3d p = index_(where_f[fan_of[i]]);
+        const Vec3d a = index_(mesh_.positions[k.a]), b = index_(mesh_.positions[k.b]);
+        const Vec3d after = area_vector(p, a, b);
+        const Vec3d before = area_vector(index_(mesh_.positions[k.m]), a, b);
         if (0.5 * std::sqrt(dot(after, after)) < min_area_ || dot(after, before) < 0) return false;
       }
       return true;
@@ -298,14 +341,16 @@ class Snapper {
   // vertices moved: none where a triangle using them would turn over or shrink below min_area.
   std::size_t push_group(std::uint32_t b, std::uint32_t e, std::uint64_t point, double push) {
     const Vec3d at = voxel_position(point, frame_);
+    const Vec3d at_index = voxel_index(point, frame_);
     std::vector<std::pair<std::uint32_t, Vec3f>> old;
     for (std::uint32_t i = b; i < e; ++i) {
       const std::uint64_t edge = cand_[i].edge;
       const std::uint64_t other = point_key((edge & kSnapUpper) ? edge & ~kSnapUpper : edge | kSnapUpper);
       const Vec3d d = sub(voxel_position(other, frame_), at);
       Vec3f& p = mesh_.positions[cand_[i].vertex];
-      const Vec3d now = sub(to_double(p), at);
-      if (dot(now, now) >= push * push * dot(d, d)) continue;
+      // How far along its edge, in index space (a unit edge).
+      const Vec3d now = sub(index_(p), at_index);
+      if (dot(now, now) >= push * push) continue;
       old.emplace_back(cand_[i].vertex, p);
       p = {float(at[0] + push * d[0]), float(at[1] + push * d[1]), float(at[2] + push * d[2])};
     }
@@ -319,10 +364,10 @@ class Snapper {
       for (std::uint32_t k = first_[i]; k < first_[i + 1]; ++k) {
         const Tri& t = mesh_.triangles[incident_[k]];
         if (t[0] == kNone) continue;
-        const Vec3d before = area_vector(to_double(position_before(t[0])), to_double(position_before(t[1])),
-                                         to_double(position_before(t[2])));
-        const Vec3d after = area_vector(to_double(mesh_.positions[t[0]]), to_double(mesh_.positions[t[1]]),
-                                        to_double(mesh_.positions[t[2]]));
+        const Vec3d before = area_vector(index_(position_before(t[0])), index_(position_before(t[1])),
+                                         index_(position_before(t[2])));
+        const Vec3d after = area_vector(index_(mesh_.positions[t[0]]), index_(mesh_.positions[t[1]]),
+                                        index_(mesh_.positions[t[2]]));
         if (dot(after, before) <= 0 || 0.5 * std::sqrt(dot(after, after)) < min_area_) {
           sound = false;
           break;
@@ -496,8 +541,8 @@ class Snapper {
   Mesh& mesh_;
   const std::vector<SnapCandidate>& cand_;
   const Frame& frame_;
-  double min_area_;
-  double offset_;                        // kFanOffset in world units
+  IndexMap index_;                       // world -> index: every judgement is made there
+  double min_area_;                      // index units (voxel faces)
   std::vector<std::uint32_t> slot_;      // per vertex: its candidate, or kNone
   std::vector<std::uint32_t> first_;     // per candidate: where its triangles start in incident_
   std::vector<std::uint32_t> incident_;  // triangles using each candidate

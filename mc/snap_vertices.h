@@ -23,7 +23,7 @@ namespace isocurv::mc {
 /// Set in SnapCandidate::edge when the vertex lies near the edge's upper end (else its lower end).
 constexpr std::uint64_t kSnapUpper = std::uint64_t(1) << 63;
 
-/// Smallest triangle area a collapse may leave, in voxel faces (mc::voxel_face_area).
+/// Smallest triangle area a collapse may leave, in voxel faces (index units).
 constexpr double kSnapMinArea = 1e-6;
 
 /// A vertex the mesher found within the snap distance of one end of its edge.
@@ -52,7 +52,7 @@ struct SnapReport {
 /// there, or a tunnel narrower than the snap distance pinched to a point) each get a vertex of
 /// their own, 2/1024 voxel from it towards the fan, so no two vertices coincide and no edge or
 /// vertex becomes non-manifold. Where a fan would not be a disc, or a triangle would fall below
-/// `min_area` (world units^2) or turn over, that voxel's vertices are not merged: each moves
+/// `min_area` (in voxel faces: index units^2) or turn over, that voxel's vertices are not merged: each moves
 /// instead along its own cube edge, away from the voxel, to `push` (a fraction of the edge; the
 /// snap distance), so the triangles between them grow from about 1e-6 voxel^2 (the mesher's
 /// 1/1024-voxel nudge) to about push^2 with the mesh's connectivity unchanged; where that would
@@ -60,7 +60,9 @@ struct SnapReport {
 /// Vertices merged away or left without triangles, and collapsed triangles, are removed (the rest
 /// keep their order; `mesh.edge_keys`, when present, follows the vertices). The result depends
 /// only on the mesh's geometry and the candidates' edges, not on vertex numbering or candidate
-/// order.
+/// order. Every judgement (areas, turning over, the fans' offsets, how far a vertex lies along
+/// its edge) is made in index space, through the frame's inverse map: the same volume at another
+/// spacing or origin snaps the same vertices.
 SnapReport snap_vertices(Mesh& mesh, std::vector<SnapCandidate> candidates, const Frame& frame,
                          double min_area, double push);
 

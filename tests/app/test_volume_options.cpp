@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "cli.h"
@@ -108,6 +109,27 @@ TEST(VolumeOptions, SpacingOverridesADgtalVolHeader) {
   const auto r = run_isocurv({"info", dir / "dot.vol", "--spacing", "1", "1", "1.4", "--json"});
   ASSERT_TRUE(r.ok()) << r.describe();
   EXPECT_EQ(parse_json(r.out, "info --json")["spacing"], json::array({1.0, 1.0, 1.4}));
+}
+
+// Snapping judges in index space: the same scan at another spacing snaps the same vertices (the
+// lobster at 1 x 1 x 1.4 had one vertex more), so the meshes have the same triangles and their
+// vertices map onto each other by the spacings.
+TEST(VolumeOptions, SnappingDoesNotDependOnTheSpacing) {
+  TempDir dir("snap_spacing");
+  const std::string lobster = std::string(isocurv::test_paths::shared_datasets()) + "/lobster/lobster.vol";
+  const std::string a = dir / "a.vtp", b = dir / "b.vtp";
+  ASSERT_TRUE(run_isocurv({"extract", lobster, "--iso", "60", "-o", a, "--quiet"}, 120).ok());
+  ASSERT_TRUE(run_isocurv({"extract", lobster, "--iso", "60", "--spacing", "0.3", "0.5", "2",
+                           "-o", b, "--quiet"}, 120).ok());
+  const isocurv::Mesh ma = isocurv::io::read_mesh(a).mesh, mb = isocurv::io::read_mesh(b).mesh;
+  ASSERT_EQ(ma.positions.size(), mb.positions.size());
+  ASSERT_EQ(ma.triangles, mb.triangles);
+  const double scale[3] = {0.3, 0.5, 2};
+  double worst = 0;
+  for (std::size_t i = 0; i < ma.positions.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      worst = std::max(worst, std::abs(double(mb.positions[i][k]) / scale[k] - ma.positions[i][k]));
+  EXPECT_LT(worst, 1e-3) << "voxels";
 }
 
 TEST(VolumeOptions, ExplicitEndianWinsOverTheFileName) {
