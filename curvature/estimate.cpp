@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "core/lap.h"
 #include "curvature/derived.h"
+#include "curvature/detail/math_options.h"
 #include "curvature/input.h"
 #include "curvature/tolerances.h"
 #include "curvature/topology.h"
@@ -43,12 +44,7 @@ const std::string& program_source() {
 }
 
 std::string build_options() {
-  char buf[512];
-  std::snprintf(buf, sizeof buf,
-                "-DPIVOT_TOLERANCE=%.9g -DOPPOSITE_NORMALS=%.9g -DAO_C0=%.9g -DAO_C1=%.9g "
-                "-DAO_C2=%.9g -DAO_SMIN=%.9g -DMAX_FAN=%u",
-                kPivotTolerance, kOppositeNormals, kAoC0, kAoC1, kAoC2, kAoSMin, kMaxFan);
-  return buf;
+  return detail::math_build_options() + " -DMAX_FAN=" + std::to_string(kMaxFan);
 }
 
 // What the estimator keeps on one device between calls (Device::state): kernels, buffers and

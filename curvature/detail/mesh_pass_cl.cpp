@@ -10,6 +10,7 @@
 #include "core/device_call.h"
 #include "core/error.h"
 #include "curvature/derived.h"
+#include "curvature/detail/math_options.h"
 #include "curvature/input.h"
 #include "curvature/tolerances.h"
 #include "curvature/vertex_corners.h"
@@ -31,12 +32,7 @@ const std::string& program_source() {
 }
 
 std::string build_options() {
-  char buf[512];
-  std::snprintf(buf, sizeof buf,
-                "-DPIVOT_TOLERANCE=%.9g -DOPPOSITE_NORMALS=%.9g -DAO_C0=%.9g -DAO_C1=%.9g "
-                "-DAO_C2=%.9g -DAO_SMIN=%.9g -DMAX_FAN=%u",
-                kPivotTolerance, kOppositeNormals, kAoC0, kAoC1, kAoC2, kAoSMin, kMaxFan);
-  return buf;
+  return math_build_options() + " -DMAX_FAN=" + std::to_string(kMaxFan);
 }
 
 template <class T, class A>

@@ -9,6 +9,7 @@
 #include "core/cl_launch.h"
 #include "core/error.h"
 #include "curvature/derived.h"
+#include "curvature/detail/math_options.h"
 #include "curvature/tolerances.h"
 
 namespace isocurv::kernels {
@@ -39,14 +40,10 @@ constexpr std::size_t kGroup = 64;  // work-group size of the launches (core/cl_
 
 // The tuning constants the kernels share with the reference, from their C++ definitions.
 std::string build_options() {
-  char buf[400];
-  std::snprintf(buf, sizeof buf,
-                "-DPIVOT_TOLERANCE=%.9g -DOPPOSITE_NORMALS=%.9g -DAO_C0=%.9g -DAO_C1=%.9g "
-                "-DAO_C2=%.9g -DAO_SMIN=%.9g -DNEWTON_STEPS=%d -DSURFACE_Y1=%.9ef "
-                "-DSURFACE_Y2=%.9ef -DMIN_CORRECTION=%.9ef",
-                kPivotTolerance, kOppositeNormals, kAoC0, kAoC1, kAoC2, kAoSMin, kNewtonSteps,
-                kSurfaceY1, kSurfaceY2, kMinCorrection);
-  return buf;
+  char buf[200];
+  std::snprintf(buf, sizeof buf, " -DNEWTON_STEPS=%d -DSURFACE_Y1=%.9ef -DSURFACE_Y2=%.9ef -DMIN_CORRECTION=%.9ef",
+                kNewtonSteps, kSurfaceY1, kSurfaceY2, kMinCorrection);
+  return math_build_options() + buf;
 }
 
 template <class T, class A>
