@@ -55,6 +55,21 @@ std::vector<std::uint64_t> coarse_histogram(const ValueStats& s) {
 
 }  // namespace
 
+std::size_t label_map_hint(const Volume& v) {
+  const ValueStats& s = v.stats;
+  // With min 0 and max <= 255 the 256 bins are narrower than 1: one integer value per bin.
+  if (!is_integer_type(v.voxel_type) || s.min != 0 || !(s.max >= 2) || s.max > 255 ||
+      s.histogram.size() != 256 || s.voxels == 0)
+    return 0;
+  if (2 * s.histogram[0] < s.voxels) return 0;  // no background
+  std::size_t labels = 0;
+  for (std::size_t b = 1; b < s.histogram.size(); ++b) labels += s.histogram[b] > 0;
+  // A scan quantised to few levels holds nearly every value of its range; a label map's values
+  // are few (and often skip some).
+  const bool few = labels <= 64;
+  return labels >= 2 && few ? labels : 0;
+}
+
 nlohmann::json summary_json(const Volume& v) {
   nlohmann::json j;
   const ValueStats& s = v.stats;
@@ -97,6 +112,9 @@ nlohmann::json summary_json(const Volume& v) {
   j["histogram16"] = coarse_histogram(s);
   j["suggested_isovalue"] = s.suggested_isovalue;
   j["suggested_from"] = s.suggested_from;
+  const std::size_t labels = label_map_hint(v);
+  j["looks_like_label_map"] = labels > 0;
+  if (labels > 0) j["label_count"] = labels;
   return j;
 }
 
@@ -141,6 +159,10 @@ std::string summary_text(const Volume& v) {
   line("non-finite", std::to_string(s.nan_count) + " NaN, " + std::to_string(s.inf_count) + " Inf" +
                          (s.nan_count + s.inf_count ? " (replaced by the outside value)" : ""));
   line("suggested iso", fmt(s.suggested_isovalue) + " (" + s.suggested_from + ")");
+  if (const std::size_t labels = label_map_hint(v))
+    line("label map?", "looks like one: " + std::to_string(labels) +
+                           " non-zero values over a background of 0; --labels makes one surface "
+                           "per label (isocurv measure VOLUME --labels; docs/labels.md)");
   // The histogram as text: 16 bins over the range, bars on a log scale (CT and MR histograms are
   // dominated by the air), with the counts.
   const std::vector<std::uint64_t> coarse = coarse_histogram(s);

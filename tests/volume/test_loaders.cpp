@@ -217,7 +217,7 @@ TEST(VolumeLoadMetaImage, MhaLocalAndCompressedWithRotation) {
   expect_ramp(load(dir.file("ramp.mha")), axis_aligned({0.5, 0.25, 2}, {1, 2, 3}), "metaimage", "float");
 
   // Compressed data, and a 90-degree rotation about z: index x -> world +y, index y -> world -x.
-  // CompressedDataSize must be the compressed bytes' count (tests/volume/test_issue55_readers.cpp).
+  // CompressedDataSize must be the compressed bytes' count (tests/volume/test_header_integrity.cpp).
   const auto z = zlib_compress(to_bytes(ramp_values<std::uint8_t>()));
   write_file(dir.file("rot.zraw"), z);
   write_file(dir.file("rot.mhd"),

@@ -101,3 +101,35 @@ TEST(VolumeSummary, TheSuggestedIsovalueSaysWhereItCameFrom) {
   EXPECT_NE(text.find("42.5 (the file's isovalue)"), std::string::npos) << text;
   EXPECT_EQ(text.find("Otsu"), std::string::npos) << text;
 }
+
+// info says when a volume looks like a label map, and points to --labels; scans and masks do not.
+TEST(VolumeSummary, ALabelMapIsNamedAsOne) {
+  auto xf = openvdb::math::Transform::createLinearTransform(1.0);
+  std::vector<float> map(20 * 20 * 20, 0.0f);
+  for (int z = 0; z < 20; ++z)
+    for (int y = 0; y < 20; ++y)
+      for (int x = 0; x < 20; ++x)
+        if (x >= 2 && x < 8 && y >= 2 && y < 18 && z >= 2 && z < 18)
+          map[std::size_t((z * 20 + y) * 20 + x)] = x < 5 ? 1.0f : 2.0f;
+        else if (x >= 12 && x < 16 && y >= 4 && y < 10 && z >= 4 && z < 10)
+          map[std::size_t((z * 20 + y) * 20 + x)] = 7.0f;
+  const Volume labels = from_dense(map.data(), {20, 20, 20}, xf, {"seg.raw", "raw", "uint8", "", Inside::Above});
+  const auto j = summary_json(labels);
+  EXPECT_TRUE(j["looks_like_label_map"].get<bool>());
+  EXPECT_EQ(j["label_count"], 3);
+  EXPECT_NE(summary_text(labels).find("label map?"), std::string::npos) << summary_text(labels);
+  EXPECT_NE(summary_text(labels).find("--labels"), std::string::npos);
+
+  // The same values as floats, a 0/1 mask, and a scan holding every value of its range: no hint.
+  const Volume floats = from_dense(map.data(), {20, 20, 20}, xf, {"seg.raw", "raw", "float", "", Inside::Above});
+  EXPECT_FALSE(summary_json(floats)["looks_like_label_map"].get<bool>());
+  std::vector<float> mask(map);
+  for (float& m : mask) m = m > 0 ? 1.0f : 0.0f;
+  const Volume binary = from_dense(mask.data(), {20, 20, 20}, xf, {"mask.raw", "raw", "uint8", "", Inside::Above});
+  EXPECT_FALSE(summary_json(binary)["looks_like_label_map"].get<bool>());
+  std::vector<float> scan(20 * 20 * 20);
+  for (std::size_t i = 0; i < scan.size(); ++i) scan[i] = i < 5000 ? 0.0f : float(i % 200);
+  const Volume ct = from_dense(scan.data(), {20, 20, 20}, xf, {"ct.raw", "raw", "uint8", "", Inside::Above});
+  EXPECT_FALSE(summary_json(ct)["looks_like_label_map"].get<bool>());
+  EXPECT_EQ(summary_text(ct).find("label map?"), std::string::npos);
+}

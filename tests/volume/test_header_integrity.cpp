@@ -1,4 +1,4 @@
-// Issue 55, section 4: the volume readers' findings of the outside fuzzing campaign. Each test
+// Header integrity: the readers' findings of an outside fuzzing campaign (issue 55). Each test
 // writes small files of its own: NIfTI scl_slope / scl_inter on integer voxels (applied: they are
 // real values), a qform quaternion with b^2 + c^2 + d^2 > 1 (normalised as nifti1_io.c does, so
 // the spacing stays pixdim), gzip streams whose trailer is cut by 1 to 8 bytes (refused at every
@@ -19,7 +19,7 @@
 using namespace isocurv::volume;
 using namespace voltest;
 
-namespace issue55 {
+namespace header_files {
 
 /// A little-endian NIfTI-1 single file: 352-byte header (pixdim 0.5 0.25 2, vox_offset 352) then
 /// `data`; `edit` sets more header fields through put.
@@ -69,29 +69,29 @@ float voxel(const Volume& v, int x, int y, int z) {
   return v.grid->getConstAccessor().getValue(openvdb::Coord(x, y, z));
 }
 
-}  // namespace issue55
+}  // namespace header_files
 
 // 4.1 scl_slope / scl_inter on integer voxels are real values: applied, whatever they make of
 // the integers (the label-map refusal is in tests/labels/test_label_map.cpp).
-TEST(VolumeIssue55, NiftiScalingOfIntegerVoxelsIsApplied) {
+TEST(VolumeHeaderIntegrity, NiftiScalingOfIntegerVoxelsIsApplied) {
   TempDir dir;
   const std::vector<std::int16_t> labels = {0, 1, 2, 1, 0, 2, 2, 1};  // 2x2x2
   for (const auto& [slope, inter] : std::vector<std::pair<float, float>>{{0.5f, 0}, {1, 0.25f}, {2, -1}}) {
-    issue55::Nifti n(2, 2, 2, 4, 16);
+    header_files::Nifti n(2, 2, 2, 4, 16);
     n.put(112, slope);
     n.put(116, inter);
     write_file(dir.file("s.nii"), n.with(to_bytes(labels)));
     const Volume v = load(dir.file("s.nii"));
     EXPECT_EQ(v.voxel_type, "int16");  // the type on disk
     for (int i = 0; i < 8; ++i)
-      EXPECT_FLOAT_EQ(issue55::voxel(v, i & 1, (i >> 1) & 1, i >> 2), slope * float(labels[std::size_t(i)]) + inter)
+      EXPECT_FLOAT_EQ(header_files::voxel(v, i & 1, (i >> 1) & 1, i >> 2), slope * float(labels[std::size_t(i)]) + inter)
           << "slope " << slope << " inter " << inter << " voxel " << i;
   }
 }
 
 // 4.2 A qform quaternion with b^2 + c^2 + d^2 > 1 scaled the spacing (pixdim 1 read as 3):
 // nifti1_io.c's nifti_quatern_to_mat44 normalises (b, c, d) and takes a = 0 (a half turn).
-TEST(VolumeIssue55, QformQuaternionBeyondUnitLengthIsNormalised) {
+TEST(VolumeHeaderIntegrity, QformQuaternionBeyondUnitLengthIsNormalised) {
   TempDir dir;
   const auto data = to_bytes(ramp_values<std::uint8_t>());
   struct Case {
@@ -99,7 +99,7 @@ TEST(VolumeIssue55, QformQuaternionBeyondUnitLengthIsNormalised) {
   };
   for (const Case q : {Case{1, 1, 1}, Case{0.8f, 0.8f, 0}, Case{0, 0, 1.5f}}) {
     SCOPED_TRACE(std::to_string(q.b) + " " + std::to_string(q.c) + " " + std::to_string(q.d));
-    issue55::Nifti n(5, 4, 3, 2, 8);
+    header_files::Nifti n(5, 4, 3, 2, 8);
     n.put(252, std::int16_t(1));  // qform_code
     n.put(256, q.b);
     n.put(260, q.c);
@@ -124,7 +124,7 @@ TEST(VolumeIssue55, QformQuaternionBeyondUnitLengthIsNormalised) {
     }
   }
   // A quaternion that is not a number is one error line, not a NaN transform.
-  issue55::Nifti n(5, 4, 3, 2, 8);
+  header_files::Nifti n(5, 4, 3, 2, 8);
   n.put(252, std::int16_t(1));
   n.put(256, std::nanf(""));
   write_file(dir.file("nan.nii"), n.with(data));
@@ -134,14 +134,14 @@ TEST(VolumeIssue55, QformQuaternionBeyondUnitLengthIsNormalised) {
 // 4.3 A gzip stream whose trailer (CRC-32 and length) was cut by 1 to 8 bytes was accepted above
 // about 80^3 voxels and refused below: whether zlib's gzread saw the cut depended on where its
 // buffers ended. Every size and every cut is refused now, by every reader of gzip files.
-TEST(VolumeIssue55, GzipTrailerCutIsRefusedAtEverySize) {
+TEST(VolumeHeaderIntegrity, GzipTrailerCutIsRefusedAtEverySize) {
   TempDir dir;
   for (const int size : {5, 40, 80, 96, 128}) {
-    const auto bytes = issue55::mixed_bytes(size);
+    const auto bytes = header_files::mixed_bytes(size);
     const std::string dims = std::to_string(size) + " " + std::to_string(size) + " " + std::to_string(size);
     const std::string raw_name = "v_" + std::to_string(size) + "x" + std::to_string(size) + "x" +
                                  std::to_string(size) + "_uint8.raw.gz";
-    const auto nii = gzip_compress(issue55::Nifti(size, size, size, 2, 8).with(bytes));
+    const auto nii = gzip_compress(header_files::Nifti(size, size, size, 2, 8).with(bytes));
     const auto raw = gzip_compress(bytes);
     const std::string nrrd_head = "NRRD0004\ntype: uchar\ndimension: 3\nsizes: " + dims + "\nencoding: gzip\n\n";
     for (int cut = 0; cut <= 8; ++cut) {
@@ -169,10 +169,10 @@ TEST(VolumeIssue55, GzipTrailerCutIsRefusedAtEverySize) {
 
 // Two gzip members one after the other (pigz, bgzip, `cat a.gz b.gz`) are one stream, as gzip
 // reads them; bytes after the last member that are not a gzip member are ignored, as before.
-TEST(VolumeIssue55, GzipMembersInSequenceAndTrailingBytes) {
+TEST(VolumeHeaderIntegrity, GzipMembersInSequenceAndTrailingBytes) {
   TempDir dir;
-  const auto bytes = issue55::mixed_bytes(40);
-  const auto file = issue55::Nifti(40, 40, 40, 2, 8).with(bytes);
+  const auto bytes = header_files::mixed_bytes(40);
+  const auto file = header_files::Nifti(40, 40, 40, 2, 8).with(bytes);
   const std::size_t half = file.size() / 2;
   auto two = gzip_compress(std::vector<std::uint8_t>(file.begin(), file.begin() + long(half)));
   const auto second = gzip_compress(std::vector<std::uint8_t>(file.begin() + long(half), file.end()));
@@ -180,7 +180,7 @@ TEST(VolumeIssue55, GzipMembersInSequenceAndTrailingBytes) {
   write_file(dir.file("two.nii.gz"), two);
   const Volume v = load(dir.file("two.nii.gz"));
   EXPECT_EQ(v.stats.voxels, bytes.size());
-  EXPECT_EQ(issue55::voxel(v, 39, 39, 39), float(bytes.back()));
+  EXPECT_EQ(header_files::voxel(v, 39, 39, 39), float(bytes.back()));
   auto padded = gzip_compress(file);
   padded.insert(padded.end(), 100, 0);
   write_file(dir.file("padded.nii.gz"), padded);
@@ -194,7 +194,7 @@ TEST(VolumeIssue55, GzipMembersInSequenceAndTrailingBytes) {
 // 4.4 NRRD `spacings` and `space directions` both given: NRRD (teem) forbids the pair, and when
 // they disagree nothing says which one is right, so the file is refused naming both; when they
 // agree (as some writers repeat them) the file is read.
-TEST(VolumeIssue55, NrrdSpacingsThatDisagreeWithSpaceDirections) {
+TEST(VolumeHeaderIntegrity, NrrdSpacingsThatDisagreeWithSpaceDirections) {
   TempDir dir;
   const std::string data(60, '\1');
   const std::string head = "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 5 4 3\nencoding: raw\n"
@@ -212,7 +212,7 @@ TEST(VolumeIssue55, NrrdSpacingsThatDisagreeWithSpaceDirections) {
 
 // `line skip: -1` was read as 0. Only `byte skip` has a -1 (the data end the file); a negative
 // line count means nothing, so it is refused.
-TEST(VolumeIssue55, NrrdNegativeLineSkip) {
+TEST(VolumeHeaderIntegrity, NrrdNegativeLineSkip) {
   TempDir dir;
   write_file(dir.file("l.nrrd"), "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 5 4 3\nencoding: raw\nline skip: -1\n\n" +
                                      std::string(60, '\1'));
@@ -221,7 +221,7 @@ TEST(VolumeIssue55, NrrdNegativeLineSkip) {
 
 // `sizes: 41 41.0 41` was read as 41 41 41: a size (and every other integer field) is written as
 // an integer, so "41.0", "4e1" or "0x29" are refused as bad values.
-TEST(VolumeIssue55, IntegerFieldsMustBeWrittenAsIntegers) {
+TEST(VolumeHeaderIntegrity, IntegerFieldsMustBeWrittenAsIntegers) {
   TempDir dir;
   const std::string data(60, '\1');
   for (const std::string sizes : {"5 4.0 3", "5 4 3.", "5e0 4 3", "0x5 4 3"}) {
@@ -239,7 +239,7 @@ TEST(VolumeIssue55, IntegerFieldsMustBeWrittenAsIntegers) {
 // fewer means a cut file, refused naming the field. More is read (no warning): the zlib stream
 // decides where the data end, its Adler-32 and exact size vouch for them, and real files carry a
 // stale count (VTK's frogtissue.mhd: 260020 for a 262087-byte stream, test_real_datasets.cpp).
-TEST(VolumeIssue55, MetaImageCompressedDataSizeIsChecked) {
+TEST(VolumeHeaderIntegrity, MetaImageCompressedDataSizeIsChecked) {
   TempDir dir;
   const auto z = zlib_compress(to_bytes(ramp_values<std::uint8_t>()));
   const std::string head = "NDims = 3\nDimSize = 5 4 3\nElementType = MET_UCHAR\nCompressedData = True\n";
