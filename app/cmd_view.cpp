@@ -78,8 +78,11 @@ void register_view(CLI::App& app) {
                   "Volume file, or mesh file (.vtp .ply .obj .stl; several, a quoted glob, a .pvd "
                   "collection or a multi-grid .vdb with --time-series: the frames of a series)")
       ->required();
-  static std::string script;  // scripted runs for the end-to-end tests (viz/explorer_script.h)
-  cmd->add_option("--script", script, "Run the actions of this file, then close")->group("");
+  static std::string script;  // scripted runs (viz/explorer_script.h), demos and the tests
+  cmd->add_option("--script", script,
+                  "Run the actions of FILE, one a line (iso V, key C, type TEXT, screenshot PATH, "
+                  "status PATH, frame K, resize W H, wait), then close; headless when there is no "
+                  "display (docs/pictures.md, Scripted runs)");
   cmd->add_option("--screenshots", screenshots, "'s' writes PREFIX-NNN.png")->capture_default_str();
   cmd->add_option("--camera-out", camera_out, "'k' writes the camera here")->capture_default_str();
   cmd->add_option("--surface-out", surface_out, "The path 'w' proposes for the surface (.vtp or .ply)")

@@ -1,6 +1,6 @@
 #pragma once
-// Explorer scripts as text, one action a line, for scripted runs of `isocurv view` (its hidden
-// --script option, used by the end-to-end tests): the same ExplorerActions a test builds in code.
+// Explorer scripts as text, one action a line, for scripted runs of `isocurv view --script` (demos,
+// headless pictures and the end-to-end tests): the same ExplorerActions a test builds in code.
 // Tested in tests/viz/test_explorer_view.cpp.
 #include <string>
 #include <vector>

@@ -154,6 +154,14 @@ TEST(CliHelp, EveryCommandShowsAnExample) {
     EXPECT_NE(top.out.find(cmd), std::string::npos) << cmd << " missing from isocurv --help";
 }
 
+// The explorer's scripted mode is a user's option (demos, headless pictures), not a hidden one.
+TEST(CliHelp, ViewOffersItsScriptedMode) {
+  const auto r = run_isocurv({"view", "--help"}, 20);
+  EXPECT_EQ(r.exit_code, 0) << r.describe();
+  EXPECT_NE(r.out.find("--script"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("headless"), std::string::npos) << r.out;
+}
+
 TEST(CliHelp, UsageNamesTheProgramNotItsPath) {
   // The tests start the executable by its full path; the usage line still says "isocurv".
   const auto top = run_isocurv({"--help"}, 20);

@@ -61,6 +61,7 @@ void Explorer::refresh_status() {
           "  [o] open  [w] save  [k] camera  [s] screenshot";
   if (setup_.lines && !screen_on_)
     line += std::string("  [l] lines: ") + (lines_on_ ? "on" : "off");
+  line += "  [q] quit";
   if (has_time())
     line += "\nframe " + std::to_string(frame_) + " of " + std::to_string(setup_.frames) +
             (setup_.frame_label ? " (" + setup_.frame_label(frame_) + ")" : "") +
