@@ -128,12 +128,7 @@ void register_compare(CLI::App& app) {
     curvature::Options co;
     // The mesh estimators' normals as `curvature` takes them (curvature/request.h): --normals,
     // else the volume's gradient with a volume, else the faces.
-    curvature::NormalsSource asked =
-        curvature::normals_from_name(o.normals).value_or(curvature::NormalsSource::automatic);
-    if (asked == curvature::NormalsSource::automatic)
-      asked = s.volume ? curvature::NormalsSource::volume : curvature::NormalsSource::mesh;
-    if (asked == curvature::NormalsSource::volume && !s.volume)
-      throw Error("--normals volume needs a volume input, not a mesh file");
+    const curvature::NormalsSource asked = mesh_estimators_normals(o, s.volume.has_value());
     const std::string source = curvature::normals_name(asked);
     const volume::MeshNormals normals =
         curvature::host_normals(asked, mesh, s.volume ? &*s.volume : nullptr, o.cap);

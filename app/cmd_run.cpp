@@ -62,8 +62,7 @@ nlohmann::json run_one(const std::string& in, const std::string& dir, const Comm
   std::uint64_t mesh_bytes = 0;
   outputs.write(mesh_path, [&](const std::string& tmp) {
     const io::Metadata context = context_metadata(s, in, ro.opts.length_unit);
-    const io::CellArrays cells = label_cells(s);
-    io::write_mesh(tmp, s.mesh, &*s.field, o.compress, &context, &cells);
+    io::write_mesh(tmp, s.mesh, &*s.field, o.compress, &context, &s.label_cells);
     mesh_bytes = file_bytes(tmp);
   });
   timer.start("render");

@@ -25,12 +25,6 @@ int indicator_margin(const volume::Volume& v, const CommonOptions& o) {
   return labels::indicator_margin(sigma_voxels);
 }
 
-std::string join(const std::vector<std::int64_t>& values) {
-  std::string s;
-  for (std::int64_t v : values) s += (s.empty() ? "" : ", ") + std::to_string(v);
-  return s;
-}
-
 }  // namespace
 
 void add_label_options(CLI::App& cmd, CommonOptions& o, bool with_split) {
@@ -73,8 +67,8 @@ Surface load_label_surfaces(const std::string& path, const CommonOptions& o, Sta
   const std::vector<labels::Label> picked = labels::pick_labels(all, wanted, missing);
   timer.stop();
   if (!missing.empty() && !picked.empty() && !o.quiet)
-    std::fprintf(stderr, "isocurv: warning: %s: no voxel holds label%s %s; left out\n", path.c_str(),
-                 missing.size() == 1 ? "" : "s", join(missing).c_str());
+    std::fprintf(stderr, "isocurv: warning: %s: %s\n", path.c_str(),
+                 labels::missing_labels_note(missing).c_str());
   if (picked.empty())
     throw Error(path, all.empty() ? std::string("--labels: the volume holds no label (every voxel is 0)")
                                   : "--label: none of the labels given is in the volume (it holds " +
@@ -112,9 +106,8 @@ Surface load_label_surfaces(const std::string& path, const CommonOptions& o, Sta
     timer.stop();
   }
   if (!empty.empty() && !o.quiet)
-    std::fprintf(stderr, "isocurv: warning: %s: label%s %s %s no surface (%s the box); left out\n",
-                 path.c_str(), empty.size() == 1 ? "" : "s", join(empty).c_str(),
-                 empty.size() == 1 ? "has" : "have", empty.size() == 1 ? "it fills" : "they fill");
+    std::fprintf(stderr, "isocurv: warning: %s: %s\n", path.c_str(),
+                 labels::filling_labels_note(empty).c_str());
   if (merged.parts.empty()) throw Error(path, "--labels: no label has a surface");
   s.mesh = std::move(merged.mesh);
   s.field = std::move(merged.field);
@@ -123,7 +116,6 @@ Surface load_label_surfaces(const std::string& path, const CommonOptions& o, Sta
   return s;
 }
 
-const io::CellArrays& label_cells(const Surface& s) { return s.label_cells; }
 
 std::vector<std::string> write_split_labels(const Surface& s, const std::string& dir,
                                             const std::string& format,
@@ -189,8 +181,7 @@ nlohmann::json write_label_output(const Surface& s, const std::string& in, const
     r["outputs"] = write_split_labels(s, out, "vtp", o, context, outputs);
     outputs.commit();
   } else {
-    const io::CellArrays cells = label_cells(s);
-    io::write_mesh(out, s.mesh, s.field ? &*s.field : nullptr, o.compress, &context, &cells);
+    io::write_mesh(out, s.mesh, s.field ? &*s.field : nullptr, o.compress, &context, &s.label_cells);
     r["output"] = out;
     r["output_bytes"] = file_bytes(out);
   }

@@ -26,9 +26,6 @@ void add_label_options(CLI::App& cmd, CommonOptions& o, bool with_split);
 Surface load_label_surfaces(const std::string& path, const CommonOptions& o, StageTimer& timer,
                             bool curvature);
 
-/// The cell arrays of `s` for io::write_mesh: {"Label"} for a label map's surfaces, else none.
-const io::CellArrays& label_cells(const Surface& s);
-
 /// Checks, before any work, that `out` can take a label map's surfaces: a writable file, or with
 /// --split a folder name (not an existing file). @throw Error naming `out`.
 void require_label_output(const std::string& out, const CommonOptions& o);

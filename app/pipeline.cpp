@@ -153,6 +153,17 @@ Error request_error(const curvature::RequestError& e) {
 
 }  // namespace
 
+curvature::NormalsSource mesh_estimators_normals(const CommonOptions& o, bool volume_input) {
+  curvature::Request r;
+  r.estimator = curvature::Estimator::rusinkiewicz;
+  r.normals = curvature::normals_from_name(o.normals).value_or(curvature::NormalsSource::automatic);
+  try {
+    return curvature::resolve(r, volume_input).normals;
+  } catch (const curvature::RequestError& e) {
+    throw request_error(e);
+  }
+}
+
 curvature::Estimator default_estimator(const CommonOptions& o, bool volume_input) {
   return curvature::default_estimator(curvature_request(o), volume_input);
 }

@@ -16,6 +16,7 @@
 #include "curvature/curvature_field.h"
 #include "curvature/estimator.h"
 #include "curvature/options.h"
+#include "curvature/request.h"
 #include "io/compression.h"
 #include "io/mesh_file.h"
 #include "labels/label_merge.h"
@@ -207,6 +208,11 @@ void prepare_mesh_for_curvature(Surface& s, const std::string& path, const Commo
 /// without H must not lose what it is asked to colour.
 void reestimate_keeping_extras(Surface& s, const std::string& path, const CommonOptions& o,
                                StageTimer& timer);
+
+/// The normals the mesh estimators take for --normals (curvature::resolve's rule): the option,
+/// else the volume's gradient with a volume input, else the mesh's faces. Throws isocurv::Error for
+/// --normals volume without a volume.
+curvature::NormalsSource mesh_estimators_normals(const CommonOptions& o, bool volume_input);
 
 /// The estimator a command runs (curvature::default_estimator): --estimator when given, else
 /// volume for volume input without --normals, else rusinkiewicz.

@@ -159,4 +159,25 @@ volume::Volume label_indicator(const volume::Volume& v, const Label& label, int 
   return out;
 }
 
+namespace {
+
+std::string joined(const std::vector<std::int64_t>& values) {
+  std::string s;
+  for (std::int64_t v : values) s += (s.empty() ? "" : ", ") + std::to_string(v);
+  return s;
+}
+
+}  // namespace
+
+std::string missing_labels_note(const std::vector<std::int64_t>& labels) {
+  return std::string("no voxel holds label") + (labels.size() == 1 ? " " : "s ") + joined(labels) +
+         "; left out";
+}
+
+std::string filling_labels_note(const std::vector<std::int64_t>& labels) {
+  const bool one = labels.size() == 1;
+  return std::string("label") + (one ? " " : "s ") + joined(labels) + (one ? " has" : " have") +
+         " no surface (" + (one ? "it fills" : "they fill") + " the box); left out";
+}
+
 }  // namespace isocurv::labels

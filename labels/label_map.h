@@ -41,6 +41,12 @@ std::vector<Label> label_map_labels(const volume::Volume& v);
 /// Parses a --label list ("3,7" or "3, 7"): distinct integers. @throw Error for anything else.
 std::vector<std::int64_t> parse_label_list(const std::string& text);
 
+/// The notes the command line and the Python module give, without a prefix: "no voxel holds
+/// label(s) 3, 9; left out" (asked for, absent) and "label 5 has no surface (it fills the box);
+/// left out" (or "labels 5, 6 have ... they fill ..."). `labels` is not empty.
+std::string missing_labels_note(const std::vector<std::int64_t>& labels);
+std::string filling_labels_note(const std::vector<std::int64_t>& labels);
+
 /// The labels of `all` named in `wanted` (all of them when `wanted` is empty), in `wanted`'s order.
 /// Values in `wanted` that `all` lacks are appended to `missing` (the caller warns about them).
 std::vector<Label> pick_labels(const std::vector<Label>& all, const std::vector<std::int64_t>& wanted,

@@ -40,20 +40,6 @@ std::uint64_t point_key(std::uint64_t edge) {
   return (x << 42) | (y << 22) | (z << 2);
 }
 
-// World position of the voxel with point key `p`, computed as the reference mesher places
-// vertices (double sums of the float map).
-Vec3d voxel_position(std::uint64_t p, const Frame& f) {
-  // Signed sums: key origins, and so voxels, may lie at negative index coordinates.
-  const double i[3] = {double(std::int64_t((p >> 42) & kField) + f.key_origin.x()),
-                       double(std::int64_t((p >> 22) & kField) + f.key_origin.y()),
-                       double(std::int64_t((p >> 2) & kField) + f.key_origin.z())};
-  Vec3d w;
-  for (int r = 0; r < 3; ++r)
-    w[r] = f.world[r * 4 + 0] * i[0] + f.world[r * 4 + 1] * i[1] + f.world[r * 4 + 2] * i[2] +
-           f.world[r * 4 + 3];
-  return w;
-}
-
 // The frame's world -> index map: index = inverse (world - translation), in double. Snapping
 // judges every triangle in index space, so its decisions do not depend on the spacing.
 struct IndexMap {
@@ -83,7 +69,8 @@ struct IndexMap {
   Vec3d operator()(const Vec3f& p) const { return (*this)(to_double(p)); }
 };
 
-// Index position of the voxel with point key `p`.
+// Index position of the voxel with point key `p` (signed sums: key origins, and so voxels, may
+// lie at negative index coordinates).
 Vec3d voxel_index(std::uint64_t p, const Frame& f) {
   return {double(std::int64_t((p >> 42) & kField) + f.key_origin.x()),
           double(std::int64_t((p >> 22) & kField) + f.key_origin.y()),
@@ -98,6 +85,10 @@ Vec3d world_of(const Vec3d& i, const Frame& f) {
            f.world[r * 4 + 3];
   return w;
 }
+
+// World position of the voxel with point key `p`, computed as the reference mesher places
+// vertices (double sums of the float map).
+Vec3d voxel_position(std::uint64_t p, const Frame& f) { return world_of(voxel_index(p, f), f); }
 
 // Where a voxel's surface splits into several fans (sheets touching there, or a tunnel pinched
 // to a point), each fan's vertex sits this far (in voxels) from the voxel towards its own fan,

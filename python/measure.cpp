@@ -115,9 +115,7 @@ py::dict measure_labels_of(const VolumeArg& volume_arg, const py::object& labels
   const std::vector<labels::Label> picked = labels::pick_labels(all, wanted, missing);
   if (picked.empty()) throw py::value_error("labels: none of the labels given is in the volume");
   if (!missing.empty()) {
-    std::string list;
-    for (std::int64_t m : missing) list += (list.empty() ? "" : ", ") + std::to_string(m);
-    PyErr_WarnEx(PyExc_UserWarning, ("no voxel holds label " + list + "; left out").c_str(), 1);
+    PyErr_WarnEx(PyExc_UserWarning, labels::missing_labels_note(missing).c_str(), 1);
   }
   const DeviceChoice dc = device_choice(device);
   const int margin = labels::indicator_margin(curvature::kBinaryScaleVoxels);
@@ -146,13 +144,8 @@ py::dict measure_labels_of(const VolumeArg& volume_arg, const py::object& labels
     columns.genus.back() = measure::genus_sum(objects);  // -1 when a component is cut
   }
   if (!filling.empty()) {  // as the CLI's measure --labels says it
-    std::string list;
-    for (std::int64_t f : filling) list += (list.empty() ? "" : ", ") + std::to_string(f);
-    const bool one = filling.size() == 1;
-    const std::string message = std::string("label") + (one ? " " : "s ") + list +
-                                (one ? " has" : " have") + " no surface (" +
-                                (one ? "it fills" : "they fill") + " the box); left out";
-    if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 1) != 0) throw py::error_already_set();
+    if (PyErr_WarnEx(PyExc_UserWarning, labels::filling_labels_note(filling).c_str(), 1) != 0)
+      throw py::error_already_set();
   }
   const py::ssize_t n = py::ssize_t(label.size());
   py::dict out = columns.dict();
