@@ -28,6 +28,7 @@
 #include "mc/frame.h"
 #include "volume/load.h"
 #include "volume/prefilter.h"
+#include "volume/pyramid.h"
 
 namespace isocurv::app {
 namespace {
@@ -35,8 +36,9 @@ namespace {
 // Cells past the slab a rank extracts: snapping's and the ghost ring's (dist::kExtractGhostCells),
 // plus, for curvature, the estimator's reach around the piece's vertices:
 //  - the volume estimator's smoothing at its largest scale (the one given, else the per-vertex
-//    choice's cap, curvature::kAdaptiveMaxVoxels): the prefilter's volume::kPrefilterRadius
-//    deviations, the B-spline's reach, and for binary volumes the move to the smoothed surface
+//    choice's cap, curvature::kAdaptiveMaxVoxels): the samples its pyramid level reads
+//    (volume::pyramid_support: the prefilter's taps, the B-spline's and the decimations'), and
+//    for binary volumes the move to the smoothed surface
 //    (kMaxShiftVoxels voxels plus kShrinkScales sigma); the box test's kSupportDeviations and
 //    the choice's regions (2 kRegionScales sigma) lie inside that;
 //  - a mesh estimator's neighbourhood: the scale's 3 sigma when given, else 8 cells (the
@@ -54,9 +56,9 @@ int margin_cells(const volume::Volume& v, const CommonOptions& o, DistributedWor
       sigma = std::max(sigma, curvature::kAdaptiveMaxVoxels * std::cbrt(h[0] * h[1] * h[2]));
     const double largest = std::max({h[0], h[1], h[2]});
     sigma = std::max(sigma, 1.01 * volume::kMinScaleVoxels * largest);  // auto_scale's floor
-    const double reach = volume::kPrefilterRadius * sigma + (volume::kSplineReach + 0.5) * step +
-                         curvature::kMaxShiftVoxels * largest +
-                         curvature::detail::kShrinkScales * sigma;
+    const double reach = volume::pyramid_support(
+        volume::Pyramid(v), sigma, 2,
+        0.5 * step + curvature::kMaxShiftVoxels * largest + curvature::detail::kShrinkScales * sigma);
     return margin + int(std::ceil(reach / step)) + 1;
   }
   return margin + (sigma > 0 ? int(std::ceil(3 * sigma / std::min({h[0], h[1], h[2]}))) + 2 : 8);

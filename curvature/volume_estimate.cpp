@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -14,31 +15,61 @@
 #include "core/lap.h"
 #include "curvature/detail/volume_passes.h"
 #include "curvature/detail/volume_setup.h"
+#include "volume/pyramid.h"
 
 namespace isocurv::curvature {
 namespace {
 
 using Clock = StepClock;
 
-// One evaluation at setup.sigma for `positions` (detail::VolumeEvaluate); `s` is locked.
+// The pyramid levels' raw samples of one estimate (detail::RawPool per level), gathered once
+// per level for every vertex at the largest scale the estimate reads from it, and which level's
+// are on the device.
+struct RawPools {
+  const Positions* positions = nullptr;  ///< the whole surface's vertices
+  double largest = 0;                    ///< the estimate's largest scale, world units
+  std::map<int, detail::RawPool> levels;
+  int uploaded = -1;
+};
+
+// One evaluation at setup.sigma for `positions` (detail::VolumeEvaluate), on the pyramid level
+// that holds the scale; `s` is locked.
 detail::VolumeEvaluation evaluate(const Positions& positions, const volume::Volume& volume,
-                                  const detail::VolumeSetup& setup, float isovalue, float ao_scale,
-                                  Device& device, detail::VolumeSession& s, detail::RawPool& raw) {
+                                  volume::Pyramid& pyramid, const detail::VolumeSetup& setup,
+                                  float isovalue, float ao_scale, Device& device,
+                                  detail::VolumeSession& s, RawPools& raws) {
   detail::VolumeEvaluation e;
   if (positions.empty()) return e;
   detail::Staging st;                 // read by queued copies until the queue drains ...
   const DrainOnUnwind drain(device);  // ... which an error makes sure of before st goes
   Clock::time_point t = Clock::now();
-  detail::plan_pass(positions, setup, st);
+  const int k = pyramid.level_for(setup.sigma);
+  const detail::VolumeSetup at = detail::on_level(setup, pyramid, k);
+  detail::plan_pass(positions, at, st);
   e.steps.plan = lap(t);
-  cl::Buffer& pool = detail::gather_pass(volume, raw, device, s, st);
+  detail::RawPool& raw = raws.levels[k];
+  if (!raw.widest) {
+    // Every vertex at the largest scale this level serves in this estimate.
+    const double top = std::max(
+        setup.sigma, std::min(raws.largest, pyramid.upper_scale(k) * (1 - 1e-9)));
+    const detail::VolumeSetup wide = detail::with_sigma(at, top);
+    volume::SmoothingPlan widest = volume::plan_smoothing(
+        wide.frame, *raws.positions, detail::spline_reach(wide), top, wide.own_variance);
+    pyramid.build(k, widest.stages[0].bricks);
+    detail::prefill_pass(widest, *pyramid.level(k).grid, raw, device, s);
+    raws.uploaded = k;
+  } else if (raws.uploaded != k) {
+    detail::upload_raw_pass(raw, device, s);
+    raws.uploaded = k;
+  }
+  cl::Buffer& pool = detail::gather_pass(raw, s, st);
   e.steps.gather = lap(t);
-  cl::Buffer& table = detail::smooth_pass(setup, volume, pool, device, s, st);
+  cl::Buffer& table = detail::smooth_pass(at, volume, pool, device, s, st);
   cl::Buffer& blocks = detail::pad_pass(volume, device, s, st);
   device.queue().finish();
   e.steps.smooth = lap(t);
-  detail::evaluate_pass(positions, setup, isovalue, ao_scale, volume, blocks, table, device, s, st);
-  detail::read_back_pass(positions.size(), setup, device, s, e);
+  detail::evaluate_pass(positions, at, isovalue, ao_scale, volume, blocks, table, device, s, st);
+  detail::read_back_pass(positions.size(), at, device, s, e);
   device.queue().finish();
   e.steps.vertices = lap(t);
   e.bricks = 0;
@@ -71,26 +102,18 @@ CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalu
   const std::optional<detail::AdaptiveScale> adaptive = detail::adaptive_of(options, setup, volume);
   detail::VolumeSession& s = detail::volume_session(device);
   std::lock_guard<std::mutex> lock(s.mutex);
-  double prefill_ms = 0;
   detail::ScaleLadder ladder;
   VertexCorners corners;  // built once: the cut and the areas both need them
   build_vertex_corners(mesh, corners);
-  detail::RawPool raw;                // read by queued copies until the queue drains ...
-  const DrainOnUnwind drain(device);  // ... which an error makes sure of before raw goes
-  if (adaptive) {
-    // Every rung reads a subset of the largest scale's raw bricks: gather and upload those once.
-    Clock::time_point t = Clock::now();
-    const detail::VolumeSetup widest = detail::with_sigma(setup, adaptive->hi);
-    detail::prefill_pass(volume::plan_smoothing(setup.frame, mesh.positions,
-                                                detail::spline_reach(widest), adaptive->hi),
-                         volume, raw, device, s);
-    device.queue().finish();
-    prefill_ms = lap(t);
-  }
+  volume::Pyramid pyramid(volume);
+  RawPools raws;                      // read by queued copies until the queue drains ...
+  const DrainOnUnwind drain(device);  // ... which an error makes sure of before raws go
+  raws.positions = &mesh.positions;
+  raws.largest = adaptive ? std::max(adaptive->hi, setup.sigma) : setup.sigma;
   detail::VolumeEvaluation e = detail::evaluate_with_finer_scales(
       mesh, corners, setup, options.finer_scales,
       [&](const Positions& positions, const detail::VolumeSetup& at) {
-        return evaluate(positions, volume, at, isovalue, ao_scale, device, s, raw);
+        return evaluate(positions, volume, pyramid, at, isovalue, ao_scale, device, s, raws);
       },
       ladder, adaptive ? &*adaptive : nullptr);
   Clock::time_point t = Clock::now();
@@ -99,7 +122,6 @@ CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalu
   if (setup.point == VolumePoint::vertex)
     e.field.surface_points = edge_surface_points(mesh, volume, e.field);
   e.steps.finish = lap(t);
-  e.steps.gather += prefill_ms;
   if (stats)
     *stats = VolumeEstimateStats{unreliable, e.bricks, ladder.refined,
                                  detail::count_of(ladder.outside), ladder.blur, e.steps};

@@ -44,7 +44,10 @@
 //
 // Cost follows the surface: only the 8^3 bricks the vertices' B-splines read, and what the
 // prefilter's three passes need for them, are gathered and filtered; a vertex then reads 5^3
-// smoothed samples, whatever the scale.
+// smoothed samples, whatever the scale. Scales of kPyramidVoxels (2) samples of a coarser level
+// of the volume's scale-space pyramid (volume/pyramid.h: 4 voxels and more on level 1, 8 on
+// level 2, ...) are evaluated there, so a scale of 20 voxels filters about as many samples with
+// as many taps as one of 3, and scales have no ceiling but the volume's size.
 // Tested in tests/curvature/volume_estimate_test.cpp, tests/curvature/volume_piece_test.cpp.
 #include <cstddef>
 #include <optional>
@@ -125,7 +128,7 @@ struct VolumeOptions {
   /// of estimate_field): the noise model of the volume. Absent: every vertex starts at sigma.
   std::optional<NoiseModel> adaptive;
   /// adaptive: the largest scale, world units; 0: kAdaptiveMaxVoxels voxels (the geometric mean
-  /// spacing), within the volume and the prefilter's volume::kMaxPrefilterDeviation.
+  /// spacing), within the volume and the pyramid's volume::Pyramid::max_scale.
   double adaptive_max = 0;
   /// `mesh` is one piece of a surface divided among processes (core/surface_piece.h), extracted
   /// with a margin wide enough for the smoothing of its own vertices at the largest scale (the
@@ -147,8 +150,8 @@ struct VolumeOptions {
 /// Threading: calls on one device are serialised (one mutex per device); calls on different
 /// devices may run in parallel. `stats` (optional) receives what the call did.
 /// Errors (isocurv::Error, nothing written to `stats`): options.sigma not positive and finite,
-/// larger than the volume, under volume::kMinScaleVoxels voxels of the coarsest axis, or so large
-/// against a spacing that it would exceed volume::kMaxPrefilterDeviation voxels; ao_scale not
+/// larger than the volume, under volume::kMinScaleVoxels voxels of the coarsest axis, or above
+/// volume::Pyramid::max_scale (a thin side of the volume); ao_scale not
 /// finite; a grid transform that is not affine with orthogonal axes; an invalid mesh
 /// (check_input); an OpenCL failure (core/device_call.h: the queue is drained first).
 CurvatureField volume_estimate(const Mesh& mesh, const volume::Volume& volume, float isovalue,

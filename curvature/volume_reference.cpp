@@ -25,6 +25,7 @@
 #include "volume/gaussian_jet.h"
 #include "volume/gradient_normals.h"
 #include "volume/prefilter.h"
+#include "volume/pyramid.h"
 #include "volume/spline_jet.h"
 
 namespace isocurv::curvature {
@@ -51,16 +52,19 @@ void shrinkage_corrected(PointCurvature& c, double e) {
 
 namespace {
 
-detail::VolumeEvaluation evaluate_reference(const Positions& positions,
-                                            const openvdb::FloatGrid& grid,
+detail::VolumeEvaluation evaluate_reference(const Positions& positions, volume::Pyramid& pyramid,
                                             const detail::VolumeSetup& s, float isovalue,
                                             float ao_scale) {
   const std::size_t nv = positions.size();
   detail::VolumeEvaluation e;
   if (nv == 0) return e;
-  const volume::SmoothingPlan plan =
-      volume::plan_smoothing(s.frame, positions, detail::spline_reach(s), s.sigma);
-  const volume::SmoothedSamples smoothed = volume::smooth_reference(grid, plan);
+  // The pyramid level that holds the scale, its bricks built as the plan reads them.
+  const int k = pyramid.level_for(s.sigma);
+  const detail::VolumeSetup at = detail::on_level(s, pyramid, k);
+  const volume::SmoothingPlan plan = volume::plan_smoothing(
+      at.frame, positions, detail::spline_reach(at), at.sigma, at.own_variance);
+  pyramid.build(k, plan.stages[0].bricks);
+  const volume::SmoothedSamples smoothed = volume::smooth_reference(*pyramid.level(k).grid, plan);
   CurvatureField& out = e.field;
   out.normals.resize(nv), out.k1.resize(nv), out.k2.resize(nv), out.dir1.resize(nv);
   out.dir2.resize(nv), out.H.resize(nv), out.K.resize(nv), out.dcurv.resize(nv);
@@ -136,14 +140,14 @@ CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume&
   const detail::VolumeSetup setup = detail::volume_setup(mesh, volume, options);
   const float ao_scale = options.ao_scale;
   const std::optional<detail::AdaptiveScale> adaptive = detail::adaptive_of(options, setup, volume);
-  const openvdb::FloatGrid& grid = *volume.grid;
+  volume::Pyramid pyramid(volume);
   detail::ScaleLadder ladder;
   VertexCorners corners;  // built once: the cut and the areas both need them
   build_vertex_corners(mesh, corners);
   detail::VolumeEvaluation e = detail::evaluate_with_finer_scales(
       mesh, corners, setup, options.finer_scales,
       [&](const Positions& positions, const detail::VolumeSetup& s) {
-        return evaluate_reference(positions, grid, s, isovalue, ao_scale);
+        return evaluate_reference(positions, pyramid, s, isovalue, ao_scale);
       },
       ladder, adaptive ? &*adaptive : nullptr);
   const std::size_t unreliable = detail::finish_volume_field(

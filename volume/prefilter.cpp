@@ -129,16 +129,24 @@ PrefilterTaps prefilter_taps(double variance) {
 }
 
 SmoothingPlan plan_smoothing(const GridFrame& frame, const Positions& world_points,
-                             const openvdb::Vec3d& reach, double sigma) {
+                             const openvdb::Vec3d& reach, double sigma,
+                             const openvdb::Vec3d& own_variance) {
   SmoothingPlan plan;
   plan.frame = frame;
   for (int a = 0; a < 3; ++a) {
     const double deviation = sigma / frame.spacing[a];
-    if (!(deviation >= kMinScaleVoxels))
+    const double variance = deviation * deviation - kSplineVariance - own_variance[a];
+    if (!(deviation >= kMinScaleVoxels) || !(variance >= 0))
       throw Error("volume: scale " + std::to_string(sigma) + " is " + std::to_string(deviation) +
                   " voxels along index axis " + std::to_string(a) + "; at least " +
-                  std::to_string(kMinScaleVoxels) + " are supported");
-    plan.taps[a] = prefilter_taps(deviation * deviation - kSplineVariance);
+                  std::to_string(std::max(kMinScaleVoxels,
+                                          std::sqrt(kSplineVariance + own_variance[a]))) +
+                  " are supported");
+    if (deviation > kMaxPrefilterDeviation)
+      throw Error("volume: scale " + std::to_string(sigma) + " is " + std::to_string(deviation) +
+                  " voxels along index axis " + std::to_string(a) + "; at most " +
+                  std::to_string(int(kMaxPrefilterDeviation)) + " are supported");
+    plan.taps[a] = prefilter_taps(variance);
   }
   if (world_points.empty()) return plan;
   openvdb::Vec3d window;

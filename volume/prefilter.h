@@ -43,9 +43,9 @@ inline constexpr double kSplineReach = 2.5;
 /// whatever the truncation (below), so this only trims its fourth moment (bench_accuracy's errors
 /// at 3 and at 4 deviations agree to 2-3 digits; 3 needs a quarter fewer taps at 2 voxels).
 inline constexpr double kPrefilterRadius = 3.0;
-/// The largest scale the prefilter takes, in voxels of the finest axis (the volume estimator's
-/// largest per-vertex scale, curvature::kAdaptiveMaxVoxels, lies under it on grids up to
-/// 1 x 1 x 2.3).
+/// The largest scale one prefilter takes, in samples of its grid. The volume estimator reaches
+/// larger scales on coarser levels of a pyramid (volume/pyramid.h), where a scale spans a few
+/// samples whatever its size.
 inline constexpr double kMaxPrefilterDeviation = 16.0;
 /// The most taps either side of a prefilter: kPrefilterRadius times kMaxPrefilterDeviation.
 inline constexpr int kPrefilterMaxRadius = 48;
@@ -100,11 +100,15 @@ struct SmoothingPlan {
 
 /// Plans the smoothing at world deviation `sigma` for B-spline evaluations anywhere within
 /// `reach` (index units per axis, beyond the spline's own kSplineReach) of the index position of
-/// each world point. Parallel (TBB), deterministic.
-/// @throw isocurv::Error when sigma is below kMinScaleVoxels along an axis, or the region's
-/// table would exceed 2^31 bricks.
+/// each world point. `own_variance`: the smoothing the samples carry already (index units
+/// squared per axis; a pyramid level's, volume/pyramid.h), which the prefilter leaves out.
+/// Parallel (TBB), deterministic.
+/// @throw isocurv::Error when sigma is below kMinScaleVoxels along an axis (or under what the
+/// B-spline and own_variance smooth), above kMaxPrefilterDeviation, or the region's table would
+/// exceed 2^31 bricks.
 SmoothingPlan plan_smoothing(const GridFrame& frame, const Positions& world_points,
-                             const openvdb::Vec3d& reach, double sigma);
+                             const openvdb::Vec3d& reach, double sigma,
+                             const openvdb::Vec3d& own_variance = openvdb::Vec3d(0, 0, 0));
 
 /// The samples of stages[0]'s bricks (512 per brick, voxel (x, y, z) of a brick at
 /// (z * 8 + y) * 8 + x): the grid's values, at coordinates clamped to the domain for a dense

@@ -118,26 +118,31 @@ VolumeSession& volume_session(Device& device) {
 }
 
 void plan_pass(const Positions& positions, const VolumeSetup& setup, Staging& st) {
-  st.plan = volume::plan_smoothing(setup.frame, positions, spline_reach(setup), setup.sigma);
+  st.plan = volume::plan_smoothing(setup.frame, positions, spline_reach(setup), setup.sigma,
+                                   setup.own_variance);
   const volume::SmoothingPlan& plan = st.plan;
   st.dims = {{plan.dims[0], plan.dims[1], plan.dims[2], 0}};
   st.first = openvdb::Coord(plan.origin[0] * 8, plan.origin[1] * 8, plan.origin[2] * 8);
 }
 
-void prefill_pass(const volume::SmoothingPlan& widest, const volume::Volume& volume, RawPool& raw,
-                  Device& device, VolumeSession& s) {
-  raw.widest = widest;
-  volume::gather_bricks(*volume.grid, widest.frame, widest.stages[0].bricks, raw.samples);
+void upload_raw_pass(const RawPool& raw, Device& device, VolumeSession& s) {
   cl::Buffer& pool = s.get(VolumeSession::kPool0, raw.samples.size() * sizeof(float));
   if (!raw.samples.empty())  // `raw` outlives the estimate's queue
     device.queue().enqueueWriteBuffer(pool, CL_FALSE, 0, raw.samples.size() * sizeof(float),
                                       raw.samples.data());
 }
 
-cl::Buffer& gather_pass(const volume::Volume& volume, RawPool& raw, Device& device,
-                        VolumeSession& s, Staging& st) {
-  if (!raw.widest) prefill_pass(st.plan, volume, raw, device, s);
-  // The same size as filled: kept as it is.
+void prefill_pass(const volume::SmoothingPlan& widest, const openvdb::FloatGrid& grid,
+                  RawPool& raw, Device& device, VolumeSession& s) {
+  raw.widest = widest;
+  raw.samples.clear();
+  volume::gather_bricks(grid, widest.frame, widest.stages[0].bricks, raw.samples);
+  upload_raw_pass(raw, device, s);
+}
+
+cl::Buffer& gather_pass(const RawPool& raw, VolumeSession& s, Staging& st) {
+  if (!raw.widest) throw Error("curvature: an evaluation before its level's raw samples");
+  // The same size as uploaded: kept as it is.
   cl::Buffer& pool = s.get(VolumeSession::kPool0, raw.samples.size() * sizeof(float));
   const volume::SmoothingPlan& w = *raw.widest;
   const volume::BrickSet& set = st.plan.stages[0];

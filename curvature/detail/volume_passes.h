@@ -69,12 +69,11 @@ struct VolumeSession {
 /// The session of `device`, made (and its program built) on first use.
 VolumeSession& volume_session(Device& device);
 
-/// The raw samples of one estimate, on the host and the device, gathered and uploaded once, for
-/// the widest plan: the first one gather_pass sees, which the driver makes the widest (the first
-/// evaluation is at the largest scale unless the per-vertex choice plans its largest rung before
-/// it), so every later plan's bricks lie among its. Gathering them again per evaluation was the
-/// largest part of the per-vertex choice's cost (the gyroid's 628k vertices: 773 of 2585 ms).
-/// Lives until the estimate's queue has drained.
+/// The raw samples of one pyramid level (volume/pyramid.h) for one estimate, on the host,
+/// gathered once for the level's widest plan (every vertex at the largest scale the estimate
+/// reads from that level), so every plan of that level's evaluations reads a subset of its bricks.
+/// Gathering them again per evaluation was the largest part of the per-vertex choice's cost (the
+/// gyroid's 628k vertices: 773 of 2585 ms). Lives until the estimate's queue has drained.
 struct RawPool {
   std::optional<volume::SmoothingPlan> widest;
   std::vector<float> samples;  ///< 512 per brick of widest's stage 0, in its order
@@ -95,11 +94,10 @@ struct Staging {
 /// plan: the bricks `positions` need at setup.sigma, into `st`.
 void plan_pass(const Positions& positions, const VolumeSetup& setup, Staging& st);
 
-/// gather: the raw samples' device buffer, `raw` filled from st.plan first when empty, and
-/// st.table0 (stage 0's table remapped into the pool). Throws isocurv::Error when a brick of
-/// st.plan is not in the widest plan (which would read the background silently).
-cl::Buffer& gather_pass(const volume::Volume& volume, RawPool& raw, Device& device,
-                        VolumeSession& s, Staging& st);
+/// gather: the raw samples' device buffer (uploaded by prefill_pass or upload_raw_pass from
+/// `raw`) and st.table0 (stage 0's table remapped into the pool). Throws isocurv::Error when a
+/// brick of st.plan is not in raw's widest plan (which would read the background silently).
+cl::Buffer& gather_pass(const RawPool& raw, VolumeSession& s, Staging& st);
 
 /// smooth: the prefilter's three passes (along x from stage 0 into stage 1, along y, along z)
 /// from `pool`; returns stage 3's table.
@@ -119,9 +117,11 @@ void evaluate_pass(const Positions& positions, const VolumeSetup& setup, float i
 void read_back_pass(std::size_t vertices, const VolumeSetup& setup, Device& device,
                     VolumeSession& s, VolumeEvaluation& e);
 
-/// Uploads raw.widest's samples of the largest rung's plan before the first evaluation (the
-/// per-vertex choice), so that every rung reads a subset of them.
-void prefill_pass(const volume::SmoothingPlan& widest, const volume::Volume& volume, RawPool& raw,
-                  Device& device, VolumeSession& s);
+/// Gathers `widest`'s raw samples from `grid` (a pyramid level's, holding them) into `raw`
+/// and uploads them.
+void prefill_pass(const volume::SmoothingPlan& widest, const openvdb::FloatGrid& grid,
+                  RawPool& raw, Device& device, VolumeSession& s);
+/// Uploads `raw`'s samples again (the estimate moved to another level and back).
+void upload_raw_pass(const RawPool& raw, Device& device, VolumeSession& s);
 
 }  // namespace isocurv::curvature::detail

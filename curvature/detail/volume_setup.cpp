@@ -26,6 +26,7 @@
 #include "volume/gaussian_jet.h"
 #include "volume/gradient_normals.h"
 #include "volume/prefilter.h"
+#include "volume/pyramid.h"
 #include "volume/spline_jet.h"
 
 namespace isocurv::curvature {
@@ -58,11 +59,12 @@ VolumeSetup volume_setup(const Mesh& mesh, const volume::Volume& volume,
       throw Error(volume.path, "scale " + std::to_string(sigma) + " is larger than the volume (" +
                                    std::to_string(extent) + " world units across)");
   }
-  if (sigma / finest > volume::kMaxPrefilterDeviation)
-    throw Error(volume.path,
-                "scale " + std::to_string(sigma) + " is " + std::to_string(sigma / finest) +
-                    " voxels along the finest axis; at most " +
-                    std::to_string(int(volume::kMaxPrefilterDeviation)) + " are supported");
+  if (const double top = volume::Pyramid(volume).max_scale(); sigma > top)
+    throw Error(volume.path, "scale " + std::to_string(sigma) + " is " +
+                                 std::to_string(sigma / finest) +
+                                 " voxels along the finest axis; this volume supports at most " +
+                                 std::to_string(top / finest) +
+                                 " (its thinnest side, smoothed, holds too few samples)");
   if (sigma / s.voxel < volume::kMinScaleVoxels)
     throw Error(volume.path, "scale " + std::to_string(sigma) + " is " +
                                  std::to_string(sigma / s.voxel) +
@@ -93,7 +95,7 @@ std::optional<AdaptiveScale> adaptive_of(const VolumeOptions& options, const Vol
                                    setup.frame.spacing[2]};
   double hi = options.adaptive_max > 0 ? options.adaptive_max
                                        : kAdaptiveMaxVoxels * std::cbrt(h[0] * h[1] * h[2]);
-  hi = std::min(hi, 0.999 * volume::kMaxPrefilterDeviation * std::min({h[0], h[1], h[2]}));
+  hi = std::min(hi, 0.999 * volume::Pyramid(volume).max_scale());
   if (!volume.domain.empty()) {
     const openvdb::Coord dim = volume.domain.dim();
     double extent = 0;

@@ -17,6 +17,7 @@
 #include "curvature/vertex_corners.h"
 #include "curvature/volume_estimate.h"
 #include "volume/gaussian_jet.h"
+#include "volume/pyramid.h"
 #include "volume/volume.h"
 
 namespace isocurv::curvature::detail {
@@ -36,11 +37,23 @@ struct VolumeSetup {
   double max_shift() const { return kMaxShiftVoxels * voxel + kShrinkScales * sigma; }
   VolumePoint point = VolumePoint::vertex;
   volume::Inside inside = volume::Inside::Above;
+  /// `frame` is a pyramid level's (volume/pyramid.h): its samples' own smoothing, index units
+  /// squared per axis, which the prefilter leaves out (zero at level 0).
+  openvdb::Vec3d own_variance{0, 0, 0};
 };
 
 /// `setup` at another scale.
 inline VolumeSetup with_sigma(VolumeSetup setup, double sigma) {
   setup.sigma = sigma;
+  return setup;
+}
+
+/// `setup` on level k of `pyramid`: its frame and own smoothing; the scale, the voxel (level
+/// 0's largest spacing, which the staircase and the Newton move are measured in) and the rest
+/// unchanged.
+inline VolumeSetup on_level(VolumeSetup setup, const volume::Pyramid& pyramid, int k) {
+  setup.frame = pyramid.level(k).frame;
+  setup.own_variance = pyramid.level(k).variance;
   return setup;
 }
 

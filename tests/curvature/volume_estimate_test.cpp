@@ -123,9 +123,13 @@ Case level_set_sphere() {
 TEST(VolumeEstimator, KernelMatchesReference) {
   using curvature::VolumePoint;
   for (const Case& c : {catalogue("torus", 40), level_set_sphere()}) {
+    // 4.5 and 9 voxels read the pyramid's levels 1 and 2 (volume/pyramid.h), and their finer
+    // scales the levels under them.
     for (const auto& [voxels, point] : {std::pair{1.0, VolumePoint::vertex},
                                         std::pair{2.3, VolumePoint::vertex},
-                                        std::pair{1.7, VolumePoint::surface}}) {
+                                        std::pair{1.7, VolumePoint::surface},
+                                        std::pair{4.5, VolumePoint::vertex},
+                                        std::pair{9.0, VolumePoint::surface}}) {
       const double sigma = voxels * voxel_of(c.volume);
       const curvature::CurvatureField ref = curvature::volume_estimate_reference(
           c.mesh, c.volume, c.iso, volume_options_at(sigma, 0.1f, point));

@@ -1,0 +1,106 @@
+#pragma once
+// A scale-space pyramid over a volume, so that the volume estimator's smoothing costs about the
+// same at any scale (curvature/volume_estimate.h).
+//
+// Level 0 is the volume itself. Level k + 1 is level k smoothed along each axis it decimates by
+// the discrete Gaussian of variance kPyramidVariance (level k's index units; prefilter_taps),
+// then sampled at every second index along those axes: level k + 1's index j is level k's 2 j
+// there, the same world point (one origin; the spacing doubles). An axis is decimated while its
+// spacing stays within the finest axis's spacing at that level, so a 1 x 1 x 3.5 grid keeps its
+// slices until level 3; and while the level keeps at least kPyramidMinSamples samples across a
+// dense volume. Each level's samples carry their own smoothing, `variance` per axis (its index
+// units squared: v(k+1) = (v(k) + kPyramidVariance) / 4 where decimated), which the prefilter at
+// that level leaves out (volume/prefilter.h, plan_smoothing's own_variance).
+//
+// An evaluation at world scale sigma reads level_for(sigma): the coarsest level where sigma is at
+// least kPyramidVoxels of its spacing along every decimated axis, so its prefilter spans a few
+// of the level's samples whatever sigma is, and the decimation's smoothing (at its new Nyquist
+// frequency a 0.7% gain) has aliased nothing the rest of the smoothing keeps.
+//
+// A dense volume's domain at level k + 1 is the samples 2 j inside level k's; reads outside it
+// repeat the nearest domain sample, as at level 0 (each pass clamps its own axis). A sparse
+// grid's inactive voxels read as its background at every level.
+//
+// Only the bricks asked for are built (build), each once, from the bricks of the level under it
+// that it reads (built first): a surface's pyramid covers its surroundings, not the volume.
+// Deterministic: a sample's value depends only on the volume, not on which bricks were asked for
+// or in which order. Lifetime: keeps a reference to the volume's grid (it must outlive the
+// pyramid and not change). Threading: build is serialised by a mutex; level() may be read while
+// no build runs.
+// Tested in tests/volume/test_pyramid.cpp.
+#include <openvdb/openvdb.h>
+
+#include <array>
+#include <memory>
+#include <mutex>
+#include <unordered_set>
+#include <vector>
+
+#include "volume/gaussian_jet.h"
+#include "volume/volume.h"
+
+namespace isocurv::volume {
+
+/// The decimation's smoothing, variance in the finer level's index units squared (deviation 2:
+/// one sample of the coarser level).
+inline constexpr double kPyramidVariance = 4.0;
+/// An evaluation at world scale sigma uses the coarsest level where sigma is at least this many
+/// of the level's spacings along each decimated axis (its prefilter's own variance then at least
+/// kPyramidVoxels^2 - kSplineVariance - 4/3 = 2.25 samples squared).
+inline constexpr double kPyramidVoxels = 2.0;
+/// A dense volume's axis is decimated only while the next level keeps this many samples across.
+inline constexpr int kPyramidMinSamples = 8;
+/// The most levels (a sparse grid has no domain to stop them).
+inline constexpr int kPyramidMaxLevels = 12;
+
+/// One level of a Pyramid.
+struct PyramidLevel {
+  openvdb::FloatGrid::Ptr grid;  ///< level 0: the volume's own; above, the bricks built so far
+  GridFrame frame;               ///< index -> world, and the level's domain when clamping
+  openvdb::Vec3d variance{0, 0, 0};  ///< the samples' own smoothing, index units squared
+  openvdb::Coord factor{1, 1, 1};    ///< level index j is level-0 index j * factor
+  std::array<bool, 3> decimated{};   ///< which axes this level halved (none at level 0)
+};
+
+class Pyramid {
+ public:
+  /// The levels of `volume` (none built yet above level 0). Throws what grid_frame throws.
+  explicit Pyramid(const Volume& volume);
+
+  int levels() const { return int(levels_.size()); }
+  const PyramidLevel& level(int k) const { return levels_[std::size_t(k)]; }
+  /// The level an evaluation at world scale `sigma` reads (see above).
+  int level_for(double sigma) const;
+  /// The scale (world units) from which level k + 1 takes over from level k (infinity for the
+  /// last level).
+  double upper_scale(int k) const;
+  /// The largest scale (world units) whose level's prefilter stays within
+  /// kMaxPrefilterDeviation samples along every axis (volume/prefilter.h).
+  double max_scale() const;
+
+  /// Makes level k hold every sample of `bricks` (level k's brick coordinates, voxel / 8) that
+  /// lies in its domain (dense) or every sample (sparse); level 0 holds them already. Parallel
+  /// (TBB) over the bricks built.
+  void build(int k, const std::vector<openvdb::Coord>& bricks);
+
+  /// Bricks built above level 0 (for reports and tests).
+  std::size_t built_bricks() const;
+
+ private:
+  struct CoordHash {
+    std::size_t operator()(const openvdb::Coord& c) const;
+  };
+  std::vector<PyramidLevel> levels_;
+  std::vector<std::unordered_set<openvdb::Coord, CoordHash>> built_;
+  std::mutex mutex_;
+  void build_locked(int k, const std::vector<openvdb::Coord>& bricks);
+};
+
+/// How far (world units, along index axis `axis`) the level-0 samples that an evaluation at world
+/// scale `sigma` depends on may lie from the point it was asked at, when the evaluation may move
+/// `reach` world units from it: the prefilter's taps, the B-spline's and every decimation's, plus
+/// a sample for rounding. It grows with sigma. For the ghost margins of a divided volume
+/// (app/distributed.cpp).
+double pyramid_support(const Pyramid& pyramid, double sigma, int axis, double reach);
+
+}  // namespace isocurv::volume
