@@ -43,6 +43,11 @@ Pyramid::Pyramid(const Volume& volume) {
   levels_.push_back(base);
   const double finest =
       std::min({base.frame.spacing[0], base.frame.spacing[1], base.frame.spacing[2]});
+  const int radius = prefilter_taps(kPyramidVariance).radius;
+  // The samples 2 j inside the finer level's own (not extended) box, per axis: what decides
+  // whether an axis still has room to halve.
+  openvdb::Coord inner_lo = base.frame.lo, inner_hi = base.frame.hi;
+  const bool boxed = !volume.domain.empty();
   while (int(levels_.size()) < kPyramidMaxLevels) {
     const PyramidLevel& prev = levels_.back();
     const double target = finest * double(1 << levels_.size());
@@ -51,10 +56,8 @@ Pyramid::Pyramid(const Volume& volume) {
     for (int a = 0; a < 3; ++a) {
       next.decimated[a] = false;
       if (2 * prev.frame.spacing[a] > target * (1 + 1e-6)) continue;
-      if (prev.frame.lo[a] <= prev.frame.hi[a]) {  // a domain (dense, or a sparse grid's box)
-        const int lo = ceil_div2(prev.frame.lo[a]), hi = floor_div2(prev.frame.hi[a]);
-        if (hi - lo + 1 < kPyramidMinSamples) continue;
-      }
+      if (boxed && floor_div2(inner_hi[a]) - ceil_div2(inner_lo[a]) + 1 < kPyramidMinSamples)
+        continue;
       next.decimated[a] = any = true;
     }
     if (!any) break;
@@ -63,9 +66,14 @@ Pyramid::Pyramid(const Volume& volume) {
       next.factor[a] *= 2;
       next.frame.spacing[a] *= 2;
       for (int r = 0; r < 3; ++r) next.frame.A(r, a) *= 2;
-      if (prev.frame.lo[a] <= prev.frame.hi[a]) {
-        next.frame.lo[a] = ceil_div2(prev.frame.lo[a]);
-        next.frame.hi[a] = floor_div2(prev.frame.hi[a]);
+      if (boxed) {
+        inner_lo[a] = ceil_div2(inner_lo[a]), inner_hi[a] = floor_div2(inner_hi[a]);
+        // Past a clamped box the finer level is constant along the axis, so this level is too
+        // from the first sample whose taps all lie past it: its box extends to that sample and
+        // reads clamp there, exactly as level 0's extension (each pass clamping its own axis)
+        // smoothed would give.
+        next.frame.lo[a] = ceil_div2(prev.frame.lo[a] - radius) - 1;
+        next.frame.hi[a] = floor_div2(prev.frame.hi[a] + radius) + 1;
       }
       next.variance[a] = (prev.variance[a] + kPyramidVariance) / 4;
     }
@@ -212,46 +220,79 @@ void Pyramid::build_locked(int k, const std::vector<openvdb::Coord>& bricks) {
           offset[a][std::size_t(t)] = (v & 7) * scale[a];
         }
       }
+      // Runs of x within one leaf cell (x's cells are non-decreasing).
+      std::vector<std::array<int, 2>> runs;  // [first x, cell]
+      for (int x = 0; x < n[0]; ++x)
+        if (x == 0 || cell[0][std::size_t(x)] != cell[0][std::size_t(x - 1)])
+          runs.push_back({x, cell[0][std::size_t(x)]});
+      runs.push_back({n[0], 0});
+      const int* ox = offset[0].data();
       box.resize(std::size_t(n[0]) * n[1] * n[2]);
       for (int z = 0; z < n[2]; ++z)
         for (int y = 0; y < n[1]; ++y) {
           const int cyz = (cell[2][std::size_t(z)] * cn[1] + cell[1][std::size_t(y)]) * cn[0];
           const int oyz = offset[2][std::size_t(z)] + offset[1][std::size_t(y)];
           float* row = box.data() + (std::size_t(z) * n[1] + y) * n[0];
-          for (int x = 0; x < n[0]; ++x) {
-            const std::size_t c = std::size_t(cyz + cell[0][std::size_t(x)]);
-            row[x] = leaves[c] ? leaves[c][oyz + offset[0][std::size_t(x)]] : tiles[c];
+          for (std::size_t k = 0; k + 1 < runs.size(); ++k) {
+            const std::size_t c = std::size_t(cyz + runs[k][1]);
+            const int from = runs[k][0], to = runs[k + 1][0];
+            if (const float* leaf = leaves[c]) {
+              const float* base = leaf + oyz;
+              for (int x = from; x < to; ++x) row[x] = base[ox[x]];
+            } else {
+              std::fill(row + from, row + to, tiles[c]);
+            }
           }
         }
-      // The three passes, each keeping only its decimated outputs: the box's x rows to 8
-      // outputs, then y, then z. Output o of a decimated axis reads box index 2 o + r + t
-      // (taps t = -r .. r); of a kept axis, index o.
-      auto filter = [&](const float* in, int stride, bool decimated, float* dst, int dst_stride) {
+      // The three passes, each keeping only its 8 outputs along its axis (output o of a
+      // decimated axis reads box index 2 o + t with taps t = 0 .. 2 r; of a kept axis, index o):
+      // along y, then z, over whole x rows (contiguous: they vectorise), then along x on the
+      // 8 x 8 rows left.
+      const int nx = n[0], ny = n[1], nz = n[2], taps_n = 2 * radius + 1;
+      auto rows = [&](const float* in, std::ptrdiff_t step, bool decimated, float* dst) {
+        // dst[o][x] (8 rows of nx) from in's rows `step` apart.
         for (int o = 0; o < 8; ++o) {
+          float* d = dst + std::ptrdiff_t(o) * nx;
           if (!decimated) {
-            dst[o * dst_stride] = in[o * stride];
+            std::copy(in + o * step, in + o * step + nx, d);
+            continue;
+          }
+          std::fill(d, d + nx, 0.0f);
+          for (int t = 0; t < taps_n; ++t) {
+            const float wt = w[t];
+            const float* src = in + (2 * o + t) * step;
+            for (int x = 0; x < nx; ++x) d[x] += wt * src[x];
+          }
+        }
+      };
+      pass1.resize(std::size_t(nz) * 8 * nx);  // [z][8 y][x]
+      for (int z = 0; z < nz; ++z)
+        rows(box.data() + std::size_t(z) * ny * nx, nx, level.decimated[1],
+             pass1.data() + std::size_t(z) * 8 * nx);
+      pass2.resize(std::size_t(64) * nx);  // [8 z][8 y][x]
+      for (int y = 0; y < 8; ++y) {
+        // Rows (z, y) for z = 0 .. nz - 1 are 8 nx apart in pass1; the outputs (o, y) 8 nx
+        // apart in pass2: filter into a scratch of 8 rows, then place them.
+        float scratch[8 * 64];
+        std::vector<float> big;
+        float* tmp = nx <= 64 ? scratch : (big.resize(std::size_t(8) * nx), big.data());
+        rows(pass1.data() + std::size_t(y) * nx, std::ptrdiff_t(8) * nx, level.decimated[2], tmp);
+        for (int o = 0; o < 8; ++o)
+          std::copy(tmp + o * nx, tmp + (o + 1) * nx, pass2.data() + (std::size_t(o) * 8 + y) * nx);
+      }
+      float* dst = out.data() + i * 512;  // x fastest: (z * 8 + y) * 8 + x
+      for (int r = 0; r < 64; ++r) {
+        const float* in = pass2.data() + std::size_t(r) * nx;
+        for (int o = 0; o < 8; ++o) {
+          if (!level.decimated[0]) {
+            dst[r * 8 + o] = in[o];
             continue;
           }
           float sum = 0;
-          const float* c = in + std::ptrdiff_t(2 * o) * stride;
-          for (int t = 0; t <= 2 * radius; ++t) sum += w[t] * c[t * stride];
-          dst[o * dst_stride] = sum;
+          for (int t = 0; t < taps_n; ++t) sum += w[t] * in[2 * o + t];
+          dst[r * 8 + o] = sum;
         }
-      };
-      pass1.resize(std::size_t(8) * n[1] * n[2]);  // [z][y][8]
-      for (int z = 0; z < n[2]; ++z)
-        for (int y = 0; y < n[1]; ++y)
-          filter(box.data() + (std::size_t(z) * n[1] + y) * n[0], 1, level.decimated[0],
-                 pass1.data() + (std::size_t(z) * n[1] + y) * 8, 1);
-      pass2.resize(std::size_t(64) * n[2]);  // [z][8][8]
-      for (int z = 0; z < n[2]; ++z)
-        for (int x = 0; x < 8; ++x)
-          filter(pass1.data() + std::size_t(z) * n[1] * 8 + x, 8, level.decimated[1],
-                 pass2.data() + std::size_t(z) * 64 + x, 8);
-      float* dst = out.data() + i * 512;  // x fastest: (z * 8 + y) * 8 + x
-      for (int y = 0; y < 8; ++y)
-        for (int x = 0; x < 8; ++x)
-          filter(pass2.data() + y * 8 + x, 64, level.decimated[2], dst + y * 8 + x, 64);
+      }
     }
   });
   // The new leaves made one by one (the tree is not thread-safe), then filled in parallel.
