@@ -1,5 +1,4 @@
 #include "app/distributed.h"
-#include "app/series.h"
 
 #include <malloc.h>
 
@@ -8,6 +7,7 @@
 #include <iostream>
 #include <memory>
 
+#include "app/series.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "curvature/auto_scale.h"
@@ -16,10 +16,10 @@
 #include "dist/gather.h"
 #include "dist/piece.h"
 #include "dist/piece_file.h"
-#include "dist/volume_stats.h"
 #include "dist/slabs.h"
 #include "dist/surface_piece.h"
 #include "dist/totals.h"
+#include "dist/volume_stats.h"
 #include "dist/world.h"
 #include "io/field_arrays.h"
 #include "mc/bricks.h"
@@ -56,9 +56,9 @@ int margin_cells(const volume::Volume& v, const CommonOptions& o, DistributedWor
       sigma = std::max(sigma, curvature::kAdaptiveMaxVoxels * std::cbrt(h[0] * h[1] * h[2]));
     const double largest = std::max({h[0], h[1], h[2]});
     sigma = std::max(sigma, 1.01 * volume::kMinScaleVoxels * largest);  // auto_scale's floor
-    const double reach = volume::pyramid_support(
-        volume::Pyramid(v), sigma, 2,
-        0.5 * step + curvature::kMaxShiftVoxels * largest + curvature::detail::kShrinkScales * sigma);
+    const double reach = volume::pyramid_support(volume::Pyramid(v), sigma, 2,
+                                                 0.5 * step + curvature::kMaxShiftVoxels * largest +
+                                                     curvature::detail::kShrinkScales * sigma);
     return margin + int(std::ceil(reach / step)) + 1;
   }
   return margin + (sigma > 0 ? int(std::ceil(3 * sigma / std::min({h[0], h[1], h[2]}))) + 2 : 8);

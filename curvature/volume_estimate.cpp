@@ -50,8 +50,8 @@ detail::VolumeEvaluation evaluate(const Positions& positions, const volume::Volu
   detail::RawPool& raw = raws.levels[k];
   if (!raw.widest) {
     // Every vertex at the largest scale this level serves in this estimate.
-    const double top = std::max(
-        setup.sigma, std::min(raws.largest, pyramid.upper_scale(k) * (1 - 1e-9)));
+    const double top =
+        std::max(setup.sigma, std::min(raws.largest, pyramid.upper_scale(k) * (1 - 1e-9)));
     const detail::VolumeSetup wide = detail::with_sigma(at, top);
     volume::SmoothingPlan widest = volume::plan_smoothing(
         wide.frame, *raws.positions, detail::spline_reach(wide), top, wide.own_variance);

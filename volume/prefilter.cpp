@@ -137,11 +137,11 @@ SmoothingPlan plan_smoothing(const GridFrame& frame, const Positions& world_poin
     const double deviation = sigma / frame.spacing[a];
     const double variance = deviation * deviation - kSplineVariance - own_variance[a];
     if (!(deviation >= kMinScaleVoxels) || !(variance >= 0))
-      throw Error("volume: scale " + std::to_string(sigma) + " is " + std::to_string(deviation) +
-                  " voxels along index axis " + std::to_string(a) + "; at least " +
-                  std::to_string(std::max(kMinScaleVoxels,
-                                          std::sqrt(kSplineVariance + own_variance[a]))) +
-                  " are supported");
+      throw Error(
+          "volume: scale " + std::to_string(sigma) + " is " + std::to_string(deviation) +
+          " voxels along index axis " + std::to_string(a) + "; at least " +
+          std::to_string(std::max(kMinScaleVoxels, std::sqrt(kSplineVariance + own_variance[a]))) +
+          " are supported");
     if (deviation > kMaxPrefilterDeviation)
       throw Error("volume: scale " + std::to_string(sigma) + " is " + std::to_string(deviation) +
                   " voxels along index axis " + std::to_string(a) + "; at most " +

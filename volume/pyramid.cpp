@@ -188,9 +188,8 @@ void Pyramid::build_locked(int k, const std::vector<openvdb::Coord>& bricks) {
         src[a].resize(std::size_t(n[a]));
         for (int t = 0; t < n[a]; ++t)
           src[a][std::size_t(t)] =
-              parent.frame.clamp
-                  ? std::clamp(s[a].lo + t, parent.frame.lo[a], parent.frame.hi[a])
-                  : s[a].lo + t;
+              parent.frame.clamp ? std::clamp(s[a].lo + t, parent.frame.lo[a], parent.frame.hi[a])
+                                 : s[a].lo + t;
       }
       const int c0[3] = {floor_div8(src[0].front()), floor_div8(src[1].front()),
                          floor_div8(src[2].front())};

@@ -60,8 +60,8 @@ inline constexpr int kPyramidMaxLevels = 12;
 
 /// One level of a Pyramid.
 struct PyramidLevel {
-  openvdb::FloatGrid::Ptr grid;  ///< level 0: the volume's own; above, the bricks built so far
-  GridFrame frame;               ///< index -> world, and the level's domain when clamping
+  openvdb::FloatGrid::Ptr grid;      ///< level 0: the volume's own; above, the bricks built so far
+  GridFrame frame;                   ///< index -> world, and the level's domain when clamping
   openvdb::Vec3d variance{0, 0, 0};  ///< the samples' own smoothing, index units squared
   openvdb::Coord factor{1, 1, 1};    ///< level index j is level-0 index j * factor
   std::array<bool, 3> decimated{};   ///< which axes this level halved (none at level 0)

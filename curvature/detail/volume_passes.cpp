@@ -132,8 +132,8 @@ void upload_raw_pass(const RawPool& raw, Device& device, VolumeSession& s) {
                                       raw.samples.data());
 }
 
-void prefill_pass(const volume::SmoothingPlan& widest, const openvdb::FloatGrid& grid,
-                  RawPool& raw, Device& device, VolumeSession& s) {
+void prefill_pass(const volume::SmoothingPlan& widest, const openvdb::FloatGrid& grid, RawPool& raw,
+                  Device& device, VolumeSession& s) {
   raw.widest = widest;
   raw.samples.clear();
   volume::gather_bricks(grid, widest.frame, widest.stages[0].bricks, raw.samples);

@@ -119,8 +119,8 @@ void read_back_pass(std::size_t vertices, const VolumeSetup& setup, Device& devi
 
 /// Gathers `widest`'s raw samples from `grid` (a pyramid level's, holding them) into `raw`
 /// and uploads them.
-void prefill_pass(const volume::SmoothingPlan& widest, const openvdb::FloatGrid& grid,
-                  RawPool& raw, Device& device, VolumeSession& s);
+void prefill_pass(const volume::SmoothingPlan& widest, const openvdb::FloatGrid& grid, RawPool& raw,
+                  Device& device, VolumeSession& s);
 /// Uploads `raw`'s samples again (the estimate moved to another level and back).
 void upload_raw_pass(const RawPool& raw, Device& device, VolumeSession& s);
 

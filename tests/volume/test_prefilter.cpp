@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "cubic_field.h"
 #include "volume/from_dense.h"
 #include "volume/prefilter.h"
 #include "volume/spline_jet.h"
@@ -174,90 +175,30 @@ TEST(Prefilter, PassesEqualTheDirectConvolution) {
 TEST(SplineJet, CubicFieldGivesTheGaussianSmoothedCubic) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
-  // p(x) = c + g.x + x'Hx / 2 + T[x, x, x] / 6 in world coordinates around `centre`.
-  const openvdb::Vec3d centre(20, 24, 30);
-  const double c = uni(rng);
-  double g[3], H[3][3], T[3][3][3];
-  for (double& v : g) v = uni(rng);
-  for (int i = 0; i < 3; ++i)
-    for (int j = i; j < 3; ++j) H[i][j] = H[j][i] = 0.2 * uni(rng);
-  for (int i = 0; i < 3; ++i)
-    for (int j = i; j < 3; ++j)
-      for (int k = j; k < 3; ++k) {
-        const double t = 0.01 * uni(rng);
-        T[i][j][k] = T[i][k][j] = T[j][i][k] = T[j][k][i] = T[k][i][j] = T[k][j][i] = t;
-      }
-  auto p = [&](const openvdb::Vec3d& w) {
-    const openvdb::Vec3d x = w - centre;
-    double v = c;
-    for (int i = 0; i < 3; ++i) {
-      v += g[i] * x[i];
-      for (int j = 0; j < 3; ++j) {
-        v += H[i][j] * x[i] * x[j] / 2;
-        for (int k = 0; k < 3; ++k) v += T[i][j][k] * x[i] * x[j] * x[k] / 6;
-      }
-    }
-    return v;
-  };
+  const test::RandomCubic p(rng, uni, openvdb::Vec3d(20, 24, 30), 0.2, 0.01);
   openvdb::math::Transform::Ptr xform = openvdb::math::Transform::createLinearTransform(1.0);
   xform->preScale(openvdb::Vec3d(0.8, 1.0, 1.3));
   xform->postRotate(0.4, openvdb::math::Z_AXIS);
   xform->postRotate(0.3, openvdb::math::X_AXIS);
   xform->postTranslate(openvdb::Vec3d(5, 9, 14));
   const std::array<int, 3> dims{48, 48, 48};
-  std::vector<float> data(std::size_t(dims[0]) * dims[1] * dims[2]);
-  std::size_t n = 0;
-  for (int z = 0; z < dims[2]; ++z)
-    for (int y = 0; y < dims[1]; ++y)
-      for (int x = 0; x < dims[0]; ++x)
-        data[n++] = float(p(xform->indexToWorld(openvdb::Vec3d(x, y, z))));
-  const Volume vol = dense_volume(dims, data, xform);
+  const Volume vol = dense_volume(dims, p.sample(*xform, dims), xform);
   const GridFrame frame = grid_frame(vol);
 
   for (double sigma : {1.3, 2.2}) {
     Positions points;
-    std::vector<openvdb::Vec3d> world;
     for (int i = 0; i < 6; ++i) {
-      const openvdb::Vec3d idx(22 + 4 * uni(rng), 22 + 4 * uni(rng), 22 + 4 * uni(rng));
-      world.push_back(xform->indexToWorld(idx));
-      points.push_back({float(world.back()[0]), float(world.back()[1]), float(world.back()[2])});
+      const openvdb::Vec3d w = xform->indexToWorld(
+          openvdb::Vec3d(22 + 4 * uni(rng), 22 + 4 * uni(rng), 22 + 4 * uni(rng)));
+      points.push_back({float(w[0]), float(w[1]), float(w[2])});
     }
     const SmoothingPlan plan = plan_smoothing(frame, points, openvdb::Vec3d(0, 0, 0), sigma);
     const SmoothedSamples s = smooth_reference(*vol.grid, plan);
-    for (std::size_t i = 0; i < world.size(); ++i) {
+    for (const Vec3f& q : points) {
       // The world position of the float point, which is where the plan's window lies.
-      const openvdb::Vec3d w(points[i][0], points[i][1], points[i][2]);
-      const Jet jet = spline_jet(s, w, 3);
-      const openvdb::Vec3d x = w - centre;
-      // Exact: value and gradient pick up sigma^2 / 2 of the Laplacian, a linear function.
-      double trace = 0, lap_grad[3] = {0, 0, 0};
-      for (int k = 0; k < 3; ++k) {
-        trace += H[k][k];
-        for (int m = 0; m < 3; ++m) lap_grad[m] += T[k][k][m];
-      }
-      double lap = trace;
-      for (int m = 0; m < 3; ++m) lap += lap_grad[m] * x[m];
-      EXPECT_NEAR(jet.value, p(w) + sigma * sigma / 2 * lap, 2e-4) << sigma;
-      for (int k = 0; k < 3; ++k) {
-        double grad = g[k] + sigma * sigma / 2 * lap_grad[k];
-        for (int j = 0; j < 3; ++j) {
-          grad += H[k][j] * x[j];
-          for (int m = 0; m < 3; ++m) grad += T[k][j][m] * x[j] * x[m] / 2;
-        }
-        EXPECT_NEAR(jet.gradient[k], grad, 1e-4) << sigma << " d/dx" << k;
-      }
-      static const int kPairs[6][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
-      for (int e = 0; e < 6; ++e) {
-        const int k = kPairs[e][0], l = kPairs[e][1];
-        double h = H[k][l];
-        for (int m = 0; m < 3; ++m) h += T[k][l][m] * x[m];
-        EXPECT_NEAR(jet.hessian[e], h, 1e-4) << sigma << " hessian " << e;
-      }
-      static const int kTriples[10][3] = {{0, 0, 0}, {0, 0, 1}, {0, 0, 2}, {0, 1, 1}, {0, 1, 2},
-                                          {0, 2, 2}, {1, 1, 1}, {1, 1, 2}, {1, 2, 2}, {2, 2, 2}};
-      for (int e = 0; e < 10; ++e)
-        EXPECT_NEAR(jet.third[e], T[kTriples[e][0]][kTriples[e][1]][kTriples[e][2]], 1e-4)
-            << sigma << " third " << e;
+      const openvdb::Vec3d w(q[0], q[1], q[2]);
+      test::expect_jet_near(spline_jet(s, w, 3), p.smoothed(w, sigma), {2e-4, 1e-4, 1e-4, 1e-4},
+                            "sigma " + std::to_string(sigma));
     }
   }
 }

@@ -3,8 +3,6 @@
 // clamped to the domain) computed densely, values that do not depend on which bricks were asked
 // for, the level an evaluation reads, and the whole reconstruction at a coarse level on a cubic
 // field, where it must equal Gaussian smoothing exactly.
-#include "volume/pyramid.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,8 +11,10 @@
 #include <random>
 #include <vector>
 
+#include "cubic_field.h"
 #include "volume/from_dense.h"
 #include "volume/prefilter.h"
+#include "volume/pyramid.h"
 #include "volume/spline_jet.h"
 
 using namespace isocurv;
@@ -23,7 +23,7 @@ using namespace isocurv::volume;
 namespace {
 
 Volume pyr_volume(const std::array<int, 3>& dims, const std::vector<float>& data,
-                    openvdb::math::Transform::Ptr xform) {
+                  openvdb::math::Transform::Ptr xform) {
   openvdb::initialize();
   DenseSource src;
   src.path = "test";
@@ -154,8 +154,8 @@ TEST(Pyramid, SamplesFollowTheDefinitionWhateverBricksAreAsked) {
   const PyrDense d2 = pyr_next_level(d1, whole.level(2).decimated, box2);
   // Level 2 built in one call (level 1 built for it on the way), then in pieces in another
   // pyramid: the same values.
-  whole.build(2, {{0, 0, 0}, {1, 1, 1}, {0, 1, 0}, {1, 0, 0}, {0, 0, 1}, {1, 1, 0}, {0, 1, 1},
-                  {1, 0, 1}});
+  whole.build(
+      2, {{0, 0, 0}, {1, 1, 1}, {0, 1, 0}, {1, 0, 0}, {0, 0, 1}, {1, 1, 0}, {0, 1, 1}, {1, 0, 1}});
   for (const openvdb::Coord& b : pyr_all_bricks(whole.level(1))) whole.build(1, {b});
   whole.build(1, {{-1, -1, -1}, {3, 3, 3}});
   std::vector<openvdb::Coord> bricks = {{1, 1, 1}, {0, 0, 0}, {1, 0, 1}, {0, 1, 1},
@@ -211,7 +211,7 @@ TEST(Pyramid, SparseGridReadsItsBackgroundAtEveryLevel) {
   auto a = p.level(1).grid->getConstAccessor();
   EXPECT_NEAR(a.getValue({0, 0, 0}), 5.0, 1e-5);     // deep inside
   EXPECT_NEAR(a.getValue({36, 36, 36}), 2.0, 1e-6);  // far outside: the background
-  const float edge = a.getValue({7, 0, 0});           // level-0 x = 14: the ball's edge
+  const float edge = a.getValue({7, 0, 0});          // level-0 x = 14: the ball's edge
   EXPECT_GT(edge, 2.0f);
   EXPECT_LT(edge, 5.0f);
 }
@@ -222,85 +222,32 @@ TEST(Pyramid, SparseGridReadsItsBackgroundAtEveryLevel) {
 TEST(Pyramid, CubicFieldGivesTheGaussianSmoothedCubicAtEveryLevel) {
   std::mt19937 rng(17);
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
-  const openvdb::Vec3d centre(60, 66, 58);
-  const double c = uni(rng);
-  double g[3], H[3][3], T[3][3][3];
-  for (double& v : g) v = uni(rng);
-  for (int i = 0; i < 3; ++i)
-    for (int j = i; j < 3; ++j) H[i][j] = H[j][i] = 0.02 * uni(rng);
-  for (int i = 0; i < 3; ++i)
-    for (int j = i; j < 3; ++j)
-      for (int k = j; k < 3; ++k) {
-        const double t = 0.0005 * uni(rng);
-        T[i][j][k] = T[i][k][j] = T[j][i][k] = T[j][k][i] = T[k][i][j] = T[k][j][i] = t;
-      }
-  auto p = [&](const openvdb::Vec3d& w) {
-    const openvdb::Vec3d x = w - centre;
-    double v = c;
-    for (int i = 0; i < 3; ++i) {
-      v += g[i] * x[i];
-      for (int j = 0; j < 3; ++j) {
-        v += H[i][j] * x[i] * x[j] / 2;
-        for (int k = 0; k < 3; ++k) v += T[i][j][k] * x[i] * x[j] * x[k] / 6;
-      }
-    }
-    return v;
-  };
+  const test::RandomCubic p(rng, uni, openvdb::Vec3d(60, 66, 58), 0.02, 0.0005);
   openvdb::math::Transform::Ptr xform = openvdb::math::Transform::createLinearTransform(1.0);
   xform->postRotate(0.4, openvdb::math::Z_AXIS);
   xform->postRotate(0.3, openvdb::math::X_AXIS);
   xform->postTranslate(openvdb::Vec3d(5, 9, 14));
   const std::array<int, 3> dims{128, 128, 128};
-  std::vector<float> data(std::size_t(dims[0]) * dims[1] * dims[2]);
-  std::size_t n = 0;
-  for (int z = 0; z < dims[2]; ++z)
-    for (int y = 0; y < dims[1]; ++y)
-      for (int x = 0; x < dims[0]; ++x)
-        data[n++] = float(p(xform->indexToWorld(openvdb::Vec3d(x, y, z))));
-  const Volume vol = pyr_volume(dims, data, xform);
+  const Volume vol = pyr_volume(dims, p.sample(*xform, dims), xform);
   Pyramid pyramid(vol);
   for (double sigma : {2.2, 5.0, 9.0}) {
     const int k = pyramid.level_for(sigma);
     EXPECT_EQ(k, sigma < 4 ? 0 : sigma < 8 ? 1 : 2);
     const PyramidLevel& level = pyramid.level(k);
     Positions points;
-    std::vector<openvdb::Vec3d> world;
     for (int i = 0; i < 4; ++i) {
-      const openvdb::Vec3d idx(62 + 4 * uni(rng), 62 + 4 * uni(rng), 62 + 4 * uni(rng));
-      world.push_back(xform->indexToWorld(idx));
-      points.push_back({float(world.back()[0]), float(world.back()[1]), float(world.back()[2])});
+      const openvdb::Vec3d w = xform->indexToWorld(
+          openvdb::Vec3d(62 + 4 * uni(rng), 62 + 4 * uni(rng), 62 + 4 * uni(rng)));
+      points.push_back({float(w[0]), float(w[1]), float(w[2])});
     }
-    const SmoothingPlan plan = plan_smoothing(level.frame, points, openvdb::Vec3d(0, 0, 0), sigma,
-                                              level.variance);
+    const SmoothingPlan plan =
+        plan_smoothing(level.frame, points, openvdb::Vec3d(0, 0, 0), sigma, level.variance);
     pyramid.build(k, plan.stages[0].bricks);
     const SmoothedSamples s = smooth_reference(*level.grid, plan);
-    double trace = 0, lap_grad[3] = {0, 0, 0};
-    for (int q = 0; q < 3; ++q) {
-      trace += H[q][q];
-      for (int m = 0; m < 3; ++m) lap_grad[m] += T[q][q][m];
-    }
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      const openvdb::Vec3d w(points[i][0], points[i][1], points[i][2]);
-      const Jet jet = spline_jet(s, w, 3);
-      const openvdb::Vec3d x = w - centre;
-      double lap = trace;
-      for (int m = 0; m < 3; ++m) lap += lap_grad[m] * x[m];
-      EXPECT_NEAR(jet.value, p(w) + sigma * sigma / 2 * lap, 2e-4) << sigma;
-      for (int q = 0; q < 3; ++q) {
-        double grad = g[q] + sigma * sigma / 2 * lap_grad[q];
-        for (int j = 0; j < 3; ++j) {
-          grad += H[q][j] * x[j];
-          for (int m = 0; m < 3; ++m) grad += T[q][j][m] * x[j] * x[m] / 2;
-        }
-        EXPECT_NEAR(jet.gradient[q], grad, 2e-5) << sigma << " d/dx" << q;
-      }
-      static const int kPairs[6][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
-      for (int e = 0; e < 6; ++e) {
-        const int q = kPairs[e][0], l = kPairs[e][1];
-        double h = H[q][l];
-        for (int m = 0; m < 3; ++m) h += T[q][l][m] * x[m];
-        EXPECT_NEAR(jet.hessian[e], h, 2e-6) << sigma << " pair " << e;
-      }
+    for (const Vec3f& q : points) {
+      const openvdb::Vec3d w(q[0], q[1], q[2]);
+      test::expect_jet_near(spline_jet(s, w, 3), p.smoothed(w, sigma), {2e-4, 2e-5, 2e-6, 1e-6},
+                            "sigma " + std::to_string(sigma));
     }
   }
 }
@@ -308,7 +255,7 @@ TEST(Pyramid, CubicFieldGivesTheGaussianSmoothedCubicAtEveryLevel) {
 TEST(Pyramid, SupportGrowsWithTheScale) {
   const std::array<int, 3> dims{200, 200, 200};
   const Volume vol = pyr_volume(dims, std::vector<float>(200 * 200 * 200, 0.0f),
-                                  openvdb::math::Transform::createLinearTransform(1.0));
+                                openvdb::math::Transform::createLinearTransform(1.0));
   const Pyramid p(vol);
   double last = 0;
   for (double sigma = 0.7; sigma < 40; sigma *= 1.1) {
@@ -331,8 +278,8 @@ TEST(Pyramid, CoarseLevelAgreesWithLevelZeroOnABlurredBall) {
   for (int z = 0; z < 96; ++z)
     for (int y = 0; y < 96; ++y)
       for (int x = 0; x < 96; ++x) {
-        const double r = std::sqrt((x - 47.3) * (x - 47.3) + (y - 48.1) * (y - 48.1) +
-                                   (z - 47.7) * (z - 47.7));
+        const double r =
+            std::sqrt((x - 47.3) * (x - 47.3) + (y - 48.1) * (y - 48.1) + (z - 47.7) * (z - 47.7));
         data[n++] = float(std::round(100.0 * 0.5 * std::erfc((r - 30.0) / (std::sqrt(2.0) * 1.2)) +
                                      noise(noise_rng)));
       }
@@ -350,8 +297,8 @@ TEST(Pyramid, CoarseLevelAgreesWithLevelZeroOnABlurredBall) {
   for (double sigma : {5.0, 7.0, 10.0}) {
     auto mean_curvature = [&](int k) {
       const PyramidLevel& level = pyramid.level(k);
-      const SmoothingPlan plan = plan_smoothing(level.frame, points, openvdb::Vec3d(0, 0, 0),
-                                                sigma, level.variance);
+      const SmoothingPlan plan =
+          plan_smoothing(level.frame, points, openvdb::Vec3d(0, 0, 0), sigma, level.variance);
       pyramid.build(k, plan.stages[0].bricks);
       const SmoothedSamples s = smooth_reference(*level.grid, plan);
       std::vector<double> H;
