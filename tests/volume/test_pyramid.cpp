@@ -329,3 +329,16 @@ TEST(Pyramid, CoarseLevelAgreesWithLevelZeroOnABlurredBall) {
     EXPECT_LT(std::abs(mk - m0) / double(H0.size()), 5e-4) << sigma;
   }
 }
+
+// A side too thin to halve bounds the scales: 16 samples of it (kMaxPrefilterDeviation), however
+// large the other sides; the thick sides halve on.
+TEST(Pyramid, ThinSideBoundsTheLargestScale) {
+  const std::array<int, 3> dims{200, 200, 10};
+  const Volume vol = pyr_volume(dims, std::vector<float>(200 * 200 * 10, 0.0f),
+                                openvdb::math::Transform::createLinearTransform(0.5));
+  const Pyramid p(vol);
+  ASSERT_GE(p.levels(), 4);
+  for (int k = 1; k < p.levels(); ++k) EXPECT_EQ(p.level(k).factor[2], 1) << k;
+  EXPECT_EQ(p.level(3).factor[0], 8);
+  EXPECT_DOUBLE_EQ(p.max_scale(), kMaxPrefilterDeviation * 0.5);
+}
