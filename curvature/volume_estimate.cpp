@@ -52,9 +52,8 @@ detail::VolumeEvaluation evaluate(const Positions& positions, const volume::Volu
     // Every vertex at the largest scale this level serves in this estimate.
     const double top =
         std::max(setup.sigma, std::min(raws.largest, pyramid.upper_scale(k) * (1 - 1e-9)));
-    const detail::VolumeSetup wide = detail::with_sigma(at, top);
-    volume::SmoothingPlan widest = volume::plan_smoothing(
-        wide.frame, *raws.positions, detail::spline_reach(wide), top, wide.own_variance);
+    const volume::SmoothingPlan widest =
+        detail::plan_of(*raws.positions, detail::with_sigma(at, top));
     pyramid.build(k, widest.stages[0].bricks);
     detail::prefill_pass(widest, *pyramid.level(k).grid, raw, device, s);
     raws.uploaded = k;

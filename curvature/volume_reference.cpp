@@ -61,8 +61,7 @@ detail::VolumeEvaluation evaluate_reference(const Positions& positions, volume::
   // The pyramid level that holds the scale, its bricks built as the plan reads them.
   const int k = pyramid.level_for(s.sigma);
   const detail::VolumeSetup at = detail::on_level(s, pyramid, k);
-  const volume::SmoothingPlan plan = volume::plan_smoothing(
-      at.frame, positions, detail::spline_reach(at), at.sigma, at.own_variance);
+  const volume::SmoothingPlan plan = detail::plan_of(positions, at);
   pyramid.build(k, plan.stages[0].bricks);
   const volume::SmoothedSamples smoothed = volume::smooth_reference(*pyramid.level(k).grid, plan);
   CurvatureField& out = e.field;

@@ -43,7 +43,10 @@ Pyramid::Pyramid(const Volume& volume) {
   levels_.push_back(base);
   const double finest =
       std::min({base.frame.spacing[0], base.frame.spacing[1], base.frame.spacing[2]});
-  const int radius = prefilter_taps(kPyramidVariance).radius;
+  const PrefilterTaps taps = prefilter_taps(kPyramidVariance);
+  decimation_.assign(taps.w.begin(), taps.w.end());
+  decimation_radius_ = taps.radius;
+  const int radius = taps.radius;
   // The samples 2 j inside the finer level's own (not extended) box, per axis: what decides
   // whether an axis still has room to halve.
   openvdb::Coord inner_lo = base.frame.lo, inner_hi = base.frame.hi;
@@ -145,18 +148,16 @@ void Pyramid::build_locked(int k, const std::vector<openvdb::Coord>& bricks) {
     }
   }
   if (todo.empty()) return;
-  const PrefilterTaps taps = prefilter_taps(kPyramidVariance);
-  const int radius = taps.radius;
-  const std::vector<float> weights(taps.w.begin(), taps.w.end());
-  const float* const w = weights.data();
-  // The parent's bricks they read (coordinates clamped into its domain), built first.
+  const int radius = decimation_radius_;
+  const float* const w = decimation_.data();
+  // A parent coordinate along axis a as read: clamped into a dense parent's box.
+  auto read_at = [&](int v, int a) {
+    return parent.frame.clamp ? std::clamp(v, parent.frame.lo[a], parent.frame.hi[a]) : v;
+  };
+  // The parent's bricks they read, built first.
   auto span = [&](const openvdb::Coord& b, int a) {
-    Span s = parent_span(b[a], level.decimated[a], radius);
-    if (parent.frame.clamp) {
-      s.lo = std::clamp(s.lo, parent.frame.lo[a], parent.frame.hi[a]);
-      s.hi = std::clamp(s.hi, parent.frame.lo[a], parent.frame.hi[a]);
-    }
-    return s;
+    const Span s = parent_span(b[a], level.decimated[a], radius);
+    return Span{read_at(s.lo, a), read_at(s.hi, a)};
   };
   if (k > 1) {
     std::unordered_set<openvdb::Coord, CoordHash> need;
@@ -172,7 +173,7 @@ void Pyramid::build_locked(int k, const std::vector<openvdb::Coord>& bricks) {
   const openvdb::FloatGrid& from = *parent.grid;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, todo.size(), 4), [&](const auto& r) {
     openvdb::FloatGrid::ConstAccessor acc = from.getConstAccessor();
-    std::vector<float> box, pass1, pass2;
+    std::vector<float> box, pass1, pass2, scratch;
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       const openvdb::Coord b = todo[i];
       // The input box (unclamped spans), read at clamped coordinates through a table of the
@@ -186,10 +187,7 @@ void Pyramid::build_locked(int k, const std::vector<openvdb::Coord>& bricks) {
       std::vector<int> src[3];
       for (int a = 0; a < 3; ++a) {
         src[a].resize(std::size_t(n[a]));
-        for (int t = 0; t < n[a]; ++t)
-          src[a][std::size_t(t)] =
-              parent.frame.clamp ? std::clamp(s[a].lo + t, parent.frame.lo[a], parent.frame.hi[a])
-                                 : s[a].lo + t;
+        for (int t = 0; t < n[a]; ++t) src[a][std::size_t(t)] = read_at(s[a].lo + t, a);
       }
       const int c0[3] = {floor_div8(src[0].front()), floor_div8(src[1].front()),
                          floor_div8(src[2].front())};
@@ -272,9 +270,8 @@ void Pyramid::build_locked(int k, const std::vector<openvdb::Coord>& bricks) {
       for (int y = 0; y < 8; ++y) {
         // Rows (z, y) for z = 0 .. nz - 1 are 8 nx apart in pass1; the outputs (o, y) 8 nx
         // apart in pass2: filter into a scratch of 8 rows, then place them.
-        float scratch[8 * 64];
-        std::vector<float> big;
-        float* tmp = nx <= 64 ? scratch : (big.resize(std::size_t(8) * nx), big.data());
+        scratch.resize(std::size_t(8) * nx);
+        float* tmp = scratch.data();
         rows(pass1.data() + std::size_t(y) * nx, std::ptrdiff_t(8) * nx, level.decimated[2], tmp);
         for (int o = 0; o < 8; ++o)
           std::copy(tmp + o * nx, tmp + (o + 1) * nx, pass2.data() + (std::size_t(o) * 8 + y) * nx);
@@ -322,7 +319,7 @@ double pyramid_support(const Pyramid& pyramid, double sigma, int axis, double re
   const int taps = prefilter_taps(own).radius;
   // Level k's samples within taps + reach + the B-spline's of the point, each reading the
   // decimations' taps of every finer level (kPyramidVariance's radius at each).
-  const int decimation = prefilter_taps(kPyramidVariance).radius;
+  const int decimation = pyramid.decimation_radius();
   const double level0 = pyramid.level(0).frame.spacing[axis];
   return (taps + kSplineReach + 1) * h + reach + decimation * (h - level0);
 }

@@ -89,11 +89,16 @@ class Pyramid {
 
   /// Bricks built above level 0 (for reports and tests).
   std::size_t built_bricks() const;
+  /// The decimation's taps either side (kPyramidVariance's prefilter).
+  int decimation_radius() const { return decimation_radius_; }
 
  private:
   struct CoordHash {
     std::size_t operator()(const openvdb::Coord& c) const;
   };
+  /// The decimation's smoothing (prefilter_taps(kPyramidVariance)), computed once.
+  std::vector<float> decimation_;
+  int decimation_radius_ = 0;
   std::vector<PyramidLevel> levels_;
   std::vector<std::unordered_set<openvdb::Coord, CoordHash>> built_;
   std::mutex mutex_;

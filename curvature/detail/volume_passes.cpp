@@ -118,8 +118,7 @@ VolumeSession& volume_session(Device& device) {
 }
 
 void plan_pass(const Positions& positions, const VolumeSetup& setup, Staging& st) {
-  st.plan = volume::plan_smoothing(setup.frame, positions, spline_reach(setup), setup.sigma,
-                                   setup.own_variance);
+  st.plan = plan_of(positions, setup);
   const volume::SmoothingPlan& plan = st.plan;
   st.dims = {{plan.dims[0], plan.dims[1], plan.dims[2], 0}};
   st.first = openvdb::Coord(plan.origin[0] * 8, plan.origin[1] * 8, plan.origin[2] * 8);

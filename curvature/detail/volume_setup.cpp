@@ -59,11 +59,12 @@ VolumeSetup volume_setup(const Mesh& mesh, const volume::Volume& volume,
       throw Error(volume.path, "scale " + std::to_string(sigma) + " is larger than the volume (" +
                                    std::to_string(extent) + " world units across)");
   }
-  if (const double top = volume::Pyramid(volume).max_scale(); sigma > top)
+  s.max_scale = volume::Pyramid(volume).max_scale();
+  if (sigma > s.max_scale)
     throw Error(volume.path, "scale " + std::to_string(sigma) + " is " +
                                  std::to_string(sigma / finest) +
                                  " voxels along the finest axis; this volume supports at most " +
-                                 std::to_string(top / finest) +
+                                 std::to_string(s.max_scale / finest) +
                                  " (its thinnest side, smoothed, holds too few samples)");
   if (sigma / s.voxel < volume::kMinScaleVoxels)
     throw Error(volume.path, "scale " + std::to_string(sigma) + " is " +
@@ -81,6 +82,11 @@ VolumeSetup volume_setup(const Mesh& mesh, const volume::Volume& volume,
   return s;
 }
 
+volume::SmoothingPlan plan_of(const Positions& positions, const VolumeSetup& setup) {
+  return volume::plan_smoothing(setup.frame, positions, spline_reach(setup), setup.sigma,
+                                setup.own_variance);
+}
+
 openvdb::Vec3d spline_reach(const VolumeSetup& setup) {
   openvdb::Vec3d reach(0.5, 0.5, 0.5);
   if (setup.point == VolumePoint::surface)  // the Newton steps move up to max_shift()
@@ -95,7 +101,7 @@ std::optional<AdaptiveScale> adaptive_of(const VolumeOptions& options, const Vol
                                    setup.frame.spacing[2]};
   double hi = options.adaptive_max > 0 ? options.adaptive_max
                                        : kAdaptiveMaxVoxels * std::cbrt(h[0] * h[1] * h[2]);
-  hi = std::min(hi, 0.999 * volume::Pyramid(volume).max_scale());
+  hi = std::min(hi, 0.999 * setup.max_scale);
   if (!volume.domain.empty()) {
     const openvdb::Coord dim = volume.domain.dim();
     double extent = 0;

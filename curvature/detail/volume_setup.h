@@ -17,6 +17,7 @@
 #include "curvature/vertex_corners.h"
 #include "curvature/volume_estimate.h"
 #include "volume/gaussian_jet.h"
+#include "volume/prefilter.h"
 #include "volume/pyramid.h"
 #include "volume/volume.h"
 
@@ -40,6 +41,8 @@ struct VolumeSetup {
   /// `frame` is a pyramid level's (volume/pyramid.h): its samples' own smoothing, index units
   /// squared per axis, which the prefilter leaves out (zero at level 0).
   openvdb::Vec3d own_variance{0, 0, 0};
+  /// The largest scale the volume's pyramid serves, world units (volume::Pyramid::max_scale).
+  double max_scale = 0;
 };
 
 /// `setup` at another scale.
@@ -61,6 +64,10 @@ inline VolumeSetup on_level(VolumeSetup setup, const volume::Pyramid& pyramid, i
 /// the setup, with options.point resolved (resolved_point).
 VolumeSetup volume_setup(const Mesh& mesh, const volume::Volume& volume,
                          const VolumeOptions& options);
+
+/// The smoothing plan of an evaluation at setup.sigma for `positions`: setup's frame (a pyramid
+/// level's after on_level), the reach of spline_reach and the samples' own variance.
+volume::SmoothingPlan plan_of(const Positions& positions, const VolumeSetup& setup);
 
 /// How far from a vertex (index units per axis, beyond the B-spline's own support) the estimator
 /// may evaluate the field: half a voxel, for rounding, plus (VolumePoint::surface) the Newton
