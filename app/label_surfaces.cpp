@@ -7,22 +7,19 @@
 
 #include "app/batch.h"
 #include "core/error.h"
-#include "curvature/auto_scale.h"
 #include "labels/label_map.h"
+#include "labels/label_surfaces.h"
 #include "volume/load.h"
 
 namespace isocurv::app {
 namespace {
 
-/// The indicator's margin (labels::indicator_margin) for the binary scale or --scale's largest
-/// value, in voxels of the smallest spacing.
-int indicator_margin(const volume::Volume& v, const CommonOptions& o) {
-  const auto s = v.spacing();
-  const double smallest = std::min({s[0], s[1], s[2]});
-  double sigma_voxels = curvature::kBinaryScaleVoxels;
+/// The indicator's margin (labels::scale_margin) for the binary scale or --scale's largest value.
+int label_indicator_margin(const volume::Volume& v, const CommonOptions& o) {
+  std::vector<double> scales;
   for (const std::string& scale : parse_scales(o.scale))
-    if (scale != "auto") sigma_voxels = std::max(sigma_voxels, std::stod(scale) / smallest);
-  return labels::indicator_margin(sigma_voxels);
+    if (scale != "auto") scales.push_back(std::stod(scale));
+  return labels::scale_margin(v, scales);
 }
 
 }  // namespace
@@ -76,35 +73,32 @@ Surface load_label_surfaces(const std::string& path, const CommonOptions& o, Sta
                                         std::to_string(all.front().value) + " to " +
                                         std::to_string(all.back().value) + ")");
   if (!reference_device(o)) device_for(o);  // open the device (and fail on it) before timing
-  s.isovalue = 0.5f;
-  const int margin = indicator_margin(*s.volume, o);
-  labels::LabelledMesh merged;
-  std::vector<std::int64_t> empty;
-  for (const labels::Label& l : picked) {
-    timer.start("labels");
-    const volume::Volume indicator = labels::label_indicator(*s.volume, l, margin);
-    timer.start("extract");
-    Mesh mesh = extract_surface(indicator, 0.5f, o);
-    timer.stop();
-    if (mesh.triangles.empty()) {
-      empty.push_back(l.value);
-      continue;
-    }
-    std::optional<curvature::CurvatureField> field;
-    if (curvature) {
+  s.isovalue = labels::kIndicatorIsovalue;
+  labels::LabelSurfaceSteps steps;
+  steps.margin = label_indicator_margin(*s.volume, o);
+  steps.extract = [&](const volume::Volume& indicator, float isovalue) {
+    return extract_surface(indicator, isovalue, o);
+  };
+  if (curvature)
+    steps.curvature = [&](const Mesh& mesh, const volume::Volume& indicator, float isovalue) {
       NormalsUsed used;
       curvature::EstimatorReport report;
-      field = estimate_curvature(mesh, &indicator, 0.5f, o, timer, &used, &report);
+      curvature::CurvatureField field =
+          estimate_curvature(mesh, &indicator, isovalue, o, timer, &used, &report);
       s.normals.opposed += used.opposed;
       s.normals.weak += used.weak;
       s.normals.caps += used.caps;
       s.normals.source = used.source;
       if (s.estimator.estimator.empty()) s.estimator = report;
-    }
-    timer.start("labels");
-    labels::append_label(merged, l.value, mesh, field ? &*field : nullptr);
-    timer.stop();
-  }
+      return field;
+    };
+  steps.stage = [&](const std::string& stage) {
+    if (stage.empty()) timer.stop();
+    else timer.start(stage);
+  };
+  labels::LabelSurfaces made = labels::label_surfaces(*s.volume, picked, steps);
+  labels::LabelledMesh& merged = made.merged;
+  const std::vector<std::int64_t>& empty = made.empty;
   if (!empty.empty() && !o.quiet)
     std::fprintf(stderr, "isocurv: warning: %s: %s\n", path.c_str(),
                  labels::filling_labels_note(empty).c_str());

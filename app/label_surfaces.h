@@ -14,7 +14,8 @@ namespace isocurv::app {
 void add_label_options(CLI::App& cmd, CommonOptions& o, bool with_split);
 
 /// The surfaces of the labels of the label map `path` (all of them, or --label's), as one
-/// Surface: `volume` the label map, `mesh` the labels' surfaces one after another, each the
+/// Surface (labels::label_surfaces with the command's extraction and curvature): `volume` the
+/// label map, `mesh` the labels' surfaces one after another, each the
 /// marching-cubes surface at 0.5 of its indicator (labels::label_indicator: touching labels each
 /// get a closed surface), `label_cells` and `label_parts` saying which is which. With
 /// `curvature`, each label's curvature is estimated on its own indicator (estimate_curvature:
