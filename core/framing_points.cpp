@@ -51,10 +51,33 @@ std::vector<std::array<double, 3>> framing_points(const Mesh& mesh) {
     const std::array<double, 3> a = triangle_area_vector(mesh, t);
     area[root[t[0]]] += 0.5 * std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
   }
-  const double largest = *std::max_element(area.begin(), area.end());
+  const auto largest_at = std::max_element(area.begin(), area.end());
+  const double largest = *largest_at;
   if (!(largest > 0)) return all();
+  // Each component's box (per root), for its extent beside the largest component's.
+  std::vector<std::array<float, 6>> box(n, {1e30f, 1e30f, 1e30f, -1e30f, -1e30f, -1e30f});
   for (std::size_t v = 0; v < n; ++v)
-    if (area[root[v]] >= kSpeckAreaFraction * largest) out.push_back(to_d(mesh.positions[v]));
+    for (int a = 0; a < 3; ++a) {
+      box[root[v]][a] = std::min(box[root[v]][a], mesh.positions[v][a]);
+      box[root[v]][3 + a] = std::max(box[root[v]][3 + a], mesh.positions[v][a]);
+    }
+  auto extent = [&](std::size_t r) {
+    double d2 = 0;
+    for (int a = 0; a < 3; ++a) d2 += double(box[r][3 + a] - box[r][a]) * (box[r][3 + a] - box[r][a]);
+    return std::sqrt(d2);
+  };
+  const double largest_extent = extent(std::size_t(largest_at - area.begin()));
+  const double edge = mean_edge_length(mesh);
+  std::vector<std::int8_t> kept(n, -1);  // per root: unknown, no, yes
+  for (std::size_t v = 0; v < n; ++v) {
+    std::int8_t& k = kept[root[v]];
+    const std::uint32_t r = root[v];
+    if (k < 0)
+      k = area[r] >= kSpeckAreaFraction * largest ||
+          (extent(r) >= kSpeckExtentFraction * largest_extent &&
+           area[r] >= kThickPartEdges * edge * extent(r));
+    if (k) out.push_back(to_d(mesh.positions[v]));
+  }
   return out;
 }
 

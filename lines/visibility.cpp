@@ -65,6 +65,39 @@ VisibilityTester::VisibilityTester(const Mesh &mesh)
 
 VisibilityTester::~VisibilityTester() = default;
 
+namespace {
+
+/// True when the ray from `start` to the eye (for an orthographic camera: along the view vector
+/// out of the box) meets no triangle.
+bool clear_ray(const VisibilityTester::Impl &m, const double start[3],
+               const std::array<double, 3> &v, const Camera &camera) {
+  double end[3];
+  const double far = camera.ortho ? 2 * m.diagonal + 1 : 0;
+  for (int c = 0; c < 3; ++c)
+    end[c] = camera.ortho ? start[c] + far * v[c] : camera.position[c];
+  double t = 0, x[3], pcoords[3];
+  int sub = 0;
+  vtkIdType cell = -1;
+  double from[3] = {start[0], start[1], start[2]};
+  return m.locator->IntersectWithLine(from, end, 0.0, t, x, pcoords, sub, cell,
+                                      m.cell) == 0;
+}
+
+/// The unit normal of face `face` of `mesh`, or zero.
+std::array<double, 3> face_normal(const Mesh &mesh, std::uint32_t face) {
+  std::array<double, 3> n{0, 0, 0};
+  if (face >= mesh.triangles.size())
+    return n;
+  const std::array<double, 3> a = triangle_area_vector(mesh, mesh.triangles[face]);
+  const double len = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+  if (len > 0)
+    for (int c = 0; c < 3; ++c)
+      n[c] = a[c] / len;
+  return n;
+}
+
+} // namespace
+
 bool VisibilityTester::visible(const Vec3f &p, std::uint32_t face,
                                const Camera &camera) const {
   const Impl &m = *impl_;
@@ -72,26 +105,38 @@ bool VisibilityTester::visible(const Vec3f &p, std::uint32_t face,
     return true;
   const std::array<double, 3> q{p[0], p[1], p[2]};
   const std::array<double, 3> v = camera.view_vector(q);
-  double n[3] = {0, 0, 0};
-  if (face < m.mesh.triangles.size()) {
-    const Tri &t = m.mesh.triangles[face];
-    const std::array<double, 3> a = triangle_area_vector(m.mesh, t);
-    const double len = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-    if (len > 0)
-      for (int c = 0; c < 3; ++c)
-        n[c] = a[c] / len;
-  }
-  double start[3], end[3];
-  const double far = camera.ortho ? 2 * m.diagonal + 1 : 0;
-  for (int c = 0; c < 3; ++c) {
+  const std::array<double, 3> n = face_normal(m.mesh, face);
+  double start[3];
+  for (int c = 0; c < 3; ++c)
     start[c] = q[c] + m.edge * v[c] + 0.05 * m.edge * n[c];
-    end[c] = camera.ortho ? q[c] + far * v[c] : camera.position[c];
+  return clear_ray(m, start, v, camera);
+}
+
+bool VisibilityTester::visible_contour(const Segment &s,
+                                       const Camera &camera) const {
+  const Impl &m = *impl_;
+  const Vec3f mid{0.5f * (s.a[0] + s.b[0]), 0.5f * (s.a[1] + s.b[1]),
+                  0.5f * (s.a[2] + s.b[2])};
+  if (visible(mid, s.face, camera))
+    return true;
+  // The side of the line in the image: across the segment and the view.
+  const std::array<double, 3> q{mid[0], mid[1], mid[2]};
+  const std::array<double, 3> v = camera.view_vector(q);
+  const double d[3] = {double(s.b[0]) - s.a[0], double(s.b[1]) - s.a[1],
+                       double(s.b[2]) - s.a[2]};
+  double side[3] = {d[1] * v[2] - d[2] * v[1], d[2] * v[0] - d[0] * v[2],
+                    d[0] * v[1] - d[1] * v[0]};
+  const double len = std::sqrt(side[0] * side[0] + side[1] * side[1] + side[2] * side[2]);
+  if (!(len > 0))
+    return false;
+  for (double sign : {1.0, -1.0}) {
+    double start[3];
+    for (int c = 0; c < 3; ++c)
+      start[c] = q[c] + m.edge * v[c] + sign * kContourSideEdges * m.edge * side[c] / len;
+    if (clear_ray(m, start, v, camera))
+      return true;
   }
-  double t = 0, x[3], pcoords[3];
-  int sub = 0;
-  vtkIdType cell = -1;
-  return m.locator->IntersectWithLine(start, end, 0.0, t, x, pcoords, sub, cell,
-                                      m.cell) == 0;
+  return false;
 }
 
 std::vector<bool>
@@ -102,7 +147,8 @@ VisibilityTester::visible_segments(const Segments &segments,
     const Segment &s = segments[i];
     const Vec3f mid{0.5f * (s.a[0] + s.b[0]), 0.5f * (s.a[1] + s.b[1]),
                     0.5f * (s.a[2] + s.b[2])};
-    out[i] = visible(mid, s.face, camera);
+    out[i] = s.type == LineType::contour ? visible_contour(s, camera)
+                                         : visible(mid, s.face, camera);
   }
   return out;
 }

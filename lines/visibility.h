@@ -27,12 +27,24 @@ public:
   /// facets, which a contour's ray grazes, do not hide it).
   bool visible(const Vec3f &p, std::uint32_t face, const Camera &camera) const;
 
-  /// visible() at each segment's midpoint.
+  /// An occluding contour's segment: visible() at its midpoint, or else from a start
+  /// kContourSideEdges mean edges to either side of the line in the image. The contour comes
+  /// from smoothed normals, so on a noisy surface it runs a little inside the rim of the mesh's
+  /// own facets, whose bumps would hide it in dashes; a line hidden by another part of the
+  /// surface is hidden on both sides.
+  bool visible_contour(const Segment &segment, const Camera &camera) const;
+
+  /// Each segment's visibility: visible_contour() for contours, visible() at the midpoint for
+  /// the other lines.
   std::vector<bool> visible_segments(const Segments &segments,
                                      const Camera &camera) const;
 
-private:
+  /// How far (in mean edge lengths) visible_contour() looks to each side of a contour.
+  static constexpr double kContourSideEdges = 1.5;
+
   struct Impl;
+
+private:
   std::unique_ptr<Impl> impl_;
 };
 

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <map>
 
 namespace isocurv {
 namespace {
@@ -19,6 +21,35 @@ void add_box(Mesh& m, const Vec3f& lo, const Vec3f& hi) {
     m.triangles.push_back({base + q[0], base + q[1], base + q[2]});
     m.triangles.push_back({base + q[0], base + q[2], base + q[3]});
   }
+}
+
+// Appends the box [lo, hi] with each face cut into squares of side about `h` (two triangles
+// each), its vertices shared (one closed component).
+void add_fine_box(Mesh& m, const Vec3f& lo, const Vec3f& hi, float h) {
+  std::map<std::array<float, 3>, std::uint32_t> ids;
+  auto id = [&](std::array<float, 3> p) {
+    const auto [it, fresh] = ids.emplace(p, std::uint32_t(m.positions.size()));
+    if (fresh) m.positions.push_back({p[0], p[1], p[2]});
+    return it->second;
+  };
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      const int nu = std::max(1, int(std::lround((hi[u] - lo[u]) / h)));
+      const int nv = std::max(1, int(std::lround((hi[v] - lo[v]) / h)));
+      auto at = [&](int i, int j) {
+        std::array<float, 3> p{};
+        p[axis] = side ? hi[axis] : lo[axis];
+        p[u] = lo[u] + (hi[u] - lo[u]) * float(i) / float(nu);
+        p[v] = lo[v] + (hi[v] - lo[v]) * float(j) / float(nv);
+        return id(p);
+      };
+      for (int i = 0; i < nu; ++i)
+        for (int j = 0; j < nv; ++j) {
+          m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+          m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+        }
+    }
 }
 
 double max_x(const std::vector<std::array<double, 3>>& p) {
@@ -45,6 +76,21 @@ TEST(FramingPoints, LeaveOutSpecksButKeepComparablePieces) {
   EXPECT_EQ(p.size(), 16u);
   EXPECT_DOUBLE_EQ(min_x(p), -30.0);
   EXPECT_DOUBLE_EQ(max_x(p), 10.0);  // the speck is still left out
+}
+
+TEST(FramingPoints, ThickLongPartsAreFramed) {
+  // The object: a box of side 100 (12 triangles: the mean edge is the finely cut parts').
+  Mesh m;
+  add_box(m, {0, 0, 0}, {100, 100, 100});
+  // A rod beside it, as an MR's fiducial marker: 3 x 3 x 40, area 498 = 0.8% of the object's but
+  // 23% of its extent and about 22 mean edges thick: a part of the picture.
+  add_fine_box(m, {110, 0, 0}, {113, 3, 40}, 0.5f);
+  // A streak one cell across (0.5 x 0.5 x 40, as noise along a volume's edge): as long, but
+  // 3.5 mean edges thick: a speck.
+  add_fine_box(m, {-20, 0, 0}, {-19.5f, 0.5f, 40}, 0.5f);
+  const std::vector<std::array<double, 3>> p = framing_points(m);
+  EXPECT_DOUBLE_EQ(max_x(p), 113.0);
+  EXPECT_DOUBLE_EQ(min_x(p), 0.0);
 }
 
 TEST(FramingPoints, MeshesWithoutTrianglesOrVertices) {

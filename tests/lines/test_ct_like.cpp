@@ -12,6 +12,7 @@
 #include "line_surfaces.h"
 #include "lines/extract.h"
 #include "lines/polylines.h"
+#include "lines/visibility.h"
 #include "mc/extract.h"
 #include "tests/mc/volumes.h"
 #include "volume/gradient_normals.h"
@@ -63,6 +64,54 @@ TEST(LinesCtLike, BallContourIsItsSilhouetteAndNoiseGivesFewSuggestiveLines) {
   // A ball has no suggestive contours: what the noise leaves is short beside
   // the contour.
   EXPECT_LT(p.length(LineType::suggestive), 0.1 * p.length(LineType::contour));
+}
+
+// The drawing of a noisy ball: its silhouette is one unbroken line, not dashes. The contour
+// comes from smoothed normals and runs a little inside the rim of the noisy facets; the ray
+// test from the line alone hid a third of it.
+TEST(LinesCtLike, NoisyBallSilhouetteIsDrawnWhole) {
+  const double R = 14, c = 22; // voxels
+  std::mt19937 rng(11);
+  std::normal_distribution<double> noise(0, 12);
+  const volume::Volume v = test::sampled(
+      [&](double x, double y, double z) {
+        const double d = R - std::sqrt((x - c) * (x - c) + (y - c) * (y - c) +
+                                       (z - c) * (z - c));
+        return float(
+            std::clamp(std::round(255 / (1 + std::exp(-d / 0.8)) + noise(rng)),
+                       0.0, 255.0));
+      },
+      {44, 44, 44});
+  Device &dev = Device::default_device();
+  const Mesh mesh = mc::extract(v, 127.5f, dev);
+  const volume::MeshNormals normals =
+      volume::gradient_normals_for_mesh(v, mesh);
+  curvature::Options co;
+  co.vertex_normals = &normals.normals;
+  const curvature::CurvatureField field = curvature::estimate(mesh, dev, co);
+  Camera cam;
+  cam.focal_point = {c, c, c};
+  cam.position = {c, c, c + 120};
+  cam.view_angle_deg = 20;
+  Options o;
+  o.lines = parse_line_selection("contours");
+  const Segments segs = extract(mesh, field, cam, o, dev);
+  const VisibilityTester vis(mesh);
+  const std::vector<bool> keep = vis.visible_segments(segs, cam);
+  // The rim: contour segments on the silhouette circle (the ray test from the midpoint alone
+  // kept 68% of its length; Visibility.TheSphereBehindIsHidden checks that what the surface
+  // hides stays hidden).
+  double rim = 0, rim_kept = 0;
+  for (std::size_t i = 0; i < segs.size(); ++i) {
+    const Segment &g = segs[i];
+    const double r = std::hypot(g.a[0] - c, g.a[1] - c), len = test::seg_length(g.a, g.b);
+    if (std::fabs(g.a[2] - c) <= 1.5 && std::fabs(r - R) <= 1.0) {
+      rim += len;
+      rim_kept += keep[i] * len;
+    }
+  }
+  ASSERT_GT(rim, 0.8 * 2 * test::kPi * R);
+  EXPECT_GE(rim_kept, 0.97 * rim);
 }
 
 } // namespace
