@@ -4,21 +4,18 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <vector>
 
-#include "curvature/auto_scale.h"
 #include "curvature/curvature_field.h"
 #include "labels/label_map.h"
-#include "mc/extract.h"
-#include "mc/extract_reference.h"
-#include "mc/options.h"
+#include "labels/label_surfaces.h"
 #include "measure/object_measures.h"
 #include "python/bind.h"
 #include "python/detail/args.h"
 #include "python/detail/arrays.h"
 #include "python/detail/estimate.h"
+#include "python/detail/labels.h"
 
 namespace isocurv::python {
 
@@ -84,69 +81,28 @@ py::dict measure_of(const MeshArg& mesh_arg, const VolumeArg& volume_arg, const 
 /// measure_labels(): the CLI's measure --labels, one entry per label.
 py::dict measure_labels_of(const VolumeArg& volume_arg, const py::object& labels_arg, py::object device) {
   const volume::Volume& v = volume_of(volume_arg, "volume");
-  std::vector<std::int64_t> wanted;
-  auto add = [&](const py::handle& item) {
-    // Python and numpy integers (anything with __index__), not bools.
-    if (py::isinstance<py::bool_>(item) || !PyIndex_Check(item.ptr()))
-      throw py::type_error("labels: expected int labels, not " + type_name_of(item));
-    const py::object whole = py::reinterpret_steal<py::object>(PyNumber_Index(item.ptr()));
-    if (!whole) throw py::error_already_set();
-    int overflow = 0;
-    const long long value = PyLong_AsLongLongAndOverflow(whole.ptr(), &overflow);
-    if (overflow != 0 || value > labels::kMaxLabelValue || value < -labels::kMaxLabelValue)
-      throw py::value_error("labels: label " + std::string(py::str(whole)) +
-                            " is beyond +-" + std::to_string(labels::kMaxLabelValue) +
-                            " (labels are read as 32-bit floats, exact up to 2^24)");
-    if (std::find(wanted.begin(), wanted.end(), value) != wanted.end())
-      throw py::value_error("labels: label " + std::to_string(value) + " is given twice");
-    wanted.push_back(value);
-  };
-  if (labels_arg.is_none()) {
-  } else if (PyIndex_Check(labels_arg.ptr()) && !py::isinstance<py::bool_>(labels_arg)) {
-    add(labels_arg);
-  } else if (py::isinstance<py::sequence>(labels_arg) && !py::isinstance<py::str>(labels_arg)) {
-    for (const py::handle item : labels_arg.cast<py::sequence>()) add(item);
-    if (wanted.empty()) throw py::value_error("labels: empty; pass None for every label");
-  } else {
-    throw py::type_error("labels: expected None, an int or a sequence of ints, not " + type_name_of(labels_arg));
-  }
-  const std::vector<labels::Label> all = labels::label_map_labels(v);
-  std::vector<std::int64_t> missing;
-  const std::vector<labels::Label> picked = labels::pick_labels(all, wanted, missing);
-  if (picked.empty()) throw py::value_error("labels: none of the labels given is in the volume");
-  if (!missing.empty()) {
-    PyErr_WarnEx(PyExc_UserWarning, labels::missing_labels_note(missing).c_str(), 1);
-  }
-  const DeviceChoice dc = device_choice(device);
-  const int margin = labels::indicator_margin(curvature::kBinaryScaleVoxels);
-  std::vector<std::int64_t> label, components, filling;
+  const std::vector<labels::Label> picked = picked_labels_of(v, labels_arg);
+  labels::LabelSurfaceSteps steps;
+  steps.margin = labels::scale_margin(v);
+  steps.extract = label_extraction(device_choice(device));
+  std::vector<std::int64_t> label, components;
   MeasureColumns columns;
-  for (const labels::Label& l : picked) {
-    const volume::Volume ind = labels::label_indicator(v, l, margin);
-    auto mesh = std::make_shared<PyMesh>();
-    {
-      py::gil_scoped_release release;
-      std::lock_guard<std::mutex> lock(device_lock);
-      mesh->mesh = dc.reference ? mc::extract_reference(ind, 0.5f, mc::Options{})
-                                : mc::extract(ind, 0.5f, opened_device(dc), mc::Options{});
-    }
-    mesh->isovalue = 0.5f;
-    if (mesh->mesh.triangles.empty()) {  // the label fills the box: no surface
-      filling.push_back(l.value);
-      continue;
-    }
-    const curvature::CurvatureField field =
-        estimate_of(mesh, &ind, py::none(), py::none(), py::none(), py::float_(0.5), py::none(), false, device).field;
-    const std::vector<measure::ObjectMeasures> objects = measure::object_measures(mesh->mesh, field);
-    label.push_back(l.value);
-    components.push_back(std::int64_t(objects.size()));
-    columns.add(measure::total(objects));
-    columns.genus.back() = measure::genus_sum(objects);  // -1 when a component is cut
-  }
-  if (!filling.empty()) {  // as the CLI's measure --labels says it
-    if (PyErr_WarnEx(PyExc_UserWarning, labels::filling_labels_note(filling).c_str(), 1) != 0)
-      throw py::error_already_set();
-  }
+  const std::vector<std::int64_t> filling =
+      labels::for_each_label_surface(v, picked, steps, [&](labels::LabelSurface& s) {
+        auto mesh = std::make_shared<PyMesh>();
+        mesh->mesh = std::move(s.mesh);
+        mesh->isovalue = s.isovalue;
+        const curvature::CurvatureField field =
+            estimate_of(mesh, &s.indicator, py::none(), py::none(), py::none(),
+                        py::float_(s.isovalue), py::none(), false, device)
+                .field;
+        const std::vector<measure::ObjectMeasures> objects = measure::object_measures(mesh->mesh, field);
+        label.push_back(s.label.value);
+        components.push_back(std::int64_t(objects.size()));
+        columns.add(measure::total(objects));
+        columns.genus.back() = measure::genus_sum(objects);  // -1 when a component is cut
+      });
+  warn_filling_labels(filling);  // as the CLI's measure --labels says it
   const py::ssize_t n = py::ssize_t(label.size());
   py::dict out = columns.dict();
   out["label"] = copy_array(label, {n});

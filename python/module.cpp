@@ -60,6 +60,7 @@ PYBIND11_MODULE(isocurv, m) {
   python::bind_mesh(m);
   python::bind_curvature(m);
   python::bind_measure(m);
+  python::bind_labels(m);
   python::bind_features(m);
   python::bind_lines(m);
   python::bind_screen(m);

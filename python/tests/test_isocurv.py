@@ -612,6 +612,152 @@ class Measure(unittest.TestCase):
         self.assertEqual(len(m["label"]), 0)
 
 
+def two_touching_balls():
+    """A 40^3 uint8 label map: label 4 a ball of radius 9 voxels, label 9 a ball beside it that
+    takes the voxels 4 leaves (the two touch)."""
+    n = 40
+    z, y, x = np.mgrid[0:n, 0:n, 0:n]
+    labels = np.zeros((n, n, n), np.uint8)
+    labels[(x - 14) ** 2 + (y - 20) ** 2 + (z - 20) ** 2 < 81] = 4
+    labels[((x - 27) ** 2 + (y - 20) ** 2 + (z - 20) ** 2 < 81) & (labels == 0)] = 9
+    return labels
+
+
+def sorted_rows(points):
+    """The order that sorts the rows of (n, 3) `points` (by x, then y, then z)."""
+    return np.lexsort(points.T[::-1])
+
+
+class LabelSurfaces(unittest.TestCase):
+    def setUp(self):
+        self.labels = two_touching_balls()
+        self.v = isocurv.from_array(self.labels)
+
+    def test_extract_labels_gives_each_labels_own_surface_with_a_label_array(self):
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            mesh, arrays = isocurv.extract_labels(self.v, [9, 4, 77])
+        self.assertTrue(any("no voxel holds label 77" in str(w.message) for w in caught))
+        self.assertEqual(sorted(arrays), ["Label"])
+        label = arrays["Label"]
+        self.assertEqual((label.dtype, label.shape), (np.float32, (len(mesh.vertices),)))
+        self.assertIsNone(mesh.isovalue)  # 0.5 of each label's indicator, not a level of the map
+        # In the order asked: label 9's vertices first, then 4's; each triangle within one label.
+        self.assertEqual(float(label[0]), 9)
+        self.assertEqual(float(label[-1]), 4)
+        self.assertEqual(sorted(np.unique(label)), [4, 9])
+        tri_labels = label[mesh.triangles]
+        self.assertTrue((tri_labels == tri_labels[:, :1]).all())
+        for value in (9, 4):
+            # The label's surface is its indicator's alone (touching labels each closed).
+            alone = isocurv.extract(isocurv.from_array((self.labels == value).astype(np.uint8)), 0.5)
+            mine = mesh.vertices[label == value]
+            self.assertEqual(len(mine), len(alone.vertices), value)
+            np.testing.assert_array_equal(mine[sorted_rows(mine)], alone.vertices[sorted_rows(alone.vertices)])
+            part = mesh.triangles[tri_labels[:, 0] == value]
+            self.assertEqual(len(part), len(alone.triangles), value)
+            self.assertEqual(isocurv.check(isocurv.Mesh(mesh.vertices, part))["euler_characteristic"], 2)
+        # None: every label, ascending; numpy integers are labels too.
+        every, every_arrays = isocurv.extract_labels(self.v)
+        self.assertEqual(list(np.unique(every_arrays["Label"])), [4, 9])
+        self.assertEqual(float(every_arrays["Label"][0]), 4)
+        one, one_arrays = isocurv.extract_labels(self.v, np.int32(9))
+        np.testing.assert_array_equal(one.vertices, mesh.vertices[label == 9])
+        self.assertTrue((one_arrays["Label"] == 9).all())
+
+    def test_curvature_labels_estimates_each_label_on_its_own_indicator(self):
+        mesh, arrays = isocurv.curvature_labels(self.v)
+        extracted, _ = isocurv.extract_labels(self.v)
+        np.testing.assert_array_equal(mesh.vertices, extracted.vertices)
+        np.testing.assert_array_equal(mesh.triangles, extracted.triangles)
+        self.assertIsInstance(arrays, isocurv.CurvatureArrays)
+        for key in ("H", "K", "k1", "k2", "Normals", "Scale", "Label"):
+            self.assertIn(key, arrays)
+        self.assertEqual(arrays.report["estimator"], "volume")
+        self.assertEqual(arrays.report["labels"], [4, 9])
+        self.assertEqual(len(arrays.report["label_reports"]), 2)
+        self.assertEqual(arrays.report["unreliable"], int(arrays["Unreliable"].sum()))
+        self.assertEqual(arrays.report["unreliable"],
+                         sum(r["unreliable"] for r in arrays.report["label_reports"]))
+        for value in (4, 9):
+            alone_v = isocurv.from_array((self.labels == value).astype(np.uint8))
+            alone = isocurv.extract(alone_v, 0.5)
+            expected = isocurv.curvature(alone, alone_v)
+            sel = arrays["Label"] == value
+            mine, theirs = sorted_rows(mesh.vertices[sel]), sorted_rows(alone.vertices)
+            # The same estimate on the label's cut-out as on the whole indicator (to float rounding).
+            np.testing.assert_allclose(arrays["H"][sel][mine], expected["H"][theirs], atol=1e-5, err_msg=str(value))
+            self.assertAlmostEqual(float(np.median(arrays["H"][sel])) * 9, 1, delta=0.1)
+        # Each label sees only itself: the map's own surface at 0.5 wraps both balls in one, with
+        # a saddle-shaped neck where they touch (a 5th percentile of H below 0 there).
+        self.assertGreater(float(np.percentile(arrays["H"], 5)), 0)
+        rus, rus_arrays = isocurv.curvature_labels(self.v, [9], estimator="rusinkiewicz")
+        self.assertEqual(rus_arrays.report["estimator"], "rusinkiewicz")
+        self.assertNotIn("Scale", rus_arrays)
+
+    def test_bad_arguments_raise_naming_the_python_argument(self):
+        v = self.v
+        for function in (isocurv.extract_labels, isocurv.curvature_labels):
+            with self.assertRaisesRegex(ValueError, r"^labels: none of the labels given is in the volume \(it holds 2 labels, from 4 to 9\)"):
+                function(v, [5])
+            for bad in (2 ** 70, 2 ** 24):
+                with self.assertRaisesRegex(ValueError, "^labels: label .* is beyond"):
+                    function(v, [bad])
+            with self.assertRaisesRegex(ValueError, "^labels: label 4 is given twice"):
+                function(v, [4, 4])
+            with self.assertRaisesRegex(ValueError, "^labels: empty"):
+                function(v, [])
+            with self.assertRaisesRegex(TypeError, "^labels"):
+                function(v, "4")
+            with self.assertRaisesRegex(TypeError, "^labels"):
+                function(v, [4.0])
+            with self.assertRaisesRegex(TypeError, "^volume"):
+                function("labels.nrrd")
+            with self.assertRaisesRegex(ValueError, "^device"):
+                function(v, device="gpu9")
+            with self.assertRaises(isocurv.Error):  # a float volume is no label map
+                function(isocurv.from_array(self.labels.astype(np.float32)))
+            with self.assertRaisesRegex(ValueError, r"^volume: holds no label"):
+                function(isocurv.from_array(np.zeros((8, 8, 8), np.uint8)))
+            full = isocurv.from_array(np.full((12, 12, 12), 3, np.uint8))
+            with self.assertWarnsRegex(UserWarning, "label 3 has no surface"):
+                with self.assertRaisesRegex(ValueError, "^labels: no label has a surface"):
+                    function(full)
+        with self.assertRaisesRegex(ValueError, "^scale: "):
+            isocurv.curvature_labels(v, scale=-1)
+        with self.assertRaisesRegex(ValueError, "^scale: applies to estimator='volume' only"):
+            isocurv.curvature_labels(v, estimator="rusinkiewicz", scale=2)
+        with self.assertRaisesRegex(ValueError, "^estimator: expected one of"):
+            isocurv.curvature_labels(v, estimator="nope")
+        with self.assertRaises(TypeError):  # curvature_labels' options are keywords only
+            isocurv.curvature_labels(v, None, "volume")
+
+    @unittest.skipUnless(os.access(EXE, os.X_OK), "needs the built command line")
+    def test_same_files_as_the_command_line_bit_for_bit(self):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "two.nrrd")
+            with open(path, "wb") as f:  # anisotropic spacing: the margin follows the smallest
+                f.write(b"NRRD0004\ntype: uint8\ndimension: 3\nsizes: 40 40 40\nspacings: 1 1 1.5\n"
+                        b"encoding: raw\n\n" + self.labels.tobytes())
+            v = isocurv.load(path)
+            runs = (("extract", [], isocurv.extract_labels, {}),
+                    ("curvature", [], isocurv.curvature_labels, {}),
+                    ("curvature", ["--scale", "3"], isocurv.curvature_labels, {"scale": 3}),
+                    ("curvature", ["--estimator", "rusinkiewicz"], isocurv.curvature_labels,
+                     {"estimator": "rusinkiewicz"}))
+            for command, flags, function, kw in runs:
+                out = os.path.join(d, "cli.vtp")
+                subprocess.run([EXE, command, path, "--label", "9,4", "-o", out, "--quiet"] + flags, check=True)
+                cli_mesh, cli_arrays = isocurv.read_mesh(out)
+                mesh, arrays = function(v, [9, 4], **kw)
+                what = " ".join([command] + flags)
+                np.testing.assert_array_equal(mesh.vertices, cli_mesh.vertices, err_msg=what)
+                np.testing.assert_array_equal(mesh.triangles, cli_mesh.triangles, err_msg=what)
+                self.assertEqual(sorted(arrays), sorted(cli_arrays), what)
+                for key in arrays:
+                    np.testing.assert_array_equal(arrays[key], cli_arrays[key], err_msg=what + ": " + key)
+
+
 class Features(unittest.TestCase):
     def setUp(self):
         self.v = isocurv.from_array(ball(np.float32))
