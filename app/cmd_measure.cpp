@@ -34,6 +34,8 @@ nlohmann::json measures_json(const measure::ObjectMeasures& m, bool with_genus) 
                       {"on_vertices", m.on_vertices},
                       {"scale", m.scale},
                       {"resolved", m.resolved},
+                      {"curvature_genus", number_or_null(m.curvature_genus())},
+                      {"fine_handles", m.has_fine_handles()},
                       {"box", m.box}};
   if (with_genus) j["genus"] = m.closed ? nlohmann::json(m.genus()) : nlohmann::json(nullptr);
   return j;
@@ -224,6 +226,18 @@ void register_measure(CLI::App& app) {
       std::printf("%zu component%s below the curvature scale measured over the mesh's own vertices "
                   "(the estimator's surface points would move %s by more than half)\n",
                   specks, specks == 1 ? "" : "s", specks == 1 ? "it" : "them");
+    if (!labelled) {
+      std::size_t fine = 0, first = 0;
+      for (std::size_t i = 0; i < objects.size(); ++i)
+        if (objects[i].has_fine_handles() && fine++ == 0) first = i;
+      if (fine > 0)
+        std::printf("%zu component%s with handles finer than the curvature scale (object %zu: its "
+                    "integral of K counts %.0f of its %lld handles; the rest, noise tunnels in a scan, "
+                    "are not on the smooth surface the curvature describes, so the Gauss-Bonnet gap "
+                    "counts them: docs/measure.md)\n",
+                    fine, fine == 1 ? "" : "s", first + 1,
+                    std::max(0.0, objects[first].curvature_genus()), objects[first].genus());
+    }
     if (all.unmeasured > 0)
       std::printf("%zu unmeasured vertices (flagged Unreliable) count as H = K = 0 in the integrals\n",
                   all.unmeasured);

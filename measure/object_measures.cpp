@@ -122,6 +122,17 @@ double ObjectMeasures::gauss_bonnet_gap() const {
   return (integral_K - kTwoPi * double(euler)) / (kTwoPi * std::max(1.0, std::abs(double(euler))));
 }
 
+double ObjectMeasures::curvature_genus() const {
+  if (!closed) return std::numeric_limits<double>::quiet_NaN();
+  return 1 - integral_K / (2 * kTwoPi);
+}
+
+bool ObjectMeasures::has_fine_handles() const {
+  if (!closed || !resolved) return false;
+  const double missing = double(genus()) - curvature_genus();
+  return missing > kFineHandles && missing > 0.1 * double(genus());
+}
+
 std::vector<ObjectMeasures> object_measures(const Mesh& mesh, const curvature::CurvatureField& field) {
   const std::size_t nv = mesh.positions.size();
   if (field.H.size() != nv || field.K.size() != nv)

@@ -40,6 +40,15 @@ struct ObjectMeasures {
   /// Gauss-Bonnet's check on the curvature: (integral_K - 2 pi euler) / (2 pi max(1, |euler|))
   /// for a closed component (0 when the estimate is exact), NaN when cut.
   double gauss_bonnet_gap() const;
+  /// The number of handles the curvature's integral implies, 1 - integral_K / (4 pi), for a
+  /// closed component (NaN when cut). Below genus() when the mesh has handles narrower than the
+  /// curvature's scale (a CT's noise tunnels): the smoothed surface the curvature describes does
+  /// not have them, so their -4 pi each is missing from integral_K (has_fine_handles).
+  double curvature_genus() const;
+  /// True for a resolved, closed component whose curvature_genus() is under its genus() by more
+  /// than kFineHandles and a tenth: its Gauss-Bonnet gap counts handles finer than the
+  /// curvature scale, not an error of the curvature on the rest.
+  bool has_fine_handles() const;
   std::size_t unmeasured = 0;        ///< vertices flagged Unreliable (their H, K count as 0)
   std::array<double, 6> box{};       ///< xmin, xmax, ymin, ymax, zmin, zmax of its vertices
   std::uint32_t first_vertex = 0;    ///< its lowest vertex id
@@ -59,6 +68,9 @@ struct ObjectMeasures {
 /// is not resolved (ObjectMeasures::resolved): 2 / curvature::kShapeScale, the diameter of the
 /// smallest ball whose curvature the per-vertex choice measures at that scale.
 inline constexpr double kResolvedExtent = 2.0 / curvature::kShapeScale;
+
+/// has_fine_handles: the least number of handles the curvature may miss before it is said.
+inline constexpr double kFineHandles = 2;
 
 /// Surface points that change a component's area (or a closed one's volume) by more than this
 /// fraction are not used for it (ObjectMeasures::on_vertices). On objects the estimator resolves

@@ -23,9 +23,9 @@ namespace {
 
 /// measure() and measure_labels()'s dict: one numpy array per measure, one entry per object.
 struct MeasureColumns {
-  std::vector<double> area, mesh_area, volume, int_h, int_k, gap, box, scale;
+  std::vector<double> area, mesh_area, volume, int_h, int_k, gap, box, scale, curvature_genus;
   std::vector<std::int64_t> euler, genus, vertices, triangles, unmeasured;
-  std::vector<std::uint8_t> closed, resolved;
+  std::vector<std::uint8_t> closed, resolved, fine_handles;
 
   void add(const measure::ObjectMeasures& m) {
     area.push_back(m.area);
@@ -36,6 +36,8 @@ struct MeasureColumns {
     int_h.push_back(m.integral_H);
     int_k.push_back(m.integral_K);
     gap.push_back(m.gauss_bonnet_gap());
+    curvature_genus.push_back(m.curvature_genus());
+    fine_handles.push_back(m.has_fine_handles() ? 1 : 0);
     euler.push_back(m.euler);
     genus.push_back(m.genus());
     vertices.push_back(std::int64_t(m.vertices));
@@ -57,6 +59,8 @@ struct MeasureColumns {
     out["euler_characteristic"] = copy_array(euler, {n});
     out["genus"] = copy_array(genus, {n});
     out["gauss_bonnet_gap"] = copy_array(gap, {n});
+    out["curvature_genus"] = copy_array(curvature_genus, {n});
+    out["fine_handles"] = copy_array(fine_handles, {n});
     out["closed"] = copy_array(closed, {n});
     out["vertices"] = copy_array(vertices, {n});
     out["triangles"] = copy_array(triangles, {n});
@@ -123,7 +127,10 @@ units), euler_characteristic, genus (-1 when open), vertices, triangles, unmeasu
 NaN when open), box ((n, 6): xmin, xmax, ymin, ymax, zmin, zmax), mesh_area (the mesh's own
 triangles' area, where area is the smooth surface's), scale (the largest per-vertex smoothing
 scale, 0 without a Scale array) and resolved (uint8: 0 when the component is smaller than
-kResolvedExtent times that scale, its curvature integrals unreliable). arrays: the mesh's
+kResolvedExtent times that scale, its curvature integrals unreliable), curvature_genus
+(1 - integral_K / (4 pi): the handles the curvature's integral implies, NaN when open) and
+fine_handles (uint8: 1 when a resolved component's curvature_genus is under its genus by more
+than 2 and a tenth, handles finer than the curvature scale). arrays: the mesh's
 curvature (a dict as curvature() returns; H and K are read, Area and Unreliable when present);
 None estimates curvature(mesh, volume) with its defaults (the volume estimator with a volume).
 iso: the isovalue, with a volume, for a mesh without mesh.isovalue.)doc");
