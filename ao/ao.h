@@ -1,7 +1,8 @@
 #pragma once
 // ao::compute: the per-vertex "AO" array of a CurvatureField by one of the ambient-occlusion
-// methods (ao/method.h). A stage after curvature: the formulas read the field's k1, k2 or H, the
-// ray casts read the volume the mesh came from.
+// methods (ao/method.h). The curvature stage's last step (curvature::Options::ao_method,
+// curvature::apply_ao): the formulas read the field's k1, k2 or H, the ray casts read the volume
+// the mesh came from.
 // Tested in tests/ao/test_ao.cpp.
 #include <string>
 

@@ -13,6 +13,7 @@
 #include "core/atomic_file.h"
 #include "core/camera.h"
 #include "core/error.h"
+#include "core/lap.h"
 #include "core/mesh_measures.h"
 #include "core/program_cache.h"
 #include "core/progress.h"
@@ -106,7 +107,8 @@ std::vector<std::string> parse_scales(const std::string& text) {
 
 namespace {
 
-/// The curvature request of --estimator, --scale (its first value), --normals and --ao-scale.
+/// The curvature request of --estimator, --scale (its first value), --normals, --ao-scale,
+/// --ao-method and --hattori-half.
 curvature::Request curvature_request(const CommonOptions& o) {
   curvature::Request r;
   if (!o.estimator.empty()) {
@@ -120,11 +122,17 @@ curvature::Request curvature_request(const CommonOptions& o) {
   const std::vector<std::string> scales = parse_scales(o.scale);
   r.scale = scales[0] == "auto" ? 0.0 : std::strtod(scales[0].c_str(), nullptr);
   if (o.ao_scale > 0) r.ao_scale = o.ao_scale;
+  if (!o.ao.empty()) {
+    r.ao_method = ao::method_from_name(o.ao);
+    if (!r.ao_method) throw Error("--ao-method: unknown method '" + o.ao + "'");
+  }
+  r.hattori_half = o.hattori_half;
   return r;
 }
 
-/// A curvature request's error (curvature::resolve) in the command line's words: its options.
-Error request_error(const curvature::RequestError& e) {
+/// A curvature request's error (curvature::resolve, check_ao) in the command line's words: its
+/// options (`o`, for the method named).
+Error request_error(const curvature::RequestError& e, const CommonOptions& o) {
   const std::string name = curvature::estimator_name(e.estimator);
   switch (e.problem) {
     case curvature::RequestProblem::estimator_needs_volume:
@@ -137,6 +145,12 @@ Error request_error(const curvature::RequestError& e) {
       return Error("--scale applies to --estimator volume");
     case curvature::RequestProblem::volume_normals_need_volume:
       return Error("--normals volume needs a volume input, not a mesh file");
+    case curvature::RequestProblem::ao_needs_volume:
+      return Error("--ao-method " + o.ao +
+                   " needs a volume input (it casts rays through the volume), not a mesh file; "
+                   "the curvature methods (griffin-exact, hattori, prantl) work on meshes");
+    case curvature::RequestProblem::hattori_half_not_hattori:
+      return Error("--hattori-half applies to --ao-method hattori");
     default:  // iso, the isovalue and the values: not asked by the command line's options
       break;
   }
@@ -147,6 +161,8 @@ Error request_error(const curvature::RequestError& e) {
     case curvature::RequestField::scale: option = "--scale"; break;
     case curvature::RequestField::iso: option = "--iso"; break;
     case curvature::RequestField::ao_scale: option = "--ao-scale"; break;
+    case curvature::RequestField::ao_method: option = "--ao-method"; break;
+    case curvature::RequestField::hattori_half: option = "--hattori-half"; break;
   }
   return Error(std::string(option) + ": " + e.detail());
 }
@@ -160,7 +176,7 @@ curvature::NormalsSource mesh_estimators_normals(const CommonOptions& o, bool vo
   try {
     return curvature::resolve(r, volume_input).normals;
   } catch (const curvature::RequestError& e) {
-    throw request_error(e);
+    throw request_error(e, o);
   }
 }
 
@@ -232,17 +248,19 @@ void add_ao_options(CLI::App& cmd, CommonOptions& o) {
 
 void apply_ao(const Mesh& mesh, curvature::CurvatureField& field, const volume::Volume* volume,
               float isovalue, const CommonOptions& o, StageTimer& timer) {
-  if (o.hattori_half && o.ao != "hattori") throw Error("--hattori-half applies to --ao-method hattori");
-  if (o.ao.empty() || o.ao == "griffin") return;
-  ao::Options ao;
-  ao.method = *ao::method_from_name(o.ao);
-  if (ao::needs_volume(ao.method) && !volume)
-    throw Error("--ao-method " + o.ao + " needs a volume input (it casts rays through the volume), not a "
-                "mesh file; the curvature methods (griffin-exact, hattori, prantl) work on meshes");
-  ao.radius = o.ao_scale > 0 ? o.ao_scale : curvature::default_ao_scale(mesh);
-  ao.hattori_half = o.hattori_half;
+  const curvature::Request request = curvature_request(o);
+  try {
+    curvature::check_ao(request, volume != nullptr);
+  } catch (const curvature::RequestError& e) {
+    throw request_error(e, o);
+  }
+  curvature::Options co;
+  co.ao_method = request.ao_method.value_or(ao::Method::griffin);
+  co.hattori_half = request.hattori_half;
+  if (co.ao_method == ao::Method::griffin) return;
+  co.ao_scale = request.ao_scale ? *request.ao_scale : curvature::default_ao_scale(mesh);
   timer.start("ao");
-  ao::compute(mesh, field, {volume, isovalue}, ao);
+  curvature::apply_ao(mesh, field, {volume, isovalue}, co);
   timer.stop();
 }
 
@@ -252,6 +270,14 @@ void StageTimer::start(const std::string& stage) {
   bar_ = std::make_unique<StageBar>(stage);
   compile0_ = program_build_stats().ms;
   t0_ = std::chrono::steady_clock::now();
+}
+
+void StageTimer::move(const std::string& from, const std::string& to, double ms) {
+  auto add = [&](const std::string& key, double v) {
+    timings_[key] = std::round((timings_.value(key, 0.0) + v) * 1000) / 1000;
+  };
+  add(from, -ms);
+  add(to, ms);
 }
 
 void StageTimer::stop() {
@@ -449,11 +475,13 @@ curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Vol
     request = curvature::resolve(curvature_request(o), volume != nullptr,
                                  volume ? std::optional<float>(isovalue) : std::nullopt);
   } catch (const curvature::RequestError& e) {
-    throw request_error(e);
+    throw request_error(e, o);
   }
   curvature::Options co;
   co.piece = piece;
   co.estimator = request.estimator;
+  co.ao_method = request.ao_method;
+  co.hattori_half = request.hattori_half;
   if (!o.batagelo_weights.empty() && co.estimator != curvature::Estimator::batagelo)
     throw Error("--batagelo-weights applies to --estimator batagelo");
   apply_estimator_parameters(o, co);
@@ -475,21 +503,27 @@ curvature::CurvatureField estimate_curvature(const Mesh& mesh, const volume::Vol
   curvature::EstimatorReport r;
   Device* device = reference_device(o) ? nullptr : &device_for(o);
   if (scales.size() > 1) co.finer_scales = false;  // each scale shows only what it resolves
-  curvature::CurvatureField field = curvature::estimate_field(mesh, {volume, isovalue}, device, co, &r);
+  // The AO (co.ao_method) is estimate_field's last step; with several scales it runs once, on
+  // the first scale's curvature, after the other scales' arrays.
+  curvature::Options first = co;
+  if (scales.size() > 1) first.ao_method = ao::Method::griffin, first.hattori_half = false;
+  curvature::CurvatureField field = curvature::estimate_field(mesh, {volume, isovalue}, device, first, &r);
   if (scales.size() > 1) {
     // Every scale's scalar arrays under its suffix; the first scale's also stay unsuffixed.
     curvature::append_scale_arrays(field, scales[0], field);
     for (std::size_t i = 1; i < scales.size(); ++i) {
-      curvature::Options at = co;
+      curvature::Options at = first;
       at.scale = std::strtod(scales[i].c_str(), nullptr);
       curvature::append_scale_arrays(
           curvature::estimate_field(mesh, {volume, isovalue}, device, at), scales[i], field);
     }
     r.notes.emplace_back("scales", o.scale);
     field.metadata.emplace_back("scales", o.scale);
+    StepClock::time_point t = StepClock::now();
+    if (curvature::apply_ao(mesh, field, {volume, isovalue}, co)) r.ao_ms = lap(t);
   }
   timer.stop();
-  apply_ao(mesh, field, volume, isovalue, o, timer);
+  if (r.ao_ms) timer.move("curvature", "ao", *r.ao_ms);  // reported as its own stage
   if (report) *report = std::move(r);
   return field;
 }

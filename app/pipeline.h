@@ -79,6 +79,9 @@ class StageTimer {
   /// Starts timing `stage` (and its bar); the previous stage (if any) ends here.
   void start(const std::string& stage);
   void stop();
+  /// Moves `ms` of stage `from`'s time to stage `to`: a step timed inside a stage (the AO inside
+  /// the curvature stage, EstimatorReport::ao_ms) reported as its own.
+  void move(const std::string& from, const std::string& to, double ms);
   const nlohmann::json& json() const { return timings_; }
 
  private:
@@ -89,10 +92,11 @@ class StageTimer {
   nlohmann::json timings_ = nlohmann::json::object();
 };
 
-/// Applies --ao-method to `field` (stage "ao"; nothing for the default griffin, which every estimator
-/// already gives): ao::compute at --ao-scale (or 4 mean edge lengths). A ray cast without
-/// `volume` (a mesh file) is an Error saying it needs the volume; --hattori-half without
-/// --ao-method hattori is an Error.
+/// Applies --ao-method to a `field` not estimated here (a file's own curvature; stage "ao";
+/// nothing for the default griffin, which every estimator already gives): curvature::apply_ao at
+/// --ao-scale (or 4 mean edge lengths). Its rules are curvature::check_ao's, worded with the
+/// options: a ray cast without `volume` (a mesh file) is an Error saying it needs the volume;
+/// --hattori-half without --ao-method hattori is an Error.
 void apply_ao(const Mesh& mesh, curvature::CurvatureField& field, const volume::Volume* volume,
               float isovalue, const CommonOptions& o, StageTimer& timer);
 
@@ -219,7 +223,8 @@ curvature::NormalsSource mesh_estimators_normals(const CommonOptions& o, bool vo
 curvature::Estimator default_estimator(const CommonOptions& o, bool volume_input);
 
 /// Estimates the curvature of `mesh` (stage "curvature") on the chosen device with --estimator
-/// (curvature::estimate_field), then the AO --ao-method chooses (apply_ao). The request's rules
+/// and the AO --ao-method chooses (curvature::estimate_field; the AO's time reported as stage
+/// "ao"). The request's rules
 /// are curvature::resolve's (curvature/request.h), its errors worded with the options: the mesh
 /// estimators' normals are --normals, by default volume when `volume` is given, else mesh; volume
 /// normals come from volume::gradient_normals_for_mesh (face normals where the gradient disagrees

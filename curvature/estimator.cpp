@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <string>
 
+#include "ao/ao.h"
 #include "core/error.h"
 #include "core/lap.h"
 #include "core/surface_piece.h"
@@ -180,8 +181,21 @@ CurvatureField estimate_field(const Mesh& mesh, const VolumeSource& source, Devi
   }
   for (const auto& [key, how] : r.notes) field.metadata.emplace_back(key + "_chosen", how);
   field.metadata.emplace_back("ao", "griffin");  // the AO every estimator gives (ao/ao.h: others)
+  StepClock::time_point ao_start = StepClock::now();
+  if (apply_ao(mesh, field, source, options)) r.ao_ms = lap(ao_start);
   if (report) *report = std::move(r);
   return field;
+}
+
+bool apply_ao(const Mesh& mesh, CurvatureField& field, const VolumeSource& source,
+              const Options& options) {
+  if (options.ao_method == ao::Method::griffin) return false;
+  ao::Options ao;
+  ao.method = options.ao_method;
+  ao.radius = options.ao_scale;
+  ao.hattori_half = options.hattori_half;
+  ao::compute(mesh, field, source, ao);
+  return true;
 }
 
 }  // namespace isocurv::curvature

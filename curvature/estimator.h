@@ -1,6 +1,7 @@
 #pragma once
 // curvature::estimate_field: every curvature estimator behind one call (Options::estimator), all
-// returning the same CurvatureField (names and conventions of curvature_field.h).
+// returning the same CurvatureField (names and conventions of curvature_field.h), with the AO
+// Options::ao_method asks for (apply_ao).
 // Tested in tests/curvature/ct_classes_test.cpp, tests/curvature/volume_estimate_test.cpp.
 #include <optional>
 #include <string>
@@ -55,14 +56,27 @@ struct EstimatorReport {
   /// chosen from the data), then VolumeStepTimes's plan, gather, passes, vertices, host. Not in
   /// the field's metadata (outputs stay deterministic).
   std::vector<std::pair<std::string, double>> steps_ms;
+  /// Wall time of apply_ao in ms, when it computed an AO (ao_method other than griffin); not in
+  /// the field's metadata.
+  std::optional<double> ao_ms;
 };
 
 /// Per-vertex curvature of `mesh` by options.estimator, on `device` or, when device is nullptr,
 /// by the estimator's double-precision C++ reference. The volume estimator needs `source` (with a
-/// volume; else Error "needs a volume"); the mesh estimators ignore it. Deterministic. Throws
-/// isocurv::Error for invalid input or options, or an OpenCL failure. `report`, when given,
-/// receives what was used.
+/// volume; else Error "needs a volume"); the mesh estimators ignore it. The last step is apply_ao
+/// (options.ao_method; the ray casts read `source` too). Deterministic. Throws isocurv::Error for
+/// invalid input or options, or an OpenCL failure. `report`, when given, receives what was used.
+/// resolve (curvature/request.h) states the rules the options must follow.
 CurvatureField estimate_field(const Mesh& mesh, const VolumeSource& source, Device* device,
                               const Options& options, EstimatorReport* report = nullptr);
+
+/// The AO array of `field` by options.ao_method at options.ao_scale: nothing for griffin (every
+/// estimator's own AO, already in the field), else ao::compute (ao/ao.h: the array, and the
+/// field's "ao*" metadata) with options.hattori_half. estimate_field's last step, and the same
+/// step on a field it did not estimate (a mesh file's own curvature). Returns whether it computed
+/// (false for griffin). check_ao states the rules; a ray cast without source.volume throws
+/// ao::compute's Error.
+bool apply_ao(const Mesh& mesh, CurvatureField& field, const VolumeSource& source,
+              const Options& options);
 
 }  // namespace isocurv::curvature

@@ -3,6 +3,7 @@
 // Tested in tests/curvature/estimator_protocols_test.cpp (through its users).
 #include <vector>
 
+#include "ao/method.h"
 #include "core/mesh.h"
 #include "core/surface_piece.h"
 
@@ -89,6 +90,12 @@ struct Options {
   /// al. section 3.7): curvatures are multiplied by it before the polynomial is evaluated, so a
   /// larger value darkens concave regions more.
   float ao_scale = 1.0f;
+  /// The AO array's method (ao/method.h). griffin (the default) is every estimator's own
+  /// polynomial at ao_scale; any other is computed by estimate_field's last step, apply_ao
+  /// (ao::compute at ao_scale: the ray casts read the VolumeSource's volume).
+  ao::Method ao_method = ao::Method::griffin;
+  /// ao_method hattori: the umbilic mean rho (k1 + k2) / 2 (ao::Options::hattori_half).
+  bool hattori_half = false;
   /// One piece of a surface divided among processes (core/surface_piece.h; dist/), or nullptr
   /// (the default): the whole surface. Only the volume estimator needs it (its automatic scale
   /// and weak-gradient threshold are the whole surface's); the mesh estimators see everything

@@ -47,6 +47,8 @@ const char* request_field_name(RequestField f) {
     case RequestField::scale: return "scale";
     case RequestField::iso: return "iso";
     case RequestField::ao_scale: return "ao_scale";
+    case RequestField::ao_method: return "ao_method";
+    case RequestField::hattori_half: return "hattori_half";
   }
   return "";
 }
@@ -101,6 +103,17 @@ Resolved resolve(const Request& request, bool has_volume, std::optional<float> m
     throw fail(RequestField::iso, RequestProblem::iso_not_for_mesh,
                "applies to the volume estimator only");
   }
+  check_ao(request, has_volume);
+  r.ao_scale = request.ao_scale;
+  r.ao_method = request.ao_method.value_or(ao::Method::griffin);
+  r.hattori_half = request.hattori_half;
+  return r;
+}
+
+void check_ao(const Request& request, bool has_volume) {
+  auto fail = [&](RequestField field, RequestProblem problem, const std::string& message) {
+    return RequestError(field, problem, default_estimator(request, has_volume), message);
+  };
   if (request.ao_scale) {
     if (!std::isfinite(*request.ao_scale))
       throw fail(RequestField::ao_scale, RequestProblem::not_finite,
@@ -109,8 +122,14 @@ Resolved resolve(const Request& request, bool has_volume, std::optional<float> m
       throw fail(RequestField::ao_scale, RequestProblem::not_positive,
                  "must be a positive number (world units)");
   }
-  r.ao_scale = request.ao_scale;
-  return r;
+  const ao::Method method = request.ao_method.value_or(ao::Method::griffin);
+  if (request.hattori_half && method != ao::Method::hattori)
+    throw fail(RequestField::hattori_half, RequestProblem::hattori_half_not_hattori,
+               "applies to the AO method hattori only");
+  if (ao::needs_volume(method) && !has_volume)
+    throw fail(RequestField::ao_method, RequestProblem::ao_needs_volume,
+               std::string("'") + ao::method_name(method) +
+                   "' needs a volume (it casts rays through it), not a mesh alone");
 }
 
 volume::MeshNormals host_normals(NormalsSource source, const Mesh& mesh,

@@ -1,13 +1,15 @@
 #pragma once
 // What a curvature request may ask, decided once for the command line (app/pipeline.cpp) and the
 // Python module (python/detail/estimate.cpp): the default estimator, the combinations that are
-// errors, and the vertex normals the mesh estimators use. The callers convert their own arguments
-// into a Request and word a RequestError in their own terms ("--normals ...", "normals: ...").
+// errors, the vertex normals the mesh estimators use and the ambient occlusion asked for. The
+// callers convert their own arguments into a Request and word a RequestError in their own terms
+// ("--normals ...", "normals: ...").
 // Tested in tests/curvature/request_test.cpp.
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "ao/method.h"
 #include "core/error.h"
 #include "core/mesh.h"
 #include "curvature/estimator.h"
@@ -43,6 +45,8 @@ struct Request {
   NormalsSource normals = NormalsSource::automatic;
   std::optional<float> iso;       ///< the mesh's isovalue for the volume estimator, when given
   std::optional<float> ao_scale;  ///< nothing: 4 mean edge lengths of the mesh
+  std::optional<ao::Method> ao_method;  ///< the AO array's method; nothing: griffin
+  bool hattori_half = false;            ///< ao_method hattori: the umbilic mean (Options)
 };
 
 /// The request with its defaults applied and its combinations checked.
@@ -54,6 +58,8 @@ struct Resolved {
   NormalsSource normals = NormalsSource::automatic;
   float isovalue = 0;  ///< the volume estimator's isovalue (0 for the mesh estimators)
   std::optional<float> ao_scale;  ///< as requested (checked positive and finite)
+  ao::Method ao_method = ao::Method::griffin;  ///< for Options::ao_method
+  bool hattori_half = false;                   ///< for Options::hattori_half
   bool volume_estimator() const { return needs_volume(estimator); }
 };
 
@@ -63,10 +69,10 @@ struct Resolved {
 Estimator default_estimator(const Request& request, bool has_volume);
 
 /// Which field of a Request a RequestError is about.
-enum class RequestField { estimator, normals, scale, iso, ao_scale };
+enum class RequestField { estimator, normals, scale, iso, ao_scale, ao_method, hattori_half };
 
 /// The name of `f` as the Request and the Python module spell it: "estimator", "normals",
-/// "scale", "iso", "ao_scale".
+/// "scale", "iso", "ao_scale", "ao_method", "hattori_half".
 const char* request_field_name(RequestField f);
 
 /// Which rule a request broke.
@@ -79,6 +85,8 @@ enum class RequestProblem {
   needs_isovalue,              ///< iso: the volume estimator with neither iso nor the mesh's own
   not_finite,                  ///< iso, scale or ao_scale: NaN or infinite
   not_positive,                ///< scale (negative) or ao_scale (zero or negative)
+  ao_needs_volume,             ///< ao_method: a ray cast (ao::needs_volume) without a volume
+  hattori_half_not_hattori,    ///< hattori_half: asked for with an ao_method other than hattori
 };
 
 /// A request that breaks a rule: which field (`field`), which rule (`problem`) and the estimator
@@ -107,10 +115,16 @@ class RequestError : public Error {
 /// without, whose own isovalue (a mesh extracted by isocurv) is `mesh_isovalue`. The volume
 /// estimator needs a volume, takes no normals and needs an isovalue (request.iso, else
 /// `mesh_isovalue`); the mesh estimators take no scale and no iso; volume normals need a volume.
-/// iso, scale and ao_scale must be finite, scale not negative and ao_scale positive.
+/// iso, scale and ao_scale must be finite, scale not negative; then check_ao's rules.
 /// @throw RequestError for the first broken rule, in that order
 Resolved resolve(const Request& request, bool has_volume,
                  std::optional<float> mesh_isovalue = std::nullopt);
+
+/// The ambient-occlusion rules alone (the last of resolve's), also for a field that is not
+/// estimated again (a mesh file's own curvature, apply_ao): ao_scale finite and positive,
+/// hattori_half only with ao_method hattori, and a ray cast (ao::needs_volume) needs a volume.
+/// @throw RequestError for the first broken rule, in that order (its estimator: default_estimator)
+void check_ao(const Request& request, bool has_volume);
 
 /// The normals the mesh estimators are to read (Options::vertex_normals) for `source`, computed on
 /// the host: the gradient of `volume` (gradient_normals_for_mesh, with its fallback counts; `caps`

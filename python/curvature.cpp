@@ -26,10 +26,12 @@ namespace {
 
 py::object curvature_of(const MeshArg& mesh_arg, const VolumeArg& volume_arg, py::object estimator,
                         py::object scale, py::object normals_arg, py::object iso,
-                        py::object ao_scale, bool cap, py::object device) {
+                        py::object ao_scale, bool cap, py::object device, py::object ao_method,
+                        bool hattori_half) {
   const std::shared_ptr<PyMesh> mesh = mesh_of(mesh_arg, "mesh");
   const volume::Volume* volume = optional_volume(volume_arg, "volume");
-  Estimated e = estimate_of(mesh, volume, estimator, scale, normals_arg, iso, ao_scale, cap, device);
+  Estimated e = estimate_of(mesh, volume, estimator, scale, normals_arg, iso, ao_scale, cap, device,
+                            ao_method, hattori_half);
   return curvature_arrays(std::move(e.field), e.report);
 }
 
@@ -125,6 +127,7 @@ void bind_curvature(py::module_& m) {
       py::arg("estimator") = py::none(), py::arg("scale") = py::none(),
       py::arg("normals") = py::none(), py::arg("iso") = py::none(),
       py::arg("ao_scale") = py::none(), py::arg("cap") = false, py::arg("device") = py::none(),
+      py::arg("ao_method") = py::none(), py::arg("hattori_half") = false,
       R"doc(Per-vertex curvature of `mesh` as a CurvatureArrays (a dict) of numpy arrays named as in
 the files: Normals (n, 3), Area, k1, k2 (k1 >= k2), dir1, dir2 (n, 3), H, K, dcurv (n, 4),
 ShapeIndex, Curvedness, AO (n,), Boundary (n,) uint8, Unreliable (n,) uint8: the unmeasured-vertex
@@ -144,7 +147,9 @@ normals (mesh estimators): 'volume' (the gradient of `volume`, face normals wher
 trusted; the default with a volume), 'mesh' (the faces, Max's weights; the default without),
 'area' or 'face-average'; an error with estimator='volume'. cap=True when the mesh was
 extracted with cap=True. ao_scale: ambient-occlusion radius in world units (default 4 mean edge
-lengths). Normals point out of the object, so a solid sphere of radius R has k1 = k2 = H = +1/R.
+lengths). ao_method: how the AO array is computed, as the CLI's --ao-method: 'griffin' (the
+default), 'griffin-exact', 'hattori', 'prantl', or the ray casts 'raycast', 'raycast-cos' (need
+`volume`); hattori_half=True: hattori's umbilic mean. Normals point out of the object, so a solid sphere of radius R has k1 = k2 = H = +1/R.
 A mesh that does not lie in `volume` (its bounding box more than a voxel beyond the volume's
 world bounds: a mesh of another volume, or other spacing or origin) raises ValueError.
 Wrong combinations raise ValueError naming the argument.)doc");

@@ -53,6 +53,18 @@ curvature::NormalsSource normals_of(const py::object& normals) {
   return *n;
 }
 
+ao::Method ao_method_of(const py::object& method) {
+  std::string names;
+  for (const std::string& n : ao::method_names()) names += (names.empty() ? "'" : "', '") + n;
+  names += "'";
+  if (method.is_none()) return ao::Method::griffin;
+  if (!py::isinstance<py::str>(method))
+    throw py::type_error("ao_method: expected one of " + names + " (a str)");
+  const std::string s = method.cast<std::string>();
+  if (const auto m = ao::method_from_name(s)) return *m;
+  throw py::value_error("ao_method: expected one of " + names + ", not '" + s + "'");
+}
+
 py::value_error request_error(const curvature::RequestError& e) {
   using P = curvature::RequestProblem;
   const std::string name = curvature::estimator_name(e.estimator);
@@ -78,6 +90,13 @@ py::value_error request_error(const curvature::RequestError& e) {
       if (e.field == curvature::RequestField::ao_scale)
         return py::value_error("ao_scale: a positive number (world units)");
       break;
+    case P::ao_needs_volume:
+      return py::value_error(
+          "ao_method: the ray casts ('raycast', 'raycast-cos') need the volume argument (they "
+          "cast rays through it), not a mesh alone; 'griffin-exact', 'hattori' and 'prantl' "
+          "work on meshes");
+    case P::hattori_half_not_hattori:
+      return py::value_error("hattori_half: applies to ao_method='hattori' only");
     case P::not_finite:
       break;
   }
@@ -147,7 +166,8 @@ void check_mesh_in_volume(const Mesh& mesh, const volume::Volume& volume) {
 
 Estimated estimate_of(const std::shared_ptr<PyMesh>& mesh, const volume::Volume* volume,
                       py::object estimator, py::object scale, py::object normals_arg,
-                      py::object iso, py::object ao_scale, bool cap, py::object device) {
+                      py::object iso, py::object ao_scale, bool cap, py::object device,
+                      py::object ao_method, bool hattori_half) {
   const DeviceChoice dc = device_choice(device);
   // The arguments converted (TypeErrors, and a scale that is no positive number or 'auto'), then
   // the library's rules on them (curvature::resolve, the command line's), as ValueErrors naming
@@ -159,6 +179,8 @@ Estimated estimate_of(const std::shared_ptr<PyMesh>& mesh, const volume::Volume*
   request.scale = scale_of(scale);
   if (!iso.is_none()) request.iso = number_of(iso, "iso");
   if (!ao_scale.is_none()) request.ao_scale = number_of(ao_scale, "ao_scale");
+  if (!ao_method.is_none()) request.ao_method = ao_method_of(ao_method);
+  request.hattori_half = hattori_half;
   curvature::Resolved r;
   try {
     r = curvature::resolve(request, volume != nullptr, mesh->isovalue);
@@ -171,6 +193,8 @@ Estimated estimate_of(const std::shared_ptr<PyMesh>& mesh, const volume::Volume*
   co.estimator = r.estimator;
   co.scale = r.scale;
   co.ao_scale = r.ao_scale ? *r.ao_scale : curvature::default_ao_scale(mesh->mesh);
+  co.ao_method = r.ao_method;  // estimate_field's last step, as the command line's --ao-method
+  co.hattori_half = r.hattori_half;
   curvature::CurvatureField field;
   curvature::EstimatorReport report;
   volume::MeshNormals vn;

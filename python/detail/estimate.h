@@ -1,6 +1,7 @@
 #pragma once
 // The curvature estimate curvature() runs and measure(), features() and lines() run when given no
-// curvature arrays: its arguments (estimator=, scale=, normals=, ao_scale=, iso=), the CLI's rules
+// curvature arrays: its arguments (estimator=, scale=, normals=, ao_scale=, ao_method=,
+// hattori_half=, iso=), the CLI's rules
 // on them, and the report it returns.
 #include <initializer_list>
 #include <memory>
@@ -25,6 +26,10 @@ double scale_of(const py::object& scale);
 /// normals= for the mesh estimators: None (automatic, the default), 'volume', 'mesh', 'area' or
 /// 'face-average' (the CLI's --normals).
 curvature::NormalsSource normals_of(const py::object& normals);
+
+/// ao_method= as the CLI's --ao-method: None (griffin, the estimators' own) or one of
+/// ao::method_names() (TypeError, or ValueError listing the names, otherwise).
+ao::Method ao_method_of(const py::object& method);
 
 /// A curvature request's error (curvature::resolve) in the module's words: a ValueError naming
 /// the argument ("normals: applies to the mesh estimators; ...").
@@ -51,7 +56,8 @@ struct Estimated {
 /// given no curvature arrays.
 Estimated estimate_of(const std::shared_ptr<PyMesh>& mesh, const volume::Volume* volume,
                       py::object estimator, py::object scale, py::object normals_arg,
-                      py::object iso, py::object ao_scale, bool cap, py::object device);
+                      py::object iso, py::object ao_scale, bool cap, py::object device,
+                      py::object ao_method = py::none(), bool hattori_half = false);
 
 /// The isovalue of `mesh` for the volume stages: iso= when given, else mesh.isovalue (set by
 /// extract); a ValueError naming `why` when neither.

@@ -274,6 +274,29 @@ class Estimators(unittest.TestCase):
         self.assertEqual(area.report["normals"], "face-average")
         self.assertFalse(np.array_equal(area["H"], isocurv.curvature(self.mesh, estimator="batagelo")["H"]))
 
+    def test_ao_method_is_the_clis_and_follows_its_rules(self):
+        m, v = self.mesh, self.v
+        griffin = isocurv.curvature(m)
+        np.testing.assert_array_equal(isocurv.curvature(m, ao_method="griffin")["AO"], griffin["AO"])
+        for method in ("griffin-exact", "hattori", "prantl"):
+            a = isocurv.curvature(m, ao_method=method)
+            self.assertFalse(np.array_equal(a["AO"], griffin["AO"]), msg=method)
+            np.testing.assert_array_equal(a["H"], griffin["H"], err_msg=method)
+        # the cavity (inside below): concave, where hattori's two means differ
+        cavity = isocurv.extract(isocurv.from_array(ball(np.float32), inside="below"), 135)
+        half = isocurv.curvature(cavity, ao_method="hattori", hattori_half=True)
+        self.assertFalse(np.array_equal(half["AO"], isocurv.curvature(cavity, ao_method="hattori")["AO"]))
+        ray = isocurv.curvature(m, v, ao_method="raycast")
+        self.assertTrue(((ray["AO"] >= 0) & (ray["AO"] <= 1)).all())
+        with self.assertRaisesRegex(ValueError, "^ao_method: the ray casts .* need the volume argument"):
+            isocurv.curvature(m, ao_method="raycast")
+        with self.assertRaisesRegex(ValueError, "^hattori_half: applies to ao_method='hattori' only"):
+            isocurv.curvature(m, hattori_half=True)
+        with self.assertRaisesRegex(ValueError, "^ao_method: expected one of 'griffin', .*, not 'guess'"):
+            isocurv.curvature(m, ao_method="guess")
+        with self.assertRaisesRegex(TypeError, "^ao_method"):
+            isocurv.curvature(m, ao_method=1)
+
     def test_bad_combinations_raise_value_errors_naming_the_argument(self):
         m, v = self.mesh, self.v
         with self.assertRaisesRegex(ValueError, "^scale: applies to estimator='volume' only$"):

@@ -1,6 +1,7 @@
 // The ambient-occlusion methods (ao/ao.h): the formulas' check values (SEEDS-SPEC.md A5, G-AO2,
 // R-AO2, R-AO4), the ray cast against the closed forms inside a spherical cavity and on a plane,
-// every method darker in concavities, determinism, and compute()'s metadata and errors.
+// every method darker in concavities, determinism, compute()'s metadata and errors, and the
+// curvature stage's own call running it (curvature::estimate_field's last step, apply_ao).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,6 +14,7 @@
 #include "ao/raycast.h"
 #include "core/error.h"
 #include "curvature/derived.h"
+#include "curvature/estimator.h"
 #include "curvature/reference.h"
 #include "datasets/field.h"
 #include "datasets/sample.h"
@@ -250,6 +252,52 @@ TEST(AoCompute, EveryMethodIsDarkerInTheCavityAndNamesItself) {
   ao::compute(s.mesh, s.field, {}, o);
   ASSERT_EQ(s.field.ao.size(), own.size());
   for (std::size_t i = 0; i < own.size(); ++i) ASSERT_NEAR(s.field.ao[i], own[i], 1e-6);
+}
+
+// The curvature stage's call: estimate_field with Options::ao_method gives what ao::compute gives
+// on its griffin field, bit for bit (array and metadata); griffin is the estimators' own AO.
+TEST(AoCompute, TheCurvatureStageRunsIt) {
+  const SphereCase s = sphere_case(32, true);
+  const curvature::VolumeSource source{&s.volume, 0.0f};
+  curvature::Options co;
+  co.ao_scale = 0.2f;
+  curvature::EstimatorReport griffin_report;
+  const curvature::CurvatureField griffin =
+      curvature::estimate_field(s.mesh, source, nullptr, co, &griffin_report);
+  EXPECT_FALSE(griffin_report.ao_ms) << "griffin: no AO step";
+  for (ao::Method m : {ao::Method::griffin_exact, ao::Method::hattori, ao::Method::prantl,
+                       ao::Method::raycast}) {
+    for (bool half : {false, true}) {
+      if (half && m != ao::Method::hattori) continue;
+      co.ao_method = m;
+      co.hattori_half = half;
+      curvature::EstimatorReport r;
+      const curvature::CurvatureField staged =
+          curvature::estimate_field(s.mesh, source, nullptr, co, &r);
+      curvature::CurvatureField expected = griffin;
+      ao::Options o;
+      o.method = m;
+      o.radius = 0.2f;
+      o.hattori_half = half;
+      ao::compute(s.mesh, expected, source, o);
+      EXPECT_EQ(staged.ao, expected.ao) << ao::method_name(m);
+      EXPECT_EQ(staged.metadata, expected.metadata) << ao::method_name(m);
+      EXPECT_NE(staged.ao, griffin.ao) << ao::method_name(m);
+      EXPECT_TRUE(r.ao_ms) << ao::method_name(m);
+      // the same step on a field estimated before (a file's own curvature)
+      curvature::CurvatureField later = griffin;
+      EXPECT_TRUE(curvature::apply_ao(s.mesh, later, source, co));
+      EXPECT_EQ(later.ao, expected.ao) << ao::method_name(m);
+    }
+  }
+  co.ao_method = ao::Method::griffin;
+  co.hattori_half = false;
+  curvature::CurvatureField unchanged = griffin;
+  EXPECT_FALSE(curvature::apply_ao(s.mesh, unchanged, source, co));
+  EXPECT_EQ(unchanged.ao, griffin.ao);
+  co.ao_method = ao::Method::raycast;
+  EXPECT_THROW(curvature::estimate_field(s.mesh, {}, nullptr, co), Error)
+      << "a ray cast without the volume (resolve refuses it first)";
 }
 
 TEST(AoCompute, BadRequestsAreErrors) {

@@ -1,5 +1,5 @@
 // curvature::resolve (curvature/request.h): the default estimator, each rule's field and problem,
-// the resolved normals and host_normals; and volume::checked_isovalue, the isovalue's rules. The
+// the resolved normals and host_normals, the AO rules (check_ao); and volume::checked_isovalue, the isovalue's rules. The
 // command line and the Python module word these errors (tests/app, python/tests).
 #include <gtest/gtest.h>
 
@@ -155,6 +155,56 @@ TEST(CurvatureRequest, EachRuleNamesItsField) {
   ao.ao_scale = nan;
   expect_request_error(ao, false, std::nullopt, RequestField::ao_scale, RequestProblem::not_finite,
                        "ao_scale NaN");
+}
+
+TEST(CurvatureRequest, TheAmbientOcclusionRules) {
+  // Resolved as asked; griffin (every estimator's own) when not asked.
+  EXPECT_EQ(curvature::resolve(Request{}, false).ao_method, ao::Method::griffin);
+  Request hattori;
+  hattori.ao_method = ao::Method::hattori;
+  hattori.hattori_half = true;
+  const curvature::Resolved r = curvature::resolve(hattori, false);
+  EXPECT_EQ(r.ao_method, ao::Method::hattori);
+  EXPECT_TRUE(r.hattori_half);
+
+  // hattori_half with another method, or none.
+  Request half;
+  half.hattori_half = true;
+  expect_request_error(half, false, std::nullopt, RequestField::hattori_half,
+                       RequestProblem::hattori_half_not_hattori, "hattori_half, no method");
+  half.ao_method = ao::Method::prantl;
+  expect_request_error(half, false, std::nullopt, RequestField::hattori_half,
+                       RequestProblem::hattori_half_not_hattori, "hattori_half with prantl");
+
+  // The ray casts need a volume; the curvature formulas do not.
+  for (ao::Method m : {ao::Method::raycast, ao::Method::raycast_cos}) {
+    Request ray;
+    ray.ao_method = m;
+    expect_request_error(ray, false, std::nullopt, RequestField::ao_method,
+                         RequestProblem::ao_needs_volume, ao::method_name(m));
+    EXPECT_NO_THROW(curvature::resolve(ray, true, 1.0f)) << ao::method_name(m);
+    EXPECT_THROW(curvature::check_ao(ray, false), curvature::RequestError);
+    EXPECT_NO_THROW(curvature::check_ao(ray, true));
+  }
+  for (ao::Method m : {ao::Method::griffin, ao::Method::griffin_exact, ao::Method::hattori,
+                       ao::Method::prantl}) {
+    Request formula;
+    formula.ao_method = m;
+    EXPECT_NO_THROW(curvature::resolve(formula, false)) << ao::method_name(m);
+  }
+
+  // check_ao alone (a file's own curvature): the same rules, the estimator's not among them.
+  Request file;
+  file.estimator = Estimator::volume;  // no volume: resolve's problem, not check_ao's
+  file.ao_method = ao::Method::hattori;
+  EXPECT_NO_THROW(curvature::check_ao(file, false));
+  file.ao_scale = 0.0f;
+  try {
+    curvature::check_ao(file, false);
+    ADD_FAILURE() << "ao_scale 0 passed check_ao";
+  } catch (const curvature::RequestError& e) {
+    EXPECT_EQ(e.field, RequestField::ao_scale);
+  }
 }
 
 TEST(CurvatureRequest, TheFirstBrokenRuleWins) {
