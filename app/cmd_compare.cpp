@@ -4,12 +4,14 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "app/commands.h"
+#include "app/label_surfaces.h"
 #include "app/pipeline.h"
 #include "core/error.h"
 #include "core/mesh_measures.h"
@@ -88,6 +90,63 @@ std::unique_ptr<datasets::Field> analytic_source(const Surface& s, const CommonO
   return datasets::make_field(meta->value());
 }
 
+/// One estimator's results over the surface (or every label's surface, one after another).
+struct CompareRow {
+  std::string name, path;
+  std::vector<float> H, K;
+  std::vector<bool> keep;  ///< counted (counted()), per vertex
+  double ms = 0;
+  std::size_t flagged = 0;
+};
+
+/// Every mesh estimator on `mesh` (normals as `curvature` takes them: --normals, else the
+/// gradient of `volume`, else the faces), and with a volume the volume estimator on `volume` at
+/// `isovalue`, appended to `rows` (one row per estimator, made on the first call). Returns the
+/// mesh estimators' normals' name.
+std::string compare_estimators(const Mesh& mesh, const volume::Volume* volume, float isovalue,
+                               const CommonOptions& o, StageTimer& timer,
+                               std::vector<CompareRow>& rows) {
+  curvature::Options co;
+  const curvature::NormalsSource asked = mesh_estimators_normals(o, volume != nullptr);
+  const volume::MeshNormals normals = curvature::host_normals(asked, mesh, volume, o.cap);
+  if (curvature::host_computed(asked)) co.vertex_normals = &normals.normals;
+  co.ao_scale = curvature::default_ao_scale(mesh);
+  apply_estimator_parameters(o, co);  // --scale reaches the volume row, the weights batagelo's
+  Device* device = reference_device(o) ? nullptr : &device_for(o);
+  const double mean_edge = mean_edge_length(mesh);
+  std::size_t row = 0;
+  // Runs one estimator (once before timing when `warm`: the device's program build, buffers).
+  auto add = [&](const std::string& name, const std::string& path, bool warm,
+                 const std::function<CurvatureField()>& run) {
+    if (rows.size() <= row) rows.push_back(CompareRow{name, path, {}, {}, {}, 0, 0});
+    CompareRow& r = rows[row++];
+    if (warm) run();
+    timer.start(name);
+    const auto t0 = std::chrono::steady_clock::now();
+    const CurvatureField f = run();
+    r.ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    timer.stop();
+    const std::vector<bool> keep = counted(f, mean_edge);
+    r.keep.insert(r.keep.end(), keep.begin(), keep.end());
+    r.H.insert(r.H.end(), f.H.begin(), f.H.end());
+    r.K.insert(r.K.end(), f.K.begin(), f.K.end());
+    for (std::uint8_t u : f.unreliable) r.flagged += u;
+  };
+  for (const curvature::MeshEstimatorInfo& e : curvature::mesh_estimators()) {
+    Device* d = e.kernels ? device : nullptr;
+    add(e.name, d ? "opencl" : "reference", d != nullptr,
+        [&] { return curvature::estimate_mesh(e.id, mesh, d, co); });
+  }
+  if (volume) {  // the volume estimator at its auto scale (the default for volume input)
+    curvature::Options vo = co;
+    vo.estimator = curvature::Estimator::volume;
+    vo.vertex_normals = nullptr;
+    add("volume", device ? "opencl" : "reference", device != nullptr,
+        [&] { return curvature::estimate_field(mesh, {volume, isovalue}, device, vo); });
+  }
+  return curvature::normals_name(asked);
+}
+
 }  // namespace
 
 void register_compare(CLI::App& app) {
@@ -112,6 +171,7 @@ void register_compare(CLI::App& app) {
   cmd->add_option("VOLUME_OR_MESH", in, "Volume or mesh file (.vtp .ply .obj .stl)")->required();
   add_common_options(*cmd, o);
   add_curvature_options(*cmd, o, /*mesh_input=*/true);
+  add_label_options(*cmd, o, false);
   cmd->callback([] {
     // Options compare would otherwise ignore are refused, before any work.
     if (!o.estimator.empty())
@@ -120,105 +180,83 @@ void register_compare(CLI::App& app) {
     if (o.scale != "auto" && parse_scales(o.scale).size() > 1)
       throw CLI::ValidationError("--scale", "compare measures the volume estimator at one scale");
     StageTimer timer;
-    Surface s = load_surface(in, o, timer);
-    if (o.scale != "auto" && !s.volume)
-      throw CLI::ValidationError("--scale", "applies to the volume estimator, which needs a volume input");
-    prepare_mesh_for_curvature(s, in, o);
-    const Mesh& mesh = s.mesh;
-    curvature::Options co;
-    // The mesh estimators' normals as `curvature` takes them (curvature/request.h): --normals,
-    // else the volume's gradient with a volume, else the faces.
-    const curvature::NormalsSource asked = mesh_estimators_normals(o, s.volume.has_value());
-    const std::string source = curvature::normals_name(asked);
-    const volume::MeshNormals normals =
-        curvature::host_normals(asked, mesh, s.volume ? &*s.volume : nullptr, o.cap);
-    if (curvature::host_computed(asked)) co.vertex_normals = &normals.normals;
-    co.ao_scale = curvature::default_ao_scale(mesh);
-    apply_estimator_parameters(o, co);  // --scale reaches the volume row, the weights batagelo's
-    Device* device = reference_device(o) ? nullptr : &device_for(o);
-    const double mean_edge = mean_edge_length(mesh), limit = 2 / mean_edge;
-
-    const std::unique_ptr<datasets::Field> field = analytic_source(s, o);
+    std::vector<CompareRow> rows;
+    std::string source;
+    std::size_t vertices = 0, triangles = 0, labels_compared = 0;
+    double edge_sum = 0;  // mean edge lengths times triangles, for the limit's mean edge
+    std::unique_ptr<datasets::Field> field;
     std::vector<double> exact_h, exact_k;
-    if (field) {
-      timer.start("exact");
-      for (const Vec3f& p : mesh.positions) {
-        const datasets::SurfaceCurvature c = datasets::exact_curvature(
-            *field, datasets::project_to_surface(*field, Eigen::Vector3d(p[0], p[1], p[2])));
-        exact_h.push_back(c.H), exact_k.push_back(c.K);
+    if (o.labelled()) {
+      // Each label's surface on its own indicator, its rows after the previous labels'.
+      const PickedLabels p = pick_labels(in, o, timer);
+      const std::vector<std::int64_t> empty = labels::for_each_label_surface(
+          p.map, p.picked, label_steps(p.map, o, timer), [&](labels::LabelSurface& l) {
+            source = compare_estimators(l.mesh, &l.indicator, l.isovalue, o, timer, rows);
+            vertices += l.mesh.vertex_count();
+            triangles += l.mesh.triangle_count();
+            edge_sum += mean_edge_length(l.mesh) * double(l.mesh.triangle_count());
+            ++labels_compared;
+          });
+      if (!empty.empty() && !o.quiet)
+        std::fprintf(stderr, "isocurv: warning: %s: %s\n", in.c_str(),
+                     labels::filling_labels_note(empty).c_str());
+      if (labels_compared == 0) throw Error(in, "--labels: no label has a surface");
+    } else {
+      Surface s = load_surface(in, o, timer);
+      if (o.scale != "auto" && !s.volume)
+        throw CLI::ValidationError("--scale", "applies to the volume estimator, which needs a volume input");
+      prepare_mesh_for_curvature(s, in, o);
+      const Mesh& mesh = s.mesh;
+      field = analytic_source(s, o);
+      if (field) {
+        timer.start("exact");
+        for (const Vec3f& p : mesh.positions) {
+          const datasets::SurfaceCurvature c = datasets::exact_curvature(
+              *field, datasets::project_to_surface(*field, Eigen::Vector3d(p[0], p[1], p[2])));
+          exact_h.push_back(c.H), exact_k.push_back(c.K);
+        }
+        timer.stop();
       }
-      timer.stop();
+      source = compare_estimators(mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer, rows);
+      vertices = mesh.vertex_count();
+      triangles = mesh.triangle_count();
+      edge_sum = mean_edge_length(mesh) * double(triangles);
     }
-
-    struct Row {
-      std::string name, path;
-      CurvatureField f;
-      std::vector<bool> keep;
-      double ms = 0;
-      std::size_t flagged = 0;
-    };
-    std::vector<Row> rows;
-    for (const curvature::MeshEstimatorInfo& e : curvature::mesh_estimators()) {
-      Device* d = e.kernels ? device : nullptr;
-      Row r{e.name, d ? "opencl" : "reference", {}, {}, 0, 0};
-      if (d) curvature::estimate_mesh(e.id, mesh, d, co);  // warm: program build, buffers
-      timer.start(e.name);
-      const auto t0 = std::chrono::steady_clock::now();
-      r.f = curvature::estimate_mesh(e.id, mesh, d, co);
-      r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-      timer.stop();
-      r.keep = counted(r.f, mean_edge);
-      for (std::uint8_t u : r.f.unreliable) r.flagged += u;
-      rows.push_back(std::move(r));
-    }
-    if (s.volume) {  // the volume estimator at its auto scale (the default for volume input)
-      curvature::Options vo = co;
-      vo.estimator = curvature::Estimator::volume;
-      vo.vertex_normals = nullptr;
-      Row r{"volume", device ? "opencl" : "reference", {}, {}, 0, 0};
-      if (device) curvature::estimate_field(mesh, {&*s.volume, s.isovalue}, device, vo);
-      timer.start("volume");
-      const auto t0 = std::chrono::steady_clock::now();
-      r.f = curvature::estimate_field(mesh, {&*s.volume, s.isovalue}, device, vo);
-      r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-      timer.stop();
-      r.keep = counted(r.f, mean_edge);
-      for (std::uint8_t u : r.f.unreliable) r.flagged += u;
-      rows.push_back(std::move(r));
-    }
+    const double limit = 2 / (edge_sum / double(std::max<std::size_t>(triangles, 1)));
 
     nlohmann::json j;
     j["input"] = in;
-    j["vertices"] = mesh.vertex_count();
-    j["triangles"] = mesh.triangle_count();
+    j["vertices"] = vertices;
+    j["triangles"] = triangles;
+    if (o.labelled()) j["labels"] = labels_compared;
     j["normals"] = source;
     j["device"] = device_name(o);
     j["analytic_field"] = field ? nlohmann::json(field->name()) : nlohmann::json();
     j["unreliable_above"] = limit;
     nlohmann::json list = nlohmann::json::array();
-    for (const Row& r : rows) {
+    for (const CompareRow& r : rows) {
       nlohmann::json e;
       e["estimator"] = r.name;
       e["path"] = r.path;
       e["time_ms"] = r.ms;
       e["unreliable"] = r.flagged;
       e["counted"] = std::count(r.keep.begin(), r.keep.end(), true);
-      const auto ph = percentiles(r.f.H, r.keep), pk = percentiles(r.f.K, r.keep);
+      const auto ph = percentiles(r.H, r.keep), pk = percentiles(r.K, r.keep);
       e["H"] = {{"p1", number(ph[0])}, {"p50", number(ph[1])}, {"p99", number(ph[2])}};
       e["K"] = {{"p1", number(pk[0])}, {"p50", number(pk[1])}, {"p99", number(pk[2])}};
       if (field) {
-        e["exact_error"] = {{"H_relative_rms", number(relative_rms(r.f.H, exact_h, r.keep))},
-                            {"K_relative_rms", number(relative_rms(r.f.K, exact_k, r.keep))}};
+        e["exact_error"] = {{"H_relative_rms", number(relative_rms(r.H, exact_h, r.keep))},
+                            {"K_relative_rms", number(relative_rms(r.K, exact_k, r.keep))}};
       }
       list.push_back(e);
     }
     j["estimators"] = list;
     nlohmann::json agree;
-    for (const Row& a : rows)
-      for (const Row& b : rows)
+    for (const CompareRow& a : rows)
+      for (const CompareRow& b : rows)
         agree[a.name][b.name] = {
-            number(disagreement(a.f.H, b.f.H, a.keep, b.keep)),
-            number(disagreement(a.f.K, b.f.K, a.keep, b.keep))};
+            number(disagreement(a.H, b.H, a.keep, b.keep)),
+            number(disagreement(a.K, b.K, a.keep, b.keep))};
     j["agreement_H_K"] = agree;
     j["timings_ms"] = timer.json();
 
@@ -226,8 +264,9 @@ void register_compare(CLI::App& app) {
       std::cout << j.dump(2) << "\n";
       return;
     }
-    std::printf("%s: %zu vertices, %zu triangles, %s normals, %s%s\n", in.c_str(),
-                mesh.vertex_count(), mesh.triangle_count(), source.c_str(),
+    std::printf("%s: %s%zu vertices, %zu triangles, %s normals, %s%s\n", in.c_str(),
+                o.labelled() ? (std::to_string(labels_compared) + " labels, ").c_str() : "",
+                vertices, triangles, source.c_str(),
                 device_name(o).c_str(),
                 field ? (", exact values of the analytic field " + field->name()).c_str() : "");
     std::printf("%-13s %-9s %9s %6s %10s %10s %10s  %10s %10s %10s%s\n", "estimator", "path",
@@ -247,7 +286,7 @@ void register_compare(CLI::App& app) {
     }
     std::printf("\nagreement: RMS difference over RMS, H (upper right) and K (lower left)\n%-13s",
                 "");
-    for (const Row& r : rows) std::printf(" %12s", r.name.c_str());
+    for (const CompareRow& r : rows) std::printf(" %12s", r.name.c_str());
     std::printf("\n");
     for (std::size_t a = 0; a < rows.size(); ++a) {
       std::printf("%-13s", rows[a].name.c_str());

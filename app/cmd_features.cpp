@@ -9,12 +9,14 @@
 #include "app/batch.h"
 #include "app/commands.h"
 #include "app/distributed.h"
+#include "app/label_surfaces.h"
 #include "app/pipeline.h"
 #include "app/series.h"
 #include "core/error.h"
 #include "core/mesh_measures.h"
 #include "features/features.h"
 #include "io/mesh_file.h"
+#include "labels/label_surfaces.h"
 
 namespace isocurv::app {
 namespace {
@@ -46,6 +48,92 @@ features::Options feature_selection(const FeaturesCli &c) {
   return fo;
 }
 
+/// The world length of the diagonal of `v`'s data domain (corner voxel to corner voxel).
+double volume_box_diagonal(const volume::Volume &v) {
+  const openvdb::Vec3d a = v.grid->transform().indexToWorld(v.domain.min().asVec3d()),
+                       b = v.grid->transform().indexToWorld(v.domain.max().asVec3d());
+  return (b - a).length();
+}
+
+/// What the features of one surface (or of every label's) add up to, for the report.
+struct FeatureTally {
+  std::vector<std::string> arrays;   ///< the feature arrays' names
+  std::size_t boundary = 0;          ///< vertices flagged FeatureBoundary
+  std::uint64_t samples_taken = 0;
+  double traced_weighted = 0;        ///< traced_fraction times the vertices, summed
+  std::size_t vertices = 0;
+};
+
+/// The features of `mesh` (with its readied curvature `field`, and the volume `vol` it was
+/// extracted from at fo.isovalue, or none) added to field.extra (replacing arrays of the same
+/// names a mesh file carried, and FeatureBoundary), counted into `tally`.
+void add_features(const Mesh &mesh, curvature::CurvatureField &field, const volume::Volume *vol,
+                  const features::Options &fo, const CommonOptions &o, StageTimer &timer,
+                  FeatureTally &tally) {
+  timer.start("features");
+  features::FeatureField f = reference_device(o)
+                                 ? features::compute(mesh, field, vol, fo)
+                                 : features::compute(mesh, field, vol, fo, device_for(o));
+  timer.stop();
+  for (std::uint8_t b : f.boundary)
+    tally.boundary += b;
+  tally.samples_taken += f.samples_taken;
+  tally.traced_weighted += f.traced_fraction * double(mesh.vertex_count());
+  tally.vertices += mesh.vertex_count();
+  auto &extra = field.extra; // a mesh file may carry features from an earlier run: replace them
+  for (const auto &a : f.arrays)
+    extra.erase(
+        std::remove_if(extra.begin(), extra.end(),
+                       [&](const auto &e) { return e.name == a.name; }),
+        extra.end());
+  extra.erase(std::remove_if(
+                  extra.begin(), extra.end(),
+                  [](const auto &e) { return e.name == "FeatureBoundary"; }),
+              extra.end());
+  const bool first = tally.arrays.empty();
+  for (auto &a : f.arrays) {
+    if (first) tally.arrays.push_back(a.name);
+    extra.push_back({a.name, std::move(a.values)});
+  }
+  extra.push_back(
+      {"FeatureBoundary",
+       std::vector<float>(f.boundary.begin(), f.boundary.end())});
+}
+
+/// The sampling options of `c` for a surface of a volume (or none) at `isovalue`.
+features::Options sampled_options(const FeaturesCli &c, features::Options fo, bool volume,
+                                  float isovalue) {
+  fo.isovalue = isovalue;
+  fo.samples = c.samples >= 0 ? c.samples : (volume ? 256 : 0);
+  fo.adaptive = c.adaptive;
+  if (c.adaptive && fo.samples == 0)
+    throw Error("--adaptive applies to sampled neighbourhoods (--samples N with a volume)");
+  return fo;
+}
+
+/// The --json report of the features of `s`: surface_report and what `tally` counted.
+nlohmann::json features_report(const Surface &s, const features::Options &fo,
+                               const FeatureTally &tally, const CommonOptions &o) {
+  nlohmann::json r = surface_report(s);
+  nlohmann::json radii = nlohmann::json::array();
+  for (std::size_t i = 0; i < fo.radii.size(); ++i)
+    radii.push_back(
+        {{"as_given", fo.radius_names[i]}, {"world", fo.radii[i]}});
+  r["features"] = {
+      {"radii", radii},
+      {"arrays", tally.arrays},
+      {"mean_curvature_from", s.volume ? "volume integral invariant" : "surface samples"},
+      {"boundary_vertices", tally.boundary},
+      {"neighbourhoods", fo.samples > 0 ? "sampled" : "exact"},
+      {"samples", fo.samples},
+      {"adaptive", fo.adaptive},
+      {"samples_taken", tally.samples_taken},
+      {"traced_fraction",
+       tally.vertices ? tally.traced_weighted / double(tally.vertices) : 1.0},
+      {"device", device_name(o)}};
+  return r;
+}
+
 /// Computes the features of `s` (as loaded: a volume's isosurface or a mesh file) into its
 /// field's extra arrays, readying the curvature first; returns the --json report without
 /// input, output and timings.
@@ -61,56 +149,34 @@ nlohmann::json compute_features(Surface &s, const std::string &in, const CommonO
     reestimate_keeping_extras(s, in, o, timer);  // --flip or no field: the file's arrays stay
   }
   radius_option(c.radius, bounding_box_diagonal(s.mesh), fo);
-  fo.isovalue = s.isovalue;
-  fo.samples = c.samples >= 0 ? c.samples : (s.volume ? 256 : 0);
-  fo.adaptive = c.adaptive;
-  if (c.adaptive && fo.samples == 0)
-    throw Error("--adaptive applies to sampled neighbourhoods (--samples N with a volume)");
-  const volume::Volume* vol = s.volume ? &*s.volume : nullptr;
-  timer.start("features");
-  features::FeatureField f = reference_device(o)
-                                 ? features::compute(s.mesh, *s.field, vol, fo)
-                                 : features::compute(s.mesh, *s.field, vol, fo, device_for(o));
-  timer.stop();
-  std::size_t boundary = 0;
-  for (std::uint8_t b : f.boundary)
-    boundary += b;
-  nlohmann::json arrays = nlohmann::json::array();
-  auto &extra = s.field->extra; // a mesh file may carry features from an
-                                // earlier run: replace them
-  for (const auto &a : f.arrays)
-    extra.erase(
-        std::remove_if(extra.begin(), extra.end(),
-                       [&](const auto &e) { return e.name == a.name; }),
-        extra.end());
-  extra.erase(std::remove_if(
-                  extra.begin(), extra.end(),
-                  [](const auto &e) { return e.name == "FeatureBoundary"; }),
-              extra.end());
-  for (auto &a : f.arrays) {
-    arrays.push_back(a.name);
-    s.field->extra.push_back({a.name, std::move(a.values)});
-  }
-  s.field->extra.push_back(
-      {"FeatureBoundary",
-       std::vector<float>(f.boundary.begin(), f.boundary.end())});
-  nlohmann::json r = surface_report(s);
-  nlohmann::json radii = nlohmann::json::array();
-  for (std::size_t i = 0; i < fo.radii.size(); ++i)
-    radii.push_back(
-        {{"as_given", fo.radius_names[i]}, {"world", fo.radii[i]}});
-  r["features"] = {
-      {"radii", radii},
-      {"arrays", arrays},
-      {"mean_curvature_from", s.volume ? "volume integral invariant" : "surface samples"},
-      {"boundary_vertices", boundary},
-      {"neighbourhoods", fo.samples > 0 ? "sampled" : "exact"},
-      {"samples", fo.samples},
-      {"adaptive", fo.adaptive},
-      {"samples_taken", f.samples_taken},
-      {"traced_fraction", f.traced_fraction},
-      {"device", device_name(o)}};
-  return r;
+  fo = sampled_options(c, fo, s.volume.has_value(), s.isovalue);
+  FeatureTally tally;
+  add_features(s.mesh, *s.field, s.volume ? &*s.volume : nullptr, fo, o, timer, tally);
+  return features_report(s, fo, tally, o);
+}
+
+/// --labels: each label's features on its own surface and indicator (neighbourhoods never cross
+/// into another label), its curvature first; a radius in % is of the label map's box diagonal
+/// (one radius for every label). Returns the --json report; `s` gets the labels' surfaces.
+nlohmann::json compute_label_features(Surface &s, const std::string &in, const CommonOptions &o,
+                                      const FeaturesCli &c, features::Options fo,
+                                      StageTimer &timer) {
+  FeatureTally tally;
+  LabelHooks hooks;
+  hooks.margin = [&](const volume::Volume &map) {
+    radius_option(c.radius, volume_box_diagonal(map), fo);
+    fo = sampled_options(c, fo, true, labels::kIndicatorIsovalue);
+    const openvdb::Vec3d sp = map.spacing();
+    const double largest = *std::max_element(fo.radii.begin(), fo.radii.end());
+    // the neighbourhoods reach the radius from the surface: keep them inside the indicator
+    return int(std::ceil(largest / std::min({sp[0], sp[1], sp[2]}))) + 2;
+  };
+  hooks.field = [&](const volume::Volume &, const Mesh &mesh, const volume::Volume &indicator,
+                    curvature::CurvatureField &field) {
+    add_features(mesh, field, &indicator, fo, o, timer, tally);
+  };
+  s = load_label_surfaces(in, o, timer, true, hooks);
+  return features_report(s, fo, tally, o);
 }
 
 /// The features mesh: the surface with its curvature and feature arrays (uncompressed).
@@ -164,6 +230,7 @@ void register_features(CLI::App &app) {
                 "half's mean curvatures disagree (two-stage adaptive sampling)");
   add_common_options(*cmd, o, false);
   add_curvature_options(*cmd, o, true);
+  add_label_options(*cmd, o, false);
   add_series_options(*cmd, series);
   // One input -> `out`; prints its summary unless `quiet_summary` (a series frame). Returns the
   // --json report.
@@ -173,12 +240,19 @@ void register_features(CLI::App &app) {
     require_writable_file(out);  // before any work
     const features::Options fo = feature_selection(c);
     StageTimer timer;
-    // Under mpirun: the ranks extract the surface together, rank 0 computes the features.
-    std::optional<Surface> on_zero =
-        surface_for_rank_zero(in, o, timer, DistributedWork::extract, WholeVolume::on_rank_zero);
-    if (!on_zero) return nlohmann::json::object();
+    std::optional<Surface> on_zero;
+    nlohmann::json r;
+    if (o.labelled()) {
+      on_zero.emplace();
+      r = compute_label_features(*on_zero, in, o, c, fo, timer);
+    } else {
+      // Under mpirun: the ranks extract the surface together, rank 0 computes the features.
+      on_zero = surface_for_rank_zero(in, o, timer, DistributedWork::extract,
+                                      WholeVolume::on_rank_zero);
+      if (!on_zero) return nlohmann::json::object();
+      r = compute_features(*on_zero, in, o, c, fo, timer);
+    }
     Surface& s = *on_zero;
-    nlohmann::json r = compute_features(s, in, o, c, fo, timer);
     timer.start("write");
     write_features(out, s, in, r);
     timer.stop();

@@ -9,6 +9,7 @@
 #include "core/atomic_file.h"
 #include "app/batch.h"
 #include "app/commands.h"
+#include "app/label_surfaces.h"
 #include "app/line_options_cli.h"
 #include "app/pipeline.h"
 #include "app/series.h"
@@ -35,7 +36,8 @@ LinesResult compute_lines(Surface &s, const std::string &in, const CommonOptions
                           const AnatomicalCli &anatomical, int width, int height, bool svg,
                           StageTimer &timer) {
   LinesResult l;
-  ensure_curvature(s, in, o, timer);
+  if (!o.labelled())  // a label map's surfaces come with each label's own curvature
+    ensure_curvature(s, in, o, timer);
   l.cam = picture_camera(
       s.mesh, resolve_view(view, anatomical, surface_context(s).world_space, in), width, height);
   lines::Segments segs = extract_lines(s.mesh, *s.field, l.cam, lo, o, timer);
@@ -120,6 +122,7 @@ void register_lines(CLI::App &app) {
       ->required();
   add_common_options(*cmd, o, false);
   add_curvature_options(*cmd, o, true);
+  add_label_options(*cmd, o, false);
   add_line_options(*cmd, lc, "contours,suggestive");
   add_camera_options(*cmd, view, &anatomical);
   cmd->add_option_function<std::string>(
@@ -154,7 +157,7 @@ void register_lines(CLI::App &app) {
     const lines::Options lo = parsed_line_options(lc);
     require_lines_supported(lo.lines, o);
     StageTimer timer;
-    Surface s = load_surface(in, o, timer);
+    Surface s = o.labelled() ? load_label_surfaces(in, o, timer, true) : load_surface(in, o, timer);
     const LinesResult l =
         compute_lines(s, in, o, lo, view, anatomical, width, height, svg, timer);
     timer.start("write");

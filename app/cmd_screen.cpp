@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "app/commands.h"
+#include "app/label_surfaces.h"
 #include "app/picture_title.h"
 #include "app/pipeline.h"
 #include "app/render_options_cli.h"
@@ -27,6 +28,10 @@
 
 namespace isocurv::app {
 namespace {
+
+/// screen --labels: the labels' indicator reaches this many voxels past their box (the cast's
+/// smoothing and gradient stencils read there).
+constexpr int kScreenLabelMargin = 8;
 
 /// --smooth as a number of voxels in [0, volume::kMaxSmoothingVoxels]. @throw Error otherwise.
 double parse_smoothing(const std::string& text) {
@@ -80,6 +85,7 @@ void register_screen(CLI::App& app) {
   cmd->add_option("-o,--output", out, "PNG picture to write")->required();
   cmd->add_option("--raw", raw, "Also write the per-pixel H, K and Valid as VTK image data (.vti)");
   add_common_options(*cmd, o);
+  add_label_options(*cmd, o, false);
   add_camera_options(*cmd, view, &anatomical);
   static std::string camera_file;
   cmd->add_option("--camera", camera_file,
@@ -209,7 +215,7 @@ void register_screen(CLI::App& app) {
     std::string format, world_space;
     std::size_t triangles = 0;
     bool empty = false;
-    if (is_mesh_path(in)) {
+    if (is_mesh_path(in) && !o.labelled()) {
       surf = load_surface(in, o, timer);
       prepare_mesh_for_curvature(*surf, in, o);
       normals = area_weighted_normals(surf->mesh);
@@ -219,8 +225,15 @@ void register_screen(CLI::App& app) {
       if (empty) throw Error(in, "the mesh has no triangles");
       world_space = surface_context(*surf).world_space;
     } else {
-      timer.start("load");
-      volume::Volume v = volume::load(in, to_load_options(o.volume));
+      volume::Volume v;
+      if (o.labelled()) {  // the picked labels together: their outside, as a picture shows it
+        PickedLabels p = pick_labels(in, o, timer);
+        timer.start("labels");
+        v = labels::labels_indicator(p.map, p.picked, kScreenLabelMargin);
+      } else {
+        timer.start("load");
+        v = volume::load(in, to_load_options(o.volume));
+      }
       format = v.format;
       world_space = v.world_space;
       iso = o.iso ? *o.iso : float(v.stats.suggested_isovalue);
@@ -248,7 +261,8 @@ void register_screen(CLI::App& app) {
       timer.stop();
     }
     if (po.title.empty())
-      po.title = picture_title(in, po.quantity, cast ? std::optional<float>(iso) : std::nullopt,
+      po.title = picture_title(in, po.quantity,
+                               cast && !o.labelled() ? std::optional<float>(iso) : std::nullopt,
                                screen::estimator_label(so, cast ? smooth : 0));
     Device* device = reference ? nullptr : &device_for(o);
     screen::GBuffer g;

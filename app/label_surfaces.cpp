@@ -46,8 +46,7 @@ void add_label_options(CLI::App& cmd, CommonOptions& o, bool with_split) {
                  "With --labels: -o is a folder that gets one mesh file per label (label_<value>.vtp)");
 }
 
-Surface load_label_surfaces(const std::string& path, const CommonOptions& o, StageTimer& timer,
-                            bool curvature) {
+PickedLabels pick_labels(const std::string& path, const CommonOptions& o, StageTimer& timer) {
   if (is_mesh_path(path))
     throw Error(path, "--labels needs a volume (a label map), and this is a mesh file");
   if (o.iso)
@@ -55,30 +54,49 @@ Surface load_label_surfaces(const std::string& path, const CommonOptions& o, Sta
                       "level of its own indicator");
   const std::vector<std::int64_t> wanted =
       o.label_list.empty() ? std::vector<std::int64_t>{} : labels::parse_label_list(o.label_list);
-  Surface s;
   timer.start("load");
-  s.volume = volume::load(path, to_load_options(o.volume));
+  PickedLabels p{volume::load(path, to_load_options(o.volume)), {}};
   timer.start("labels");
-  const std::vector<labels::Label> all = labels::label_map_labels(*s.volume);
+  const std::vector<labels::Label> all = labels::label_map_labels(p.map);
   std::vector<std::int64_t> missing;
-  const std::vector<labels::Label> picked = labels::pick_labels(all, wanted, missing);
+  p.picked = labels::pick_labels(all, wanted, missing);
   timer.stop();
-  if (!missing.empty() && !picked.empty() && !o.quiet)
+  if (!missing.empty() && !p.picked.empty() && !o.quiet)
     std::fprintf(stderr, "isocurv: warning: %s: %s\n", path.c_str(),
                  labels::missing_labels_note(missing).c_str());
-  if (picked.empty())
+  if (p.picked.empty())
     throw Error(path, all.empty() ? std::string("--labels: the volume holds no label (every voxel is 0)")
                                   : "--label: none of the labels given is in the volume (it holds " +
                                         std::to_string(all.size()) + " labels, from " +
                                         std::to_string(all.front().value) + " to " +
                                         std::to_string(all.back().value) + ")");
   if (!reference_device(o)) device_for(o);  // open the device (and fail on it) before timing
-  s.isovalue = labels::kIndicatorIsovalue;
+  return p;
+}
+
+labels::LabelSurfaceSteps label_steps(const volume::Volume& map, const CommonOptions& o,
+                                      StageTimer& timer) {
   labels::LabelSurfaceSteps steps;
-  steps.margin = label_indicator_margin(*s.volume, o);
-  steps.extract = [&](const volume::Volume& indicator, float isovalue) {
+  steps.margin = label_indicator_margin(map, o);
+  steps.extract = [&o](const volume::Volume& indicator, float isovalue) {
     return extract_surface(indicator, isovalue, o);
   };
+  steps.stage = [&timer](const std::string& stage) {
+    if (stage.empty()) timer.stop();
+    else timer.start(stage);
+  };
+  return steps;
+}
+
+Surface load_label_surfaces(const std::string& path, const CommonOptions& o, StageTimer& timer,
+                            bool curvature, const LabelHooks& hooks) {
+  PickedLabels picked_labels = pick_labels(path, o, timer);
+  const std::vector<labels::Label>& picked = picked_labels.picked;
+  Surface s;
+  s.volume = std::move(picked_labels.map);
+  s.isovalue = labels::kIndicatorIsovalue;
+  labels::LabelSurfaceSteps steps = label_steps(*s.volume, o, timer);
+  if (hooks.margin) steps.margin = std::max(steps.margin, hooks.margin(*s.volume));
   if (curvature)
     steps.curvature = [&](const Mesh& mesh, const volume::Volume& indicator, float isovalue) {
       NormalsUsed used;
@@ -90,12 +108,9 @@ Surface load_label_surfaces(const std::string& path, const CommonOptions& o, Sta
       s.normals.caps += used.caps;
       s.normals.source = used.source;
       if (s.estimator.estimator.empty()) s.estimator = report;
+      if (hooks.field) hooks.field(*s.volume, mesh, indicator, field);
       return field;
     };
-  steps.stage = [&](const std::string& stage) {
-    if (stage.empty()) timer.stop();
-    else timer.start(stage);
-  };
   labels::LabelSurfaces made = labels::label_surfaces(*s.volume, picked, steps);
   labels::LabelledMesh& merged = made.merged;
   const std::vector<std::int64_t>& empty = made.empty;

@@ -3,10 +3,12 @@
 // run, render and measure (docs/labels.md).
 #include <CLI/CLI.hpp>
 
+#include <functional>
 #include <string>
 
 #include "app/pipeline.h"
 #include "core/atomic_file.h"
+#include "labels/label_surfaces.h"
 
 namespace isocurv::app {
 
@@ -21,11 +23,45 @@ void add_label_options(CLI::App& cmd, CommonOptions& o, bool with_split);
 /// `curvature`, each label's curvature is estimated on its own indicator (estimate_curvature:
 /// the volume estimator by default, at the binary scale) and `field` holds them all; without it,
 /// `field` holds only the per-vertex "Label". isovalue is 0.5. A --label value the map lacks,
-/// or a label whose surface is empty, is named in a warning line (unless --quiet).
+/// or a label whose surface is empty, is named in a warning line (unless --quiet). `hooks` (with
+/// `curvature`): what features --labels adds (LabelHooks).
 /// @throw Error naming `path` for a mesh file, --iso (each label has its own level), a float
 ///        volume, more than labels::kMaxLabels labels, or when no picked label has a surface.
+/// A label map as --labels and --label pick it: the map and the labels to make surfaces of.
+struct PickedLabels {
+  volume::Volume map;
+  std::vector<labels::Label> picked;  ///< never empty
+};
+
+/// Loads the label map `path` (stages "load", "labels") and picks --label's labels (all without
+/// it), warning (unless --quiet) about --label values the map lacks, and opens the device.
+/// @throw Error naming `path` for a mesh file, --iso, a float volume, more than
+///        labels::kMaxLabels labels, a map without labels, or none of --label's in it.
+PickedLabels pick_labels(const std::string& path, const CommonOptions& o, StageTimer& timer);
+
+/// The options of each label's surface: the indicators' margin for o's scales and o's
+/// extraction (extract_surface); no curvature, and `timer` takes the stages.
+labels::LabelSurfaceSteps label_steps(const volume::Volume& map, const CommonOptions& o,
+                                      StageTimer& timer);
+
+/// What a command adds to each label's curvature before the labels are merged: `map` the label
+/// map, `mesh` the label's surface, `indicator` its indicator volume (isovalue
+/// labels::kIndicatorIsovalue), `field` its curvature, to add extra arrays to (every label must
+/// add the same ones, or merging drops them). Runs on the calling thread, label by label.
+using LabelFieldHook =
+    std::function<void(const volume::Volume& map, const Mesh& mesh,
+                       const volume::Volume& indicator, curvature::CurvatureField& field)>;
+
+/// What a command adds to load_label_surfaces: `field` runs on each label's curvature before it
+/// is merged; `margin`, given the label map, returns the least indicator margin (voxels) the
+/// command's own reach needs (features' radius), raising the scale's when larger.
+struct LabelHooks {
+  LabelFieldHook field;
+  std::function<int(const volume::Volume& map)> margin;
+};
+
 Surface load_label_surfaces(const std::string& path, const CommonOptions& o, StageTimer& timer,
-                            bool curvature);
+                            bool curvature, const LabelHooks& hooks = {});
 
 /// Checks, before any work, that `out` can take a label map's surfaces: a writable file, or with
 /// --split a folder name (not an existing file). @throw Error naming `out`.

@@ -127,21 +127,37 @@ int indicator_margin(double scale_voxels) {
 }
 
 volume::Volume label_indicator(const volume::Volume& v, const Label& label, int margin) {
+  return labels_indicator(v, {label}, margin);
+}
+
+volume::Volume labels_indicator(const volume::Volume& v, const std::vector<Label>& labels,
+                                int margin) {
   if (margin < 1) throw Error("label_indicator: the margin must be at least one voxel");
-  openvdb::CoordBBox box = label.box;
+  if (labels.empty()) throw Error("labels_indicator: no label given");
+  openvdb::CoordBBox box;
+  std::vector<float> want;
+  for (const Label& l : labels) {
+    box.expand(l.box);
+    want.push_back(static_cast<float>(l.value));
+  }
+  std::sort(want.begin(), want.end());
   box.expand(margin);
   box.intersect(v.domain);
   openvdb::tools::Dense<float, openvdb::tools::LayoutXYZ> dense(box, 0.0f);
   openvdb::tools::copyToDense(*v.grid, dense);
-  const float want = static_cast<float>(label.value);
   float* data = dense.data();
   const std::size_t n = dense.valueCount();
-  for (std::size_t i = 0; i < n; ++i) data[i] = data[i] == want ? 1.0f : 0.0f;
+  if (want.size() == 1)
+    for (std::size_t i = 0; i < n; ++i) data[i] = data[i] == want[0] ? 1.0f : 0.0f;
+  else
+    for (std::size_t i = 0; i < n; ++i)
+      data[i] = std::binary_search(want.begin(), want.end(), data[i]) ? 1.0f : 0.0f;
   volume::Volume out;
   out.grid = openvdb::FloatGrid::create(0.0f);
   out.grid->setTransform(v.grid->transform().copy());
   out.grid->setGridClass(openvdb::GRID_FOG_VOLUME);
-  out.grid->setName("label " + std::to_string(label.value));
+  out.grid->setName(labels.size() == 1 ? "label " + std::to_string(labels[0].value)
+                                       : std::to_string(labels.size()) + " labels");
   openvdb::tools::copyFromDense(dense, *out.grid, 0.0f);
   out.path = v.path;
   out.format = v.format;

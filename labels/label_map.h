@@ -66,4 +66,11 @@ int indicator_margin(double scale_voxels);
 /// @param margin  at least 1 (a marching-cubes cell beyond the label's last voxel).
 volume::Volume label_indicator(const volume::Volume& v, const Label& label, int margin = 2);
 
+/// The indicator of the union of `labels` (at least one) in `v`, as label_indicator makes it for
+/// one: 1 on the voxels of any of them, 0 elsewhere, on the box around all of theirs grown by
+/// `margin`. Its isosurface at 0.5 is the outside of the labels together, without the walls
+/// between touching labels: what a picture of all of them shows (screen --labels).
+volume::Volume labels_indicator(const volume::Volume& v, const std::vector<Label>& labels,
+                                int margin = 2);
+
 }  // namespace isocurv::labels

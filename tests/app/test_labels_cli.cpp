@@ -49,10 +49,20 @@ int three_labels(int x, int y, int z) {
   return 0;
 }
 
+json run_json(const std::vector<std::string>& args);
+
+/// The vertices of extract --labels' mesh of `map`.
+std::size_t m_vertices(const std::string& map);
+
 json run_json(const std::vector<std::string>& args) {
   const auto r = run_isocurv(args, 120);
   EXPECT_TRUE(r.ok()) << r.describe();
   return parse_json(r.out, args.front() + " --json");
+}
+
+std::size_t m_vertices(const std::string& map) {
+  const json e = run_json({"extract", map, "--labels", "-o", map + ".all.vtp", "--json"});
+  return e["vertices"].get<std::size_t>();
 }
 
 TEST(CliLabels, EachLabelIsClosedAndMeasuresAsTheSameObjectAlone) {
@@ -151,6 +161,77 @@ TEST(CliLabels, CheckAcceptsTheWallsOfTouchingLabels) {
   const auto p = run_isocurv({"check", plain, "--json"}, 120);
   EXPECT_EQ(p.exit_code, 1) << p.describe();
   EXPECT_GT(parse_json(p.out, "check --json")["duplicate_vertices"].get<int>(), 0);
+}
+
+/// The mean of a mesh file's point array `name` (NaN when it lacks it).
+double array_mean(const std::string& path, const std::string& name) {
+  const io::MeshFile f = io::read_mesh(path);
+  if (!f.field) return std::nan("");
+  for (const auto& a : f.field->extra)
+    if (a.name == name && !a.values.empty()) {
+      double sum = 0;
+      for (float v : a.values) sum += v;
+      return sum / double(a.values.size());
+    }
+  return std::nan("");
+}
+
+// lines, features, compare and screen take --labels as extract and curvature do: each label's
+// surface and curvature on its own indicator (the same numbers as the label alone as a 0/1
+// mask), and screen casts the picked labels together (as the union mask).
+TEST(CliLabels, LinesFeaturesCompareAndScreenTakeLabels) {
+  TempDir dir("labels");
+  const std::string map = write_nrrd(dir, "map", "uint8", [](int x, int y, int z) { return three_labels(x, y, z); });
+  const std::string alone = write_nrrd(dir, "alone2", "uint8",
+                                       [](int x, int y, int z) { return three_labels(x, y, z) == 2 ? 1 : 0; });
+  const std::string both = write_nrrd(dir, "both", "uint8", [](int x, int y, int z) {
+    const int l = three_labels(x, y, z);
+    return l == 1 || l == 2 ? 1 : 0;
+  });
+  auto near = [](const json& a, const json& b, const char* what) {
+    EXPECT_NEAR(a.get<double>(), b.get<double>(), 1e-4 * std::abs(b.get<double>()) + 1e-9) << what;
+  };
+  // lines: the label's contours, as long as the mask's.
+  const json l = run_json({"lines", map, "--label", "2", "-o", dir / "l.vtp", "--json"});
+  const json la = run_json({"lines", alone, "-o", dir / "la.vtp", "--json"});
+  ASSERT_GT(la["length"]["contours"].get<double>(), 0.0) << la.dump();
+  near(l["length"]["contours"], la["length"]["contours"], "contour length");
+  near(l["length"]["suggestive"], la["length"]["suggestive"], "suggestive length");
+  // features: the label's neighbourhoods on its own indicator.
+  const json f = run_json({"features", map, "--label", "2", "--radius", "3", "-o", dir / "f.vtp", "--json"});
+  run_json({"features", alone, "--radius", "3", "-o", dir / "fa.vtp", "--json"});
+  EXPECT_EQ(f["features"]["radii"][0]["world"], 3.0) << f.dump();
+  for (const char* a : {"H_ii", "Vr", "LBE"}) {
+    const double mine = array_mean(dir / "f.vtp", a), theirs = array_mean(dir / "fa.vtp", a);
+    ASSERT_TRUE(std::isfinite(theirs)) << a;
+    EXPECT_NEAR(mine, theirs, 1e-4 * std::abs(theirs) + 1e-9) << a;
+  }
+  EXPECT_TRUE(std::isfinite(array_mean(dir / "f.vtp", "Label")));
+  // A radius in % is of the map's box diagonal, one radius for every label.
+  const json fp = run_json({"features", map, "--labels", "--radius", "5%", "-o", dir / "fp.vtp", "--json"});
+  EXPECT_NEAR(fp["features"]["radii"][0]["world"].get<double>(), 0.05 * std::sqrt(3.0) * (kN - 1), 1e-3);
+  // compare: every estimator on each label, the rows over all labels.
+  const json c = run_json({"compare", map, "--labels", "--json"});
+  const json c2 = run_json({"compare", map, "--label", "2", "--json"});
+  const json ca = run_json({"compare", alone, "--json"});
+  EXPECT_EQ(c["labels"], 3);
+  EXPECT_EQ(c["vertices"].get<std::size_t>(), m_vertices(map));
+  ASSERT_EQ(c2["estimators"].size(), ca["estimators"].size());
+  for (std::size_t i = 0; i < ca["estimators"].size(); ++i) {
+    EXPECT_EQ(c2["estimators"][i]["counted"], ca["estimators"][i]["counted"]);
+    near(c2["estimators"][i]["H"]["p50"], ca["estimators"][i]["H"]["p50"],
+         ca["estimators"][i]["estimator"].get<std::string>().c_str());
+  }
+  // screen: labels 1 and 2 together, as their union's mask (the cast reads the indicator's
+  // cropped box, so the surface's brick box and the framing move by a fraction of a pixel: 0.05%
+  // of the pixels); no isovalue in the title.
+  const json sc = run_json({"screen", map, "--label", "1,2", "-o", dir / "s.png", "--json"});
+  const json sb = run_json({"screen", both, "-o", dir / "sb.png", "--json"});
+  EXPECT_NEAR(sc["surface_pixels"].get<double>(), sb["surface_pixels"].get<double>(),
+              0.005 * sb["surface_pixels"].get<double>());
+  EXPECT_NEAR(sc["median_H"].get<double>(), sb["median_H"].get<double>(),
+              0.01 * std::abs(sb["median_H"].get<double>()));
+  EXPECT_EQ(sc.value("title", std::string()).find("iso"), std::string::npos) << sc.dump();
 }
 
 TEST(CliLabels, RefusesWhatIsNotALabelMap) {
