@@ -70,18 +70,22 @@ std::vector<std::uint8_t> counted_vertices(const CurvatureField& field, double m
   return counted;
 }
 
-std::size_t flag_implausible(const Mesh& mesh, CurvatureField& field, const SurfacePiece* piece) {
+double implausible_above(const Mesh& mesh, const SurfacePiece* piece) {
   // The mean edge over this piece's own triangles, reduced over the pieces in piece order (the
-  // same total on every piece) before anything may return: the reduction is collective.
+  // same total on every piece): collective.
   auto [sum, count] = edge_length_sum(mesh, piece ? &piece->owned_triangles : nullptr);
   if (piece) {
     const std::vector<double> every = piece->all({sum, count});
     sum = count = 0;
     for (std::size_t i = 0; i + 1 < every.size(); i += 2) sum += every[i], count += every[i + 1];
   }
+  return count > 0 ? threshold(sum / count) : 0;
+}
+
+std::size_t flag_implausible(const Mesh& mesh, CurvatureField& field, const SurfacePiece* piece) {
+  const double above = implausible_above(mesh, piece);  // collective: before anything may return
   const std::size_t n = field.size();
   if (!complete(field) || n != mesh.positions.size()) return 0;
-  const double above = count > 0 ? threshold(sum / count) : 0;
   if (field.unreliable.size() != n) field.unreliable.assign(n, 0);
   std::size_t flagged = 0;
   for (std::size_t i = 0; i < n; ++i) {

@@ -58,6 +58,11 @@ FieldStats field_stats(const CurvatureField& field, double mean_edge_length);
 std::size_t flag_implausible(const Mesh& mesh, CurvatureField& field,
                              const SurfacePiece* piece = nullptr);
 
+/// flag_implausible's bound: 2 / (the mean edge length of `mesh`, over the whole surface with a
+/// `piece`: collective), 0 for a mesh without edges (no bound). The fits that sample normal
+/// curvatures (quadric, sampling) leave out samples beyond it.
+double implausible_above(const Mesh& mesh, const SurfacePiece* piece = nullptr);
+
 /// Per vertex of `field`: 1 where field_stats counts it (measured, finite, within the
 /// threshold), else 0. Pictures take their colour range from these vertices.
 std::vector<std::uint8_t> counted_vertices(const CurvatureField& field, double mean_edge_length);

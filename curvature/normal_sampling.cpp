@@ -15,16 +15,20 @@ bool fit_normal_curvatures(const detail::VertexRing& r, V3& tensor) {
   const Eigen::Index m = Eigen::Index(r.q.size());
   Eigen::MatrixXd A(m, kSamplingUnknowns);
   Eigen::VectorXd kappa(m), s;
-  for (Eigen::Index i = 0; i < m; ++i) {
-    const V3 d = r.q[i] - r.p;
+  Eigen::Index rows = 0;
+  double largest = 0;
+  for (const V3& q : r.q) {
+    const V3 d = q - r.p;
     const double tu = d.dot(r.u), tv = d.dot(r.v), len = std::hypot(tu, tv);
-    if (!(len > 0)) return false;  // a neighbour straight above P: no direction
-    A.row(i) << tu * tu / (len * len), 2 * tu * tv / (len * len), tv * tv / (len * len);
-    kappa[i] = -2 * d.dot(r.n) / d.squaredNorm();
+    if (!(len > 0)) continue;  // a neighbour straight above P: no direction
+    const double k = -2 * d.dot(r.n) / d.squaredNorm();
+    if (!detail::keep_sample(k, r, largest)) continue;
+    A.row(rows) << tu * tu / (len * len), 2 * tu * tv / (len * len), tv * tv / (len * len);
+    kappa[rows++] = k;
   }
-  if (!detail::least_squares(A, kappa, s)) return false;
+  if (!detail::least_squares(A.topRows(rows), kappa.head(rows), s)) return false;
   tensor = V3(s[0], s[1], s[2]);
-  return true;
+  return detail::determined_by_samples(tensor, largest, r);
 }
 
 }  // namespace

@@ -13,15 +13,19 @@ bool fit_quadric(const detail::VertexRing& r, V3& tensor) {
   const Eigen::Index m = Eigen::Index(r.q.size());
   Eigen::MatrixXd A(m, kQuadricUnknowns);
   Eigen::VectorXd z(m), s;
-  for (Eigen::Index i = 0; i < m; ++i) {
-    const V3 d = r.q[i] - r.p;
-    const double x = d.dot(r.u), y = d.dot(r.v);
-    A.row(i) << x * x / 2, x * y, y * y / 2;
-    z[i] = d.dot(r.n);
+  Eigen::Index rows = 0;
+  double largest = 0;
+  for (const V3& q : r.q) {
+    const V3 d = q - r.p;
+    const double x = d.dot(r.u), y = d.dot(r.v), h = d.dot(r.n);
+    // the sample's normal curvature: the osculating parabola's through q in its direction
+    if (!detail::keep_sample(-2 * h / (x * x + y * y), r, largest)) continue;
+    A.row(rows) << x * x / 2, x * y, y * y / 2;
+    z[rows++] = h;
   }
-  if (!detail::least_squares(A, z, s)) return false;
+  if (!detail::least_squares(A.topRows(rows), z.head(rows), s)) return false;
   tensor = -V3(s[0], s[1], s[2]);
-  return true;
+  return detail::determined_by_samples(tensor, largest, r);
 }
 
 }  // namespace

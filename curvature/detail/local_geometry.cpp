@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "curvature/derived.h"
+#include "curvature/field_stats.h"
 #include "curvature/input.h"
 #include "curvature/tolerances.h"
 
@@ -199,6 +200,7 @@ CurvatureField fit_each_vertex(const Mesh& mesh, const Options& options,
   const Neighbours nb = vertex_neighbours(mesh);
   CurvatureField out = allocate_field(mesh, /*with_directions=*/true);
   VertexRing ring;
+  ring.plausible = implausible_above(mesh, options.piece);
   for (std::size_t i = 0; i < nv; ++i) {
     ring.p = to_v3(mesh.positions[i]);
     ring.n = normal[i];

@@ -4,6 +4,8 @@
 // turns a tangent-plane tensor into the CurvatureField arrays. Double precision throughout.
 #include <Eigen/Dense>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -88,7 +90,38 @@ void set_vertex(CurvatureField& out, std::size_t i, const V3& normal, double k1,
 struct VertexRing {
   V3 p, n, u, v;
   std::vector<V3> q, nq;
+  /// The one rule's bound on a curvature (implausible_above, field_stats.h: 2 / mean edge of the
+  /// whole surface); 0: none.
+  double plausible = 0;
 };
+
+/// The fits that sample normal curvatures (quadric, sampling) on what marching cubes leaves: a
+/// fit is refused (the vertex flagged) when its largest principal curvature exceeds this many
+/// times its largest |sample|. Three sample directions 60 degrees apart bound max(|k1|, |k2|) by
+/// twice the largest |sample| (Euler: k(t) = H + D cos 2t, D >= 0, and one of three angles 2t
+/// 120 degrees apart has cos 2t >= 1/2); beyond it the directions nearly lie on two lines and the
+/// fit extrapolates noise (MC's valence-4 vertices, two pairs of opposite neighbours).
+inline constexpr double kSampleExtrapolation = 2;
+/// ...except below this fraction of the plausible bound (a plane's rounding, 1/1000 of it).
+inline constexpr double kSampleFlatFloor = 1e-3;
+
+/// For those fits: true when `kappa` (a sample's normal curvature) is finite and within
+/// r.plausible (a chord turning more than the mesh can show: marching cubes' tiny edges, whose
+/// 2 (P - q).n / |P - q|^2 divides noise by a tiny length), and then `largest` takes |kappa| in.
+/// A sample it refuses is left out of the fit.
+inline bool keep_sample(double kappa, const VertexRing& r, double& largest) {
+  if (!std::isfinite(kappa) || (r.plausible > 0 && std::abs(kappa) > r.plausible)) return false;
+  largest = std::max(largest, std::abs(kappa));
+  return true;
+}
+
+/// For those fits: true when the fitted tensor (e, f, g) is determined by its samples (largest
+/// |sample| `largest`): max(|k1|, |k2|) = |H| + sqrt(((e - g) / 2)^2 + f^2) within
+/// kSampleExtrapolation x largest, or within kSampleFlatFloor x r.plausible.
+inline bool determined_by_samples(const V3& t, double largest, const VertexRing& r) {
+  const double k = std::abs(t[0] + t[2]) / 2 + std::hypot((t[0] - t[2]) / 2, t[1]);
+  return k <= kSampleExtrapolation * largest || k <= kSampleFlatFloor * r.plausible;
+}
 
 /// A fit of one vertex: its second fundamental form (e, f, g) in (u, v) (outward normals: a
 /// sphere gives e = g = 1/R), or false when it cannot be solved (then the vertex is flagged).
@@ -96,7 +129,8 @@ using VertexFit = std::function<bool(const VertexRing&, V3& tensor)>;
 
 /// Runs `fit` on every vertex with a non-zero normal and at least min_neighbours neighbours and
 /// fills k1, k2, dir1, dir2, H, K, the derived arrays, Area and Boundary; dcurv stays empty. A
-/// vertex the fit cannot use gets zero curvature, dir1 = u, dir2 = v and Unreliable = 1.
+/// vertex the fit cannot use gets zero curvature, dir1 = u, dir2 = v and Unreliable = 1. Each
+/// ring's `plausible` is implausible_above(mesh, options.piece) (collective with a piece).
 CurvatureField fit_each_vertex(const Mesh& mesh, const Options& options,
                                std::size_t min_neighbours, const VertexFit& fit);
 

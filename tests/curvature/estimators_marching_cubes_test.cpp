@@ -78,40 +78,50 @@ TEST(EstimatorsMarchingCubes, TorusWithVolumeNormals) {
   // meshes", bench_estimators: rusinkiewicz 0.0125 / 0.0349, batagelo 0.0161 / 0.0267, prantl3
   // 0.0128 / 0.0358, cubic 0.028 / 0.033, meyer 0.38 / 0.47) with a 1.5x margin; the
   // percentile bounds are the values measured here (printed) with a 1.5x margin. quadric and
-  // sampling "fail outright on these meshes" (docs/curvature.md: they divide by the tiny edges
-  // that marching cubes and snapping leave, and neither uses the normals): their RMS is 12 (H)
-  // and 2900 (K) from a few vertices, so only their percentiles are bounded; sampling's p90 is
-  // already several times the curvature (measured p50 0.22 / 0.27, p90 2.5 / 9.8). meyer uses no
-  // normals either and sees marching cubes' irregular triangles (measured p50 0.11 / 0.18).
+  // sampling sample normal curvatures from the positions alone (docs/curvature.md): they refuse
+  // the vertices whose sample directions nearly lie on two lines (flagged, at most `flags`) and
+  // leave out samples from tiny raised edges, so their errors are over the vertices they measure
+  // (measured, H / K: quadric RMS 0.20 / 1.04, p50 0.041 / 0.075, p90 0.30 / 0.37, 272 flagged;
+  // sampling RMS 1.3 / 25, p50 0.19 / 0.22, p90 1.6 / 3.9, 406 flagged); sampling's p90 is still
+  // several times the curvature. meyer uses no normals
+  // and sees marching cubes' irregular triangles (measured p50 0.11 / 0.18).
   struct Bound {
     double rms_h, rms_k, p50_h, p50_k, p90_h, p90_k;
+    double flags = 0;  ///< the fraction of vertices an estimator may flag
   };
-  constexpr double kNone = std::numeric_limits<double>::infinity();
   const std::map<std::string, Bound> bounds = {
       {"rusinkiewicz", {0.019, 0.052, 0.0096, 0.019, 0.032, 0.090}},
       {"batagelo", {0.024, 0.040, 0.0098, 0.017, 0.041, 0.064}},
       {"prantl3", {0.019, 0.054, 0.0098, 0.020, 0.032, 0.089}},
       {"prantl2", {0.019, 0.055, 0.0098, 0.021, 0.032, 0.092}},
-      {"quadric", {kNone, kNone, 0.065, 0.12, 0.55, 0.75}},
+      {"quadric", {0.30, 1.6, 0.062, 0.11, 0.45, 0.55, 0.05}},
       {"cubic", {0.042, 0.050, 0.021, 0.020, 0.074, 0.082}},
-      {"sampling", {kNone, kNone, 0.33, 0.40, 3.7, 15}},
+      {"sampling", {2.0, 37, 0.28, 0.34, 2.5, 5.8, 0.07}},
       {"meyer", {0.57, 0.70, 0.17, 0.27, 0.96, 1.2}}};
   std::map<std::string, std::pair<double, double>> err;
   for (const auto& [name, fn] : estimators) {
     const CurvatureField f = fn();
-    std::vector<double> h(f.H.begin(), f.H.end()), k(f.K.begin(), f.K.end());
-    err[name] = {relative_rms(h, eh), relative_rms(k, ek)};
+    std::vector<double> h, k, mh, mk;  // over the vertices the estimator measured
     std::size_t flagged = 0;
-    for (std::uint8_t u : f.unreliable) flagged += u;
-    const Percentiles ph = scaled_error_percentiles(h, eh), pk = scaled_error_percentiles(k, ek);
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      if (!f.unreliable.empty() && f.unreliable[i]) {
+        ++flagged;
+        continue;
+      }
+      h.push_back(f.H[i]), k.push_back(f.K[i]), mh.push_back(eh[i]), mk.push_back(ek[i]);
+    }
+    err[name] = {relative_rms(h, mh), relative_rms(k, mk)};
+    const Percentiles ph = scaled_error_percentiles(h, mh), pk = scaled_error_percentiles(k, mk);
     std::printf(
         "  torus 64^3 (%zu v) %-12s relative RMS H %.4f K %.4f, p50 H %.4f K %.4f, p90 H %.4f "
         "K %.4f, %zu unreliable\n",
         m.vertex_count(), name.c_str(), err[name].first, err[name].second, ph.p50, pk.p50,
         ph.p90, pk.p90, flagged);
     EXPECT_TRUE(all_finite(f)) << name;
-    EXPECT_EQ(flagged, 0u) << name << ": every vertex of a closed, fine mesh can be measured";
     const Bound& b = bounds.at(name);
+    EXPECT_LE(double(flagged), b.flags * double(f.size()))
+        << name << ": every vertex of a closed, fine mesh can be measured (quadric, sampling: "
+        << "but those whose samples lie on nearly two lines)";
     EXPECT_LT(err[name].first, b.rms_h) << name;
     EXPECT_LT(err[name].second, b.rms_k) << name;
     EXPECT_LT(ph.p50, b.p50_h) << name;
