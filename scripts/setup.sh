@@ -2,7 +2,7 @@
 # Installs isocurv's build and run dependencies from Debian's archive when any is missing.
 # Idempotent and quiet when everything is already there. Needs root (or sudo) to install.
 set -euo pipefail
-packages=(build-essential cmake ninja-build pkg-config zlib1g-dev libopenvdb-dev libboost-iostreams-dev libtbb-dev
+packages=(build-essential cmake ninja-build pkg-config zlib1g-dev libzstd-dev libblosc-dev libopenvdb-dev libboost-iostreams-dev libtbb-dev
           pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
           libeigen3-dev libvtk9-dev libgtest-dev libcli11-dev nlohmann-json3-dev xvfb xauth
           pybind11-dev python3-dev python3-numpy openmpi-bin libopenmpi-dev)

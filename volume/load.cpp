@@ -12,6 +12,7 @@
 #include "volume/file_bytes.h"
 #include "volume/header_text.h"
 #include "volume/loaders.h"
+#include "volume/zarr.h"
 
 namespace isocurv::volume {
 namespace {
@@ -20,7 +21,7 @@ bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-enum class Format { vdb, nrrd, metaimage, nifti, vtk_image, dgtal_vol, raw, unknown };
+enum class Format { vdb, nrrd, metaimage, nifti, vtk_image, dgtal_vol, raw, zarr, unknown };
 
 Format format_of(const std::string& path) {
   const std::string name = to_lower(path);
@@ -51,6 +52,10 @@ void check_options_apply(const std::string& path, Format format, const LoadOptio
   }
   if (format != Format::vdb && !o.grid.empty())
     throw Error(path, "--grid applies to .vdb files only (this format holds one volume)");
+  if (format != Format::zarr) {
+    const char* given = o.level ? "--level" : o.time_point ? "--time-point" : o.channel ? "--channel" : nullptr;
+    if (given) throw Error(path, std::string(given) + " applies to Zarr stores only");
+  }
   for (int i = 0; i < 3; ++i) {
     if (o.spacing && (!std::isfinite((*o.spacing)[i]) || (*o.spacing)[i] <= 0))
       throw Error(path, "--spacing needs three positive finite numbers");
@@ -86,12 +91,15 @@ void override_vdb_geometry(Volume& v, const LoadOptions& o) {
 }  // namespace
 
 Volume load(const std::string& path, const LoadOptions& options) {
-  file_size(path);  // "file not found" before anything else
-  const Format format = format_of(path);
+  // A Zarr store is a folder; any other volume is a file ("file not found" before anything else).
+  const bool zarr = is_zarr_store(path);
+  if (!zarr) file_size(path);
+  const Format format = zarr ? Format::zarr : format_of(path);
   if (format == Format::unknown)
     throw Error(path,
                 "unknown volume file extension (supported: .vdb .nrrd .nhdr .mhd .mha .nii .nii.gz "
-                ".vti .vtk .slc .vol .raw .raw.gz .bin-gz)");
+                ".vti .vtk .slc .vol .raw .raw.gz .bin-gz, and Zarr stores: a folder with .zarray, "
+                ".zattrs, .zgroup or zarr.json)");
   check_options_apply(path, format, options);
   try {
     switch (format) {
@@ -113,6 +121,8 @@ Volume load(const std::string& path, const LoadOptions& options) {
         return load_dgtal_vol(path, options);
       case Format::raw:
         return load_raw(path, options);
+      case Format::zarr:
+        return load_zarr(path, options);
       case Format::unknown:
         break;
     }

@@ -39,10 +39,15 @@ struct LoadOptions {
   /// The value non-finite voxels and the grid's background take, instead of the finite minimum
   /// (maximum when the object is below): a slab's ranks use the whole volume's.
   std::optional<float> outside;
+  /// Zarr stores (volume/zarr.h): the multiscale level (0 the finest; unset: the finest that
+  /// fits zarr_memory_budget()), and the index along a time ("t") and a channel ("c") axis
+  /// (unset: 0). Giving any of them for another format is an error.
+  std::optional<int> level, time_point, channel;
 };
 
 /// Loads `path`, chosen by extension: .vdb, .nrrd/.nhdr, .mhd/.mha, .nii/.nii.gz, .vti, .vtk,
-/// .vol (DGtal), .raw/.raw.gz (with options.raw). Non-finite voxels are counted in stats and
+/// .vol (DGtal), .raw/.raw.gz (with options.raw), and Zarr stores (a folder holding .zarray,
+/// .zattrs, .zgroup or zarr.json, or named *.zarr; volume/zarr.h). Non-finite voxels are counted in stats and
 /// replaced by an outside value. Throws isocurv::Error("<path>: <problem>") on any bad input.
 Volume load(const std::string& path, const LoadOptions& options = {});
 

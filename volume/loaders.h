@@ -16,5 +16,6 @@ Volume load_vtk_image(const std::string& path, const LoadOptions& options);   //
 Volume load_slc(const std::string& path, const LoadOptions& options);         ///< .slc (VolVis), via load_vtk_image
 Volume load_dgtal_vol(const std::string& path, const LoadOptions& options);   ///< .vol (DGtal VOL)
 Volume load_raw(const std::string& path, const LoadOptions& options);         ///< .raw, .raw.gz, .bin-gz
+Volume load_zarr(const std::string& path, const LoadOptions& options);        ///< Zarr v2/v3, OME-NGFF (zarr.h)
 
 }  // namespace isocurv::volume
