@@ -631,6 +631,8 @@ nlohmann::json surface_report(const Surface& s) {
         e["scale_per_vertex"] = d;
       }
     }
+    if (s.estimator.estimator == "volume")
+      e["pyramid_bricks_kept"] = s.estimator.pyramid_bricks_kept;
     if (!s.estimator.steps_ms.empty()) {
       nlohmann::json steps = nlohmann::json::object();
       for (const auto& [step, ms] : s.estimator.steps_ms) steps[step] = ms;

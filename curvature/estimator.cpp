@@ -156,6 +156,7 @@ CurvatureField estimate_field(const Mesh& mesh, const VolumeSource& source, Devi
             r.parameters.emplace_back(
                 name, kth_smallest_positive(options.piece, mine, std::uint64_t(q * double(n - 1))));
       }
+      r.pyramid_bricks_kept = st.pyramid_kept;
       r.unreliable = st.unreliable;
       r.finer_scale = st.finer_scale;
       r.outside = st.outside;

@@ -55,6 +55,9 @@ struct EstimatorReport {
   /// volume on a device: wall time of its steps in ms, in order: auto_scale (when the scale was
   /// chosen from the data), then VolumeStepTimes's plan, gather, passes, vertices, host. Not in
   /// the field's metadata (outputs stay deterministic).
+  /// volume: the pyramid's coarse bricks kept from an earlier estimate on the same volume
+  /// (volume::PyramidLease; reports only, never written to files: it depends on what ran before).
+  std::size_t pyramid_bricks_kept = 0;
   std::vector<std::pair<std::string, double>> steps_ms;
   /// Wall time of apply_ao in ms, when it computed an AO (ao_method other than griffin); not in
   /// the field's metadata.

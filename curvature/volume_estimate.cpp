@@ -104,7 +104,9 @@ CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalu
   detail::ScaleLadder ladder;
   VertexCorners corners;  // built once: the cut and the areas both need them
   build_vertex_corners(mesh, corners);
-  volume::Pyramid pyramid(volume);
+  volume::PyramidLease lease(volume);  // kept between estimates on this volume
+  volume::Pyramid& pyramid = *lease;
+  const std::size_t kept_bricks = pyramid.built_bricks();
   RawPools raws;                      // read by queued copies until the queue drains ...
   const DrainOnUnwind drain(device);  // ... which an error makes sure of before raws go
   raws.positions = &mesh.positions;
@@ -123,7 +125,8 @@ CurvatureField run(const Mesh& mesh, const volume::Volume& volume, float isovalu
   e.steps.finish = lap(t);
   if (stats)
     *stats = VolumeEstimateStats{unreliable, e.bricks, ladder.refined,
-                                 detail::count_of(ladder.outside), ladder.blur, e.steps};
+                                 detail::count_of(ladder.outside), ladder.blur, e.steps,
+                                 kept_bricks};
   return std::move(e.field);
 }
 

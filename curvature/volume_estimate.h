@@ -109,6 +109,9 @@ struct VolumeEstimateStats {
   std::size_t outside = 0;      ///< vertices whose support leaves the box at their scale
   double blur = 0;              ///< adaptive: the edge blur the choice measured, world units
   VolumeStepTimes steps;        ///< device path only
+  /// Pyramid bricks above level 0 already built when the call began: kept from an earlier
+  /// estimate on the same volume (volume::PyramidLease), 0 for a new pyramid.
+  std::size_t pyramid_kept = 0;
 };
 
 /// How volume_estimate measures.

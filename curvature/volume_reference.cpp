@@ -139,7 +139,9 @@ CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume&
   const detail::VolumeSetup setup = detail::volume_setup(mesh, volume, options);
   const float ao_scale = options.ao_scale;
   const std::optional<detail::AdaptiveScale> adaptive = detail::adaptive_of(options, setup, volume);
-  volume::Pyramid pyramid(volume);
+  volume::PyramidLease lease(volume);  // kept between estimates on this volume
+  volume::Pyramid& pyramid = *lease;
+  const std::size_t kept_bricks = pyramid.built_bricks();
   detail::ScaleLadder ladder;
   VertexCorners corners;  // built once: the cut and the areas both need them
   build_vertex_corners(mesh, corners);
@@ -155,7 +157,7 @@ CurvatureField volume_estimate_reference(const Mesh& mesh, const volume::Volume&
     e.field.surface_points = edge_surface_points(mesh, volume, e.field);
   if (stats)
     *stats = VolumeEstimateStats{unreliable, 0, ladder.refined, detail::count_of(ladder.outside),
-                                 ladder.blur, {}};
+                                 ladder.blur, {}, kept_bricks};
   return std::move(e.field);
 }
 

@@ -119,6 +119,50 @@ double Pyramid::max_scale() const {
   return kMaxPrefilterDeviation * std::min({f.spacing[0], f.spacing[1], f.spacing[2]});
 }
 
+namespace {
+
+/// PyramidLease's kept pyramid (one for the process) and what it was made of.
+struct KeptPyramid {
+  std::mutex mutex;
+  std::unique_ptr<Pyramid> pyramid;
+  std::weak_ptr<const openvdb::FloatGrid> grid;
+  openvdb::CoordBBox domain;
+};
+
+KeptPyramid& kept_pyramid() {
+  static KeptPyramid kept;
+  return kept;
+}
+
+}  // namespace
+
+PyramidLease::PyramidLease(const Volume& volume) : grid_(volume.grid), domain_(volume.domain) {
+  {
+    KeptPyramid& kept = kept_pyramid();
+    std::lock_guard<std::mutex> lock(kept.mutex);
+    if (kept.pyramid && !kept.grid.expired() && kept.grid.lock() == volume.grid &&
+        kept.domain == volume.domain) {
+      pyramid_ = std::move(kept.pyramid);
+      pyramid_->rebind(volume.grid);
+      reused_ = true;
+    } else if (kept.pyramid && (kept.grid.expired() || kept.grid.lock() != volume.grid)) {
+      kept.pyramid.reset();  // another volume now: the old one's levels go
+    }
+  }
+  if (!pyramid_) pyramid_ = std::make_unique<Pyramid>(volume);
+}
+
+PyramidLease::~PyramidLease() {
+  if (!pyramid_) return;
+  pyramid_->unbind();
+  if (pyramid_->built_bricks() > kKeptPyramidBricks) return;
+  KeptPyramid& kept = kept_pyramid();
+  std::lock_guard<std::mutex> lock(kept.mutex);
+  kept.pyramid = std::move(pyramid_);
+  kept.grid = grid_;
+  kept.domain = domain_;
+}
+
 std::size_t Pyramid::built_bricks() const {
   std::size_t n = 0;
   for (const auto& set : built_) n += set.size();

@@ -89,6 +89,12 @@ class Pyramid {
 
   /// Bricks built above level 0 (for reports and tests).
   std::size_t built_bricks() const;
+
+  /// Drops level 0's reference to the volume's grid (PyramidLease keeps a pyramid between calls
+  /// without keeping its volume alive); rebind gives it back. Levels above 0 are kept.
+  void unbind() { levels_[0].grid.reset(); }
+  /// Level 0 reads `grid` again: the grid the pyramid was made of (the caller checks).
+  void rebind(openvdb::FloatGrid::Ptr grid) { levels_[0].grid = std::move(grid); }
   /// The decimation's taps either side (kPyramidVariance's prefilter).
   int decimation_radius() const { return decimation_radius_; }
 
@@ -103,6 +109,40 @@ class Pyramid {
   std::vector<std::unordered_set<openvdb::Coord, CoordHash>> built_;
   std::mutex mutex_;
   void build_locked(int k, const std::vector<openvdb::Coord>& bricks);
+};
+
+/// Bricks a kept pyramid (PyramidLease) may hold between calls: 512 MiB of samples.
+inline constexpr std::size_t kKeptPyramidBricks = (std::size_t(512) << 20) / (512 * sizeof(float));
+
+/// A pyramid of `volume` for one estimate, kept between estimates on the same volume: the levels
+/// above 0 are the smoothing that depends neither on the isovalue nor on the scale, so an
+/// isovalue sweep (--iso a,b,c), several scales (--scale 1,2) or repeated calls from Python on one
+/// volume build each coarse brick once. The lease takes the pyramid kept from the previous lease
+/// of the same grid (volume.grid, the same domain), or makes a new one; when the lease ends the
+/// pyramid is kept in its place (one pyramid for the whole process, the last volume's) unless it
+/// holds more than kKeptPyramidBricks bricks. The kept pyramid holds no reference to the volume's
+/// grid (level 0 is dropped, the grid only watched), so it never keeps a volume alive; it is
+/// dropped at the next lease of another grid. Its memory is at most kKeptPyramidBricks bricks,
+/// and in practice an eighth of the bricks around the surfaces asked for, and less (levels 1, 2,
+/// ...: about 1/7 of them). The volume's values must not change while its grid lives (the
+/// pyramid cannot see it). Threading: leases may be taken from several threads; two leases at
+/// once on one volume get two pyramids (the second a new one).
+class PyramidLease {
+ public:
+  explicit PyramidLease(const Volume& volume);
+  ~PyramidLease();
+  PyramidLease(const PyramidLease&) = delete;
+  PyramidLease& operator=(const PyramidLease&) = delete;
+  Pyramid& operator*() { return *pyramid_; }
+  Pyramid* operator->() { return pyramid_.get(); }
+  /// Whether the pyramid came from an earlier lease (for tests and reports).
+  bool reused() const { return reused_; }
+
+ private:
+  std::unique_ptr<Pyramid> pyramid_;
+  std::weak_ptr<const openvdb::FloatGrid> grid_;
+  openvdb::CoordBBox domain_;
+  bool reused_ = false;
 };
 
 /// How far (world units, along index axis `axis`) the level-0 samples that an evaluation at world

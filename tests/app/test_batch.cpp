@@ -6,6 +6,7 @@
 
 #include "io/mesh_file.h"
 #include "tests/app/cli.h"
+#include "tests/app/mesh_compare.h"
 #include "tests/viz/png_stats.h"
 #include "viz/curvature_scene.h"
 
@@ -119,6 +120,31 @@ TEST(Batch, SweepWritesEachIsovalueAsASingleCallWould) {
   }
   EXPECT_NE(read(dir / "out/torus/torus_iso-0.5.ply").positions.size(),
             read(dir / "out/torus/torus_iso0.125.ply").positions.size());
+}
+
+// The volume estimator's coarse smoothing does not depend on the isovalue: a sweep's second
+// isovalue takes the pyramid the first one built (its report says how many bricks it found),
+// and its curvature is the one-shot run's to the bit.
+TEST(Batch, CurvatureSweepKeepsThePyramidAndGivesTheOneShotResult) {
+  const std::string lobster = std::string(test_paths::shared_datasets()) + "/lobster/lobster.vol";
+  if (!fs::exists(lobster)) GTEST_SKIP() << "no " << lobster;
+  TempDir dir("sweep_pyramid");
+  const auto r = run_isocurv({"curvature", lobster, "--iso", "50,60", "-o", dir / "out", "--quiet"}, 300);
+  ASSERT_TRUE(r.ok()) << r.describe();
+  auto kept = [&](const char* iso) {
+    const nlohmann::json st = nlohmann::json::parse(
+        read_file(dir / ("out/lobster/stats_iso" + std::string(iso) + ".json")));
+    return st["estimator"]["pyramid_bricks_kept"].get<std::size_t>();
+  };
+  EXPECT_EQ(kept("50"), 0u);
+  EXPECT_GT(kept("60"), 100u);
+  const auto one = run_isocurv({"curvature", lobster, "--iso", "60", "-o", dir / "one.vtp", "--quiet"}, 300);
+  ASSERT_TRUE(one.ok()) << one.describe();
+  const io::MeshFile a = io::read_mesh(dir / "out/lobster/lobster_iso60.vtp"),
+                     b = io::read_mesh(dir / "one.vtp");
+  expect_same_mesh(a.mesh, b.mesh, "lobster iso 60");
+  ASSERT_TRUE(a.field && b.field);
+  expect_same_field(*a.field, *b.field, "lobster iso 60");
 }
 
 // A sweep's pictures share one colour range and one camera by default: their legends are the

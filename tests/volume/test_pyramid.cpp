@@ -342,3 +342,51 @@ TEST(Pyramid, ThinSideBoundsTheLargestScale) {
   EXPECT_EQ(p.level(3).factor[0], 8);
   EXPECT_DOUBLE_EQ(p.max_scale(), kMaxPrefilterDeviation * 0.5);
 }
+
+// The pyramid kept between estimates on one volume: reused by the next lease of the same grid
+// (its bricks built once), never by another grid's, and holding no reference to the grid in
+// between (a volume it served can go).
+TEST(PyramidLease, KeptForTheSameGridOnlyAndNeverKeepsItAlive) {
+  const std::array<int, 3> dims{40, 36, 34};
+  const std::vector<float> data = pyr_random(dims, 9);
+  const Volume vol = pyr_volume(dims, data, openvdb::math::Transform::createLinearTransform(1.0));
+  std::size_t built = 0;
+  {
+    PyramidLease first(vol);
+    EXPECT_FALSE(first.reused());
+    first->build(2, {{0, 0, 0}, {1, 1, 1}});
+    built = first->built_bricks();
+    ASSERT_GT(built, 0u);
+  }
+  EXPECT_EQ(vol.grid.use_count(), 1);  // the kept pyramid does not hold the grid
+  {
+    PyramidLease again(vol);
+    EXPECT_TRUE(again.reused());
+    EXPECT_EQ(again->built_bricks(), built);
+    EXPECT_EQ(again->level(0).grid, vol.grid);  // level 0 reads the volume again
+    // While it is leased, a second lease of the same volume gets a pyramid of its own.
+    PyramidLease second(vol);
+    EXPECT_FALSE(second.reused());
+    EXPECT_EQ(second->built_bricks(), 0u);
+  }
+  // The same values in another grid (a copy): not the same volume, a new pyramid.
+  Volume copy = vol;
+  copy.grid = vol.grid->deepCopy();
+  {
+    PyramidLease other(copy);
+    EXPECT_FALSE(other.reused());
+  }
+  {
+    PyramidLease back(vol);  // the copy's lease replaced vol's kept pyramid
+    EXPECT_FALSE(back.reused());
+  }
+  // A grid that is gone is never matched, even by a new grid at the same address.
+  {
+    Volume gone = pyr_volume(dims, data, openvdb::math::Transform::createLinearTransform(1.0));
+    { PyramidLease l(gone); }
+    gone.grid.reset();
+    Volume fresh = pyr_volume(dims, data, openvdb::math::Transform::createLinearTransform(1.0));
+    PyramidLease l(fresh);
+    EXPECT_FALSE(l.reused());
+  }
+}
