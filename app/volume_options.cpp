@@ -28,6 +28,17 @@ void add_volume_options(CLI::App& cmd, VolumeOptions& o) {
                  "default 0 0 0)")
       ->expected(3)
       ->group("Volume");
+  cmd.add_option("--level", o.level,
+                 "Zarr/OME-NGFF: the multiscale level to read, 0 the finest (default: the finest "
+                 "that fits half the machine's memory)")
+      ->check(CLI::NonNegativeNumber)
+      ->group("Volume");
+  cmd.add_option("--time-point", o.time_point, "Zarr/OME-NGFF: the index along the time axis (default 0)")
+      ->check(CLI::NonNegativeNumber)
+      ->group("Volume");
+  cmd.add_option("--channel", o.channel, "Zarr/OME-NGFF: the index along the channel axis (default 0)")
+      ->check(CLI::NonNegativeNumber)
+      ->group("Volume");
 }
 
 std::vector<std::string> VolumeOptions::given() const {
@@ -39,6 +50,9 @@ std::vector<std::string> VolumeOptions::given() const {
   if (!endian.empty()) out.push_back("--endian");
   if (!spacing.empty()) out.push_back("--spacing");
   if (!origin.empty()) out.push_back("--origin");
+  if (level) out.push_back("--level");
+  if (time_point) out.push_back("--time-point");
+  if (channel) out.push_back("--channel");
   return out;
 }
 
@@ -53,6 +67,9 @@ volume::LoadOptions to_load_options(const VolumeOptions& o) {
   if (o.spacing.size() == 3)
     l.spacing = std::array<double, 3>{o.spacing[0], o.spacing[1], o.spacing[2]};
   if (o.origin.size() == 3) l.origin = std::array<double, 3>{o.origin[0], o.origin[1], o.origin[2]};
+  l.level = o.level;
+  l.time_point = o.time_point;
+  l.channel = o.channel;
   return l;
 }
 

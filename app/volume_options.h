@@ -3,6 +3,7 @@
 // --spacing and --origin overrides).
 #include <CLI/CLI.hpp>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,12 +20,14 @@ struct VolumeOptions {
   std::string endian;           // raw byte order: "little" or "big"
   std::vector<double> spacing;  // any format: overrides the header
   std::vector<double> origin;   // any format: overrides the header
+  std::optional<int> level, time_point, channel;  // Zarr: multiscale level, time point, channel
 
   /// The options given, as they are spelled on the command line ("--grid", "--dims", ...).
   std::vector<std::string> given() const;
 };
 
-/// Adds --grid, --inside, --dims, --type, --endian, --spacing, --origin to `cmd`.
+/// Adds --grid, --inside, --dims, --type, --endian, --spacing, --origin, and Zarr's --level,
+/// --time-point and --channel to `cmd`.
 void add_volume_options(CLI::App& cmd, VolumeOptions& o);
 /// Converts parsed options to volume::LoadOptions (volume::load rejects those that cannot apply
 /// to the file's format).
