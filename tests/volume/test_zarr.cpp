@@ -339,6 +339,26 @@ TEST(Zarr, OmeNgff05FiveDimensionsPicksTimePointAndChannel) {
   voltest::expect_error([&] { load(store, o); }, store, "--channel 3 is outside axis 'c' (0 to 2)");
 }
 
+TEST(Zarr, DimensionNamesPutXFastest) {
+  // A v3 array stored x slowest (dimension_names x y z): the volume still has x fastest.
+  voltest::TempDir dir;
+  Array a;
+  a.shape = {kZx, kZy, kZz};
+  a.type = "i4";
+  for (int x = 0; x < kZx; ++x)
+    for (int y = 0; y < kZy; ++y)
+      for (int z = 0; z < kZz; ++z) a.values.push_back(x + 10 * y + 100 * z);
+  const std::string store = dir.file("xyz.zarr");
+  std::filesystem::create_directories(store);
+  std::string meta = zarrtest::zarr_json_array(a, {3, 4, 2}, "[{\"name\": \"bytes\"}]");
+  meta.insert(meta.size() - 1, ", \"dimension_names\": [\"x\", \"y\", \"z\"]");
+  voltest::write_file(store + "/zarr.json", meta);
+  zarrtest::write_chunks(store, a, {3, 4, 2}, zarr_identity, "/", true);
+  const Volume v = load(store);
+  expect_same_volume(v, zarr_reference(dir, zarr_test_array().values, {kZx, kZy, kZz}), "x y z");
+  EXPECT_EQ(v.voxel_type, "int32");
+}
+
 TEST(Zarr, ResultDoesNotDependOnTheThreadCount) {
   voltest::TempDir dir;
   Array a;

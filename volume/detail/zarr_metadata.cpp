@@ -418,8 +418,9 @@ void default_axes(Store& s, std::size_t n, const std::vector<std::string>& names
   s.axis_types.assign(n, "");
   s.axis_units.assign(n, "");
   for (std::size_t i = 0; i < n; ++i) {
+    // v3 dimension_names are used when they are the OME names; anything else keeps the default.
     std::string name = i < names.size() ? names[i] : "";
-    if (name.empty() && n <= 5) name = five[5 - n + i];
+    if (name != "x" && name != "y" && name != "z" && name != "t" && name != "c") name = n <= 5 ? five[5 - n + i] : "";
     s.axis_names[i] = name;
     s.axis_types[i] = (name == "x" || name == "y" || name == "z") ? "space"
                       : name == "t" ? "time" : name == "c" ? "channel" : "";
