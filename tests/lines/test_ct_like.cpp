@@ -20,10 +20,16 @@
 namespace isocurv::lines {
 namespace {
 
-TEST(LinesCtLike, BallContourIsItsSilhouetteAndNoiseGivesFewSuggestiveLines) {
-  const double R = 12, c = 20; // voxels
-  std::mt19937 rng(5);
-  std::normal_distribution<double> noise(0, 3);
+// A CT-like ball of radius R voxels centred at (c, c, c) in an n^3 uint8-valued volume (edge
+// blurred, noise of deviation `sd` levels, seed `seed`), its marching-cubes surface at the half
+// level and that surface's curvature with gradient normals: the real pipeline.
+struct NoisyBall {
+  Mesh mesh;
+  curvature::CurvatureField field;
+};
+NoisyBall noisy_ball(double R, double c, double sd, unsigned seed, int n) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0, sd);
   const volume::Volume v = test::sampled(
       [&](double x, double y, double z) {
         const double d = R - std::sqrt((x - c) * (x - c) + (y - c) * (y - c) +
@@ -32,14 +38,24 @@ TEST(LinesCtLike, BallContourIsItsSilhouetteAndNoiseGivesFewSuggestiveLines) {
             std::clamp(std::round(255 / (1 + std::exp(-d / 0.8)) + noise(rng)),
                        0.0, 255.0));
       },
-      {40, 40, 40});
+      {n, n, n});
   Device &dev = Device::default_device();
-  const Mesh mesh = mc::extract(v, 127.5f, dev);
+  NoisyBall b;
+  b.mesh = mc::extract(v, 127.5f, dev);
   const volume::MeshNormals normals =
-      volume::gradient_normals_for_mesh(v, mesh);
+      volume::gradient_normals_for_mesh(v, b.mesh);
   curvature::Options co;
   co.vertex_normals = &normals.normals;
-  const curvature::CurvatureField field = curvature::estimate(mesh, dev, co);
+  b.field = curvature::estimate(b.mesh, dev, co);
+  return b;
+}
+
+TEST(LinesCtLike, BallContourIsItsSilhouetteAndNoiseGivesFewSuggestiveLines) {
+  const double R = 12, c = 20; // voxels
+  const NoisyBall b = noisy_ball(R, c, 3, 5, 40);
+  const Mesh &mesh = b.mesh;
+  const curvature::CurvatureField &field = b.field;
+  Device &dev = Device::default_device();
   Camera cam;
   cam.ortho = true;
   cam.focal_point = {c, c, c};
@@ -71,24 +87,10 @@ TEST(LinesCtLike, BallContourIsItsSilhouetteAndNoiseGivesFewSuggestiveLines) {
 // test from the line alone hid a third of it.
 TEST(LinesCtLike, NoisyBallSilhouetteIsDrawnWhole) {
   const double R = 14, c = 22; // voxels
-  std::mt19937 rng(11);
-  std::normal_distribution<double> noise(0, 12);
-  const volume::Volume v = test::sampled(
-      [&](double x, double y, double z) {
-        const double d = R - std::sqrt((x - c) * (x - c) + (y - c) * (y - c) +
-                                       (z - c) * (z - c));
-        return float(
-            std::clamp(std::round(255 / (1 + std::exp(-d / 0.8)) + noise(rng)),
-                       0.0, 255.0));
-      },
-      {44, 44, 44});
+  const NoisyBall b = noisy_ball(R, c, 12, 11, 44);
+  const Mesh &mesh = b.mesh;
+  const curvature::CurvatureField &field = b.field;
   Device &dev = Device::default_device();
-  const Mesh mesh = mc::extract(v, 127.5f, dev);
-  const volume::MeshNormals normals =
-      volume::gradient_normals_for_mesh(v, mesh);
-  curvature::Options co;
-  co.vertex_normals = &normals.normals;
-  const curvature::CurvatureField field = curvature::estimate(mesh, dev, co);
   Camera cam;
   cam.focal_point = {c, c, c};
   cam.position = {c, c, c + 120};
