@@ -427,6 +427,8 @@ TEST(Zarr, BadStoresAreOneError) {
   zarrtest::write_chunks(shortc, a, {2, 4, 3}, zarr_identity, ".", false);
   voltest::write_file(shortc + "/1.1.1", std::string(10, '\0'));
   expect_error([&] { load(shortc); }, shortc + "/1.1.1", "decoded chunk has 10 bytes, expected 48 bytes");
+  voltest::write_file(shortc + "/1.1.1", std::string(3 << 20, '\0'));
+  expect_error([&] { load(shortc); }, shortc + "/1.1.1", "more than a chunk of 48 bytes can take");
   const std::string corrupt = store_with("corrupt.zarr", with("\"compressor\": null", "\"compressor\": {\"id\": \"zstd\"}"));
   zarrtest::write_chunks(corrupt, a, {2, 4, 3}, zarrtest::zstd_compress, ".", false);
   voltest::write_file(corrupt + "/0.0.0", std::string("garbage, not zstd"));

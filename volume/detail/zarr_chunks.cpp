@@ -311,6 +311,12 @@ std::size_t read_region(const ArrayMeta& meta, const Region& region, float* out,
     counts[d] = (region.hi[d] - 1) / meta.chunks[d] - first[d] + 1;
     total *= std::size_t(counts[d]);
   }
+  // No codec here makes a chunk much larger than its decoded bytes (plus a shard's index): a file
+  // beyond that is refused before it is read, not allocated.
+  std::size_t chunk_elements = 1;
+  for (const long long c : meta.chunks) chunk_elements *= std::size_t(c);
+  const std::uint64_t largest_file =
+      2 * std::uint64_t(chunk_elements) * voxel_size(meta.type) + 16 * std::uint64_t(chunk_elements) + (1u << 20);
   const ZarrCtx ctx{meta, region, out};
   std::atomic<std::size_t> read{0};
   tbb::parallel_for(std::size_t(0), total, [&](std::size_t k) {
@@ -324,7 +330,11 @@ std::size_t read_region(const ArrayMeta& meta, const Region& region, float* out,
     const std::string file = meta.dir + "/" + chunk_key(meta, index);
     std::error_code ec;
     if (!std::filesystem::is_regular_file(file, ec)) return;  // missing: the fill value
-    Bytes bytes = read_bytes(file, 0, file_size(file));
+    const std::uint64_t size_on_disk = file_size(file);
+    if (size_on_disk > largest_file)
+      throw Error(file, "chunk file has " + zarr_bytes_text(size_on_disk) + ", more than a chunk of " +
+                            zarr_bytes_text(std::uint64_t(chunk_elements) * voxel_size(meta.type)) + " can take");
+    Bytes bytes = read_bytes(file, 0, size_on_disk);
     const std::size_t size = bytes.size();
     read.fetch_add(1, std::memory_order_relaxed);
     zarr_decode(ctx, zarr_own(std::move(bytes), size), meta.codecs, meta.chunks, origin, file);
