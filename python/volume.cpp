@@ -160,7 +160,8 @@ value). A copy: writing to it does not change the volume.)doc")
   m.def(
       "load",
       [](const PathArg& path_arg, py::object spacing, py::object origin, py::object inside,
-         std::string grid, py::object dims, std::string type, py::object endian) {
+         std::string grid, py::object dims, std::string type, py::object endian, py::object level,
+         py::object time_point, py::object channel) {
         const std::string path = path_of(path_arg, "path");
         volume::LoadOptions lo;
         lo.grid = grid;
@@ -178,13 +179,18 @@ value). A copy: writing to it does not change the volume.)doc")
             throw py::value_error("endian: expected 'little' or 'big'");
           lo.raw.big_endian = e == "big";
         }
+        if (!level.is_none()) lo.level = level.cast<int>();
+        if (!time_point.is_none()) lo.time_point = time_point.cast<int>();
+        if (!channel.is_none()) lo.channel = channel.cast<int>();
         py::gil_scoped_release release;
         return volume::load(path, lo);
       },
       py::arg("path"), py::kw_only(), py::arg("spacing") = py::none(),
       py::arg("origin") = py::none(), py::arg("inside") = py::none(), py::arg("grid") = "",
       py::arg("dims") = py::none(), py::arg("type") = "", py::arg("endian") = py::none(),
-      "Loads a volume file (.vdb .nrrd/.nhdr .mhd/.mha .nii/.nii.gz .vti .vtk .vol .raw), as the "
+      py::arg("level") = py::none(), py::arg("time_point") = py::none(), py::arg("channel") = py::none(),
+      "Loads a volume file (.vdb .nrrd/.nhdr .mhd/.mha .nii/.nii.gz .vti .vtk .vol .raw) or a Zarr "
+      "store folder (level, time_point, channel pick what is read of it), as the "
       "command line "
       "does. spacing/origin (x, y, z) replace the file's; inside='above'|'below' overrides which "
       "side is the "
