@@ -128,7 +128,8 @@ std::string in_python_words(const std::string& message) {
       {"scale", "scale"},       {"normals", "normals"},   {"estimator", "estimator"},
       {"ao-scale", "ao_scale"}, {"dims", "dims"},         {"type", "type"},
       {"endian", "endian"},     {"inside", "inside"},     {"radius", "radius"},
-      {"snap", "snap"},         {"view", "view"},         {"zoom", "zoom"}};
+      {"snap", "snap"},         {"view", "view"},         {"zoom", "zoom"},
+      {"level", "level"},       {"time-point", "time_point"}, {"channel", "channel"}};
   std::string out;
   std::size_t i = 0;
   while (i < message.size()) {

@@ -97,6 +97,27 @@ class Volumes(unittest.TestCase):
             with self.assertRaises(isocurv.Error):
                 isocurv.read_mesh(os.path.join(d, "missing.ply"))
 
+    def test_a_zarr_store_loads_and_its_errors_name_the_arguments(self):
+        # A Zarr v2 store of one uncompressed chunk, x fastest (C order of z, y, x).
+        data = np.zeros((6, 7, 8), dtype="<u2")
+        data[2:4, 2:5, 3:6] = 1000
+        with tempfile.TemporaryDirectory() as d:
+            store = os.path.join(d, "ball.zarr")
+            os.makedirs(store)
+            with open(os.path.join(store, ".zarray"), "w") as f:
+                f.write('{"zarr_format": 2, "shape": [6, 7, 8], "chunks": [6, 7, 8], '
+                        '"dtype": "<u2", "compressor": null, "fill_value": 0, "order": "C", '
+                        '"filters": null}')
+            with open(os.path.join(store, "0.0.0"), "wb") as f:
+                f.write(data.tobytes())
+            v = isocurv.load(store)
+            self.assertEqual(v.to_numpy().shape, (6, 7, 8))
+            self.assertEqual(float(v.to_numpy().max()), 1000.0)
+            with self.assertRaises(isocurv.Error) as e:
+                isocurv.load(store, channel=1)
+            self.assertIn("channel", str(e.exception))
+            self.assertNotIn("--channel", str(e.exception))
+
 
 class Meshes(unittest.TestCase):
     def test_vertices_and_triangles_are_views_without_a_copy(self):
