@@ -92,3 +92,40 @@ TEST(CliZarr, BadStoreIsOneErrorLine) {
   const auto l = run_isocurv({"info", store, "--level", "3"});
   expect_clean_failure(l, "bad.zarr");
 }
+
+// Segmentations are the common Zarr label map: --labels reads one as it reads the NRRD of the
+// same voxels (issue 56 item 4), label by label.
+TEST(CliZarr, ALabelMapStoreMeasuresPerLabelAsItsNrrd) {
+  TempDir dir("zarr_labels");
+  const int n = 32;
+  std::string raw(std::size_t(n) * n * n, '\0');
+  for (int z = 0; z < n; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        auto in = [&](double cx, double cy, double cz, double r) {
+          return (x - cx) * (x - cx) + (y - cy) * (y - cy) + (z - cz) * (z - cz) < r * r;
+        };
+        raw[std::size_t(x + n * (y + n * z))] = in(11, 16, 16, 7) ? 3 : in(21, 16, 16, 7) ? 9 : 0;
+      }
+  const std::string nrrd = dir / "map.nrrd";
+  write_file(nrrd, "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 32 32 32\nencoding: raw\n\n" + raw);
+  const std::string store = dir / "map.zarr";
+  fs::create_directories(store);
+  write_file(store + "/.zarray",
+             "{\"zarr_format\": 2, \"shape\": [32, 32, 32], \"chunks\": [32, 32, 32], \"dtype\": \"|u1\", "
+             "\"compressor\": null, \"fill_value\": 0, \"order\": \"C\", \"filters\": null}");
+  write_file(store + "/0.0.0", raw);
+  auto measure = [&](const std::string& path) {
+    const auto r = run_isocurv({"measure", path, "--labels", "--json"});
+    EXPECT_TRUE(r.ok()) << r.describe();
+    return parse_json(r.out, "measure --labels --json");
+  };
+  const nlohmann::json z = measure(store), r = measure(nrrd);
+  ASSERT_EQ(z["labels"].size(), 2u) << z.dump();
+  ASSERT_EQ(r["labels"].size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(z["labels"][i]["label"], r["labels"][i]["label"]);
+    for (const char* q : {"area", "volume", "integral_H", "integral_K"})
+      EXPECT_EQ(z["labels"][i][q].get<double>(), r["labels"][i][q].get<double>()) << q;
+  }
+}
