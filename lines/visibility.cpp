@@ -23,6 +23,11 @@ struct VisibilityTester::Impl {
   vtkSmartPointer<vtkGenericCell> cell = vtkSmartPointer<vtkGenericCell>::New();
   double edge = 0;     // mean edge length
   double diagonal = 0; // of the mesh's box
+
+  /// True when the ray from `start` to the eye (for an orthographic camera: along the view
+  /// vector `v` out of the box) meets no triangle.
+  bool clear_ray(const double start[3], const std::array<double, 3> &v,
+                 const Camera &camera) const;
 };
 
 VisibilityTester::VisibilityTester(const Mesh &mesh)
@@ -65,22 +70,23 @@ VisibilityTester::VisibilityTester(const Mesh &mesh)
 
 VisibilityTester::~VisibilityTester() = default;
 
-namespace {
-
-/// True when the ray from `start` to the eye (for an orthographic camera: along the view vector
-/// out of the box) meets no triangle.
-bool clear_ray(const VisibilityTester::Impl &m, const double start[3],
-               const std::array<double, 3> &v, const Camera &camera) {
+bool VisibilityTester::Impl::clear_ray(const double start[3], const std::array<double, 3> &v,
+                                       const Camera &camera) const {
   double end[3];
-  const double far = camera.ortho ? 2 * m.diagonal + 1 : 0;
+  const double far = camera.ortho ? 2 * diagonal + 1 : 0;
   for (int c = 0; c < 3; ++c)
     end[c] = camera.ortho ? start[c] + far * v[c] : camera.position[c];
   double t = 0, x[3], pcoords[3];
   int sub = 0;
-  vtkIdType cell = -1;
-  double from[3] = {start[0], start[1], start[2]};
-  return m.locator->IntersectWithLine(from, end, 0.0, t, x, pcoords, sub, cell,
-                                      m.cell) == 0;
+  vtkIdType hit = -1;
+  return locator->IntersectWithLine(start, end, 0.0, t, x, pcoords, sub, hit, cell) == 0;
+}
+
+namespace {
+
+/// The midpoint of segment `s`.
+Vec3f midpoint(const Segment &s) {
+  return {0.5f * (s.a[0] + s.b[0]), 0.5f * (s.a[1] + s.b[1]), 0.5f * (s.a[2] + s.b[2])};
 }
 
 /// The unit normal of face `face` of `mesh`, or zero.
@@ -109,14 +115,13 @@ bool VisibilityTester::visible(const Vec3f &p, std::uint32_t face,
   double start[3];
   for (int c = 0; c < 3; ++c)
     start[c] = q[c] + m.edge * v[c] + 0.05 * m.edge * n[c];
-  return clear_ray(m, start, v, camera);
+  return m.clear_ray(start, v, camera);
 }
 
 bool VisibilityTester::visible_contour(const Segment &s,
                                        const Camera &camera) const {
   const Impl &m = *impl_;
-  const Vec3f mid{0.5f * (s.a[0] + s.b[0]), 0.5f * (s.a[1] + s.b[1]),
-                  0.5f * (s.a[2] + s.b[2])};
+  const Vec3f mid = midpoint(s);
   if (visible(mid, s.face, camera))
     return true;
   // The side of the line in the image: across the segment and the view.
@@ -133,7 +138,7 @@ bool VisibilityTester::visible_contour(const Segment &s,
     double start[3];
     for (int c = 0; c < 3; ++c)
       start[c] = q[c] + m.edge * v[c] + sign * kContourSideEdges * m.edge * side[c] / len;
-    if (clear_ray(m, start, v, camera))
+    if (m.clear_ray(start, v, camera))
       return true;
   }
   return false;
@@ -145,10 +150,8 @@ VisibilityTester::visible_segments(const Segments &segments,
   std::vector<bool> out(segments.size());
   for (std::size_t i = 0; i < segments.size(); ++i) {
     const Segment &s = segments[i];
-    const Vec3f mid{0.5f * (s.a[0] + s.b[0]), 0.5f * (s.a[1] + s.b[1]),
-                    0.5f * (s.a[2] + s.b[2])};
     out[i] = s.type == LineType::contour ? visible_contour(s, camera)
-                                         : visible(mid, s.face, camera);
+                                         : visible(midpoint(s), s.face, camera);
   }
   return out;
 }

@@ -42,9 +42,8 @@ public:
   /// How far (in mean edge lengths) visible_contour() looks to each side of a contour.
   static constexpr double kContourSideEdges = 1.5;
 
-  struct Impl;
-
 private:
+  struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 
