@@ -1,5 +1,6 @@
 // isocurv compare VOLUME|MESH: every mesh curvature estimator on the same surface, side by side.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -99,13 +100,21 @@ struct CompareRow {
   std::size_t flagged = 0;
 };
 
+/// What the surfaces compared add up to (one surface, or every label's).
+struct CompareTotals {
+  std::string normals;  ///< the mesh estimators' normals' name
+  std::size_t surfaces = 0, vertices = 0, triangles = 0;
+  std::array<double, 2> edges{0, 0};  ///< edge_length_sum's terms over every surface
+  double mean_edge() const { return edges[1] > 0 ? edges[0] / edges[1] : 0; }
+};
+
 /// Every mesh estimator on `mesh` (normals as `curvature` takes them: --normals, else the
 /// gradient of `volume`, else the faces), and with a volume the volume estimator on `volume` at
-/// `isovalue`, appended to `rows` (one row per estimator, made on the first call). Returns the
-/// mesh estimators' normals' name.
-std::string compare_estimators(const Mesh& mesh, const volume::Volume* volume, float isovalue,
-                               const CommonOptions& o, StageTimer& timer,
-                               std::vector<CompareRow>& rows) {
+/// `isovalue`, appended to `rows` (one row per estimator, made on the first call); the mesh is
+/// counted into `totals`.
+void compare_estimators(const Mesh& mesh, const volume::Volume* volume, float isovalue,
+                        const CommonOptions& o, StageTimer& timer, std::vector<CompareRow>& rows,
+                        CompareTotals& totals) {
   curvature::Options co;
   const curvature::NormalsSource asked = mesh_estimators_normals(o, volume != nullptr);
   const volume::MeshNormals normals = curvature::host_normals(asked, mesh, volume, o.cap);
@@ -113,7 +122,13 @@ std::string compare_estimators(const Mesh& mesh, const volume::Volume* volume, f
   co.ao_scale = curvature::default_ao_scale(mesh);
   apply_estimator_parameters(o, co);  // --scale reaches the volume row, the weights batagelo's
   Device* device = reference_device(o) ? nullptr : &device_for(o);
-  const double mean_edge = mean_edge_length(mesh);
+  const std::array<double, 2> edges = edge_length_sum(mesh);
+  const double mean_edge = mesh.triangles.empty() ? 0 : edges[0] / edges[1];  // mean_edge_length
+  totals.normals = curvature::normals_name(asked);
+  ++totals.surfaces;
+  totals.vertices += mesh.vertex_count();
+  totals.triangles += mesh.triangle_count();
+  totals.edges[0] += edges[0], totals.edges[1] += edges[1];
   std::size_t row = 0;
   // Runs one estimator (once before timing when `warm`: the device's program build, buffers).
   auto add = [&](const std::string& name, const std::string& path, bool warm,
@@ -144,7 +159,6 @@ std::string compare_estimators(const Mesh& mesh, const volume::Volume* volume, f
     add("volume", device ? "opencl" : "reference", device != nullptr,
         [&] { return curvature::estimate_field(mesh, {volume, isovalue}, device, vo); });
   }
-  return curvature::normals_name(asked);
 }
 
 }  // namespace
@@ -181,9 +195,7 @@ void register_compare(CLI::App& app) {
       throw CLI::ValidationError("--scale", "compare measures the volume estimator at one scale");
     StageTimer timer;
     std::vector<CompareRow> rows;
-    std::string source;
-    std::size_t vertices = 0, triangles = 0, labels_compared = 0;
-    double edge_sum = 0;  // mean edge lengths times triangles, for the limit's mean edge
+    CompareTotals totals;
     std::unique_ptr<datasets::Field> field;
     std::vector<double> exact_h, exact_k;
     if (o.labelled()) {
@@ -191,16 +203,9 @@ void register_compare(CLI::App& app) {
       const PickedLabels p = pick_labels(in, o, timer);
       const std::vector<std::int64_t> empty = labels::for_each_label_surface(
           p.map, p.picked, label_steps(p.map, o, timer), [&](labels::LabelSurface& l) {
-            source = compare_estimators(l.mesh, &l.indicator, l.isovalue, o, timer, rows);
-            vertices += l.mesh.vertex_count();
-            triangles += l.mesh.triangle_count();
-            edge_sum += mean_edge_length(l.mesh) * double(l.mesh.triangle_count());
-            ++labels_compared;
+            compare_estimators(l.mesh, &l.indicator, l.isovalue, o, timer, rows, totals);
           });
-      if (!empty.empty() && !o.quiet)
-        std::fprintf(stderr, "isocurv: warning: %s: %s\n", in.c_str(),
-                     labels::filling_labels_note(empty).c_str());
-      if (labels_compared == 0) throw Error(in, "--labels: no label has a surface");
+      report_label_visits(in, empty, totals.surfaces > 0, o);
     } else {
       Surface s = load_surface(in, o, timer);
       if (o.scale != "auto" && !s.volume)
@@ -217,19 +222,16 @@ void register_compare(CLI::App& app) {
         }
         timer.stop();
       }
-      source = compare_estimators(mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer, rows);
-      vertices = mesh.vertex_count();
-      triangles = mesh.triangle_count();
-      edge_sum = mean_edge_length(mesh) * double(triangles);
+      compare_estimators(mesh, s.volume ? &*s.volume : nullptr, s.isovalue, o, timer, rows, totals);
     }
-    const double limit = 2 / (edge_sum / double(std::max<std::size_t>(triangles, 1)));
+    const double limit = 2 / totals.mean_edge();
 
     nlohmann::json j;
     j["input"] = in;
-    j["vertices"] = vertices;
-    j["triangles"] = triangles;
-    if (o.labelled()) j["labels"] = labels_compared;
-    j["normals"] = source;
+    j["vertices"] = totals.vertices;
+    j["triangles"] = totals.triangles;
+    if (o.labelled()) j["labels"] = totals.surfaces;
+    j["normals"] = totals.normals;
     j["device"] = device_name(o);
     j["analytic_field"] = field ? nlohmann::json(field->name()) : nlohmann::json();
     j["unreliable_above"] = limit;
@@ -265,8 +267,8 @@ void register_compare(CLI::App& app) {
       return;
     }
     std::printf("%s: %s%zu vertices, %zu triangles, %s normals, %s%s\n", in.c_str(),
-                o.labelled() ? (std::to_string(labels_compared) + " labels, ").c_str() : "",
-                vertices, triangles, source.c_str(),
+                o.labelled() ? (std::to_string(totals.surfaces) + " labels, ").c_str() : "",
+                totals.vertices, totals.triangles, totals.normals.c_str(),
                 device_name(o).c_str(),
                 field ? (", exact values of the analytic field " + field->name()).c_str() : "");
     std::printf("%-13s %-9s %9s %6s %10s %10s %10s  %10s %10s %10s%s\n", "estimator", "path",

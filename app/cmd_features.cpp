@@ -171,7 +171,7 @@ nlohmann::json compute_label_features(Surface &s, const std::string &in, const C
     // the neighbourhoods reach the radius from the surface: keep them inside the indicator
     return int(std::ceil(largest / std::min({sp[0], sp[1], sp[2]}))) + 2;
   };
-  hooks.field = [&](const volume::Volume &, const Mesh &mesh, const volume::Volume &indicator,
+  hooks.field = [&](const Mesh &mesh, const volume::Volume &indicator,
                     curvature::CurvatureField &field) {
     add_features(mesh, field, &indicator, fo, o, timer, tally);
   };

@@ -74,6 +74,14 @@ PickedLabels pick_labels(const std::string& path, const CommonOptions& o, StageT
   return p;
 }
 
+void report_label_visits(const std::string& path, const std::vector<std::int64_t>& empty,
+                         bool any, const CommonOptions& o) {
+  if (!empty.empty() && !o.quiet)
+    std::fprintf(stderr, "isocurv: warning: %s: %s\n", path.c_str(),
+                 labels::filling_labels_note(empty).c_str());
+  if (!any) throw Error(path, "--labels: no label has a surface");
+}
+
 labels::LabelSurfaceSteps label_steps(const volume::Volume& map, const CommonOptions& o,
                                       StageTimer& timer) {
   labels::LabelSurfaceSteps steps;
@@ -108,16 +116,13 @@ Surface load_label_surfaces(const std::string& path, const CommonOptions& o, Sta
       s.normals.caps += used.caps;
       s.normals.source = used.source;
       if (s.estimator.estimator.empty()) s.estimator = report;
-      if (hooks.field) hooks.field(*s.volume, mesh, indicator, field);
+      if (hooks.field) hooks.field(mesh, indicator, field);
       return field;
     };
   labels::LabelSurfaces made = labels::label_surfaces(*s.volume, picked, steps);
   labels::LabelledMesh& merged = made.merged;
   const std::vector<std::int64_t>& empty = made.empty;
-  if (!empty.empty() && !o.quiet)
-    std::fprintf(stderr, "isocurv: warning: %s: %s\n", path.c_str(),
-                 labels::filling_labels_note(empty).c_str());
-  if (merged.parts.empty()) throw Error(path, "--labels: no label has a surface");
+  report_label_visits(path, empty, !merged.parts.empty(), o);
   s.mesh = std::move(merged.mesh);
   s.field = std::move(merged.field);
   s.label_cells = {io::CellArray{"Label", std::move(merged.triangle_labels)}};

@@ -39,25 +39,29 @@ struct PickedLabels {
 ///        labels::kMaxLabels labels, a map without labels, or none of --label's in it.
 PickedLabels pick_labels(const std::string& path, const CommonOptions& o, StageTimer& timer);
 
+/// After the labels of `path` were visited: a warning line (unless --quiet) naming the labels
+/// `empty` whose surface was empty (labels::filling_labels_note), and an Error naming `path`
+/// when no label had a surface (`any` false).
+void report_label_visits(const std::string& path, const std::vector<std::int64_t>& empty,
+                         bool any, const CommonOptions& o);
+
 /// The options of each label's surface: the indicators' margin for o's scales and o's
 /// extraction (extract_surface); no curvature, and `timer` takes the stages.
 labels::LabelSurfaceSteps label_steps(const volume::Volume& map, const CommonOptions& o,
                                       StageTimer& timer);
 
-/// What a command adds to each label's curvature before the labels are merged: `map` the label
-/// map, `mesh` the label's surface, `indicator` its indicator volume (isovalue
-/// labels::kIndicatorIsovalue), `field` its curvature, to add extra arrays to (every label must
-/// add the same ones, or merging drops them). Runs on the calling thread, label by label.
-using LabelFieldHook =
-    std::function<void(const volume::Volume& map, const Mesh& mesh,
-                       const volume::Volume& indicator, curvature::CurvatureField& field)>;
-
-/// What a command adds to load_label_surfaces: `field` runs on each label's curvature before it
-/// is merged; `margin`, given the label map, returns the least indicator margin (voxels) the
-/// command's own reach needs (features' radius), raising the scale's when larger.
+/// What a command adds to load_label_surfaces, label by label on the calling thread:
+/// - `margin`, called once with the label map before any label: the least indicator margin
+///   (voxels) the command's own reach needs (features' radius), raising the scale's when larger;
+/// - `field`, on each label's curvature before the labels are merged: `mesh` the label's surface,
+///   `indicator` its indicator volume (isovalue labels::kIndicatorIsovalue), `field` its
+///   curvature, to add extra arrays to (every label must add the same ones, or merging drops
+///   them).
 struct LabelHooks {
-  LabelFieldHook field;
   std::function<int(const volume::Volume& map)> margin;
+  std::function<void(const Mesh& mesh, const volume::Volume& indicator,
+                     curvature::CurvatureField& field)>
+      field;
 };
 
 Surface load_label_surfaces(const std::string& path, const CommonOptions& o, StageTimer& timer,

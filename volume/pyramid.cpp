@@ -140,12 +140,13 @@ PyramidLease::PyramidLease(const Volume& volume) : grid_(volume.grid), domain_(v
   {
     KeptPyramid& kept = kept_pyramid();
     std::lock_guard<std::mutex> lock(kept.mutex);
-    if (kept.pyramid && !kept.grid.expired() && kept.grid.lock() == volume.grid &&
-        kept.domain == volume.domain) {
+    // An expired grid locks to null, never equal to a live one (even at the same address).
+    const bool same_grid = kept.grid.lock() == volume.grid;
+    if (kept.pyramid && same_grid && kept.domain == volume.domain) {
       pyramid_ = std::move(kept.pyramid);
       pyramid_->rebind(volume.grid);
       reused_ = true;
-    } else if (kept.pyramid && (kept.grid.expired() || kept.grid.lock() != volume.grid)) {
+    } else if (!same_grid) {
       kept.pyramid.reset();  // another volume now: the old one's levels go
     }
   }

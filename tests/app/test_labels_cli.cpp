@@ -49,18 +49,14 @@ int three_labels(int x, int y, int z) {
   return 0;
 }
 
-json run_json(const std::vector<std::string>& args);
-
-/// The vertices of extract --labels' mesh of `map`.
-std::size_t m_vertices(const std::string& map);
-
 json run_json(const std::vector<std::string>& args) {
   const auto r = run_isocurv(args, 120);
   EXPECT_TRUE(r.ok()) << r.describe();
   return parse_json(r.out, args.front() + " --json");
 }
 
-std::size_t m_vertices(const std::string& map) {
+/// The vertices of extract --labels' mesh of `map`.
+std::size_t labelled_mesh_vertices(const std::string& map) {
   const json e = run_json({"extract", map, "--labels", "-o", map + ".all.vtp", "--json"});
   return e["vertices"].get<std::size_t>();
 }
@@ -215,7 +211,7 @@ TEST(CliLabels, LinesFeaturesCompareAndScreenTakeLabels) {
   const json c2 = run_json({"compare", map, "--label", "2", "--json"});
   const json ca = run_json({"compare", alone, "--json"});
   EXPECT_EQ(c["labels"], 3);
-  EXPECT_EQ(c["vertices"].get<std::size_t>(), m_vertices(map));
+  EXPECT_EQ(c["vertices"].get<std::size_t>(), labelled_mesh_vertices(map));
   ASSERT_EQ(c2["estimators"].size(), ca["estimators"].size());
   for (std::size_t i = 0; i < ca["estimators"].size(); ++i) {
     EXPECT_EQ(c2["estimators"][i]["counted"], ca["estimators"][i]["counted"]);
